@@ -1,0 +1,184 @@
+#include "plugin/registry.hpp"
+
+#include <boost/dll/runtime_symbol_info.hpp>
+#include <boost/dll/shared_library.hpp>
+
+#include <algorithm>
+#include <cstdlib>
+#include <sstream>
+
+#include "core/errors.hpp"
+
+namespace rumble {
+namespace {
+
+namespace fs = std::filesystem;
+namespace dll = boost::dll;
+
+std::string quoted(const fs::path& p) { return "'" + p.string() + "'"; }
+
+/// Boost.DLL appends a stale errno ("...: Bad file descriptor"); keep dlerror's text only.
+std::string clean_load_error(std::string what) {
+  const std::string marker = "dlerror system message: ";
+  const auto start = what.find(marker);
+  if (start == std::string::npos) return what;
+  std::string inner = what.substr(start + marker.size());
+  const auto close = inner.rfind(')');
+  if (close != std::string::npos) inner.resize(close);
+  return inner;
+}
+
+}  // namespace
+
+const char* kind_name(rumble_kind kind) {
+  switch (kind) {
+    case RUMBLE_KIND_VEHICLE:
+      return "vehicle";
+    case RUMBLE_KIND_SOIL:
+      return "soil";
+    case RUMBLE_KIND_COUPLER:
+      return "coupler";
+  }
+  return "unknown";
+}
+
+fs::path PluginRegistry::builtin_plugin_directory() {
+  const fs::path exe = dll::program_location();
+  return exe.parent_path().parent_path() / "lib" / "rumble" / "plugins";
+}
+
+bool PluginRegistry::already_loaded(const fs::path& canonical) const {
+  return std::any_of(libraries_.begin(), libraries_.end(),
+                     [&](const auto& lib) { return lib->path == canonical; });
+}
+
+void PluginRegistry::load_library(const fs::path& requested) {
+  std::error_code ec;
+  if (!fs::exists(requested, ec)) {
+    throw PluginLoadError("plugin " + quoted(requested) +
+                          ": file not found; check the path (relative paths are relative to the "
+                          "scenario file) or RUMBLE_PLUGIN_PATH");
+  }
+  const fs::path path = fs::canonical(requested, ec);
+  if (already_loaded(path)) return;
+
+  auto library = std::make_shared<dll::shared_library>();
+  try {
+    // rtld_now: an unresolved symbol is a load error here, not a crash later (toolchain.md §8.4).
+    library->load(dll::fs::path(path), dll::load_mode::rtld_now | dll::load_mode::rtld_local);
+  } catch (const std::exception& e) {
+    throw PluginLoadError("plugin " + quoted(path) + ": cannot be loaded: " +
+                          clean_load_error(e.what()));
+  }
+  if (!library->has(RUMBLE_PLUGIN_ENTRY_SYMBOL)) {
+    throw PluginLoadError("plugin " + quoted(path) + ": not a Rumble plugin (no '" +
+                          std::string(RUMBLE_PLUGIN_ENTRY_SYMBOL) +
+                          "' entry point); was it built with rumble_add_plugin() and "
+                          "RUMBLE_PLUGIN()?");
+  }
+  const auto entry = library->get<const rumble_plugin_descriptor*()>(RUMBLE_PLUGIN_ENTRY_SYMBOL);
+  const rumble_plugin_descriptor* d = entry();
+  if (d == nullptr) {
+    throw PluginLoadError("plugin " + quoted(path) + ": entry point returned no descriptor");
+  }
+  const std::string host_abi =
+      std::to_string(RUMBLE_ABI_MAJOR) + "." + std::to_string(RUMBLE_ABI_MINOR);
+  const std::string plugin_abi = std::to_string(d->abi_major) + "." + std::to_string(d->abi_minor);
+  if (d->abi_major != RUMBLE_ABI_MAJOR) {
+    throw PluginLoadError("plugin " + quoted(path) + ": built for plugin ABI " + plugin_abi +
+                          ", this engine has ABI " + host_abi + " (the major versions differ); " +
+                          "rebuild the plugin against Rumble SDK " +
+                          std::to_string(RUMBLE_ABI_MAJOR) + ".x");
+  }
+  if (d->abi_minor > RUMBLE_ABI_MINOR) {
+    throw PluginLoadError("plugin " + quoted(path) + ": built for plugin ABI " + plugin_abi +
+                          ", newer than this engine's ABI " + host_abi +
+                          "; upgrade Rumble or rebuild the plugin against this engine's SDK");
+  }
+  if (d->struct_size < sizeof(rumble_plugin_descriptor) || d->factories == nullptr) {
+    throw PluginLoadError("plugin " + quoted(path) + ": malformed descriptor");
+  }
+
+  auto loaded = std::make_shared<LoadedLibrary>();
+  loaded->path = path;
+  loaded->library = library;
+  loaded->descriptor = d;
+
+  std::vector<ComponentType> added;
+  for (std::uint64_t i = 0; i < d->n_factories; ++i) {
+    const rumble_factory& f = d->factories[i];
+    const auto kind = static_cast<rumble_kind>(f.kind);
+    if (f.type_name == nullptr || f.create == nullptr || f.api == nullptr ||
+        std::string(kind_name(kind)) == "unknown") {
+      throw PluginLoadError("plugin " + quoted(path) + ": factory " + std::to_string(i) +
+                            " is malformed (missing name, create, table or unknown kind)");
+    }
+    for (const auto* existing : {&types_, &added}) {
+      for (const ComponentType& t : *existing) {
+        if (t.type_name == f.type_name) {
+          throw PluginLoadError("plugin " + quoted(path) + ": type '" + f.type_name +
+                                "' is already provided by " + quoted(t.library ? t.library->path
+                                                                               : path) +
+                                "; type names must be unique: rename one, or remove one "
+                                "library from the plugin path");
+        }
+      }
+    }
+    ComponentType t;
+    t.kind = kind;
+    t.type_name = f.type_name;
+    t.summary = f.summary != nullptr ? f.summary : "";
+    t.params_schema = f.params_schema != nullptr ? f.params_schema : "{}";
+    t.factory = &f;
+    t.library = loaded;
+    added.push_back(std::move(t));
+  }
+  libraries_.push_back(loaded);
+  types_.insert(types_.end(), added.begin(), added.end());
+}
+
+void PluginRegistry::load_directory(const fs::path& dir) {
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) return;
+  std::vector<fs::path> files;
+  for (const auto& entry : fs::directory_iterator(dir, ec)) {
+    if (entry.is_regular_file() && entry.path().extension() == ".so") files.push_back(entry.path());
+  }
+  std::sort(files.begin(), files.end());  // deterministic order, so duplicate errors are too
+  for (const fs::path& f : files) load_library(f);
+}
+
+void PluginRegistry::load_default_directories() {
+  load_directory(builtin_plugin_directory());
+  if (const char* env = std::getenv("RUMBLE_PLUGIN_PATH"); env != nullptr) {
+    std::stringstream ss(env);
+    std::string item;
+    while (std::getline(ss, item, ':')) {
+      if (item.empty()) continue;
+      const fs::path p(item);
+      if (fs::is_directory(p)) {
+        load_directory(p);
+      } else {
+        load_library(p);  // a file in RUMBLE_PLUGIN_PATH; a missing one is reported
+      }
+    }
+  }
+}
+
+const ComponentType* PluginRegistry::find(rumble_kind kind, std::string_view type_name) const {
+  for (const ComponentType& t : types_) {
+    if (t.kind == kind && t.type_name == type_name) return &t;
+  }
+  return nullptr;
+}
+
+std::vector<std::string> PluginRegistry::type_names(rumble_kind kind) const {
+  std::vector<std::string> names;
+  for (const ComponentType& t : types_) {
+    if (t.kind == kind) names.push_back(t.type_name);
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+}  // namespace rumble

@@ -1,0 +1,65 @@
+// Plugin loading (Boost.DLL) and the registry of component types found in plugin libraries.
+//
+// A library, once loaded, stays loaded for the life of the process: the registry owns it and
+// every instance created from it holds a shared_ptr to it as well (see instance.hpp), so code is
+// never unmapped while an object made by it lives.
+#pragma once
+
+#include <rumble/abi.h>
+
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace boost::dll {
+class shared_library;
+}
+
+namespace rumble {
+
+/// "vehicle", "soil", "coupler".
+const char* kind_name(rumble_kind kind);
+
+struct LoadedLibrary {
+  std::filesystem::path path;
+  std::shared_ptr<boost::dll::shared_library> library;
+  const rumble_plugin_descriptor* descriptor = nullptr;  // static data inside the library
+};
+
+struct ComponentType {
+  rumble_kind kind{};
+  std::string type_name;
+  std::string summary;
+  std::string params_schema;  // JSON Schema text, as the plugin declared it
+  const rumble_factory* factory = nullptr;
+  std::shared_ptr<const LoadedLibrary> library;
+};
+
+class PluginRegistry {
+ public:
+  /// Loads one library and registers its types. Throws PluginLoadError with the exact reason:
+  /// file not found, not a Rumble plugin, ABI major mismatch, newer minor, duplicate type.
+  void load_library(const std::filesystem::path& path);
+  /// Loads every *.so in each directory (non-existent directories are skipped).
+  void load_directory(const std::filesystem::path& dir);
+  /// The default search: the engine's own plugin directory, then RUMBLE_PLUGIN_PATH (':'-separated).
+  void load_default_directories();
+
+  const ComponentType* find(rumble_kind kind, std::string_view type_name) const;
+  /// Sorted type names of one kind.
+  std::vector<std::string> type_names(rumble_kind kind) const;
+  const std::vector<ComponentType>& types() const { return types_; }
+  const std::vector<std::shared_ptr<const LoadedLibrary>>& libraries() const { return libraries_; }
+
+  /// Directory of the engine's own plugins: <dir of executable>/../lib/rumble/plugins.
+  static std::filesystem::path builtin_plugin_directory();
+
+ private:
+  bool already_loaded(const std::filesystem::path& canonical) const;
+  std::vector<std::shared_ptr<const LoadedLibrary>> libraries_;
+  std::vector<ComponentType> types_;
+};
+
+}  // namespace rumble

@@ -1,0 +1,28 @@
+# rumble_add_plugin(<name> SOURCES <files...>)
+#
+# Builds a Rumble plugin: a MODULE library named <name>.so with hidden visibility, linked only
+# to Rumble::sdk, so that the one entry point exported by RUMBLE_PLUGIN() is all it shows.
+# Output goes to RUMBLE_PLUGIN_OUTPUT_DIR when set (the engine's build tree does), otherwise to
+# the caller's binary directory. Point RUMBLE_PLUGIN_PATH at that directory to use it.
+function(rumble_add_plugin name)
+  cmake_parse_arguments(ARG "" "" "SOURCES" ${ARGN})
+  if(NOT ARG_SOURCES)
+    message(FATAL_ERROR "rumble_add_plugin(${name}): give SOURCES")
+  endif()
+  add_library(${name} MODULE ${ARG_SOURCES})
+  target_link_libraries(${name} PRIVATE Rumble::sdk)
+  set_target_properties(${name} PROPERTIES
+    PREFIX ""
+    CXX_VISIBILITY_PRESET hidden
+    VISIBILITY_INLINES_HIDDEN ON
+    POSITION_INDEPENDENT_CODE ON)
+  if(RUMBLE_PLUGIN_OUTPUT_DIR)
+    set_target_properties(${name} PROPERTIES LIBRARY_OUTPUT_DIRECTORY ${RUMBLE_PLUGIN_OUTPUT_DIR})
+  endif()
+  if(RUMBLE_PLUGIN_INSTALL_DIR)
+    install(TARGETS ${name} LIBRARY DESTINATION ${RUMBLE_PLUGIN_INSTALL_DIR})
+  endif()
+  # Refuse symbols left undefined at link time: the loader uses RTLD_NOW anyway, but failing
+  # here names the missing symbol at build time.
+  target_link_options(${name} PRIVATE -Wl,--no-undefined)
+endfunction()
