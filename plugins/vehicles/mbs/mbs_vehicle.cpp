@@ -1,0 +1,247 @@
+// mbs: a multibody vehicle in minimal coordinates defined in JSON (docs/vehicles.md), in the
+// spirit of the seed paper's library: bodies placed by chains of homogeneous transformations
+// driven by the DOFs, linear spring-dampers between body points, wheels at body points.
+//
+// Accuracy: positions, Jacobians and the quadratic velocity terms are exact (analytic chain
+// derivatives, kinematics.hpp). The tangent K = -df/dq, C = -df/dq' is computed by complex-step
+// differentiation, f'(x) = Im f(x + i h) / h, which has no subtractive cancellation: with
+// h = 1e-20 its truncation error h^2 |f'''| / 6 is far below double round-off, so the tangent is
+// exact to round-off (2 n complex force evaluations per call).
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <cstddef>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <rumble/plugin.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "definition.hpp"
+#include "dynamics.hpp"
+#include "json_reader.hpp"
+#include "kinematics.hpp"
+#include "mbs_schema.hpp"
+
+namespace rumble::mbs {
+namespace {
+
+using Complex = std::complex<double>;
+using vehicles::fail;
+
+constexpr double kComplexStep = 1e-20;  // imaginary step of the complex-step tangent
+
+nlohmann::json parse_json(const std::string& text, const std::string& where) {
+  try {
+    return nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    fail(where, std::string("not valid JSON: ") + e.what());
+  }
+}
+
+/// params -> Definition: inline, or from the file named by params/file (relative to the
+/// scenario directory); error pointers then read "<file as written>#/bodies/2/mass".
+Definition load_definition(const std::string& params_json, const rumble::Host& host) {
+  const nlohmann::json params = parse_json(params_json, "params");
+  if (!params.is_object() || !params.contains("file")) return parse_definition(params, "params");
+  const nlohmann::json& file = params.at("file");
+  if (!file.is_string() || file.get<std::string>().empty()) {
+    fail("params/file", "expected a non-empty string (a path)", vehicles::shown(file));
+  }
+  for (const auto& item : params.items()) {
+    if (item.key() != "file") {
+      fail("params/" + item.key(), "not allowed together with \"file\"", {},
+           "put the whole definition in the file, or give it inline without \"file\"");
+    }
+  }
+  const std::string name = file.get<std::string>();
+  std::filesystem::path path(name);
+  if (path.is_relative()) path = std::filesystem::path(host.scenario_dir()) / path;
+  std::ifstream in(path);
+  if (!in) {
+    fail("params/file", "cannot open \"" + path.string() + "\"", vehicles::shown(file),
+         "give the path of a vehicle definition relative to the scenario file's directory (\"" +
+             host.scenario_dir() + "\")");
+  }
+  std::stringstream text;
+  text << in.rdbuf();
+  return parse_definition(parse_json(text.str(), name), name + "#");
+}
+
+class MbsVehicle final : public rumble::Vehicle {
+ public:
+  static constexpr const char* kTypeName = "mbs";
+  static constexpr const char* kSummary =
+      "multibody vehicle from JSON: bodies on chains of transformations, spring-dampers, wheels "
+      "(vertical plane)";
+  static const char* params_schema() { return mbs_params_schema(); }
+
+  MbsVehicle(const std::string& params_json, const rumble::Host& host)
+      : d_(load_definition(params_json, host)),
+        n_(d_.dof_names.size()),
+        kin_(d_),
+        work_(n_),
+        kin_c_(d_),
+        work_c_(n_),
+        q_c_(n_),
+        qd_c_(n_),
+        f_c_(n_) {
+    compute_nominal();
+    check_mass_matrix();
+  }
+
+  std::size_t dof_count() const override { return n_; }
+
+  std::vector<rumble::Wheel> wheels() const override {
+    std::vector<rumble::Wheel> w;
+    for (std::size_t i = 0; i < d_.wheels.size(); ++i) {
+      w.push_back(rumble::Wheel{nominal_.wheel_x[i], d_.wheels[i].radius});
+    }
+    return w;
+  }
+
+  void mass_matrix(const double* q, double* m) override {
+    kin_.update(q, q);  // velocities are not used by M
+    rumble::mbs::mass_matrix(d_, kin_, m);
+  }
+
+  void forces(double /*t*/, const double* q, const double* qd, double* f) override {
+    kin_.update(q, qd);
+    generalized_forces(d_, nominal_, kin_, work_, qd, f);
+  }
+
+  void wheel_kinematics(const double* q, double* z, double* jacobian) override {
+    kin_.update(q, q);
+    const std::size_t nw = d_.wheels.size();
+    for (std::size_t i = 0; i < nw; ++i) {
+      kin_.point(d_.wheels[i].centre, work_.a);
+      // The contact point lies a fixed radius below the centre: same vertical motion.
+      z[i] = work_.a.z - nominal_.wheel_z[i];
+      for (std::size_t j = 0; j < n_; ++j) jacobian[j * nw + i] = work_.a.jz[j];
+    }
+  }
+
+  bool tangent(double /*t*/, const double* q, const double* qd, double* k, double* c) override {
+    for (std::size_t j = 0; j < n_; ++j) {
+      q_c_[j] = q[j];
+      qd_c_[j] = qd[j];
+    }
+    for (std::size_t j = 0; j < n_; ++j) {
+      q_c_[j] += Complex(0.0, kComplexStep);
+      complex_forces();
+      for (std::size_t i = 0; i < n_; ++i) k[j * n_ + i] = -f_c_[i].imag() / kComplexStep;
+      q_c_[j] = q[j];
+      qd_c_[j] += Complex(0.0, kComplexStep);
+      complex_forces();
+      for (std::size_t i = 0; i < n_; ++i) c[j * n_ + i] = -f_c_[i].imag() / kComplexStep;
+      qd_c_[j] = qd[j];
+    }
+    return true;
+  }
+
+  std::vector<std::string> output_names() const override {
+    std::vector<std::string> names;
+    for (const Element& e : d_.elements) names.push_back(e.name + "_force [N]");
+    return names;
+  }
+
+  /// Each element's compression force F [N] (see Element).
+  void outputs(double /*t*/, const double* q, const double* qd, double* values) override {
+    kin_.update(q, qd);
+    for (std::size_t e = 0; e < d_.elements.size(); ++e) {
+      values[e] = element_force<double>(d_.elements[e], nominal_.element_length[e], kin_, work_, qd,
+                                        nullptr);
+    }
+  }
+
+ private:
+  void complex_forces() {
+    kin_c_.update(q_c_.data(), qd_c_.data());
+    generalized_forces(d_, nominal_, kin_c_, work_c_, qd_c_.data(), f_c_.data());
+  }
+
+  /// Element lengths and wheel positions at q = 0, and the checks that need them.
+  void compute_nominal() {
+    const std::vector<double> zero(n_, 0.0);
+    kin_.update(zero.data(), zero.data());
+    for (const Element& e : d_.elements) {
+      kin_.point(e.a, work_.a);
+      kin_.point(e.b, work_.b);
+      const double dx = work_.b.x - work_.a.x;
+      const double dz = work_.b.z - work_.a.z;
+      double s0 = dz;
+      if (e.direction == Direction::kX) s0 = dx;
+      if (e.direction == Direction::kLine) {
+        s0 = std::hypot(dx, dz);
+        if (!(s0 > 0.0)) {
+          fail(e.where + "/direction",
+               "a \"line\" element needs two distinct points at q = 0 (its direction is the line "
+               "between them)",
+               "\"line\" with both points at [" + std::to_string(work_.a.x) + ", " +
+                   std::to_string(work_.a.z) + "]",
+               "move one point, or use direction \"z\" or \"x\"");
+        }
+      }
+      nominal_.element_length.push_back(s0);
+    }
+    for (const WheelDef& w : d_.wheels) {
+      kin_.point(w.centre, work_.a);
+      nominal_.wheel_x.push_back(work_.a.x);
+      nominal_.wheel_z.push_back(work_.a.z);
+      bool moves = false;
+      for (std::size_t j = 0; j < n_; ++j) moves = moves || work_.a.jz[j] != 0.0;
+      if (!moves) {
+        fail(w.where + "/body",
+             "the wheel centre does not move vertically with any DOF, so the contact force has "
+             "nothing to act on",
+             vehicles::shown(nlohmann::json(w.centre.body_name)),
+             "drive this body (or one of its parents) with a \"tz\" transformation that has a "
+             "\"dof\"");
+      }
+    }
+  }
+
+  /// M(0) must be positive definite (Cholesky), else name the first DOF that has no inertia.
+  void check_mass_matrix() {
+    std::vector<double> m(n_ * n_);
+    const std::vector<double> zero(n_, 0.0);
+    mass_matrix(zero.data(), m.data());
+    double scale = 0.0;
+    for (std::size_t j = 0; j < n_; ++j) scale = std::max(scale, m[j * n_ + j]);
+    for (std::size_t j = 0; j < n_; ++j) {  // in-place lower Cholesky, column by column
+      double pivot = m[j * n_ + j];
+      for (std::size_t k = 0; k < j; ++k) pivot -= m[k * n_ + j] * m[k * n_ + j];
+      if (!(pivot > 1e-12 * scale)) {
+        fail(d_.dof_where[j] + "/dof",
+             "the mass matrix is singular at q = 0: DOF \"" + d_.dof_names[j] +
+                 "\" moves no mass or inertia that the DOFs before it do not already move",
+             {},
+             "place a body with mass (for a rotation: pitch inertia, or a centre of mass off the "
+             "axis) after this transformation, or remove the DOF");
+      }
+      const double l = std::sqrt(pivot);
+      m[j * n_ + j] = l;
+      for (std::size_t i = j + 1; i < n_; ++i) {
+        double v = m[j * n_ + i];
+        for (std::size_t k = 0; k < j; ++k) v -= m[k * n_ + i] * m[k * n_ + j];
+        m[j * n_ + i] = v / l;
+      }
+    }
+  }
+
+  Definition d_;  // first: the kinematics below keep a reference to it
+  std::size_t n_;
+  Nominal nominal_;
+  Kinematics<double> kin_;
+  Workspace<double> work_;
+  Kinematics<Complex> kin_c_;  // complex-step tangent
+  Workspace<Complex> work_c_;
+  std::vector<Complex> q_c_, qd_c_, f_c_;
+};
+
+}  // namespace
+}  // namespace rumble::mbs
+
+RUMBLE_PLUGIN("mbs", "0.1.0", rumble::mbs::MbsVehicle)
