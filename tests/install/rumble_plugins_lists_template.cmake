@@ -2,6 +2,9 @@
 # lists the template library and its type, in text and in JSON.
 # Variables (-D): RUMBLE (the executable), PLUGIN_DIR, EXPECTED_ABI ("major.minor").
 cmake_minimum_required(VERSION 3.25)
+if(NOT EXISTS "${RUMBLE}")
+  message(FATAL_ERROR "${RUMBLE} does not exist: build the rumble target first")
+endif()
 
 function(run_plugins out_var)
   execute_process(COMMAND ${CMAKE_COMMAND} -E env RUMBLE_PLUGIN_PATH=${PLUGIN_DIR}
@@ -20,6 +23,9 @@ endif()
 
 run_plugins(json --format json)
 string(JSON n_libraries LENGTH "${json}")
+if(n_libraries EQUAL 0)
+  message(FATAL_ERROR "rumble plugins --format json lists no library:\n${json}")
+endif()
 set(found FALSE)
 math(EXPR last "${n_libraries} - 1")
 foreach(i RANGE ${last})
@@ -28,7 +34,8 @@ foreach(i RANGE ${last})
     string(JSON abi GET "${json}" ${i} abi)
     string(JSON type GET "${json}" ${i} types 0 type)
     string(JSON kind GET "${json}" ${i} types 0 kind)
-    if(NOT type STREQUAL "template_soil" OR NOT kind STREQUAL "soil" OR NOT abi STREQUAL EXPECTED_ABI)
+    if(NOT type STREQUAL "template_soil" OR NOT kind STREQUAL "soil"
+       OR NOT abi STREQUAL EXPECTED_ABI)
       message(FATAL_ERROR "template_soil listed as ${kind} '${type}', ABI ${abi}:\n${json}")
     endif()
     set(found TRUE)
