@@ -83,6 +83,7 @@ class MbsVehicle final : public rumble::Vehicle {
         n_(d_.dof_names.size()),
         kin_(d_),
         work_(n_),
+        zeros_(n_, 0.0),
         kin_c_(d_),
         work_c_(n_),
         q_c_(n_),
@@ -103,7 +104,7 @@ class MbsVehicle final : public rumble::Vehicle {
   }
 
   void mass_matrix(const double* q, double* m) override {
-    kin_.update(q, q);  // velocities are not used by M
+    kin_.update(q, zeros_.data());  // M depends on q only
     rumble::mbs::mass_matrix(d_, kin_, m);
   }
 
@@ -113,7 +114,7 @@ class MbsVehicle final : public rumble::Vehicle {
   }
 
   void wheel_kinematics(const double* q, double* z, double* jacobian) override {
-    kin_.update(q, q);
+    kin_.update(q, zeros_.data());
     const std::size_t nw = d_.wheels.size();
     for (std::size_t i = 0; i < nw; ++i) {
       kin_.point(d_.wheels[i].centre, work_.a);
@@ -164,8 +165,7 @@ class MbsVehicle final : public rumble::Vehicle {
 
   /// Element lengths and wheel positions at q = 0, and the checks that need them.
   void compute_nominal() {
-    const std::vector<double> zero(n_, 0.0);
-    kin_.update(zero.data(), zero.data());
+    kin_.update(zeros_.data(), zeros_.data());
     for (const Element& e : d_.elements) {
       kin_.point(e.a, work_.a);
       kin_.point(e.b, work_.b);
@@ -206,8 +206,7 @@ class MbsVehicle final : public rumble::Vehicle {
   /// M(0) must be positive definite (Cholesky), else name the first DOF that has no inertia.
   void check_mass_matrix() {
     std::vector<double> m(n_ * n_);
-    const std::vector<double> zero(n_, 0.0);
-    mass_matrix(zero.data(), m.data());
+    mass_matrix(zeros_.data(), m.data());
     double scale = 0.0;
     for (std::size_t j = 0; j < n_; ++j) scale = std::max(scale, m[j * n_ + j]);
     for (std::size_t j = 0; j < n_; ++j) {  // in-place lower Cholesky, column by column
@@ -236,6 +235,7 @@ class MbsVehicle final : public rumble::Vehicle {
   Nominal nominal_;
   Kinematics<double> kin_;
   Workspace<double> work_;
+  std::vector<double> zeros_;  // q' = 0 where only positions matter
   Kinematics<Complex> kin_c_;  // complex-step tangent
   Workspace<Complex> work_c_;
   std::vector<Complex> q_c_, qd_c_, f_c_;
