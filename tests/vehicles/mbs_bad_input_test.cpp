@@ -104,6 +104,15 @@ TEST(MbsBadInput, MisspeltKey) {
             "here: inertia, mass, name, parent, transforms");
 }
 
+TEST(MbsBadInput, MisspeltOptionalKey) {
+  const std::string params =
+      R"({"bodies": [{"name": "w", "mass": 1, "transforms": [{"type": "tz", "dfo": "z"}]}],
+          "wheels": [{"body": "w"}]})";
+  EXPECT_EQ(creation_error("mbs", params),
+            "params/bodies/0/transforms/0/dfo: unknown key (did you mean \"dof\"?); allowed keys "
+            "here: dof, type, value");
+}
+
 TEST(MbsBadInput, UnknownTransformation) {
   const std::string params =
       R"({"bodies": [{"name": "w", "mass": 1, "transforms": [{"type": "rz", "dof": "z"}]}],

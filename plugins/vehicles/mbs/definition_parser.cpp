@@ -93,7 +93,7 @@ void read_transforms(ObjectReader& br, Body& body, Definition& d,
     Transform t;
     t.motion = read_motion(tr);
     t.value = tr.number_or("value", 0.0);
-    if (tr.has("dof")) {
+    if (tr.value("dof") != nullptr) {  // value() also marks "dof" as a known key
       const std::string name = read_name(tr, "dof", "name the DOF this transformation adds to");
       const auto used = dof_users.find(name);
       if (used != dof_users.end()) {
