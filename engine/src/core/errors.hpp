@@ -25,3 +25,13 @@ class RunError : public std::runtime_error {
 };
 
 }  // namespace rumble
+
+namespace rumble {
+
+/// The user interrupted the run (Ctrl-C / SIGTERM); results so far are kept.
+class Interrupted : public RunError {
+ public:
+  using RunError::RunError;
+};
+
+}  // namespace rumble

@@ -1,9 +1,8 @@
 #include "plugin/registry.hpp"
 
+#include <algorithm>
 #include <boost/dll/runtime_symbol_info.hpp>
 #include <boost/dll/shared_library.hpp>
-
-#include <algorithm>
 #include <cstdlib>
 #include <sstream>
 
@@ -15,7 +14,9 @@ namespace {
 namespace fs = std::filesystem;
 namespace dll = boost::dll;
 
-std::string quoted(const fs::path& p) { return "'" + p.string() + "'"; }
+std::string quoted(const fs::path& p) {
+  return "'" + p.string() + "'";
+}
 
 /// Boost.DLL appends a stale errno ("...: Bad file descriptor"); keep dlerror's text only.
 std::string clean_load_error(std::string what) {
@@ -67,8 +68,8 @@ void PluginRegistry::load_library(const fs::path& requested) {
     // rtld_now: an unresolved symbol is a load error here, not a crash later (toolchain.md §8.4).
     library->load(dll::fs::path(path), dll::load_mode::rtld_now | dll::load_mode::rtld_local);
   } catch (const std::exception& e) {
-    throw PluginLoadError("plugin " + quoted(path) + ": cannot be loaded: " +
-                          clean_load_error(e.what()));
+    throw PluginLoadError("plugin " + quoted(path) +
+                          ": cannot be loaded: " + clean_load_error(e.what()));
   }
   if (!library->has(RUMBLE_PLUGIN_ENTRY_SYMBOL)) {
     throw PluginLoadError("plugin " + quoted(path) + ": not a Rumble plugin (no '" +
@@ -117,8 +118,8 @@ void PluginRegistry::load_library(const fs::path& requested) {
       for (const ComponentType& t : *existing) {
         if (t.type_name == f.type_name) {
           throw PluginLoadError("plugin " + quoted(path) + ": type '" + f.type_name +
-                                "' is already provided by " + quoted(t.library ? t.library->path
-                                                                               : path) +
+                                "' is already provided by " +
+                                quoted(t.library ? t.library->path : path) +
                                 "; type names must be unique: rename one, or remove one "
                                 "library from the plugin path");
         }

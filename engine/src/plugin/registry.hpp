@@ -44,7 +44,8 @@ class PluginRegistry {
   void load_library(const std::filesystem::path& path);
   /// Loads every *.so in each directory (non-existent directories are skipped).
   void load_directory(const std::filesystem::path& dir);
-  /// The default search: the engine's own plugin directory, then RUMBLE_PLUGIN_PATH (':'-separated).
+  /// The default search: the engine's own plugin directory, then RUMBLE_PLUGIN_PATH
+  /// (':'-separated).
   void load_default_directories();
 
   const ComponentType* find(rumble_kind kind, std::string_view type_name) const;

@@ -137,9 +137,9 @@ typedef struct rumble_footprint {
  * tau in [0, 1], k = 0..order. order 0 is a held constant.
  */
 typedef struct rumble_waveform {
-  uint32_t order;       /**< polynomial order, 0..2 */
-  uint64_t n;           /**< number of channels */
-  const double* coeff;  /**< (order + 1) * n values */
+  uint32_t order;      /**< polynomial order, 0..2 */
+  uint64_t n;          /**< number of channels */
+  const double* coeff; /**< (order + 1) * n values */
 } rumble_waveform;
 
 typedef struct rumble_receiver {
@@ -156,14 +156,13 @@ typedef struct rumble_soil_api {
   rumble_status (*initialize)(rumble_instance* self, double t0, const double* static_force,
                               double* static_u, uint64_t n);
   /** Advance over [t, t + H] with the footprint forces given as a waveform. */
-  rumble_status (*advance)(rumble_instance* self, double t, double H,
-                           const rumble_waveform* force);
+  rumble_status (*advance)(rumble_instance* self, double t, double H, const rumble_waveform* force);
   /** Footprint displacement [m] and velocity [m/s] at the current time. */
   rumble_status (*motion)(rumble_instance* self, double* u, double* v, uint64_t n);
   /** Optional: receptance matrix H(f) [m/N] at the footprints, n x n column-major, real and
    *  imaginary parts, e^{+i omega t} convention (u = H F). */
-  rumble_status (*frequency_response)(rumble_instance* self, double f_hz, double* re,
-                                      double* im, uint64_t n);
+  rumble_status (*frequency_response)(rumble_instance* self, double f_hz, double* re, double* im,
+                                      uint64_t n);
   /** Optional: surface receivers; velocity() writes the vertical velocity [m/s] of each. */
   rumble_status (*set_receivers)(rumble_instance* self, const rumble_receiver* r, uint64_t n);
   rumble_status (*receiver_velocity)(rumble_instance* self, double* v, uint64_t n);
@@ -216,10 +215,10 @@ typedef rumble_status (*rumble_create_fn)(const char* params_json, const rumble_
 /** One component type a library provides. */
 typedef struct rumble_factory {
   uint32_t struct_size;
-  int32_t kind;               /**< rumble_kind */
-  const char* type_name;      /**< e.g. "winkler"; unique in a process */
-  const char* summary;        /**< one line */
-  const char* params_schema;  /**< JSON Schema (draft 7) of the component's params object */
+  int32_t kind;              /**< rumble_kind */
+  const char* type_name;     /**< e.g. "winkler"; unique in a process */
+  const char* summary;       /**< one line */
+  const char* params_schema; /**< JSON Schema (draft 7) of the component's params object */
   /** Creates an instance. On failure *error_message points to static or thread-local text. */
   rumble_create_fn create;
   const void* api; /**< rumble_vehicle_api / rumble_soil_api / rumble_coupler_api by kind */

@@ -7,10 +7,10 @@
 //   K_eff = K + c_v C + c_a M,     c_a = 1/(beta h^2),  c_v = gamma/(beta h),
 //   pa    = c_a x0 + v0/(beta h) + (1/(2 beta) - 1) a0,
 //   pv    = c_v x0 + (gamma/beta - 1) v0 + h (gamma/(2 beta) - 1) a0,
-// then a1 = c_a (x1 - x0) - v0/(beta h) - (1/(2 beta) - 1) a0 and v1 = v0 + h((1-gamma) a0 + gamma a1).
-// beta = 1/4, gamma = 1/2 (average acceleration, the default) is unconditionally stable, second
-// order and conserves the energy of an undamped linear system exactly; gamma > 1/2 with
-// beta = (gamma + 1/2)^2 / 4 adds numerical damping of high frequencies.
+// then a1 = c_a (x1 - x0) - v0/(beta h) - (1/(2 beta) - 1) a0 and v1 = v0 + h((1-gamma) a0 + gamma
+// a1). beta = 1/4, gamma = 1/2 (average acceleration, the default) is unconditionally stable,
+// second order and conserves the energy of an undamped linear system exactly; gamma > 1/2 with beta
+// = (gamma + 1/2)^2 / 4 adds numerical damping of high frequencies.
 #ifndef RUMBLE_NEWMARK_HPP
 #define RUMBLE_NEWMARK_HPP
 

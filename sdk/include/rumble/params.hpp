@@ -7,7 +7,6 @@
 #define RUMBLE_PARAMS_HPP
 
 #include <nlohmann/json.hpp>
-
 #include <stdexcept>
 #include <string>
 

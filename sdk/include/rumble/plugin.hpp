@@ -44,7 +44,8 @@ class Host {
  public:
   explicit Host(const rumble_host* host) : host_(host) {}
   void log(rumble_log_level level, const std::string& message) const {
-    if (host_ != nullptr && host_->log != nullptr) host_->log(host_->host_data, level, message.c_str());
+    if (host_ != nullptr && host_->log != nullptr)
+      host_->log(host_->host_data, level, message.c_str());
   }
   void debug(const std::string& m) const { log(RUMBLE_LOG_DEBUG, m); }
   void info(const std::string& m) const { log(RUMBLE_LOG_INFO, m); }
@@ -151,7 +152,9 @@ class CosimHost {
   static constexpr std::uint32_t kSoil = RUMBLE_PARTICIPANT_SOIL;
 
   explicit CosimHost(const rumble_cosim_host* h) : h_(h) {}
-  std::size_t interface_size() const { return static_cast<std::size_t>(h_->interface_size(h_->ctx)); }
+  std::size_t interface_size() const {
+    return static_cast<std::size_t>(h_->interface_size(h_->ctx));
+  }
   std::size_t output_size(std::uint32_t p) const {
     return static_cast<std::size_t>(h_->output_size(h_->ctx, p));
   }
@@ -167,18 +170,23 @@ class CosimHost {
   rumble_status advance(std::uint32_t p, double t, double H) const {
     return check(h_->advance(h_->ctx, p, t, H), "advance");
   }
-  void save(std::uint32_t p, std::uint32_t slot) const { check(h_->save(h_->ctx, p, slot), "save"); }
+  void save(std::uint32_t p, std::uint32_t slot) const {
+    check(h_->save(h_->ctx, p, slot), "save");
+  }
   void restore(std::uint32_t p, std::uint32_t slot) const {
     check(h_->restore(h_->ctx, p, slot), "restore");
   }
   void step_done(double t, double H, double residual) const {
     check(h_->step_done(h_->ctx, t, H, residual), "step_done");
   }
-  void log(rumble_log_level level, const std::string& m) const { h_->log(h_->ctx, level, m.c_str()); }
+  void log(rumble_log_level level, const std::string& m) const {
+    h_->log(h_->ctx, level, m.c_str());
+  }
 
  private:
   rumble_status check(rumble_status s, const char* what) const {
-    if (s == RUMBLE_ERROR || s == RUMBLE_FATAL) throw Stop(s, std::string("host ") + what + " stopped the run");
+    if (s == RUMBLE_ERROR || s == RUMBLE_FATAL)
+      throw Stop(s, std::string("host ") + what + " stopped the run");
     return s;
   }
   const rumble_cosim_host* h_;
@@ -198,8 +206,12 @@ struct Box {
   std::string message;
 };
 
-inline Box* box(rumble_instance* self) { return reinterpret_cast<Box*>(self); }
-inline const Box* box(const rumble_instance* self) { return reinterpret_cast<const Box*>(self); }
+inline Box* box(rumble_instance* self) {
+  return reinterpret_cast<Box*>(self);
+}
+inline const Box* box(const rumble_instance* self) {
+  return reinterpret_cast<const Box*>(self);
+}
 
 template <class T>
 T& object(rumble_instance* self) {
@@ -240,13 +252,15 @@ inline rumble_common_api common_api() {
   };
   c.save_state = [](rumble_instance* self, double* buffer, std::uint64_t n) {
     return guard(self, [&] {
-      if (n != box(self)->object->state_size()) throw std::invalid_argument("save_state: wrong buffer size");
+      if (n != box(self)->object->state_size())
+        throw std::invalid_argument("save_state: wrong buffer size");
       box(self)->object->save_state(buffer);
     });
   };
   c.restore_state = [](rumble_instance* self, const double* buffer, std::uint64_t n) {
     return guard(self, [&] {
-      if (n != box(self)->object->state_size()) throw std::invalid_argument("restore_state: wrong buffer size");
+      if (n != box(self)->object->state_size())
+        throw std::invalid_argument("restore_state: wrong buffer size");
       box(self)->object->restore_state(buffer);
     });
   };
@@ -291,7 +305,8 @@ const rumble_vehicle_api* vehicle_api() {
     a.output_names = [](rumble_instance* s) -> const char* {
       Box* b = box(s);
       b->message.clear();
-      for (const std::string& n : object<T>(s).output_names()) b->message += (b->message.empty() ? "" : ";") + n;
+      for (const std::string& n : object<T>(s).output_names())
+        b->message += (b->message.empty() ? "" : ";") + n;
       return b->message.c_str();
     };
     a.outputs = [](rumble_instance* s, double t, const double* q, const double* qd, double* v) {
@@ -415,7 +430,8 @@ const rumble_plugin_descriptor* descriptor(const char* name, const char* version
                                           RUMBLE_ABI_MINOR,
                                           name,
                                           version,
-                                          "g++/clang " __VERSION__ ", C++ " RUMBLE_DETAIL_STR(__cplusplus),
+                                          "g++/clang " __VERSION__
+                                          ", C++ " RUMBLE_DETAIL_STR(__cplusplus),
                                           sizeof...(Ts),
                                           factories.data()};
   return &d;
@@ -425,10 +441,10 @@ const rumble_plugin_descriptor* descriptor(const char* name, const char* version
 }  // namespace rumble
 
 /// Exports the plugin's one entry point. NAME and VERSION are string literals; then the classes.
-#define RUMBLE_PLUGIN(NAME, VERSION, ...)                                                  \
-  extern "C" __attribute__((visibility("default"))) const rumble_plugin_descriptor*         \
-  rumble_plugin_entry(void) {                                                               \
-    return ::rumble::detail::descriptor<__VA_ARGS__>(NAME, VERSION);                        \
+#define RUMBLE_PLUGIN(NAME, VERSION, ...)                                           \
+  extern "C" __attribute__((visibility("default"))) const rumble_plugin_descriptor* \
+  rumble_plugin_entry(void) {                                                       \
+    return ::rumble::detail::descriptor<__VA_ARGS__>(NAME, VERSION);                \
   }
 
 #endif  // RUMBLE_PLUGIN_HPP

@@ -1,0 +1,55 @@
+#include "analysis/soil_frf.hpp"
+
+#include <cmath>
+#include <numbers>
+
+#include "plugin/instance.hpp"
+#include "run/csv_file.hpp"
+
+namespace rumble {
+
+std::vector<double> log_frequencies(double f_min, double f_max, int n_points) {
+  std::vector<double> f(static_cast<std::size_t>(std::max(n_points, 1)));
+  const double ratio = n_points > 1 ? std::log(f_max / f_min) / (n_points - 1) : 0.0;
+  for (std::size_t j = 0; j < f.size(); ++j)
+    f[j] = f_min * std::exp(ratio * static_cast<double>(j));
+  return f;
+}
+
+bool soil_frf(SoilInstance& soil, std::size_t n, const std::vector<double>& frequency,
+              std::size_t transfer_terms, SoilFrf& frf) {
+  frf.centre = n / 2;
+  const std::size_t terms = std::min(transfer_terms + 1, n - frf.centre);
+  frf.frequency = frequency;
+  frf.receptance.assign(terms, std::vector<std::complex<double>>(frequency.size()));
+  std::vector<std::complex<double>> h;
+  for (std::size_t j = 0; j < frequency.size(); ++j) {
+    if (!soil.frequency_response(frequency[j], n, h)) {
+      frf.receptance.clear();
+      return false;
+    }
+    for (std::size_t k = 0; k < terms; ++k)
+      frf.receptance[k][j] = h[(frf.centre + k) + n * frf.centre];  // column-major (row, col)
+  }
+  return true;
+}
+
+void write_frf_csv(const std::filesystem::path& file, const SoilFrf& frf) {
+  std::vector<std::string> columns{"f [Hz]"};
+  for (std::size_t k = 0; k < frf.receptance.size(); ++k) {
+    const std::string term = k == 0 ? "driving point" : "transfer +" + std::to_string(k);
+    columns.push_back(frf.label + " " + term + " |H| [m/N]");
+    columns.push_back(frf.label + " " + term + " phase [deg]");
+  }
+  CsvFile csv(file, columns);
+  std::vector<double> row(2 * frf.receptance.size());
+  for (std::size_t j = 0; j < frf.frequency.size(); ++j) {
+    for (std::size_t k = 0; k < frf.receptance.size(); ++k) {
+      row[2 * k] = std::abs(frf.receptance[k][j]);
+      row[2 * k + 1] = std::arg(frf.receptance[k][j]) * 180.0 / std::numbers::pi;
+    }
+    csv.row(frf.frequency[j], row.data(), row.size());
+  }
+}
+
+}  // namespace rumble

@@ -1,0 +1,69 @@
+#include "cli/arguments.hpp"
+
+#include <cstdlib>
+
+namespace rumble::cli {
+
+Arguments::Arguments(const std::vector<std::string>& args, const std::set<std::string>& flags,
+                     const std::set<std::string>& valued) {
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    if (a.rfind("--", 0) != 0 || a == "--") {
+      positional_.push_back(a);
+      continue;
+    }
+    std::string name = a.substr(2), value;
+    const auto eq = name.find('=');
+    const bool has_value = eq != std::string::npos;
+    if (has_value) {
+      value = name.substr(eq + 1);
+      name.resize(eq);
+    }
+    if (flags.count(name) != 0 && !has_value) {
+      flags_.insert(name);
+    } else if (valued.count(name) != 0) {
+      if (!has_value) {
+        if (i + 1 >= args.size()) throw UsageError("option --" + name + " needs a value");
+        value = args[++i];
+      }
+      values_[name] = value;
+    } else {
+      std::string known;
+      for (const auto* set : {&flags, &valued})
+        for (const auto& k : *set) known += (known.empty() ? "--" : ", --") + k;
+      throw UsageError("unknown option '" + a + "'" +
+                       (known.empty() ? std::string() : "; options here: " + known));
+    }
+  }
+}
+
+std::optional<std::string> Arguments::value(const std::string& name) const {
+  const auto it = values_.find(name);
+  if (it == values_.end()) return std::nullopt;
+  return it->second;
+}
+
+std::string Arguments::choice(const std::string& name, const std::vector<std::string>& choices,
+                              const std::string& fallback) const {
+  const auto v = value(name);
+  if (!v) return fallback;
+  std::string list;
+  for (const auto& c : choices) {
+    if (c == *v) return c;
+    list += (list.empty() ? "" : ", ") + c;
+  }
+  throw UsageError("--" + name + "=" + *v + " is not valid; choose one of: " + list);
+}
+
+double Arguments::number(const std::string& name, double fallback) const {
+  const auto v = value(name);
+  if (!v) return fallback;
+  char* end = nullptr;
+  const double x = std::strtod(v->c_str(), &end);
+  if (end == v->c_str() || *end != '\0') {
+    throw UsageError("--" + name + "=" + *v + " is not a number");
+  }
+  return x;
+}
+
+}  // namespace rumble::cli

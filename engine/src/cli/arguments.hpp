@@ -1,0 +1,38 @@
+// Minimal command-line parsing: positional arguments and --name[=value] / --name value options,
+// with errors that name the offending argument and the valid choices.
+#pragma once
+
+#include <map>
+#include <optional>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace rumble::cli {
+
+class UsageError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+class Arguments {
+ public:
+  /// flags: options without a value; valued: options that take one.
+  Arguments(const std::vector<std::string>& args, const std::set<std::string>& flags,
+            const std::set<std::string>& valued);
+  const std::vector<std::string>& positional() const { return positional_; }
+  bool flag(const std::string& name) const { return flags_.count(name) != 0; }
+  std::optional<std::string> value(const std::string& name) const;
+  /// The value, which must be one of choices.
+  std::string choice(const std::string& name, const std::vector<std::string>& choices,
+                     const std::string& fallback) const;
+  double number(const std::string& name, double fallback) const;
+
+ private:
+  std::vector<std::string> positional_;
+  std::set<std::string> flags_;
+  std::map<std::string, std::string> values_;
+};
+
+}  // namespace rumble::cli

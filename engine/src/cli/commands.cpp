@@ -1,0 +1,105 @@
+#include "cli/commands.hpp"
+
+#include <rumble/abi.h>
+
+#include <cstdio>
+#include <iostream>
+#include <map>
+
+#include "cli/arguments.hpp"
+#include "cli/exit_codes.hpp"
+#include "core/errors.hpp"
+#include "core/logging.hpp"
+
+namespace rumble::cli {
+namespace {
+
+constexpr const char* kUsage = R"(rumble: railway ground-vibration co-simulation
+
+usage: rumble [--log-level LEVEL] COMMAND [ARGS]
+
+commands:
+  run FILE [--no-progress]          validate, then run a scenario; results go to outputs.directory
+  validate FILE [--format text|json] check a scenario without running it (all errors at once)
+  plugins [--format text|json]      list plugin libraries and the types they provide
+  schema TYPE [--json]              the parameters of a type: units, defaults, ranges
+  soil-frf FILE [options]           receptance of the scenario's soil at its footprints (CSV)
+  calibrate FILE [options]          fit a reduced soil's parameters to a target soil's receptance
+
+options:
+  --log-level LEVEL   trace, debug, info (default), warn, error, off
+  --version           print the version
+  --help              this text
+
+plugins are found in the engine's plugin directory, in RUMBLE_PLUGIN_PATH (':'-separated
+directories or files) and in a scenario's "plugins" list.
+exit codes: 0 ok, 1 configuration or usage error, 2 plugin load error, 3 run failed.
+)";
+
+using Command = int (*)(const std::vector<std::string>&);
+
+std::map<std::string, Command>& command_table() {
+  static std::map<std::string, Command> table{{"plugins", &plugins_command}};
+  return table;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<std::string> args(argv + 1, argv + argc);
+  try {
+    // Global options come before the command.
+    std::size_t i = 0;
+    for (; i < args.size() && args[i].rfind("--", 0) == 0; ++i) {
+      const std::string& a = args[i];
+      if (a == "--help" || a == "-h") {
+        std::cout << kUsage;
+        return kExitOk;
+      }
+      if (a == "--version") {
+        std::cout << "rumble " << RUMBLE_VERSION << " (plugin ABI " << RUMBLE_ABI_MAJOR << "."
+                  << RUMBLE_ABI_MINOR << ")\n";
+        return kExitOk;
+      }
+      std::string level;
+      if (a.rfind("--log-level=", 0) == 0) {
+        level = a.substr(12);
+      } else if (a == "--log-level" && i + 1 < args.size()) {
+        level = args[++i];
+      } else {
+        throw UsageError("unknown option '" + a + "'; see rumble --help");
+      }
+      if (!set_log_level(level)) {
+        throw UsageError("--log-level " + level +
+                         " is not a level; choose trace, debug, info, warn, error or off");
+      }
+    }
+    if (i == args.size()) {
+      std::cerr << kUsage;
+      return kExitConfig;
+    }
+    const std::string name = args[i];
+    const auto it = command_table().find(name);
+    if (it == command_table().end()) {
+      std::string known;
+      for (const auto& [k, v] : command_table()) known += (known.empty() ? "" : ", ") + k;
+      throw UsageError("unknown command '" + name + "'; commands: " + known);
+    }
+    return it->second(
+        std::vector<std::string>(args.begin() + static_cast<long>(i) + 1, args.end()));
+  } catch (const UsageError& e) {
+    std::cerr << "rumble: error: " << e.what() << '\n';
+    return kExitConfig;
+  } catch (const ConfigError& e) {
+    std::cerr << "rumble: error: " << e.what() << '\n';
+    return kExitConfig;
+  } catch (const PluginLoadError& e) {
+    std::cerr << "rumble: error: " << e.what() << '\n';
+    return kExitPluginLoad;
+  } catch (const std::exception& e) {
+    std::cerr << "rumble: error: " << e.what() << '\n';
+    return kExitRunFailed;
+  }
+}
+
+}  // namespace rumble::cli

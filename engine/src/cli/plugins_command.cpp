@@ -1,0 +1,53 @@
+// `rumble plugins`: the plugin libraries found and the types each provides.
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "cli/arguments.hpp"
+#include "cli/commands.hpp"
+#include "cli/exit_codes.hpp"
+#include "plugin/registry.hpp"
+
+namespace rumble::cli {
+
+int plugins_command(const std::vector<std::string>& args) {
+  const Arguments a(args, {}, {"format"});
+  const std::string format = a.choice("format", {"text", "json"}, "text");
+  PluginRegistry registry;
+  registry.load_default_directories();
+  if (format == "json") {
+    nlohmann::json out = nlohmann::json::array();
+    for (const auto& lib : registry.libraries()) {
+      nlohmann::json types = nlohmann::json::array();
+      for (const ComponentType& t : registry.types())
+        if (t.library == lib)
+          types.push_back(
+              {{"type", t.type_name}, {"kind", kind_name(t.kind)}, {"summary", t.summary}});
+      const auto* d = lib->descriptor;
+      out.push_back({{"plugin", d->plugin_name},
+                     {"version", d->plugin_version},
+                     {"abi", std::to_string(d->abi_major) + "." + std::to_string(d->abi_minor)},
+                     {"build", d->build_fingerprint},
+                     {"path", lib->path.string()},
+                     {"types", types}});
+    }
+    std::cout << out.dump(2) << '\n';
+    return kExitOk;
+  }
+  std::cout << "plugin directory: " << PluginRegistry::builtin_plugin_directory().string() << '\n';
+  if (registry.libraries().empty()) {
+    std::cout << "no plugins found; build the project, or set RUMBLE_PLUGIN_PATH\n";
+  }
+  for (const auto& lib : registry.libraries()) {
+    const auto* d = lib->descriptor;
+    std::cout << '\n'
+              << d->plugin_name << ' ' << d->plugin_version << "  (ABI " << d->abi_major << '.'
+              << d->abi_minor << ")  " << lib->path.string() << '\n';
+    for (const ComponentType& t : registry.types()) {
+      if (t.library != lib) continue;
+      std::cout << "  " << kind_name(t.kind) << ' ' << t.type_name << ": " << t.summary << '\n';
+    }
+  }
+  return kExitOk;
+}
+
+}  // namespace rumble::cli

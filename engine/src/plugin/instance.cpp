@@ -1,0 +1,231 @@
+#include "plugin/instance.hpp"
+
+#include "core/errors.hpp"
+#include "core/logging.hpp"
+
+namespace rumble {
+namespace {
+
+/// Every kind's table starts with struct_size, then the common functions.
+const rumble_common_api* common_table(const ComponentType& type) {
+  switch (type.kind) {
+    case RUMBLE_KIND_VEHICLE:
+      return &static_cast<const rumble_vehicle_api*>(type.factory->api)->common;
+    case RUMBLE_KIND_SOIL:
+      return &static_cast<const rumble_soil_api*>(type.factory->api)->common;
+    case RUMBLE_KIND_COUPLER:
+      return &static_cast<const rumble_coupler_api*>(type.factory->api)->common;
+  }
+  throw PluginLoadError("unknown component kind " + std::to_string(type.kind));
+}
+
+}  // namespace
+
+Instance::Instance(const ComponentType& type, std::string label, const nlohmann::json& params,
+                   const std::filesystem::path& scenario_dir)
+    : type_(&type),
+      library_(type.library),
+      label_(std::move(label)),
+      scenario_dir_(scenario_dir.string()),
+      logger_(logger(std::string(kind_name(type.kind)) + "/" + type.type_name)) {
+  host_.struct_size = sizeof(rumble_host);
+  host_.abi_minor = RUMBLE_ABI_MINOR;
+  host_.host_data = this;
+  host_.log = &Instance::log_callback;
+  host_.scenario_dir = scenario_dir_.c_str();
+  common_ = common_table(type);
+  const std::string text = params.dump();
+  const char* error = nullptr;
+  const rumble_status s = type.factory->create(text.c_str(), &host_, &handle_, &error);
+  if (s != RUMBLE_OK || handle_ == nullptr) {
+    throw ConfigError(label_ + ": " + kind_name(type.kind) + " type '" + type.type_name +
+                      "' refused its params: " + (error != nullptr ? error : "no message") +
+                      " (plugin " + type.library->path.string() + ")");
+  }
+}
+
+Instance::~Instance() {
+  if (handle_ != nullptr) common_->destroy(handle_);
+}
+
+void Instance::log_callback(void* host_data, int32_t level, const char* message) {
+  const auto* self = static_cast<const Instance*>(host_data);
+  switch (level) {
+    case RUMBLE_LOG_DEBUG:
+      self->logger_->debug("{}", message);
+      break;
+    case RUMBLE_LOG_WARN:
+      self->logger_->warn("{}", message);
+      break;
+    case RUMBLE_LOG_ERROR:
+      self->logger_->error("{}", message);
+      break;
+    default:
+      self->logger_->info("{}", message);
+  }
+}
+
+rumble_status Instance::check(rumble_status status, const char* call) const {
+  if (status == RUMBLE_OK) return status;
+  const std::string what = common_->last_message(handle_);
+  const std::string who =
+      std::string(kind_name(type_->kind)) + " '" + type_->type_name + "' (" + label_ + ")";
+  switch (status) {
+    case RUMBLE_WARNING:
+      logger_->warn("{}: {}", call, what);
+      return status;
+    case RUMBLE_DISCARD:
+      throw Discarded(who + ": " + call + " refused: " + what);
+    case RUMBLE_FATAL:
+      throw RunError(who + ": " + call + " failed fatally: " + what);
+    default:
+      throw RunError(who + ": " + call + " failed: " + what);
+  }
+}
+
+std::size_t Instance::state_size() const {
+  std::uint64_t n = 0;
+  check(common_->state_size(handle_, &n), "state_size");
+  return static_cast<std::size_t>(n);
+}
+
+void Instance::save_state(std::vector<double>& buffer) const {
+  if (buffer.empty()) buffer.resize(state_size());
+  if (buffer.empty()) {
+    throw RunError(std::string(kind_name(type_->kind)) + " '" + type_->type_name +
+                   "' does not support save/restore, which this coupling scheme needs");
+  }
+  check(common_->save_state(handle_, buffer.data(), buffer.size()), "save_state");
+}
+
+void Instance::restore_state(const std::vector<double>& buffer) {
+  check(common_->restore_state(handle_, buffer.data(), buffer.size()), "restore_state");
+}
+
+// ---------------------------------------------------------------- vehicle
+
+VehicleInstance::VehicleInstance(const ComponentType& type, std::string label,
+                                 const nlohmann::json& params,
+                                 const std::filesystem::path& scenario_dir)
+    : Instance(type, std::move(label), params, scenario_dir),
+      api_(static_cast<const rumble_vehicle_api*>(type.factory->api)) {
+  std::uint64_t n = 0;
+  check(api_->dof_count(handle(), &n), "dof_count");
+  n_dof_ = static_cast<std::size_t>(n);
+  std::uint64_t n_wheels = 0;
+  check(api_->wheels(handle(), nullptr, 0, &n_wheels), "wheels");
+  wheels_.resize(static_cast<std::size_t>(n_wheels));
+  check(api_->wheels(handle(), wheels_.data(), n_wheels, &n_wheels), "wheels");
+  if (n_dof_ == 0 || wheels_.empty()) {
+    throw ConfigError(this->label() + ": vehicle type '" + type.type_name + "' declares " +
+                      std::to_string(n_dof_) + " DOFs and " + std::to_string(wheels_.size()) +
+                      " wheels; a vehicle needs at least one of each");
+  }
+}
+
+void VehicleInstance::mass_matrix(const double* q, double* mass) const {
+  check(api_->mass_matrix(handle(), q, mass), "mass_matrix");
+}
+void VehicleInstance::forces(double t, const double* q, const double* qd, double* f) const {
+  check(api_->forces(handle(), t, q, qd, f), "forces");
+}
+void VehicleInstance::wheel_kinematics(const double* q, double* z, double* jacobian) const {
+  check(api_->wheel_kinematics(handle(), q, z, jacobian), "wheel_kinematics");
+}
+bool VehicleInstance::tangent(double t, const double* q, const double* qd, double* k,
+                              double* c) const {
+  if (api_->tangent == nullptr) return false;
+  try {
+    check(api_->tangent(handle(), t, q, qd, k, c), "tangent");
+  } catch (const Discarded&) {
+    return false;
+  }
+  return true;
+}
+std::vector<std::string> VehicleInstance::output_names() const {
+  std::vector<std::string> names;
+  if (api_->output_names == nullptr) return names;
+  const std::string all = api_->output_names(handle());
+  std::size_t start = 0;
+  while (start < all.size()) {
+    const std::size_t end = all.find(';', start);
+    names.push_back(all.substr(start, end == std::string::npos ? std::string::npos : end - start));
+    if (end == std::string::npos) break;
+    start = end + 1;
+  }
+  return names;
+}
+void VehicleInstance::outputs(double t, const double* q, const double* qd, double* values) const {
+  if (api_->outputs != nullptr) check(api_->outputs(handle(), t, q, qd, values), "outputs");
+}
+
+// ---------------------------------------------------------------- soil
+
+SoilInstance::SoilInstance(const ComponentType& type, std::string label,
+                           const nlohmann::json& params, const std::filesystem::path& scenario_dir)
+    : Instance(type, std::move(label), params, scenario_dir),
+      api_(static_cast<const rumble_soil_api*>(type.factory->api)) {}
+
+void SoilInstance::accept_layout(const std::vector<rumble_footprint>& footprints) {
+  try {
+    check(api_->accept_layout(handle(), footprints.data(), footprints.size()), "accept_layout");
+  } catch (const std::exception& e) {
+    throw ConfigError(std::string(e.what()) +
+                      "; the layout comes from /track/sleepers (count, spacing, footprint)");
+  }
+}
+void SoilInstance::initialize(double t0, const std::vector<double>& static_force,
+                              std::vector<double>& u) {
+  u.resize(static_force.size());
+  check(api_->initialize(handle(), t0, static_force.data(), u.data(), u.size()), "initialize");
+}
+void SoilInstance::advance(double t, double H, const rumble_waveform& force) {
+  check(api_->advance(handle(), t, H, &force), "advance");
+}
+void SoilInstance::motion(double* u, double* v, std::size_t n) const {
+  check(api_->motion(handle(), u, v, n), "motion");
+}
+bool SoilInstance::frequency_response(double f_hz, std::size_t n,
+                                      std::vector<std::complex<double>>& receptance) {
+  if (api_->frequency_response == nullptr) return false;
+  re_.resize(n * n);
+  im_.resize(n * n);
+  try {
+    check(api_->frequency_response(handle(), f_hz, re_.data(), im_.data(), n),
+          "frequency_response");
+  } catch (const Discarded&) {
+    return false;
+  }
+  receptance.resize(n * n);
+  for (std::size_t k = 0; k < n * n; ++k) receptance[k] = {re_[k], im_[k]};
+  return true;
+}
+bool SoilInstance::set_receivers(const std::vector<rumble_receiver>& receivers) {
+  if (api_->set_receivers == nullptr) return false;
+  try {
+    check(api_->set_receivers(handle(), receivers.data(), receivers.size()), "set_receivers");
+  } catch (const Discarded&) {
+    return false;
+  }
+  return true;
+}
+void SoilInstance::receiver_velocity(double* v, std::size_t n) const {
+  check(api_->receiver_velocity(handle(), v, n), "receiver_velocity");
+}
+
+// ---------------------------------------------------------------- coupler
+
+CouplerInstance::CouplerInstance(const ComponentType& type, std::string label,
+                                 const nlohmann::json& params,
+                                 const std::filesystem::path& scenario_dir)
+    : Instance(type, std::move(label), params, scenario_dir),
+      api_(static_cast<const rumble_coupler_api*>(type.factory->api)) {}
+
+rumble_status CouplerInstance::run(const rumble_cosim_host& host, double t0, double t_end, double H,
+                                   std::string& message) {
+  const rumble_status s = api_->run(handle(), &host, t0, t_end, H);
+  message = s == RUMBLE_OK ? "" : common().last_message(handle());
+  return s;
+}
+
+}  // namespace rumble

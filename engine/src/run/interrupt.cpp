@@ -1,0 +1,32 @@
+#include "run/interrupt.hpp"
+
+#include <atomic>
+#include <csignal>
+#include <cstdlib>
+
+namespace rumble {
+namespace {
+
+std::atomic<int> g_interrupts{0};
+
+extern "C" void on_signal(int /*signal*/) {
+  if (g_interrupts.fetch_add(1) >= 1) std::_Exit(130);  // second Ctrl-C: stop now
+}
+
+}  // namespace
+
+void install_interrupt_handler() {
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
+}
+bool interrupt_requested() {
+  return g_interrupts.load() > 0;
+}
+void request_interrupt() {
+  g_interrupts.fetch_add(1);
+}
+void clear_interrupt() {
+  g_interrupts.store(0);
+}
+
+}  // namespace rumble

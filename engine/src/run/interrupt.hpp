@@ -1,0 +1,12 @@
+// Ctrl-C: the first SIGINT/SIGTERM sets a flag that the run loop checks after every macro step,
+// so the run stops cleanly with its results on disk; a second one ends the process at once.
+#pragma once
+
+namespace rumble {
+
+void install_interrupt_handler();
+bool interrupt_requested();
+void request_interrupt();  // what the handler does; also for tests
+void clear_interrupt();
+
+}  // namespace rumble

@@ -1,0 +1,91 @@
+#include "track/banded_matrix.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace rumble {
+
+BandedSymmetric::BandedSymmetric(std::size_t n, std::size_t half_bandwidth)
+    : n_(n), b_(half_bandwidth), data_((half_bandwidth + 1) * n, 0.0) {}
+
+void BandedSymmetric::set_zero() {
+  std::fill(data_.begin(), data_.end(), 0.0);
+}
+
+void BandedSymmetric::add(std::size_t i, std::size_t j, double v) {
+  if (i < j) std::swap(i, j);
+  if (i - j > b_ || i >= n_) {
+    throw std::logic_error("BandedSymmetric::add(" + std::to_string(i) + ", " + std::to_string(j) +
+                           ") outside the band " + std::to_string(b_));
+  }
+  lower(i, j) += v;
+}
+
+double BandedSymmetric::at(std::size_t i, std::size_t j) const {
+  if (i < j) std::swap(i, j);
+  return i - j > b_ || i >= n_ ? 0.0 : lower(i, j);
+}
+
+void BandedSymmetric::set_combination(double a, const BandedSymmetric& x, double b,
+                                      const BandedSymmetric& y, double c,
+                                      const BandedSymmetric& z) {
+  for (std::size_t k = 0; k < data_.size(); ++k)
+    data_[k] = a * x.data_[k] + b * y.data_[k] + c * z.data_[k];
+}
+
+void BandedSymmetric::multiply(const double* x, double* y) const {
+  std::fill(y, y + n_, 0.0);
+  multiply_add(1.0, x, y);
+}
+
+void BandedSymmetric::multiply_add(double alpha, const double* x, double* y) const {
+  for (std::size_t j = 0; j < n_; ++j) {
+    const double* col = &data_[(b_ + 1) * j];
+    double sum = col[0] * x[j];
+    const std::size_t last = std::min(n_ - 1, j + b_);
+    for (std::size_t i = j + 1; i <= last; ++i) {
+      const double a = col[i - j];
+      sum += a * x[i];           // row j, column i (upper part, by symmetry)
+      y[i] += alpha * a * x[j];  // row i, column j
+    }
+    y[j] += alpha * sum;
+  }
+}
+
+bool BandedSymmetric::factorize() {
+  for (std::size_t j = 0; j < n_; ++j) {
+    const std::size_t first = j > b_ ? j - b_ : 0;
+    double d = lower(j, j);
+    for (std::size_t k = first; k < j; ++k) d -= lower(j, k) * lower(j, k);
+    if (!(d > 0.0)) return false;
+    d = std::sqrt(d);
+    lower(j, j) = d;
+    const std::size_t last = std::min(n_ - 1, j + b_);
+    for (std::size_t i = j + 1; i <= last; ++i) {
+      double s = lower(i, j);
+      const std::size_t from = i > b_ ? std::max(first, i - b_) : first;
+      for (std::size_t k = from; k < j; ++k) s -= lower(i, k) * lower(j, k);
+      lower(i, j) = s / d;
+    }
+  }
+  return true;
+}
+
+void BandedSymmetric::solve(double* x) const {
+  for (std::size_t i = 0; i < n_; ++i) {  // L y = rhs
+    const std::size_t first = i > b_ ? i - b_ : 0;
+    double s = x[i];
+    for (std::size_t k = first; k < i; ++k) s -= lower(i, k) * x[k];
+    x[i] = s / lower(i, i);
+  }
+  for (std::size_t i = n_; i-- > 0;) {  // L^T x = y
+    const std::size_t last = std::min(n_ - 1, i + b_);
+    double s = x[i];
+    for (std::size_t k = i + 1; k <= last; ++k) s -= lower(k, i) * x[k];
+    x[i] = s / lower(i, i);
+  }
+}
+
+}  // namespace rumble

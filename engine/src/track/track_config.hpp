@@ -1,0 +1,51 @@
+// The track section of a scenario, as plain numbers (SI units, per rail; see docs/scenario.md).
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <optional>
+
+namespace rumble {
+
+struct TrackConfig {
+  // Sleepers (per rail seat) and their footprints on the soil (whole sleeper).
+  int sleeper_count = 0;
+  double sleeper_spacing = 0.0;   // m
+  double sleeper_mass = 0.0;      // kg
+  double footprint_length = 0.0;  // m, across the track
+  double footprint_width = 0.0;   // m, along the track
+  // Rail: Euler-Bernoulli beam.
+  double rail_E = 0.0;                // Pa
+  double rail_I = 0.0;                // m^4
+  double rail_mass_per_length = 0.0;  // kg/m
+  int elements_per_bay = 4;
+  int overhang_bays = 1;
+  double rayleigh_alpha = 0.0;  // 1/s, rail only
+  double rayleigh_beta = 0.0;   // s, rail only
+  // Railpad (rail node -> sleeper) and ballast (sleeper -> footprint), per rail seat.
+  double pad_k = 0.0;      // N/m
+  double pad_c = 0.0;      // N s/m
+  double ballast_k = 0.0;  // N/m
+  double ballast_c = 0.0;  // N s/m
+  // Wheel/rail contact.
+  std::optional<double> hertz_constant;  // N/m^1.5
+  double rail_radius = 0.3;              // m
+  double contact_E = 2.1e11;             // Pa
+  double contact_nu = 0.3;
+  // Integrator.
+  std::optional<double> micro_step;  // s
+  double newmark_gamma = 0.5;
+  nlohmann::json unevenness = {{"type", "none"}};
+
+  /// From the validated scenario's /track object (defaults already filled by validation; the
+  /// same defaults are repeated here so that tests can build a TrackConfig by hand).
+  static TrackConfig from_json(const nlohmann::json& track);
+
+  double bay_length() const { return sleeper_spacing; }
+  double element_length() const { return sleeper_spacing / elements_per_bay; }
+  int element_count() const { return (sleeper_count - 1 + 2 * overhang_bays) * elements_per_bay; }
+  double rail_start() const { return -overhang_bays * sleeper_spacing; }  // m
+  double rail_end() const { return rail_start() + element_count() * element_length(); }
+  double sleeper_x(int i) const { return i * sleeper_spacing; }
+};
+
+}  // namespace rumble
