@@ -1,10 +1,10 @@
 // single_wheel: the seed paper's vehicle. One wheel (mass m) carrying a static load P that acts
 // as a constant downward force (the sprung weight above the wheel, which is not modelled as a
-// body), rolling at the scenario's speed.  One DOF: the wheel's vertical displacement z [m], down +.
+// body), rolling at the scenario's speed.  One DOF: the wheel's vertical displacement z [m], down
+// +.
 //   m z'' = P + m g - F_contact
 #include <rumble/params.hpp>
 #include <rumble/plugin.hpp>
-
 #include <string>
 #include <vector>
 
@@ -18,7 +18,7 @@ class SingleWheel final : public rumble::Vehicle {
   static constexpr const char* kSummary =
       "one wheel with a static load (sprung weight as a constant force), 1 DOF";
   static const char* params_schema() {
-    return R"({
+    return R"schema({
   "type": "object",
   "additionalProperties": false,
   "required": ["mass", "static_load"],
@@ -29,7 +29,7 @@ class SingleWheel final : public rumble::Vehicle {
     "wheel_radius": {"type": "number", "exclusiveMinimum": 0, "default": 0.46,
                      "description": "rolling radius [m]"}
   }
-})";
+})schema";
   }
 
   SingleWheel(const std::string& params_json, const rumble::Host& /*host*/) {
