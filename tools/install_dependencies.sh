@@ -1,0 +1,20 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages Rumble needs, only those missing (idempotent; sudo if not root).
+set -euo pipefail
+PKGS=(cmake ninja-build g++ pkg-config clang-format
+      libeigen3-dev libsuitesparse-dev libboost-dev nlohmann-json3-dev libspdlog-dev
+      libgmsh-dev libgtest-dev libgmock-dev libbenchmark-dev libvalijson-dev
+      libopenblas0-pthread python3-matplotlib python3-numpy)
+missing=()
+for p in "${PKGS[@]}"; do
+  dpkg-query -W -f='${db:Status-Status}' "$p" 2>/dev/null | grep -qx installed || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "installing: ${missing[*]}"
+  SUDO=""; [ "$(id -u)" -eq 0 ] || SUDO="sudo"
+  export DEBIAN_FRONTEND=noninteractive
+  $SUDO apt-get -o DPkg::Lock::Timeout=600 update -qq
+  $SUDO apt-get -o DPkg::Lock::Timeout=600 install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+else
+  echo "all ${#PKGS[@]} packages already installed"
+fi

@@ -1,0 +1,13 @@
+#!/usr/bin/env bash
+# The main job: install what is missing, build (release), run the paper's scenario and plot it.
+#   tools/run_main.sh [SCENARIO]     (default: scenarios/paper/medium_soil_gauss_seidel.json)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+tools/install_dependencies.sh
+cmake --preset release >/dev/null
+cmake --build --preset release
+scenario=${1:-scenarios/paper/medium_soil_gauss_seidel.json}
+build/release/bin/rumble run "$scenario"
+results=$(/usr/bin/python3 -c 'import json,sys,os; s=json.load(open(sys.argv[1])); print(os.path.join(os.path.dirname(sys.argv[1]), s["outputs"]["directory"]))' "$scenario")
+/usr/bin/python3 tools/plot_results.py "$results"
+echo "results: $results (summary.json, CSV time histories, PNG plots)"

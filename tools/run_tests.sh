@@ -1,0 +1,18 @@
+#!/usr/bin/env bash
+# The test job (also what CI runs): install what is missing, check formatting, build with
+# warnings as errors and run the test suite, then build and run it again under ASan + UBSan.
+#   tools/run_tests.sh            everything (about 10 minutes on 2 cores)
+#   tools/run_tests.sh --quick    skip the sanitizer build
+set -euo pipefail
+cd "$(dirname "$0")/.."
+tools/install_dependencies.sh
+tools/check_format.sh
+jobs=$(nproc)
+cmake --preset dev >/dev/null
+cmake --build --preset dev -j"$jobs"
+ctest --preset dev -j"$jobs" --timeout 300
+if [ "${1:-}" != "--quick" ]; then
+  cmake --preset asan >/dev/null
+  cmake --build --preset asan -j"$jobs"
+  ctest --preset asan -j"$jobs" --timeout 600 -LE "integration-slow"
+fi
