@@ -22,7 +22,9 @@ function(rumble_add_plugin name)
   if(RUMBLE_PLUGIN_INSTALL_DIR)
     install(TARGETS ${name} LIBRARY DESTINATION ${RUMBLE_PLUGIN_INSTALL_DIR})
   endif()
-  # Refuse symbols left undefined at link time: the loader uses RTLD_NOW anyway, but failing
-  # here names the missing symbol at build time.
-  target_link_options(${name} PRIVATE -Wl,--no-undefined)
+  # Refuse symbols left undefined at link time (the loader uses RTLD_NOW anyway, but failing
+  # here names the missing symbol at build time), and export the entry point only.
+  set(version_script "${CMAKE_CURRENT_FUNCTION_LIST_DIR}/rumble_plugin.map")
+  target_link_options(${name} PRIVATE -Wl,--no-undefined -Wl,--version-script=${version_script})
+  set_property(TARGET ${name} APPEND PROPERTY LINK_DEPENDS ${version_script})
 endfunction()

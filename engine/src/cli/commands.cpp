@@ -39,7 +39,10 @@ exit codes: 0 ok, 1 configuration or usage error, 2 plugin load error, 3 run fai
 using Command = int (*)(const std::vector<std::string>&);
 
 std::map<std::string, Command>& command_table() {
-  static std::map<std::string, Command> table{{"plugins", &plugins_command}};
+  static std::map<std::string, Command> table{
+      {"run", &run_command},           {"validate", &validate_command},
+      {"plugins", &plugins_command},   {"schema", &schema_command},
+      {"soil-frf", &soil_frf_command}, {"calibrate", &calibrate_command}};
   return table;
 }
 

@@ -1,0 +1,99 @@
+// `rumble calibrate TARGET --model TYPE --params JSON [--fit a,b]`: fit a reduced soil's
+// parameters to the receptance of the target scenario's soil over a frequency band, and report
+// the fitted params (ready to paste into a scenario) and the residual.
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include "analysis/calibrate.hpp"
+#include "cli/arguments.hpp"
+#include "cli/commands.hpp"
+#include "cli/exit_codes.hpp"
+#include "cli/scenario_prepare.hpp"
+#include "core/errors.hpp"
+#include "plugin/instance.hpp"
+#include "track/footprint_layout.hpp"
+
+namespace rumble::cli {
+namespace {
+
+std::vector<std::string> split(const std::string& list) {
+  std::vector<std::string> out;
+  std::stringstream ss(list);
+  std::string item;
+  while (std::getline(ss, item, ','))
+    if (!item.empty()) out.push_back(item);
+  return out;
+}
+
+}  // namespace
+
+int calibrate_command(const std::vector<std::string>& args) {
+  const Arguments a(args, {},
+                    {"model", "params", "fit", "fmin", "fmax", "points", "terms", "output"});
+  if (a.positional().size() != 1 || !a.value("model")) {
+    throw UsageError(
+        "usage: rumble calibrate TARGET_SCENARIO --model TYPE [--params JSON] [--fit a,b,...] "
+        "[--fmin 1] [--fmax 100] [--points 40] [--terms 2] [--output FILE]");
+  }
+  PluginRegistry registry;
+  const auto doc = prepare_scenario(a.positional()[0], registry, scenario::Format::kText);
+  if (!doc) return kExitConfig;
+  const std::string model_name = *a.value("model");
+  const ComponentType* model = registry.find(RUMBLE_KIND_SOIL, model_name);
+  if (model == nullptr) {
+    throw UsageError("--model " + model_name + " is not a soil type; soil types: " + [&] {
+      std::string s;
+      for (const auto& n : registry.type_names(RUMBLE_KIND_SOIL)) s += (s.empty() ? "" : ", ") + n;
+      return s;
+    }());
+  }
+  const auto& target_soil = doc->json.at("soil");
+  nlohmann::json start;
+  if (a.value("params")) {
+    try {
+      start = nlohmann::json::parse(*a.value("params"));
+    } catch (const nlohmann::json::exception& e) {
+      throw UsageError(std::string("--params is not JSON: ") + e.what());
+    }
+  } else if (target_soil.at("type") == model_name) {
+    start = target_soil.value("params", nlohmann::json::object());
+  } else {
+    throw UsageError("give the starting values of the model's params with --params '{...}'");
+  }
+
+  CalibrationProblem problem;
+  problem.model = model;
+  problem.base_params = start;
+  problem.scenario_dir = doc->path.parent_path();
+  problem.layout = footprint_layout(TrackConfig::from_json(doc->json.at("track")));
+  problem.fit = a.value("fit") ? split(*a.value("fit")) : std::vector<std::string>{};
+  if (problem.fit.empty()) {  // every positive number given
+    for (const auto& [key, value] : start.items())
+      if (value.is_number() && value.get<double>() > 0.0) problem.fit.push_back(key);
+  }
+  SoilInstance target(*registry.find(RUMBLE_KIND_SOIL, target_soil.at("type").get<std::string>()),
+                      "/soil", target_soil.value("params", nlohmann::json::object()),
+                      problem.scenario_dir);
+  target.accept_layout(problem.layout);
+  const auto frequency = log_frequencies(a.number("fmin", 1.0), a.number("fmax", 100.0),
+                                         static_cast<int>(a.number("points", 40)));
+  if (!soil_frf(target, problem.layout.size(), frequency,
+                static_cast<std::size_t>(a.number("terms", 2)), problem.target)) {
+    throw ConfigError("target soil '" + target.type_name() + "' offers no frequency response");
+  }
+  const CalibrationResult result = calibrate(problem);
+  nlohmann::json report = {{"model", model_name},
+                           {"target", doc->path.string()},
+                           {"band_hz", {frequency.front(), frequency.back()}},
+                           {"fitted", problem.fit},
+                           {"params", result.params},
+                           {"relative_rms_residual", result.relative_rms},
+                           {"iterations", result.iterations},
+                           {"converged", result.converged}};
+  std::cout << report.dump(2) << '\n';
+  if (a.value("output")) std::ofstream(*a.value("output")) << report.dump(2) << '\n';
+  return kExitOk;
+}
+
+}  // namespace rumble::cli

@@ -1,0 +1,39 @@
+#include "cli/scenario_prepare.hpp"
+
+#include <algorithm>
+#include <iostream>
+
+#include "run/scenario_checks.hpp"
+
+namespace rumble::cli {
+
+std::optional<scenario::Document> prepare_scenario(const std::filesystem::path& path,
+                                                   PluginRegistry& registry,
+                                                   scenario::Format format) {
+  registry.load_default_directories();
+  std::vector<scenario::Diagnostic> diagnostics;
+  std::optional<scenario::Document> doc = scenario::load_document(path, diagnostics);
+  if (doc) {
+    scenario::load_scenario_plugins(*doc, registry);
+    diagnostics = scenario::validate(*doc, registry);
+    const bool schema_ok = std::none_of(diagnostics.begin(), diagnostics.end(), [](const auto& d) {
+      return d.severity == scenario::Diagnostic::Severity::kError;
+    });
+    if (schema_ok) {
+      for (scenario::Diagnostic& d : check_scenario_relations(doc->json))
+        diagnostics.push_back(
+            scenario::make_diagnostic(*doc, d.pointer, d.message, d.hint, d.severity));
+    }
+  }
+  const bool ok = doc && std::none_of(diagnostics.begin(), diagnostics.end(), [](const auto& d) {
+                    return d.severity == scenario::Diagnostic::Severity::kError;
+                  });
+  if (!diagnostics.empty() || format == scenario::Format::kJson) {
+    scenario::print_diagnostics(format == scenario::Format::kJson ? std::cout : std::cerr,
+                                doc ? &*doc : nullptr, path, diagnostics, format);
+  }
+  if (!ok) return std::nullopt;
+  return doc;
+}
+
+}  // namespace rumble::cli

@@ -1,0 +1,24 @@
+// `rumble validate FILE [--format text|json]`: every error of a scenario, nothing run.
+#include <iostream>
+
+#include "cli/arguments.hpp"
+#include "cli/commands.hpp"
+#include "cli/exit_codes.hpp"
+#include "cli/scenario_prepare.hpp"
+
+namespace rumble::cli {
+
+int validate_command(const std::vector<std::string>& args) {
+  const Arguments a(args, {}, {"format"});
+  if (a.positional().size() != 1)
+    throw UsageError("usage: rumble validate FILE [--format text|json]");
+  const bool json = a.choice("format", {"text", "json"}, "text") == "json";
+  PluginRegistry registry;
+  const auto doc = prepare_scenario(a.positional()[0], registry,
+                                    json ? scenario::Format::kJson : scenario::Format::kText);
+  if (!doc) return kExitConfig;
+  if (!json) std::cout << a.positional()[0] << ": valid\n";
+  return kExitOk;
+}
+
+}  // namespace rumble::cli

@@ -1,0 +1,100 @@
+#include "run/run_recorder.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "plugin/instance.hpp"
+#include "track/track_participant.hpp"
+
+namespace rumble {
+namespace {
+
+std::vector<std::string> footprint_columns(const TrackParticipant& track, const char* unit) {
+  std::vector<std::string> cols{"t [s]"};
+  for (const rumble_footprint& f : track.footprints()) {
+    char name[64];
+    std::snprintf(name, sizeof name, "x=%.3f m [%s]", f.x, unit);
+    cols.emplace_back(name);
+  }
+  return cols;
+}
+
+}  // namespace
+
+RunRecorder::RunRecorder(const std::filesystem::path& dir, const TrackParticipant& track,
+                         const SoilInstance& soil, const std::vector<double>& receiver_distances,
+                         bool receivers_offered)
+    : track_(track), soil_(soil) {
+  const std::size_t n = track.interface_size();
+  const VehicleSet& vs = track.vehicles();
+  std::vector<std::string> cols{"t [s]"};
+  for (std::size_t w = 0; w < vs.wheel_count(); ++w) {
+    const auto [vi, k] = vs.wheel_owner(w);
+    cols.push_back(vs.vehicles()[vi].name + " wheel " + std::to_string(k) + " [N]");
+  }
+  contact_ = std::make_unique<CsvFile>(dir / "contact.csv", cols);
+  cols = {"t [s]"};
+  for (const auto& v : vs.vehicles())
+    for (std::size_t j = 0; j < v.instance->dof_count(); ++j)
+      cols.push_back(v.name + " q" + std::to_string(j));
+  vehicles_ = std::make_unique<CsvFile>(dir / "vehicles.csv", cols);
+  fp_force_ = std::make_unique<CsvFile>(dir / "footprint_force.csv", footprint_columns(track, "N"));
+  fp_u_ =
+      std::make_unique<CsvFile>(dir / "footprint_displacement.csv", footprint_columns(track, "m"));
+  fp_v_ =
+      std::make_unique<CsvFile>(dir / "footprint_velocity.csv", footprint_columns(track, "m/s"));
+  interface_ = std::make_unique<CsvFile>(
+      dir / "interface.csv", std::vector<std::string>{"t [s]", "relative residual [-]",
+                                                      "power at cut [W]", "energy exchanged [J]"});
+  if (receivers_offered && !receiver_distances.empty()) {
+    cols = {"t [s]"};
+    for (double d : receiver_distances) cols.push_back("d=" + std::to_string(d) + " m [m/s]");
+    receivers_ = std::make_unique<CsvFile>(dir / "receivers.csv", cols);
+    rx_v_.assign(receiver_distances.size(), 0.0);
+    peak_rx_v_.assign(receiver_distances.size(), 0.0);
+  }
+  force_.assign(n, 0.0);
+  u_.assign(n, 0.0);
+  v_.assign(n, 0.0);
+  peak_fp_v_.assign(n, 0.0);
+  wheels_.assign(vs.wheel_count(), 0.0);
+}
+
+void RunRecorder::record(double t, double H, double residual) {
+  const std::size_t n = force_.size();
+  track_.footprint_forces(force_.data());
+  soil_.motion(u_.data(), v_.data(), n);
+  double power = 0.0;  // W: work done by the track on the soil per second
+  for (std::size_t i = 0; i < n; ++i) {
+    power += force_[i] * v_[i];
+    peak_fp_v_[i] = std::max(peak_fp_v_[i], std::abs(v_[i]));
+  }
+  if (!first_) energy_ += 0.5 * (power_ + power) * H;  // trapezoidal rule over the macro step
+  power_ = power;
+  first_ = false;
+  max_residual_ = std::max(max_residual_, residual);
+  for (std::size_t w = 0; w < wheels_.size(); ++w) wheels_[w] = track_.contact_force(w);
+  contact_->row(t, wheels_.data(), wheels_.size());
+  vehicles_->row(t, track_.vehicle_q().data(), static_cast<std::size_t>(track_.vehicle_q().size()));
+  fp_force_->row(t, force_.data(), n);
+  fp_u_->row(t, u_.data(), n);
+  fp_v_->row(t, v_.data(), n);
+  const double iface[3] = {residual, power, energy_};
+  interface_->row(t, iface, 3);
+  if (receivers_) {
+    soil_.receiver_velocity(rx_v_.data(), rx_v_.size());
+    for (std::size_t r = 0; r < rx_v_.size(); ++r)
+      peak_rx_v_[r] = std::max(peak_rx_v_[r], std::abs(rx_v_[r]));
+    receivers_->row(t, rx_v_.data(), rx_v_.size());
+  }
+}
+
+std::vector<std::string> RunRecorder::files() const {
+  std::vector<std::string> out;
+  for (const auto* f :
+       {&contact_, &vehicles_, &fp_force_, &fp_u_, &fp_v_, &interface_, &receivers_})
+    if (*f) out.push_back((*f)->path().filename().string());
+  return out;
+}
+
+}  // namespace rumble

@@ -1,0 +1,294 @@
+#include "run/run_scenario.hpp"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "core/errors.hpp"
+#include "core/logging.hpp"
+#include "plugin/instance.hpp"
+#include "run/cosim_host.hpp"
+#include "run/interrupt.hpp"
+#include "run/participant.hpp"
+#include "run/run_recorder.hpp"
+#include "track/track_participant.hpp"
+
+namespace rumble {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+// A footprint displacement beyond this [m] is not ground vibration: the coupled solution
+// has blown up (typically an unstable explicit coupling with too large a macro step).
+constexpr double kDivergedDisplacement = 1.0;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+/// summary.json is replaced atomically (write + rename), so it is never half-written.
+void write_summary(const fs::path& dir, const nlohmann::json& summary) {
+  const fs::path tmp = dir / "summary.json.tmp";
+  {
+    std::ofstream out(tmp);
+    out << summary.dump(2) << '\n';
+    if (!out) {
+      throw RunError("cannot write " + (dir / "summary.json").string() +
+                     "; check free disk space and that outputs.directory is writable");
+    }
+  }
+  fs::rename(tmp, dir / "summary.json");
+}
+
+const ComponentType& resolve(const PluginRegistry& registry, rumble_kind kind,
+                             const nlohmann::json& component, const std::string& pointer) {
+  const std::string type = component.at("type").get<std::string>();
+  const ComponentType* t = registry.find(kind, type);
+  if (t == nullptr) {
+    throw ConfigError(pointer + "/type: unknown " + kind_name(kind) + " type '" + type +
+                      "'; run `rumble plugins` to list the known types");
+  }
+  return *t;
+}
+
+/// Throws RunError when the interface values show the coupled solution has blown up.
+void check_finite(const TrackParticipant& track, const SoilSide& soil, double t,
+                  std::vector<double>& scratch) {
+  const std::size_t n = track.interface_size();
+  scratch.resize(std::max(scratch.size(), 2 * n));
+  soil.get_output(scratch.data());
+  for (std::size_t i = 0; i < n; ++i) {
+    const double u = scratch[i];
+    if (!std::isfinite(u) || std::abs(u) > kDivergedDisplacement) {
+      std::ostringstream m;
+      m << "simulation diverged at t = " << t << " s: footprint " << i << " displacement is " << u
+        << " m (limit " << kDivergedDisplacement
+        << " m); reduce time.macro_step, or use coupling type gauss_seidel, which is more stable "
+           "than jacobi for stiff interfaces";
+      throw RunError(m.str());
+    }
+  }
+  for (std::size_t w = 0; w < track.vehicles().wheel_count(); ++w) {
+    if (!std::isfinite(track.contact_force(w))) {
+      std::ostringstream m;
+      m << "simulation diverged at t = " << t << " s: contact force of wheel " << w
+        << " is not finite; reduce time.macro_step or track.integrator.micro_step";
+      throw RunError(m.str());
+    }
+  }
+}
+
+class ProgressLine {
+ public:
+  ProgressLine(bool enabled, double t_end) : enabled_(enabled), t_end_(t_end) {}
+  void update(double t) {
+    if (!enabled_) return;
+    const double elapsed = seconds_since(start_);
+    if (elapsed - last_ < 0.25 && t < t_end_) return;
+    last_ = elapsed;
+    const double fraction = std::min(1.0, t / t_end_);
+    const double eta = fraction > 0.0 ? elapsed * (1.0 - fraction) / fraction : 0.0;
+    std::fprintf(stderr, "\r  t = %.4f / %.4f s  %3.0f%%  elapsed %.1f s  ETA %.1f s   ", t, t_end_,
+                 100.0 * fraction, elapsed, eta);
+    std::fflush(stderr);
+    shown_ = true;
+  }
+  ~ProgressLine() {
+    if (shown_) std::fprintf(stderr, "\n");
+  }
+
+ private:
+  bool enabled_;
+  double t_end_;
+  Clock::time_point start_ = Clock::now();
+  double last_ = -1.0;
+  bool shown_ = false;
+};
+
+}  // namespace
+
+fs::path results_directory(const nlohmann::json& scenario, const fs::path& scenario_path) {
+  const fs::path dir = scenario.at("outputs").at("directory").get<std::string>();
+  return dir.is_absolute() ? dir : scenario_path.parent_path() / dir;
+}
+
+RunOutcome run_scenario(const nlohmann::json& scenario, const fs::path& scenario_path,
+                        const PluginRegistry& registry, const RunOptions& options) {
+  const auto log = logger("engine");
+  const auto run_start = Clock::now();
+  const fs::path scenario_dir = scenario_path.parent_path();
+  const double t_end = scenario.at("time").at("end").get<double>();
+  const double H = scenario.at("time").at("macro_step").get<double>();
+
+  // ---- participants
+  VehicleSet vehicles;
+  const auto& vj = scenario.at("vehicles");
+  for (std::size_t i = 0; i < vj.size(); ++i) {
+    const std::string ptr = "/vehicles/" + std::to_string(i);
+    const ComponentType& type = resolve(registry, RUMBLE_KIND_VEHICLE, vj[i], ptr);
+    auto instance = std::make_unique<VehicleInstance>(
+        type, ptr, vj[i].value("params", nlohmann::json::object()), scenario_dir);
+    vehicles.add(std::move(instance), vj[i].value("name", "vehicle" + std::to_string(i)),
+                 vj[i].at("speed").get<double>(), vj[i].at("start").get<double>());
+  }
+  const TrackConfig track_config = TrackConfig::from_json(scenario.at("track"));
+  TrackParticipant track(track_config, std::move(vehicles));
+  const auto& sj = scenario.at("soil");
+  SoilInstance soil(resolve(registry, RUMBLE_KIND_SOIL, sj, "/soil"), "/soil",
+                    sj.value("params", nlohmann::json::object()), scenario_dir);
+  soil.accept_layout(track.footprints());
+  const auto& cj = scenario.at("coupling");
+  CouplerInstance coupler(resolve(registry, RUMBLE_KIND_COUPLER, cj, "/coupling"), "/coupling",
+                          cj.value("params", nlohmann::json::object()), scenario_dir);
+
+  const auto& outputs = scenario.at("outputs");
+  const std::vector<double> distances = outputs.value("receivers", std::vector<double>{});
+  bool receivers_offered = false;
+  if (!distances.empty()) {
+    const double x_mid = 0.5 * (track_config.sleeper_count - 1) * track_config.sleeper_spacing;
+    std::vector<rumble_receiver> points;
+    for (double d : distances) points.push_back({x_mid, d});
+    receivers_offered = soil.set_receivers(points);
+    if (!receivers_offered) {
+      log->warn(
+          "/outputs/receivers: soil type '{}' offers no surface receivers; the receivers "
+          "are ignored (footprint motions are still recorded)",
+          soil.type_name());
+    }
+  }
+
+  // ---- results directory and the first summary
+  RunOutcome outcome;
+  outcome.results_dir = results_directory(scenario, scenario_path);
+  std::error_code ec;
+  fs::create_directories(outcome.results_dir, ec);
+  if (ec) {
+    throw RunError("cannot create results directory " + outcome.results_dir.string() + ": " +
+                   ec.message() + "; set /outputs/directory to a writable place");
+  }
+  nlohmann::json summary;
+  summary["rumble_version"] = RUMBLE_VERSION;
+  summary["scenario_file"] = fs::absolute(scenario_path).string();
+  summary["scenario"] = scenario;
+  summary["status"] = "running";
+  nlohmann::json plugins = nlohmann::json::array();
+  for (const Instance* inst : std::initializer_list<const Instance*>{&soil, &coupler}) {
+    const auto* d = inst->type().library->descriptor;
+    plugins.push_back({{"type", inst->type_name()},
+                       {"kind", kind_name(inst->type().kind)},
+                       {"plugin", d->plugin_name},
+                       {"version", d->plugin_version},
+                       {"path", inst->type().library->path.string()}});
+  }
+  for (const auto& v : track.vehicles().vehicles()) {
+    const auto* d = v.instance->type().library->descriptor;
+    plugins.push_back({{"type", v.instance->type_name()},
+                       {"kind", "vehicle"},
+                       {"plugin", d->plugin_name},
+                       {"version", d->plugin_version},
+                       {"path", v.instance->type().library->path.string()}});
+  }
+  summary["plugins"] = plugins;
+  write_summary(outcome.results_dir, summary);
+
+  // ---- static equilibrium, then the coupled run
+  const auto statics_start = Clock::now();
+  int static_iterations = 0;
+  try {
+    static_iterations =
+        track.solve_static([&](const std::vector<double>& force, std::vector<double>& u) {
+          soil.initialize(0.0, force, u);
+        });
+  } catch (const std::exception& e) {
+    summary["status"] = "failed";
+    summary["message"] = e.what();
+    write_summary(outcome.results_dir, summary);
+    throw;
+  }
+  const double statics_seconds = seconds_since(statics_start);
+  nlohmann::json wheel_loads = nlohmann::json::array();
+  for (std::size_t w = 0; w < track.vehicles().wheel_count(); ++w)
+    wheel_loads.push_back(track.contact_force(w));
+  log->info("static state: {} wheel(s), loads {} N, {} track/soil iteration(s)",
+            track.vehicles().wheel_count(), wheel_loads.dump(), static_iterations);
+  const double h = H / std::ceil(H / track.micro_step_limit() - 1e-9);
+  log->info("macro step {:.3g} s, track micro-step {:.3g} s ({} per macro step)", H, h,
+            static_cast<int>(std::lround(H / h)));
+
+  RunRecorder recorder(outcome.results_dir, track, soil, distances, receivers_offered);
+  recorder.record(0.0, 0.0, 0.0);
+  TrackSide track_side(track);
+  SoilSide soil_side(soil, track.interface_size());
+  double t_reached = 0.0;
+  std::size_t steps = 0;
+  std::vector<double> scratch;
+  ProgressLine progress(options.progress, t_end);
+  CosimHostImpl host(track_side, soil_side, [&](double t, double step, double residual) {
+    recorder.record(t + step, step, residual);
+    t_reached = t + step;
+    ++steps;
+    check_finite(track, soil_side, t + step, scratch);
+    if (interrupt_requested()) {
+      std::ostringstream m;
+      m << "interrupted at t = " << t + step << " s (Ctrl-C); results up to that time are in "
+        << outcome.results_dir.string();
+      throw Interrupted(m.str());
+    }
+    progress.update(t + step);
+  });
+
+  std::string coupler_message;
+  const rumble_status status = coupler.run(*host.table(), 0.0, t_end, H, coupler_message);
+  outcome.status = "completed";
+  try {
+    host.rethrow_if_failed();
+    if (status == RUMBLE_ERROR || status == RUMBLE_FATAL) {
+      throw RunError("coupler '" + coupler.type_name() + "' failed: " + coupler_message);
+    }
+    if (t_reached < t_end - 1e-9 * t_end) {
+      throw RunError("coupler '" + coupler.type_name() +
+                     "' returned at t = " + std::to_string(t_reached) +
+                     " s before time.end = " + std::to_string(t_end) + " s");
+    }
+  } catch (const Interrupted& e) {
+    outcome.status = "interrupted";
+    outcome.message = e.what();
+  } catch (const std::exception& e) {
+    outcome.status = "failed";
+    outcome.message = e.what();
+  }
+  outcome.exit_code = outcome.status == "completed" ? 0 : 3;
+
+  summary["status"] = outcome.status;
+  if (!outcome.message.empty()) summary["message"] = outcome.message;
+  summary["time"] = {{"end", t_end},
+                     {"reached", t_reached},
+                     {"macro_step", H},
+                     {"macro_steps", steps},
+                     {"micro_step", h}};
+  summary["wall_time_s"] = {{"total", seconds_since(run_start)},
+                            {"statics", statics_seconds},
+                            {track_side.name(), track_side.wall_seconds},
+                            {soil_side.name(), soil_side.wall_seconds}};
+  summary["static"] = {{"wheel_loads_N", wheel_loads}, {"iterations", static_iterations}};
+  summary["interface"] = {{"max_relative_residual", recorder.max_residual()},
+                          {"energy_exchanged_J", recorder.energy_exchanged()}};
+  summary["peak_footprint_velocity_m_s"] = recorder.peak_footprint_velocity();
+  if (receivers_offered) {
+    nlohmann::json ppv = nlohmann::json::array();
+    for (std::size_t r = 0; r < distances.size(); ++r)
+      ppv.push_back(
+          {{"distance_m", distances[r]}, {"ppv_m_s", recorder.peak_receiver_velocity()[r]}});
+    summary["ppv"] = ppv;
+  }
+  summary["files"] = recorder.files();
+  write_summary(outcome.results_dir, summary);
+  return outcome;
+}
+
+}  // namespace rumble

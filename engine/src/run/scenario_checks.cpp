@@ -1,0 +1,95 @@
+#include "run/scenario_checks.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "core/wave_speeds.hpp"
+#include "track/track_config.hpp"
+
+namespace rumble {
+namespace {
+
+using scenario::Diagnostic;
+
+Diagnostic finding(std::string pointer, std::string message, std::string hint,
+                   Diagnostic::Severity severity = Diagnostic::Severity::kError) {
+  Diagnostic d;
+  d.severity = severity;
+  d.pointer = std::move(pointer);
+  d.message = std::move(message);
+  d.hint = std::move(hint);
+  return d;
+}
+
+std::string num(double x) {
+  std::ostringstream s;
+  s << x;
+  return s.str();
+}
+
+}  // namespace
+
+std::vector<Diagnostic> check_scenario_relations(const nlohmann::json& sc) {
+  std::vector<Diagnostic> out;
+  const double t_end = sc.at("time").at("end").get<double>();
+  const double H = sc.at("time").at("macro_step").get<double>();
+  if (H > t_end) {
+    out.push_back(
+        finding("/time/macro_step",
+                "the macro step " + num(H) + " s is longer than time.end = " + num(t_end) + " s",
+                "use a macro step of 1e-4 to 1e-3 s"));
+  }
+  const TrackConfig track = TrackConfig::from_json(sc.at("track"));
+  if (track.micro_step && *track.micro_step > H) {
+    out.push_back(finding("/track/integrator/micro_step",
+                          "the micro-step " + num(*track.micro_step) +
+                              " s is longer than the macro step " + num(H) + " s",
+                          "give a micro-step <= time.macro_step, or leave it out to have it "
+                          "chosen from the contact stiffness"));
+  }
+  // The vehicle reference must stay on the rail for the whole run (the wheels' offsets are
+  // checked again once the vehicle plugins are loaded).
+  const auto& vehicles = sc.at("vehicles");
+  for (std::size_t i = 0; i < vehicles.size(); ++i) {
+    const std::string ptr = "/vehicles/" + std::to_string(i);
+    const double start = vehicles[i].at("start").get<double>();
+    const double speed = vehicles[i].at("speed").get<double>();
+    const double x_end = start + speed * t_end;
+    if (start < track.rail_start() || start > track.rail_end()) {
+      out.push_back(finding(ptr + "/start",
+                            "the vehicle starts at x = " + num(start) + " m, off the rail [" +
+                                num(track.rail_start()) + ", " + num(track.rail_end()) + "] m",
+                            "sleeper i lies at x = i * spacing; start within the track"));
+    } else if (x_end > track.rail_end()) {
+      const int needed = static_cast<int>(std::ceil((x_end + 2.0 * track.sleeper_spacing) /
+                                                    track.sleeper_spacing)) +
+                         1;
+      out.push_back(finding(ptr + "/speed",
+                            "at " + num(speed) + " m/s the vehicle reaches x = " + num(x_end) +
+                                " m at t = " + num(t_end) + " s, past the end of the rail at " +
+                                num(track.rail_end()) + " m",
+                            "lower time.end or the speed, or use at least " +
+                                std::to_string(needed) + " sleepers (track.sleepers.count)"));
+    }
+    // Critical-speed regime: the reduced soils do not represent the Mach cone that forms above
+    // the Rayleigh wave speed; warn with the number when the soil's properties are known.
+    const auto& soil = sc.at("soil").value("params", nlohmann::json::object());
+    if (soil.contains("E") && soil.contains("nu") && soil.contains("rho") &&
+        soil["E"].is_number() && soil["nu"].is_number() && soil["rho"].is_number()) {
+      const double c_r = rayleigh_wave_speed(soil["E"].get<double>(), soil["nu"].get<double>(),
+                                             soil["rho"].get<double>());
+      if (speed > c_r) {
+        out.push_back(finding(
+            ptr + "/speed",
+            "the speed " + num(speed) + " m/s is above the soil's Rayleigh wave speed " +
+                num(std::round(c_r * 10.0) / 10.0) + " m/s (critical-speed regime)",
+            "results then depend on the soil model capturing the Mach cone; check with a full "
+            "3D soil, or lower the speed",
+            Diagnostic::Severity::kWarning));
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace rumble

@@ -1,0 +1,59 @@
+// The CLI's informational commands and its usage errors, as a user sees them.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "cli_runner.hpp"
+
+namespace rumble::testing {
+namespace {
+
+using ::testing::HasSubstr;
+
+TEST(Cli, VersionAndHelp) {
+  const CliResult v = run_rumble({"--version"});
+  EXPECT_EQ(v.exit_code, 0);
+  EXPECT_THAT(v.output, HasSubstr("rumble 0.1.0 (plugin ABI 1.0)"));
+  const CliResult h = run_rumble({"--help"});
+  EXPECT_EQ(h.exit_code, 0);
+  EXPECT_THAT(h.output, HasSubstr("usage: rumble"));
+}
+
+TEST(Cli, UnknownCommandListsCommands) {
+  const CliResult r = run_rumble({"rnu"});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.output, HasSubstr("rumble: error: unknown command 'rnu'; commands: "));
+  EXPECT_THAT(r.output, HasSubstr("run"));
+}
+
+TEST(Cli, UnknownOptionAndBadLogLevel) {
+  EXPECT_THAT(run_rumble({"run", "x.json", "--fast"}).output,
+              HasSubstr("unknown option '--fast'; options here: --no-progress"));
+  const CliResult r = run_rumble({"--log-level", "loud", "plugins"});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.output, HasSubstr("--log-level loud is not a level; choose trace, debug, info"));
+}
+
+TEST(Cli, PluginsListsInTreeTypes) {
+  const CliResult r = run_rumble({"plugins"});
+  EXPECT_EQ(r.exit_code, 0);
+  for (const char* type :
+       {"vehicle single_wheel", "soil winkler", "coupler gauss_seidel", "coupler jacobi"})
+    EXPECT_THAT(r.output, HasSubstr(type));
+  const CliResult j = run_rumble({"plugins", "--format", "json"});
+  EXPECT_EQ(j.exit_code, 0);
+  EXPECT_TRUE(nlohmann::json::accept(j.output)) << j.output;
+}
+
+TEST(Cli, SchemaShowsUnitsAndSuggestsTypes) {
+  const CliResult r = run_rumble({"schema", "single_wheel"});
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_THAT(r.output, HasSubstr("static_load"));
+  EXPECT_THAT(r.output, HasSubstr("[N]"));
+  const CliResult bad = run_rumble({"schema", "singel_wheel"});
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_THAT(bad.output, HasSubstr("unknown type 'singel_wheel'"));
+  EXPECT_THAT(bad.output, HasSubstr("did you mean \"single_wheel\"?"));
+}
+
+}  // namespace
+}  // namespace rumble::testing

@@ -1,0 +1,93 @@
+// Every user-facing failure of a run ends with a message (what, where, value, fix), a non-zero
+// exit code, and the results computed so far kept on disk.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <thread>
+
+#include "cli_runner.hpp"
+
+namespace rumble::testing {
+namespace {
+
+using ::testing::HasSubstr;
+
+TEST(CliFailure, MissingPluginLibraryNamedInScenario) {
+  const auto dir = scratch_directory("missing_plugin");
+  nlohmann::json s = small_scenario();
+  s["plugins"] = {"lib/nowhere.so"};
+  const CliResult r = run_rumble({"run", write_scenario(dir, s).string()});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("/plugins/0"));
+  EXPECT_THAT(r.output, HasSubstr("nowhere.so': file not found"));
+}
+
+TEST(CliFailure, FullDiskStopsTheRunWithTheReason) {
+  const auto dir = scratch_directory("full_disk");
+  std::filesystem::create_directories(dir / "results");
+  // /dev/full accepts the open and fails every write with ENOSPC, like a full disk.
+  std::filesystem::create_symlink("/dev/full", dir / "results" / "contact.csv");
+  const CliResult r = run_rumble({"run", write_scenario(dir, small_scenario()).string()});
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("contact.csv: No space left on device; free disk space"));
+  EXPECT_EQ(read_json(dir / "results" / "summary.json")["status"], "failed");
+}
+
+TEST(CliFailure, UnwritableResultsDirectory) {
+  const auto dir = scratch_directory("unwritable");
+  nlohmann::json s = small_scenario();
+  s["outputs"]["directory"] = "/proc/rumble-cannot-write-here";
+  const CliResult r = run_rumble({"run", write_scenario(dir, s).string()});
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_THAT(r.output,
+              HasSubstr("cannot create results directory /proc/rumble-cannot-write-here"));
+  EXPECT_THAT(r.output, HasSubstr("set /outputs/directory to a writable place"));
+}
+
+TEST(CliFailure, VehicleRunningOffTheTrackIsAConfigError) {
+  const auto dir = scratch_directory("off_track");
+  nlohmann::json s = small_scenario();
+  s["time"]["end"] = 2.0;
+  const CliResult r = run_rumble({"validate", write_scenario(dir, s).string()});
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("/vehicles/0/speed: at 20 m/s the vehicle reaches x = 43 m"));
+  EXPECT_THAT(r.output, HasSubstr("sleepers (track.sleepers.count)"));
+}
+
+// Ctrl-C: the run stops at the end of the current macro step, says so, keeps every row.
+TEST(CliFailure, InterruptKeepsResults) {
+  const auto dir = scratch_directory("interrupt");
+  nlohmann::json s = small_scenario();
+  s["time"]["end"] = 0.6;
+  s["time"]["macro_step"] = 1e-4;
+  s["track"]["sleepers"]["count"] = 40;
+  const auto path = write_scenario(dir, s);
+  const pid_t pid = fork();
+  if (pid == 0) {
+    const std::string exe = RUMBLE_TEST_EXE;
+    execl(exe.c_str(), exe.c_str(), "run", path.c_str(), "--no-progress", nullptr);
+    _exit(127);
+  }
+  const auto contact = dir / "results" / "contact.csv";
+  for (int i = 0; i < 600 && csv_rows(contact) < 20; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  kill(pid, SIGINT);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 3);
+  const auto summary = read_json(dir / "results" / "summary.json");
+  EXPECT_EQ(summary["status"], "interrupted");
+  EXPECT_THAT(summary["message"].get<std::string>(), HasSubstr("interrupted at t = "));
+  const std::size_t rows = csv_rows(contact);
+  EXPECT_GE(rows, 20u);
+  EXPECT_LT(rows, 6001u);  // stopped before the end
+  EXPECT_EQ(summary["time"]["macro_steps"].get<std::size_t>() + 1, rows);
+}
+
+}  // namespace
+}  // namespace rumble::testing

@@ -1,0 +1,93 @@
+#include "cli_runner.hpp"
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace rumble::testing {
+
+CliResult run_rumble(const std::vector<std::string>& args) {
+  int fds[2];
+  if (pipe(fds) != 0) throw std::runtime_error("pipe failed");
+  const pid_t pid = fork();
+  if (pid == 0) {
+    dup2(fds[1], STDOUT_FILENO);
+    dup2(fds[1], STDERR_FILENO);
+    close(fds[0]);
+    close(fds[1]);
+    std::vector<char*> argv;
+    std::string exe = RUMBLE_TEST_EXE;
+    argv.push_back(exe.data());
+    std::vector<std::string> copy = args;
+    for (auto& a : copy) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    execv(exe.c_str(), argv.data());
+    _exit(127);
+  }
+  close(fds[1]);
+  CliResult result;
+  std::array<char, 4096> buffer;
+  ssize_t n;
+  while ((n = read(fds[0], buffer.data(), buffer.size())) > 0)
+    result.output.append(buffer.data(), static_cast<std::size_t>(n));
+  close(fds[0]);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  return result;
+}
+
+std::filesystem::path scratch_directory(const std::string& test_name) {
+  const auto dir = std::filesystem::path(RUMBLE_TEST_BINARY_DIR) / "test_scratch" / test_name;
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+nlohmann::json small_scenario() {
+  return {{"schema_version", 1},
+          {"name", "cli test: single wheel on winkler"},
+          {"time", {{"end", 0.05}, {"macro_step", 1e-3}}},
+          {"vehicles",
+           {{{"type", "single_wheel"},
+             {"speed", 20.0},
+             {"start", 3.0},
+             {"params", {{"mass", 750.0}, {"static_load", 50000.0}}}}}},
+          {"track",
+           {{"sleepers",
+             {{"count", 20},
+              {"spacing", 0.6},
+              {"mass", 150.0},
+              {"footprint", {{"length", 2.6}, {"width", 0.26}}}}},
+            {"rail", {{"E", 2.1e11}, {"I", 3.055e-5}, {"mass_per_length", 60.34}}},
+            {"railpad", {{"k", 2e8}, {"c", 2.8e4}}},
+            {"ballast", {{"k", 4e7}, {"c", 4.7e4}}}}},
+          {"soil", {{"type", "winkler"}, {"params", {{"k", 1e8}, {"c", 2e5}}}}},
+          {"coupling", {{"type", "gauss_seidel"}, {"params", nlohmann::json::object()}}},
+          {"outputs", {{"directory", "results"}}}};
+}
+
+std::filesystem::path write_scenario(const std::filesystem::path& dir, const nlohmann::json& s) {
+  const auto path = dir / "scenario.json";
+  std::ofstream(path) << s.dump(2) << '\n';
+  return path;
+}
+
+std::size_t csv_rows(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  std::string line;
+  std::size_t rows = 0;
+  while (std::getline(in, line)) ++rows;
+  return rows == 0 ? 0 : rows - 1;
+}
+
+nlohmann::json read_json(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  return nlohmann::json::parse(in);
+}
+
+}  // namespace rumble::testing

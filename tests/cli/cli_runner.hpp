@@ -1,0 +1,34 @@
+// Runs the rumble executable as a user would, in a scratch directory per test, and reads what
+// it printed and wrote.
+#pragma once
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+namespace rumble::testing {
+
+struct CliResult {
+  int exit_code = -1;
+  std::string output;  // stdout and stderr together
+};
+
+/// Runs `rumble <args>` (arguments are passed as they are, no shell) and waits.
+CliResult run_rumble(const std::vector<std::string>& args);
+
+/// A fresh, empty directory for one test (under the build tree).
+std::filesystem::path scratch_directory(const std::string& test_name);
+
+/// A small, fast, valid scenario: single wheel on a Winkler soil, Gauss-Seidel, 0.05 s.
+nlohmann::json small_scenario();
+
+/// Writes the scenario as <dir>/scenario.json and returns its path.
+std::filesystem::path write_scenario(const std::filesystem::path& dir, const nlohmann::json& s);
+
+/// Number of data rows (lines after the header) of a CSV file.
+std::size_t csv_rows(const std::filesystem::path& file);
+
+nlohmann::json read_json(const std::filesystem::path& file);
+
+}  // namespace rumble::testing
