@@ -1,0 +1,89 @@
+// Validates a JSON value against a JSON Schema (draft 7) with valijson and turns its raw results
+// into messages a user can act on, one per real problem:
+//   pointer of the offending value, the rule in plain words ("must be > 0", "must be one of: a,
+//   b", "required key 'mass' is missing", "unknown key 'dampng'"), a hint where one helps.
+// valijson's wrapper errors ("Failed to validate item #0", "... against child schema #1") are
+// dropped, and a failed oneOf/anyOf is reported through the variant closest to the value
+// instead of "failed to match oneOf". Also fills the schema's declared defaults into a value.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace valijson {
+class Schema;
+}
+
+namespace rumble::scenario {
+
+/// The schema text is not JSON, or not a schema valijson can use.
+class SchemaError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct SchemaIssue {
+  enum class Rule { kType, kRequired, kUnknownKey, kEnum, kConst, kRange, kOther };
+  Rule rule = Rule::kOther;
+  std::string pointer;      // relative to the checked value
+  bool at_key = false;      // point at the key (unknown keys), not at the value
+  std::string message;      // "must be > 0" (without the value)
+  bool show_value = false;  // the caller appends ", got <value as written>"
+  std::string hint;
+};
+
+class SchemaChecker {
+ public:
+  /// Throws SchemaError when `schema_text` is not valid JSON or not a usable schema.
+  explicit SchemaChecker(const std::string& schema_text);
+  ~SchemaChecker();
+  SchemaChecker(const SchemaChecker&) = delete;
+  SchemaChecker& operator=(const SchemaChecker&) = delete;
+
+  /// Every problem of `value`, in valijson's order (schema order, then document order).
+  /// Never throws for any value; a schema that fails while validating (a bad regex) is
+  /// reported as an issue at "".
+  std::vector<SchemaIssue> check(const nlohmann::json& value) const;
+
+  /// Inserts every declared "default" for keys absent from objects, recursively (defaults that
+  /// are objects are filled in turn). Variants (oneOf, anyOf, if/then) count only where the
+  /// value matches them.
+  void fill_defaults(nlohmann::json& value) const;
+
+  const nlohmann::json& schema() const { return schema_; }
+
+ private:
+  struct Ref {
+    std::string pointer;  // into schema_, e.g. "/properties/time"
+    const nlohmann::json* node = nullptr;
+  };
+  enum class Closure { kActive, kMatching, kAll };
+
+  const valijson::Schema& compiled(const std::string& pointer) const;
+  bool matches(const std::string& pointer, const nlohmann::json& value) const;
+  const nlohmann::json* node_at(const std::string& pointer) const;
+  void closure(const std::string& pointer, const nlohmann::json& value, Closure mode, int depth,
+               std::vector<Ref>& out) const;
+  std::vector<Ref> children(const std::vector<Ref>& parents, const nlohmann::json& parent_value,
+                            const std::string& token, Closure mode) const;
+  std::vector<Ref> resolve(const std::string& pointer, const nlohmann::json& value,
+                           const std::vector<std::string>& path, Closure mode) const;
+  std::vector<SchemaIssue> check_at(const std::string& pointer, const nlohmann::json& value,
+                                    int depth) const;
+  std::vector<SchemaIssue> explain_variants(const std::string& pointer, const nlohmann::json& value,
+                                            const std::vector<std::string>& path, int depth) const;
+  void fill_at(const std::vector<Ref>& refs, nlohmann::json& value, int depth) const;
+
+  nlohmann::json schema_;
+  mutable std::mutex mutex_;  // guards cache_: compiled subschemas, built on first use
+  mutable std::map<std::string, std::unique_ptr<valijson::Schema>> cache_;
+
+  friend class IssueBuilder;
+};
+
+}  // namespace rumble::scenario
