@@ -1,0 +1,38 @@
+// A plugin with bugs that validation must name: a soil type without a params schema and one
+// whose schema is not JSON. Written against the raw C ABI because the C++ layer cannot express
+// a missing schema.
+#include <rumble/abi.h>
+
+namespace {
+
+rumble_status create(const char*, const rumble_host*, rumble_instance** out, const char** error) {
+  *out = nullptr;
+  *error = "test plugin: not creatable";
+  return RUMBLE_ERROR;
+}
+
+const rumble_soil_api kApi = {
+    sizeof(rumble_soil_api), {}, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr};
+
+const rumble_factory kFactories[] = {
+    {sizeof(rumble_factory), RUMBLE_KIND_SOIL, "no_schema_soil", "test: declares no schema",
+     nullptr, &create, &kApi},
+    {sizeof(rumble_factory), RUMBLE_KIND_SOIL, "bad_schema_soil", "test: schema is not JSON",
+     "{\"type\": \"object\", ", &create, &kApi},
+};
+
+const rumble_plugin_descriptor kDescriptor = {sizeof(rumble_plugin_descriptor),
+                                              RUMBLE_ABI_MAJOR,
+                                              RUMBLE_ABI_MINOR,
+                                              "bad_plugin",
+                                              "0.0.1",
+                                              "test",
+                                              2,
+                                              kFactories};
+
+}  // namespace
+
+extern "C" __attribute__((visibility("default"))) const rumble_plugin_descriptor*
+rumble_plugin_entry() {
+  return &kDescriptor;
+}

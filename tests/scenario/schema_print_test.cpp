@@ -1,0 +1,75 @@
+#include "scenario/schema_print.hpp"
+
+#include <gtest/gtest.h>
+
+#include <sstream>
+
+#include "plugin/registry.hpp"
+#include "test_support.hpp"
+
+namespace rumble::scenario {
+namespace {
+
+ComponentType component(const std::string& schema) {
+  ComponentType t;
+  t.kind = RUMBLE_KIND_SOIL;
+  t.type_name = "example";
+  t.summary = "an example soil";
+  t.params_schema = schema;
+  return t;
+}
+
+std::string printed(const ComponentType& t, bool raw) {
+  std::ostringstream os;
+  print_schema(os, t, raw);
+  return os.str();
+}
+
+TEST(ScenarioSchemaPrint, OneRowPerParamInDeclarationOrderWithNestedObjectsDotted) {
+  const auto t = component(R"({
+    "type": "object", "required": ["k"],
+    "properties": {
+      "k": {"type": "number", "exclusiveMinimum": 0, "description": "stiffness [N/m]"},
+      "mode": {"enum": ["a", "b"], "default": "a", "description": "how"},
+      "layer": {"type": "object", "properties": {
+        "depth": {"$ref": "#/definitions/len", "default": 1.5}}},
+      "nu": {"type": "number", "minimum": 0, "exclusiveMaximum": 0.5, "default": 0.3}
+    },
+    "definitions": {"len": {"type": "number", "exclusiveMinimum": 0, "description": "[m]"}}
+  })");
+  EXPECT_EQ(printed(t, false),
+            "example (soil type)\n"
+            "an example soil\n"
+            "\n"
+            "params:\n"
+            "  name         type    required  default  range         description\n"
+            "  k            number  yes                > 0           stiffness [N/m]\n"
+            "  mode         enum    no        \"a\"      one of: a, b  how\n"
+            "  layer        object  no\n"
+            "  layer.depth  number  no                 > 0           [m]\n"
+            "  nu           number  no        0.3      [0, 0.5)\n");
+}
+
+TEST(ScenarioSchemaPrint, RawSchemaFollowsOnRequest) {
+  const std::string out = printed(component(R"({"type": "object"})"), true);
+  EXPECT_NE(out.find("params: none\n"), std::string::npos) << out;
+  EXPECT_NE(out.find("JSON Schema of the params:\n{\n  \"type\": \"object\"\n}\n"),
+            std::string::npos)
+      << out;
+}
+
+TEST(ScenarioSchemaPrint, BrokenSchemaIsSaidNotThrown) {
+  const std::string out = printed(component("{oops"), false);
+  EXPECT_NE(out.find("params: the plugin's schema is not valid JSON"), std::string::npos) << out;
+}
+
+TEST(ScenarioSchemaPrint, InTreeVehicle) {
+  const auto* t = test::golden_registry().find(RUMBLE_KIND_VEHICLE, "single_wheel");
+  if (t == nullptr) GTEST_SKIP() << "single_wheel not built";
+  const std::string out = printed(*t, false);
+  EXPECT_NE(out.find("single_wheel (vehicle type, plugin "), std::string::npos) << out;
+  EXPECT_NE(out.find("wheel_radius  number  no        0.46"), std::string::npos) << out;
+}
+
+}  // namespace
+}  // namespace rumble::scenario
