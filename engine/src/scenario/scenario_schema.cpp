@@ -57,6 +57,7 @@ constexpr std::string_view kSchema = R"json({
       "properties": {
         "sleepers": {
           "type": "object",
+          "description": "the sleepers, evenly spaced, and their footprints on the soil",
           "additionalProperties": false,
           "required": ["count", "spacing", "mass", "footprint"],
           "properties": {
@@ -65,6 +66,7 @@ constexpr std::string_view kSchema = R"json({
             "mass": {"type": "number", "exclusiveMinimum": 0, "description": "mass per rail seat (half sleeper) [kg]"},
             "footprint": {
               "type": "object",
+              "description": "contact patch of a whole sleeper on the soil",
               "additionalProperties": false,
               "required": ["length", "width"],
               "properties": {
@@ -76,6 +78,7 @@ constexpr std::string_view kSchema = R"json({
         },
         "rail": {
           "type": "object",
+          "description": "the rail, an Euler-Bernoulli beam",
           "additionalProperties": false,
           "required": ["E", "I", "mass_per_length"],
           "properties": {
@@ -88,6 +91,7 @@ constexpr std::string_view kSchema = R"json({
         },
         "railpad": {
           "type": "object",
+          "description": "spring-dashpot from rail to sleeper, per rail seat",
           "additionalProperties": false,
           "required": ["k", "c"],
           "properties": {
@@ -97,6 +101,7 @@ constexpr std::string_view kSchema = R"json({
         },
         "ballast": {
           "type": "object",
+          "description": "spring-dashpot from sleeper to footprint, per half sleeper",
           "additionalProperties": false,
           "required": ["k", "c"],
           "properties": {
@@ -106,6 +111,7 @@ constexpr std::string_view kSchema = R"json({
         },
         "contact": {
           "type": "object",
+          "description": "Hertzian wheel/rail contact",
           "additionalProperties": false,
           "default": {},
           "properties": {
@@ -118,6 +124,7 @@ constexpr std::string_view kSchema = R"json({
         "unevenness": {"$ref": "#/definitions/unevenness"},
         "integrator": {
           "type": "object",
+          "description": "Newmark time integration of track and vehicles",
           "additionalProperties": false,
           "default": {},
           "properties": {
@@ -127,6 +134,7 @@ constexpr std::string_view kSchema = R"json({
         },
         "damping": {
           "type": "object",
+          "description": "Rayleigh damping of the rail",
           "additionalProperties": false,
           "default": {},
           "properties": {

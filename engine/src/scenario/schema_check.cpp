@@ -25,7 +25,7 @@ using Rule = SchemaIssue::Rule;
 
 // A oneOf inside a oneOf inside ... is explained variant by variant; real schemas nest a few
 // levels at most, so deeper ones are summarized instead of explained.
-constexpr int kMaxVariantDepth = 8;
+constexpr int kMaxVariantDepth = 4;
 // $ref chains and allOf nesting are followed this deep (a cyclic $ref stops here too).
 constexpr int kMaxClosureDepth = 32;
 
