@@ -205,6 +205,25 @@ TEST(ScenarioSchemaCheck, BadSchemasAreRefusedUpFront) {
   EXPECT_NO_THROW(SchemaChecker("true"));
 }
 
+TEST(ScenarioSchemaCheck, LongStringsAreNotFedToRegularExpressions) {
+  // libstdc++'s std::regex recurses per character: a 100 kB string overflows the stack.
+  const std::string huge(100000, 'a');
+  EXPECT_EQ(issues(R"({"type": "object", "properties": {"s": {"pattern": "^[a-z]+$"}}})",
+                   json{{"s", huge}}),
+            (Lines{"/s: is too long to be checked (more than 1000 characters where the schema "
+                   "has patterns)"}));
+  EXPECT_EQ(issues(R"({"type": "object", "patternProperties": {"^x": {"type": "number"}}})",
+                   json{{huge, 1}})
+                .size(),
+            1u);
+  const SchemaChecker checker(R"({"patternProperties": {"^x": {"default": 1}}})");
+  json v = json{{huge, json::object()}};
+  checker.fill_defaults(v);  // returns, without matching
+  // Without patterns in the schema, long strings are fine.
+  EXPECT_EQ(issues(R"({"type": "string", "maxLength": 5})", json(huge)),
+            (Lines{": must be at most 5 characters long, got 100000"}));
+}
+
 TEST(ScenarioSchemaCheck, ABadRegexInASchemaIsAnIssueNotACrash) {
   const auto lines = issues(R"({"type": "string", "pattern": "(["})", json("x"));
   ASSERT_EQ(lines.size(), 1u);

@@ -558,6 +558,7 @@ SchemaChecker::SchemaChecker(const std::string& schema_text) {
   if (!schema_.is_object() && !schema_.is_boolean()) {
     throw SchemaError("the schema is not a JSON object");
   }
+  uses_regex_ = schema_text.find("\"pattern") != std::string::npos;
   try {
     compiled("");
   } catch (const std::exception& e) {
@@ -706,7 +707,38 @@ std::vector<SchemaChecker::Ref> SchemaChecker::resolve(const std::string& pointe
   return refs;
 }
 
+std::optional<std::string> SchemaChecker::too_long_for_regex(const json& value) const {
+  if (!uses_regex_) return std::nullopt;
+  std::vector<std::pair<const json*, std::string>> stack{{&value, ""}};
+  while (!stack.empty()) {
+    const auto [v, pointer] = stack.back();
+    stack.pop_back();
+    if (v->is_string() && v->get_ref<const std::string&>().size() > kMaxPatternInput) {
+      return pointer;
+    }
+    if (v->is_object()) {
+      for (const auto& [k, child] : v->items()) {
+        const std::string p = pointer + "/" + escape_pointer_token(k);
+        if (k.size() > kMaxPatternInput) return p;
+        stack.emplace_back(&child, p);
+      }
+    } else if (v->is_array()) {
+      for (std::size_t i = 0; i < v->size(); ++i) {
+        stack.emplace_back(&(*v)[i], pointer + "/" + std::to_string(i));
+      }
+    }
+  }
+  return std::nullopt;
+}
+
 std::vector<SchemaIssue> SchemaChecker::check(const json& value) const {
+  if (const auto p = too_long_for_regex(value)) {
+    SchemaIssue issue;
+    issue.pointer = *p;
+    issue.message = "is too long to be checked (more than " + std::to_string(kMaxPatternInput) +
+                    " characters where the schema has patterns)";
+    return {issue};
+  }
   return check_at("", value, 0);
 }
 
@@ -877,6 +909,7 @@ std::vector<SchemaIssue> SchemaChecker::explain_variants(const std::string& poin
 }
 
 void SchemaChecker::fill_defaults(json& value) const {
+  if (too_long_for_regex(value)) return;  // invalid anyway, and unsafe to match
   std::vector<Ref> refs;
   closure("", value, Closure::kMatching, 0, refs);
   fill_at(refs, value, 0);

@@ -11,6 +11,7 @@
 #include <memory>
 #include <mutex>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -39,6 +40,8 @@ struct SchemaIssue {
 
 class SchemaChecker {
  public:
+  static constexpr std::size_t kMaxPatternInput = 1000;  // bytes
+
   /// Throws SchemaError when `schema_text` is not valid JSON or not a usable schema.
   explicit SchemaChecker(const std::string& schema_text);
   ~SchemaChecker();
@@ -47,7 +50,9 @@ class SchemaChecker {
 
   /// Every problem of `value`, in valijson's order (schema order, then document order).
   /// Never throws for any value; a schema that fails while validating (a bad regex) is
-  /// reported as an issue at "".
+  /// reported as an issue at "". When the schema has regular expressions, a string or key
+  /// longer than kMaxPatternInput is reported instead of checked: std::regex recurses per
+  /// character and would overflow the stack.
   std::vector<SchemaIssue> check(const nlohmann::json& value) const;
 
   /// Inserts every declared "default" for keys absent from objects, recursively (defaults that
@@ -79,7 +84,11 @@ class SchemaChecker {
                                             const std::vector<std::string>& path, int depth) const;
   void fill_at(const std::vector<Ref>& refs, nlohmann::json& value, int depth) const;
 
+  /// The pointer of the first string or key too long for a regex, when the schema has any.
+  std::optional<std::string> too_long_for_regex(const nlohmann::json& value) const;
+
   nlohmann::json schema_;
+  bool uses_regex_ = false;   // "pattern" or "patternProperties" anywhere in the schema
   mutable std::mutex mutex_;  // guards cache_: compiled subschemas, built on first use
   mutable std::map<std::string, std::unique_ptr<valijson::Schema>> cache_;
 
