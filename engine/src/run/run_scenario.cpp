@@ -196,98 +196,102 @@ RunOutcome run_scenario(const nlohmann::json& scenario, const fs::path& scenario
   summary["plugins"] = plugins;
   write_summary(outcome.results_dir, summary);
 
-  // ---- static equilibrium, then the coupled run
-  const auto statics_start = Clock::now();
-  int static_iterations = 0;
+  // Anything failing from here on leaves summary.json saying so, then propagates.
   try {
-    static_iterations =
+    // ---- static equilibrium, then the coupled run
+    const auto statics_start = Clock::now();
+    const int static_iterations =
         track.solve_static([&](const std::vector<double>& force, std::vector<double>& u) {
           soil.initialize(0.0, force, u);
         });
+    const double statics_seconds = seconds_since(statics_start);
+    nlohmann::json wheel_loads = nlohmann::json::array();
+    for (std::size_t w = 0; w < track.vehicles().wheel_count(); ++w)
+      wheel_loads.push_back(track.contact_force(w));
+    log->info("static state: {} wheel(s), loads {} N, {} track/soil iteration(s)",
+              track.vehicles().wheel_count(), wheel_loads.dump(), static_iterations);
+    const double h = H / std::ceil(H / track.micro_step_limit() - 1e-9);
+    log->info("macro step {:.3g} s, track micro-step {:.3g} s ({} per macro step)", H, h,
+              static_cast<int>(std::lround(H / h)));
+
+    RunRecorder recorder(outcome.results_dir, track, soil, distances, receivers_offered);
+    recorder.record(0.0, 0.0, 0.0);
+    TrackSide track_side(track);
+    SoilSide soil_side(soil, track.interface_size());
+    double t_reached = 0.0;
+    std::size_t steps = 0;
+    std::vector<double> scratch;
+    ProgressLine progress(options.progress, t_end);
+    CosimHostImpl host(track_side, soil_side, [&](double t, double step, double residual) {
+      recorder.record(t + step, step, residual);
+      t_reached = t + step;
+      ++steps;
+      check_finite(track, soil_side, t + step, scratch);
+      if (interrupt_requested()) {
+        std::ostringstream m;
+        m << "interrupted at t = " << t + step << " s (Ctrl-C); results up to that time are in "
+          << outcome.results_dir.string();
+        throw Interrupted(m.str());
+      }
+      progress.update(t + step);
+    });
+
+    std::string coupler_message;
+    const rumble_status status = coupler.run(*host.table(), 0.0, t_end, H, coupler_message);
+    outcome.status = "completed";
+    try {
+      host.rethrow_if_failed();
+      if (status == RUMBLE_ERROR || status == RUMBLE_FATAL) {
+        throw RunError("coupler '" + coupler.type_name() + "' failed: " + coupler_message);
+      }
+      if (t_reached < t_end - 1e-9 * t_end) {
+        throw RunError("coupler '" + coupler.type_name() +
+                       "' returned at t = " + std::to_string(t_reached) +
+                       " s before time.end = " + std::to_string(t_end) + " s");
+      }
+    } catch (const Interrupted& e) {
+      outcome.status = "interrupted";
+      outcome.message = e.what();
+    } catch (const std::exception& e) {
+      outcome.status = "failed";
+      outcome.message = e.what();
+    }
+    outcome.exit_code = outcome.status == "completed" ? 0 : 3;
+
+    summary["status"] = outcome.status;
+    if (!outcome.message.empty()) summary["message"] = outcome.message;
+    summary["time"] = {{"end", t_end},
+                       {"reached", t_reached},
+                       {"macro_step", H},
+                       {"macro_steps", steps},
+                       {"micro_step", h}};
+    summary["wall_time_s"] = {{"total", seconds_since(run_start)},
+                              {"statics", statics_seconds},
+                              {track_side.name(), track_side.wall_seconds},
+                              {soil_side.name(), soil_side.wall_seconds}};
+    summary["static"] = {{"wheel_loads_N", wheel_loads}, {"iterations", static_iterations}};
+    summary["interface"] = {{"max_relative_residual", recorder.max_residual()},
+                            {"energy_exchanged_J", recorder.energy_exchanged()}};
+    summary["peak_footprint_velocity_m_s"] = recorder.peak_footprint_velocity();
+    if (receivers_offered) {
+      nlohmann::json ppv = nlohmann::json::array();
+      for (std::size_t r = 0; r < distances.size(); ++r)
+        ppv.push_back(
+            {{"distance_m", distances[r]}, {"ppv_m_s", recorder.peak_receiver_velocity()[r]}});
+      summary["ppv"] = ppv;
+    }
+    summary["files"] = recorder.files();
+    write_summary(outcome.results_dir, summary);
   } catch (const std::exception& e) {
     summary["status"] = "failed";
     summary["message"] = e.what();
-    write_summary(outcome.results_dir, summary);
+    try {
+      write_summary(outcome.results_dir, summary);
+    } catch (const std::exception&) {
+      // The disk refused the summary too; the original error is the one to report.
+    }
     throw;
   }
-  const double statics_seconds = seconds_since(statics_start);
-  nlohmann::json wheel_loads = nlohmann::json::array();
-  for (std::size_t w = 0; w < track.vehicles().wheel_count(); ++w)
-    wheel_loads.push_back(track.contact_force(w));
-  log->info("static state: {} wheel(s), loads {} N, {} track/soil iteration(s)",
-            track.vehicles().wheel_count(), wheel_loads.dump(), static_iterations);
-  const double h = H / std::ceil(H / track.micro_step_limit() - 1e-9);
-  log->info("macro step {:.3g} s, track micro-step {:.3g} s ({} per macro step)", H, h,
-            static_cast<int>(std::lround(H / h)));
-
-  RunRecorder recorder(outcome.results_dir, track, soil, distances, receivers_offered);
-  recorder.record(0.0, 0.0, 0.0);
-  TrackSide track_side(track);
-  SoilSide soil_side(soil, track.interface_size());
-  double t_reached = 0.0;
-  std::size_t steps = 0;
-  std::vector<double> scratch;
-  ProgressLine progress(options.progress, t_end);
-  CosimHostImpl host(track_side, soil_side, [&](double t, double step, double residual) {
-    recorder.record(t + step, step, residual);
-    t_reached = t + step;
-    ++steps;
-    check_finite(track, soil_side, t + step, scratch);
-    if (interrupt_requested()) {
-      std::ostringstream m;
-      m << "interrupted at t = " << t + step << " s (Ctrl-C); results up to that time are in "
-        << outcome.results_dir.string();
-      throw Interrupted(m.str());
-    }
-    progress.update(t + step);
-  });
-
-  std::string coupler_message;
-  const rumble_status status = coupler.run(*host.table(), 0.0, t_end, H, coupler_message);
-  outcome.status = "completed";
-  try {
-    host.rethrow_if_failed();
-    if (status == RUMBLE_ERROR || status == RUMBLE_FATAL) {
-      throw RunError("coupler '" + coupler.type_name() + "' failed: " + coupler_message);
-    }
-    if (t_reached < t_end - 1e-9 * t_end) {
-      throw RunError("coupler '" + coupler.type_name() +
-                     "' returned at t = " + std::to_string(t_reached) +
-                     " s before time.end = " + std::to_string(t_end) + " s");
-    }
-  } catch (const Interrupted& e) {
-    outcome.status = "interrupted";
-    outcome.message = e.what();
-  } catch (const std::exception& e) {
-    outcome.status = "failed";
-    outcome.message = e.what();
-  }
-  outcome.exit_code = outcome.status == "completed" ? 0 : 3;
-
-  summary["status"] = outcome.status;
-  if (!outcome.message.empty()) summary["message"] = outcome.message;
-  summary["time"] = {{"end", t_end},
-                     {"reached", t_reached},
-                     {"macro_step", H},
-                     {"macro_steps", steps},
-                     {"micro_step", h}};
-  summary["wall_time_s"] = {{"total", seconds_since(run_start)},
-                            {"statics", statics_seconds},
-                            {track_side.name(), track_side.wall_seconds},
-                            {soil_side.name(), soil_side.wall_seconds}};
-  summary["static"] = {{"wheel_loads_N", wheel_loads}, {"iterations", static_iterations}};
-  summary["interface"] = {{"max_relative_residual", recorder.max_residual()},
-                          {"energy_exchanged_J", recorder.energy_exchanged()}};
-  summary["peak_footprint_velocity_m_s"] = recorder.peak_footprint_velocity();
-  if (receivers_offered) {
-    nlohmann::json ppv = nlohmann::json::array();
-    for (std::size_t r = 0; r < distances.size(); ++r)
-      ppv.push_back(
-          {{"distance_m", distances[r]}, {"ppv_m_s", recorder.peak_receiver_velocity()[r]}});
-    summary["ppv"] = ppv;
-  }
-  summary["files"] = recorder.files();
-  write_summary(outcome.results_dir, summary);
   return outcome;
 }
 
