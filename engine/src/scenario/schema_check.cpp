@@ -3,6 +3,7 @@
 // Without this valijson reports a bad schema (or a value it cannot handle) by abort().
 #define VALIJSON_USE_EXCEPTIONS 1
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <regex>
 #include <set>
@@ -272,11 +273,6 @@ std::string number_hint(const json& value, const std::vector<std::string>& expec
   }
   return "";
 }
-
-struct RawError {
-  std::vector<std::string> path;
-  std::string description;
-};
 
 /// Either a raw valijson error still to phrase, or issues already explained (a collapsed
 /// oneOf/anyOf) that stand in for all the raw errors under `path`.
