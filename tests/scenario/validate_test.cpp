@@ -55,6 +55,7 @@ TEST(ScenarioValidate, MinimalScenarioIsValidAndGetsItsDefaults) {
   EXPECT_EQ(j["track"]["damping"]["rayleigh_beta"], 0);
   EXPECT_EQ(j["outputs"]["every"], 1);
   EXPECT_EQ(j["outputs"]["plots"], true);
+  EXPECT_EQ(j["outputs"]["receivers"], json::array());
   EXPECT_EQ(j["plugins"], json::array());
   EXPECT_EQ(j["vehicles"][0]["name"], "vehicle0");
   // Plugin defaults.

@@ -179,6 +179,27 @@ struct Bound {
   bool exclusive = false;
 };
 
+/// "a", "a and b", "a, b and c"
+std::string and_list(const std::vector<std::string>& items) {
+  if (items.size() <= 1) return join(items);
+  return join(std::vector<std::string>(items.begin(), items.end() - 1)) + " and " + items.back();
+}
+
+/// Whether the value has any of the keys a variant requires.
+bool started_on(const json* variant, const json& value) {
+  if (variant == nullptr || !value.is_object() || !variant->is_object()) return false;
+  const auto required = variant->find("required");
+  if (required == variant->end() || !required->is_array()) return false;
+  return std::any_of(required->begin(), required->end(), [&](const json& k) {
+    return k.is_string() && value.contains(k.get<std::string>());
+  });
+}
+
+std::string description_of(const json& node) {
+  const auto d = node.is_object() ? node.find("description") : node.end();
+  return node.is_object() && d != node.end() && d->is_string() ? d->get<std::string>() : "";
+}
+
 struct Range {
   Bound lower;
   Bound upper;
@@ -766,8 +787,8 @@ std::vector<SchemaIssue> SchemaChecker::check_at(const std::string& pointer, con
       entry.description.reset();
       SchemaIssue issue;
       issue.pointer = to_pointer(entry.path);
-      issue.message = "matches more than one of the allowed forms";
-      issue.hint = "the schema's oneOf alternatives overlap; this is a bug in the schema";
+      issue.message = "fits more than one of the alternatives; exactly one is allowed";
+      issue.hint = alternatives_hint(pointer, value, entry.path);
       entry.issues.push_back(issue);
     }
     entries.push_back(std::move(entry));
@@ -830,6 +851,14 @@ std::vector<SchemaIssue> SchemaChecker::check_at(const std::string& pointer, con
   return unique;
 }
 
+std::string SchemaChecker::alternatives_hint(const std::string& pointer, const json& value,
+                                             const std::vector<std::string>& path) const {
+  for (const Ref& ref : resolve(pointer, value, path, Closure::kAll)) {
+    if (ref.node->is_object() && ref.node->contains("oneOf")) return description_of(*ref.node);
+  }
+  return "";
+}
+
 std::vector<SchemaIssue> SchemaChecker::explain_variants(const std::string& pointer,
                                                          const json& value,
                                                          const std::vector<std::string>& path,
@@ -860,8 +889,16 @@ std::vector<SchemaIssue> SchemaChecker::explain_variants(const std::string& poin
       // (a const/enum key such as "type") weigh far more than a wrong detail.
       std::vector<SchemaIssue> best;
       int best_score = -1;
+      bool all_missing_keys = true;
+      // Among alternatives that differ only in their required keys, the closest one the value
+      // has started on (has one of its keys).
+      std::vector<SchemaIssue> started;
       for (const std::string& v : variants) {
         auto issues = check_at(v, *sub, depth + 1);
+        all_missing_keys &=
+            !issues.empty() && std::all_of(issues.begin(), issues.end(), [](const SchemaIssue& i) {
+              return i.rule == Rule::kRequired && i.pointer.empty();
+            });
         int score = 0;
         for (const SchemaIssue& i : issues) {
           const auto level = std::count(i.pointer.begin(), i.pointer.end(), '/');
@@ -871,10 +908,37 @@ std::vector<SchemaIssue> SchemaChecker::explain_variants(const std::string& poin
                    : (level == 1 && (i.rule == Rule::kConst || i.rule == Rule::kEnum)) ? 100
                                                                                        : 1;
         }
+        if (started_on(node_at(v), *sub) && (started.empty() || issues.size() < started.size())) {
+          started = issues;
+        }
         if (best_score < 0 || score < best_score) {
           best_score = score;
           best = std::move(issues);
         }
+      }
+      // Alternatives that differ only in which keys are required ({"required": ["k", "c"]} or
+      // {"required": ["E", "nu", "rho"]}): the one the value has started on, or else all of
+      // them by name rather than a guess.
+      if (all_missing_keys && !started.empty()) {
+        best = std::move(started);
+      } else if (all_missing_keys) {
+        std::vector<std::string> sets;
+        for (const std::string& v : variants) {
+          const json* node = node_at(v);
+          std::vector<std::string> keys;
+          if (node != nullptr && node->contains("required") && node->at("required").is_array()) {
+            for (const json& k : node->at("required")) {
+              if (k.is_string()) keys.push_back(k.get<std::string>());
+            }
+          }
+          sets.push_back(and_list(keys));
+        }
+        SchemaIssue issue = fallback;
+        issue.rule = Rule::kRequired;
+        issue.show_value = false;
+        issue.message = "needs " + join(sets, ", or ");
+        issue.hint = description_of(*ref.node);
+        return {issue};
       }
       if (best_score >= 1000) {
         // The value is of none of the allowed kinds: list the kinds.

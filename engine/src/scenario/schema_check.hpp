@@ -80,6 +80,8 @@ class SchemaChecker {
                            const std::vector<std::string>& path, Closure mode) const;
   std::vector<SchemaIssue> check_at(const std::string& pointer, const nlohmann::json& value,
                                     int depth) const;
+  std::string alternatives_hint(const std::string& pointer, const nlohmann::json& value,
+                                const std::vector<std::string>& path) const;
   std::vector<SchemaIssue> explain_variants(const std::string& pointer, const nlohmann::json& value,
                                             const std::vector<std::string>& path, int depth) const;
   void fill_at(const std::vector<Ref>& refs, nlohmann::json& value, int depth) const;
