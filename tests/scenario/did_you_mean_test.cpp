@@ -22,6 +22,8 @@ TEST(ScenarioDidYouMean, SuggestsOnlyPlausibleTypos) {
   EXPECT_EQ(closest_match("clmm", soils).value_or("-"), "clm");
   EXPECT_FALSE(closest_match("finite_elements", soils).has_value());
   EXPECT_FALSE(closest_match("x", soils).has_value());
+  EXPECT_FALSE(closest_match("x", {"E"}).has_value());  // not a typo: a different word
+  EXPECT_EQ(closest_match("cc", {"c", "k"}).value_or("-"), "c");
   EXPECT_FALSE(closest_match("", soils).has_value());
   const std::vector<std::string> keys = {"rayleigh_alpha", "rayleigh_beta"};
   EXPECT_EQ(closest_match("rayleigh_alpah", keys).value_or("-"), "rayleigh_alpha");

@@ -43,7 +43,7 @@ std::optional<std::string> closest_match(std::string_view word,
     const std::size_t d = edit_distance(word, c);
     const std::size_t longer = std::max(word.size(), c.size());
     const std::size_t allowed = std::max<std::size_t>(1, longer / 3);
-    if (d > allowed || d >= c.size()) continue;
+    if (d > allowed || d >= std::max(c.size(), word.size())) continue;
     if (!best || d < best_distance) {
       best = c;
       best_distance = d;
