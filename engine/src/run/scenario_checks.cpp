@@ -47,6 +47,17 @@ std::vector<Diagnostic> check_scenario_relations(const nlohmann::json& sc) {
                           "give a micro-step <= time.macro_step, or leave it out to have it "
                           "chosen from the contact stiffness"));
   }
+  const auto& unevenness = sc.at("track").value("unevenness", nlohmann::json::object());
+  if (unevenness.value("type", "none") == "random" && unevenness.contains("wavelength_min") &&
+      unevenness.contains("wavelength_max") &&
+      !(unevenness["wavelength_max"].get<double>() > unevenness["wavelength_min"].get<double>())) {
+    out.push_back(
+        finding("/track/unevenness/wavelength_max",
+                "must be > wavelength_min = " + num(unevenness["wavelength_min"].get<double>()) +
+                    " m, got " + num(unevenness["wavelength_max"].get<double>()) + " m",
+                "the profile covers wavelengths from wavelength_min to wavelength_max, "
+                "e.g. 1 to 30 m for track geometry"));
+  }
   // The vehicle reference must stay on the rail for the whole run (the wheels' offsets are
   // checked again once the vehicle plugins are loaded).
   const auto& vehicles = sc.at("vehicles");

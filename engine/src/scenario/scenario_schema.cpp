@@ -233,7 +233,7 @@ constexpr std::string_view kSchema = R"json({
             "required": ["class", "seed", "wavelength_min", "wavelength_max"],
             "properties": {
               "type": {},
-              "class": {"enum": ["FRA1", "FRA2", "FRA3", "FRA4", "FRA5", "FRA6", "ISO3095"], "description": "PSD of the profile"},
+              "class": {"enum": ["FRA1", "FRA2", "FRA3", "FRA4", "FRA5", "FRA6"], "description": "US FRA track class whose PSD the profile follows"},
               "seed": {"type": "integer", "minimum": 0, "description": "random seed"},
               "wavelength_min": {"type": "number", "exclusiveMinimum": 0, "description": "shortest wavelength [m]"},
               "wavelength_max": {"type": "number", "exclusiveMinimum": 0, "description": "longest wavelength [m]"}

@@ -70,21 +70,28 @@ bool BandedSymmetric::factorize() {
       lower(i, j) = s / d;
     }
   }
+  // Reciprocals: the sweeps are latency-bound chains, and a division costs several times a
+  // multiplication there.
+  inverse_diagonal_.resize(n_);
+  for (std::size_t j = 0; j < n_; ++j) inverse_diagonal_[j] = 1.0 / lower(j, j);
   return true;
 }
 
 void BandedSymmetric::solve(double* x) const {
-  for (std::size_t i = 0; i < n_; ++i) {  // L y = rhs
-    const std::size_t first = i > b_ ? i - b_ : 0;
-    double s = x[i];
-    for (std::size_t k = first; k < i; ++k) s -= lower(i, k) * x[k];
-    x[i] = s / lower(i, i);
+  // Column-oriented, so that both sweeps read the stored columns contiguously.
+  for (std::size_t j = 0; j < n_; ++j) {  // L y = rhs
+    const double* col = &data_[(b_ + 1) * j];
+    const double yj = x[j] * inverse_diagonal_[j];
+    x[j] = yj;
+    const std::size_t len = std::min(b_, n_ - 1 - j);
+    for (std::size_t k = 1; k <= len; ++k) x[j + k] -= col[k] * yj;
   }
-  for (std::size_t i = n_; i-- > 0;) {  // L^T x = y
-    const std::size_t last = std::min(n_ - 1, i + b_);
-    double s = x[i];
-    for (std::size_t k = i + 1; k <= last; ++k) s -= lower(k, i) * x[k];
-    x[i] = s / lower(i, i);
+  for (std::size_t j = n_; j-- > 0;) {  // L^T x = y
+    const double* col = &data_[(b_ + 1) * j];
+    const std::size_t len = std::min(b_, n_ - 1 - j);
+    double s = x[j];
+    for (std::size_t k = 1; k <= len; ++k) s -= col[k] * x[j + k];
+    x[j] = s * inverse_diagonal_[j];
   }
 }
 

@@ -38,7 +38,8 @@ class BandedSymmetric {
   double lower(std::size_t i, std::size_t j) const { return data_[(i - j) + (b_ + 1) * j]; }
   std::size_t n_ = 0;
   std::size_t b_ = 0;
-  std::vector<double> data_;  // column j holds A(j..j+b, j)
+  std::vector<double> data_;              // column j holds A(j..j+b, j)
+  std::vector<double> inverse_diagonal_;  // 1 / L(j, j) after factorize()
 };
 
 }  // namespace rumble

@@ -14,11 +14,10 @@ namespace {
 
 constexpr int kMaxNewtonIterations = 30;
 constexpr int kMaxStaticIterations = 50;
-// Newton stops when the update is below this fraction of the displacement scale, or below
-// kAbsoluteTolerance [m]: 1e-10 relative is far below any physical effect and far above round-off
-// (the contact stiffness ~1e9 N/m against forces ~1e5 N gives residual noise ~1e-16 relative).
+// Newton (dynamics: residual forces; statics: updates) stops below this fraction of its scale:
+// far below any physical effect, far above round-off (~1e-16 relative).
 constexpr double kRelativeTolerance = 1e-10;
-constexpr double kAbsoluteTolerance = 1e-15;
+constexpr double kAbsoluteTolerance = 1e-15;  // m, soil/track static consistency
 // Micro-steps per period of the highest resolved resonance (wheel/rail contact, P1).
 constexpr double kStepsPerContactPeriod = 20.0;
 
@@ -66,6 +65,7 @@ TrackParticipant::TrackParticipant(const TrackConfig& config, VehicleSet vehicle
     v->setZero(nv);
   for (Eigen::VectorXd* v : {&z_w_, &s_rhs_, &s_sol_}) v->setZero(nwi);
   a_track_ = BandedSymmetric(structure_.dof_count(), structure_.mass().half_bandwidth());
+  a_track_operator_ = a_track_;
   a_vehicle_.setZero(nv, nv);
   lu_vehicle_ = Eigen::PartialPivLU<Eigen::MatrixXd>(nv);
   m_v_.setZero(nv, nv);
@@ -294,8 +294,9 @@ int TrackParticipant::solve_static(const SoilStatics& soil) {
 
 void TrackParticipant::factorize_dynamic(double h) {
   if (h == h_factored_) return;
-  a_track_.set_combination(1.0, structure_.stiffness(), newmark_.c_v(h), structure_.damping(),
-                           newmark_.c_a(h), structure_.mass());
+  a_track_operator_.set_combination(1.0, structure_.stiffness(), newmark_.c_v(h),
+                                    structure_.damping(), newmark_.c_a(h), structure_.mass());
+  a_track_ = a_track_operator_;
   if (!a_track_.factorize()) throw RunError("track: dynamic matrix is not positive definite");
   h_factored_ = h;
 }
@@ -367,6 +368,21 @@ void TrackParticipant::micro_step(double t1, double h, double tau) {
   x_ += h * v_ + 0.5 * h * h * a_;
   q_ += h * qd_ + 0.5 * h * h * qdd_;
 
+  // The contact points depend on t1 only: the track's response to a unit force at each one,
+  // A^-1 N_w (the track half of Woodbury's D^-1 B), is computed once per micro-step.
+  evaluate_contacts(t1, x_, q_);
+  for (std::size_t w = 0; w < nw; ++w) {
+    const auto wi = static_cast<Eigen::Index>(w);
+    z_t_.col(wi).setZero();
+    for (std::size_t k = 0; k < 4; ++k)
+      z_t_(static_cast<Eigen::Index>(contact_point_[w].dof[k]), wi) = contact_point_[w].shape[k];
+    a_track_.solve(z_t_.col(wi).data());
+  }
+
+  // Force scale [N] for the convergence test: the contact forces, and the inertial and
+  // damping terms of the step, whose round-off bounds how small the residual can get.
+  double force_scale = std::max(1.0, max_abs(rhs_t_));
+  for (double f : contact_force_) force_scale = std::max(force_scale, std::abs(f));
   bool converged = false;
   int it = 0;
   for (; it < kMaxNewtonIterations && !converged; ++it) {
@@ -374,9 +390,7 @@ void TrackParticipant::micro_step(double t1, double h, double tau) {
     acc_v_ = ca * q_ - pa_v_;
     evaluate_contacts(t1, x_, q_);
     // Residuals: r_t = A x - rhs - N F ; r_v = M(q) a - f + J^T F.
-    structure_.stiffness().multiply(x_.data(), r_t_.data());
-    structure_.damping().multiply_add(cv, x_.data(), r_t_.data());
-    structure_.mass().multiply_add(ca, x_.data(), r_t_.data());
+    a_track_operator_.multiply(x_.data(), r_t_.data());
     r_t_ -= rhs_t_;
     for (std::size_t w = 0; w < nw; ++w)
       for (std::size_t k = 0; k < 4; ++k)
@@ -389,6 +403,13 @@ void TrackParticipant::micro_step(double t1, double h, double tau) {
     r_v_ -= f_v_;
     for (std::size_t w = 0; w < nw; ++w)
       r_v_.noalias() += j_w_.row(static_cast<Eigen::Index>(w)).transpose() * contact_force_[w];
+    // Converged when the residual forces are below 1e-10 of the force scale: the update they
+    // would give is then far below any physical displacement (1e-10 x 1e5 N / 1e8 N/m).
+    if (it > 0 && max_abs(r_t_) <= kRelativeTolerance * force_scale &&
+        (nv == 0 || max_abs(r_v_) <= kRelativeTolerance * force_scale)) {
+      converged = true;
+      break;
+    }
     a_vehicle_ = ca * m_v_ + cv * c_v_ + k_v_;
     lu_vehicle_.compute(a_vehicle_);
     // Woodbury: y = D^-1 r, Z = D^-1 B, S = I + K B^T Z, dx = y - Z S^-1 K B^T y.
@@ -397,10 +418,6 @@ void TrackParticipant::micro_step(double t1, double h, double tau) {
     y_v_ = lu_vehicle_.solve(r_v_);
     for (std::size_t w = 0; w < nw; ++w) {
       const auto wi = static_cast<Eigen::Index>(w);
-      z_t_.col(wi).setZero();
-      for (std::size_t k = 0; k < 4; ++k)
-        z_t_(static_cast<Eigen::Index>(contact_point_[w].dof[k]), wi) = contact_point_[w].shape[k];
-      a_track_.solve(z_t_.col(wi).data());
       z_v_.col(wi) = -(lu_vehicle_.solve(j_w_.row(wi).transpose()));
     }
     for (std::size_t w = 0; w < nw; ++w) {
@@ -420,8 +437,6 @@ void TrackParticipant::micro_step(double t1, double h, double tau) {
     y_v_.noalias() -= z_v_ * s_sol_;
     x_ -= y_t_;
     q_ -= y_v_;
-    converged = max_abs(y_t_) <= kRelativeTolerance * max_abs(x_) + kAbsoluteTolerance &&
-                (nv == 0 || max_abs(y_v_) <= kRelativeTolerance * max_abs(q_) + kAbsoluteTolerance);
   }
   if (!converged) {
     std::ostringstream m;

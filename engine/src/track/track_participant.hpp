@@ -101,7 +101,8 @@ class TrackParticipant {
 
   // Dynamic factorization for the current micro-step size.
   double h_factored_ = -1.0;
-  BandedSymmetric a_track_;
+  BandedSymmetric a_track_operator_;  // K + c_v C + c_a M, for residuals
+  BandedSymmetric a_track_;           // its Cholesky factor
   Eigen::MatrixXd a_vehicle_;
   Eigen::PartialPivLU<Eigen::MatrixXd> lu_vehicle_;
 
