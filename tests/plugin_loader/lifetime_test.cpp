@@ -64,12 +64,10 @@ TEST(PluginLifetime, EngineInstanceOutlivesRegistry) {
   soil.reset();  // destroy() runs in the library, which this instance alone kept mapped
 }
 
-// Instance keeps a pointer to the registry's ComponentType (instance.hpp, type_) and reads the
-// type's name from it, e.g. in every error message: after the registry is gone (or after
-// types_ reallocates when another library is loaded) that is freed memory. Enable when Instance
-// owns what it needs of its type (a copy of ComponentType, or a shared_ptr to it); run under the
-// asan preset to see the use-after-free today.
-TEST(PluginLifetime, DISABLED_EngineInstanceStillNamesItsTypeAfterRegistry) {
+// An engine instance names its type in every error message: it must own that (a copy of its
+// ComponentType), not point into the registry, which may be gone or have reallocated its list
+// when another library was loaded. Under the asan preset a dangling pointer fails here.
+TEST(PluginLifetime, EngineInstanceStillNamesItsTypeAfterRegistry) {
   auto registry = std::make_unique<PluginRegistry>();
   registry->load_library(fixture::faulty);
   rumble::SoilInstance soil(*registry->find(RUMBLE_KIND_SOIL, "loader_test_faulty"), "/soil",

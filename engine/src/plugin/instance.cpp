@@ -23,8 +23,7 @@ const rumble_common_api* common_table(const ComponentType& type) {
 
 Instance::Instance(const ComponentType& type, std::string label, const nlohmann::json& params,
                    const std::filesystem::path& scenario_dir)
-    : type_(&type),
-      library_(type.library),
+    : type_(type),
       label_(std::move(label)),
       scenario_dir_(scenario_dir.string()),
       logger_(logger(std::string(kind_name(type.kind)) + "/" + type.type_name)) {
@@ -69,7 +68,7 @@ rumble_status Instance::check(rumble_status status, const char* call) const {
   if (status == RUMBLE_OK) return status;
   const std::string what = common_->last_message(handle_);
   const std::string who =
-      std::string(kind_name(type_->kind)) + " '" + type_->type_name + "' (" + label_ + ")";
+      std::string(kind_name(type_.kind)) + " '" + type_.type_name + "' (" + label_ + ")";
   switch (status) {
     case RUMBLE_WARNING:
       logger_->warn("{}: {}", call, what);
@@ -92,7 +91,7 @@ std::size_t Instance::state_size() const {
 void Instance::save_state(std::vector<double>& buffer) const {
   if (buffer.empty()) buffer.resize(state_size());
   if (buffer.empty()) {
-    throw RunError(std::string(kind_name(type_->kind)) + " '" + type_->type_name +
+    throw RunError(std::string(kind_name(type_.kind)) + " '" + type_.type_name +
                    "' does not support save/restore, which this coupling scheme needs");
   }
   check(common_->save_state(handle_, buffer.data(), buffer.size()), "save_state");

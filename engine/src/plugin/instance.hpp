@@ -36,9 +36,9 @@ class Instance {
   Instance(const Instance&) = delete;
   Instance& operator=(const Instance&) = delete;
 
-  const std::string& type_name() const { return type_->type_name; }
+  const std::string& type_name() const { return type_.type_name; }
   const std::string& label() const { return label_; }
-  const ComponentType& type() const { return *type_; }
+  const ComponentType& type() const { return type_; }
 
   std::size_t state_size() const;
   void save_state(std::vector<double>& buffer) const;  // resized once; no allocation after
@@ -52,8 +52,8 @@ class Instance {
 
  private:
   static void log_callback(void* host_data, int32_t level, const char* message);
-  const ComponentType* type_;
-  std::shared_ptr<const LoadedLibrary> library_;  // keeps the code mapped while handle_ lives
+  ComponentType type_;  // a copy: the instance may outlive the registry; type_.library keeps
+                        // the code (and the factory and tables it points to) mapped
   std::string label_;
   std::string scenario_dir_;
   std::shared_ptr<spdlog::logger> logger_;
