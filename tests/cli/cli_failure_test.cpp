@@ -58,6 +58,23 @@ TEST(CliFailure, VehicleRunningOffTheTrackIsAConfigError) {
   EXPECT_THAT(r.output, HasSubstr("sleepers (track.sleepers.count)"));
 }
 
+// An unstable coupling (soft massless soil, Gauss-Seidel at H = 1 ms, above its stability
+// limit of about c_f / (2 k_b) = 0.46 ms) stops with the time, the value and the fix.
+TEST(CliFailure, DivergingCouplingStopsWithAdvice) {
+  const auto dir = scratch_directory("diverging");
+  nlohmann::json s = small_scenario();
+  s["soil"] = {{"type", "clm"}, {"params", {{"E", 1e7}, {"nu", 0.3}, {"rho", 1800.0}}}};
+  s["time"]["end"] = 0.2;
+  const CliResult r = run_rumble({"run", write_scenario(dir, s).string(), "--no-progress"});
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("simulation diverged at t = "));
+  EXPECT_THAT(r.output, HasSubstr("displacement is"));
+  EXPECT_THAT(r.output, HasSubstr("reduce time.macro_step"));
+  const auto summary = read_json(dir / "results" / "summary.json");
+  EXPECT_EQ(summary["status"], "failed");
+  EXPECT_GT(csv_rows(dir / "results" / "contact.csv"), 1u);  // the steps before are kept
+}
+
 // Ctrl-C: the run stops at the end of the current macro step, says so, keeps every row.
 TEST(CliFailure, InterruptKeepsResults) {
   const auto dir = scratch_directory("interrupt");

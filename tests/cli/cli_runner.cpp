@@ -68,7 +68,7 @@ nlohmann::json small_scenario() {
             {"ballast", {{"k", 4e7}, {"c", 4.7e4}}}}},
           {"soil", {{"type", "winkler"}, {"params", {{"k", 1e8}, {"c", 2e5}}}}},
           {"coupling", {{"type", "gauss_seidel"}, {"params", nlohmann::json::object()}}},
-          {"outputs", {{"directory", "results"}}}};
+          {"outputs", {{"directory", "results"}, {"plots", false}}}};
 }
 
 std::filesystem::path write_scenario(const std::filesystem::path& dir, const nlohmann::json& s) {

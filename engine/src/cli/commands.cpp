@@ -19,7 +19,8 @@ constexpr const char* kUsage = R"(rumble: railway ground-vibration co-simulation
 usage: rumble [--log-level LEVEL] COMMAND [ARGS]
 
 commands:
-  run FILE [--no-progress]          validate, then run a scenario; results go to outputs.directory
+  run FILE [--output DIR] [--no-progress] [--no-plots]
+                                    validate, then run a scenario; results go to outputs.directory
   validate FILE [--format text|json] check a scenario without running it (all errors at once)
   plugins [--format text|json]      list plugin libraries and the types they provide
   schema TYPE [--json]              the parameters of a type: units, defaults, ranges

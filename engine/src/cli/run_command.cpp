@@ -6,6 +6,7 @@
 #include "cli/arguments.hpp"
 #include "cli/commands.hpp"
 #include "cli/exit_codes.hpp"
+#include "cli/plot_script.hpp"
 #include "cli/scenario_prepare.hpp"
 #include "core/logging.hpp"
 #include "run/interrupt.hpp"
@@ -14,16 +15,25 @@
 namespace rumble::cli {
 
 int run_command(const std::vector<std::string>& args) {
-  const Arguments a(args, {"no-progress"}, {});
-  if (a.positional().size() != 1) throw UsageError("usage: rumble run FILE [--no-progress]");
+  const Arguments a(args, {"no-progress", "no-plots"}, {"output"});
+  if (a.positional().size() != 1) {
+    throw UsageError("usage: rumble run FILE [--output DIR] [--no-progress] [--no-plots]");
+  }
   PluginRegistry registry;
-  const auto doc = prepare_scenario(a.positional()[0], registry, scenario::Format::kText);
+  auto doc = prepare_scenario(a.positional()[0], registry, scenario::Format::kText);
   if (!doc) return kExitConfig;
+  if (const auto dir = a.value("output")) {  // overrides outputs.directory
+    doc->json["outputs"]["directory"] = std::filesystem::absolute(*dir).string();
+  }
+  if (a.flag("no-plots")) doc->json["outputs"]["plots"] = false;
   install_interrupt_handler();
   RunOptions options;
   options.progress = !a.flag("no-progress") && isatty(STDERR_FILENO) != 0;
   const RunOutcome outcome = run_scenario(doc->json, doc->path, registry, options);
   const auto log = logger("engine");
+  if (outcome.status != "failed" && doc->json.at("outputs").value("plots", true)) {
+    run_plot_script("plot_results.py", outcome.results_dir);
+  }
   if (outcome.exit_code == kExitOk) {
     log->info("run completed; results in {}", outcome.results_dir.string());
   } else {

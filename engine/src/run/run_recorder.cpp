@@ -60,7 +60,7 @@ RunRecorder::RunRecorder(const std::filesystem::path& dir, const TrackParticipan
   wheels_.assign(vs.wheel_count(), 0.0);
 }
 
-void RunRecorder::record(double t, double H, double residual) {
+void RunRecorder::record(double t, double dt, double residual) {
   const std::size_t n = force_.size();
   track_.footprint_forces(force_.data());
   soil_.motion(u_.data(), v_.data(), n);
@@ -69,7 +69,7 @@ void RunRecorder::record(double t, double H, double residual) {
     power += force_[i] * v_[i];
     peak_fp_v_[i] = std::max(peak_fp_v_[i], std::abs(v_[i]));
   }
-  if (!first_) energy_ += 0.5 * (power_ + power) * H;  // trapezoidal rule over the macro step
+  if (!first_) energy_ += 0.5 * (power_ + power) * dt;  // trapezoidal rule since the last record
   power_ = power;
   first_ = false;
   max_residual_ = std::max(max_residual_, residual);

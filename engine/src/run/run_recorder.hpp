@@ -25,8 +25,9 @@ class RunRecorder {
   RunRecorder(const std::filesystem::path& directory, const TrackParticipant& track,
               const SoilInstance& soil, const std::vector<double>& receiver_distances,
               bool receivers_offered);
-  /// Record the state at time t (end of a macro step of length H; H = 0 for the initial state).
-  void record(double t, double H, double residual);
+  /// Record the state at time t, dt after the previous record (0 for the initial state);
+  /// residual: the coupler's relative interface residual of the last macro step.
+  void record(double t, double dt, double residual);
 
   const std::vector<double>& peak_footprint_velocity() const { return peak_fp_v_; }
   const std::vector<double>& peak_receiver_velocity() const { return peak_rx_v_; }

@@ -6,7 +6,9 @@
 //   Boussinesq's solution for uniform pressure, averaged over the footprint), then
 //   k_f = (1/G0)(1 - r)/(1 + r),  k_c = (1/G0) r/(1 - r^2)  (the chain reproduces G0 and r);
 //   c_f, c_c = tau k_f, tau k_c with tau = C_z G0 (Lysmer's dashpot over the static stiffness);
-//   m_f = Wolf's cone trapped mass (0 for nu <= 1/3): fit it with `rumble calibrate`.
+//   m_f = Wolf's cone trapped mass (0 for nu <= 1/3), or given: fit it with `rumble calibrate`.
+// A massless soil under explicit coupling closes an algebraic loop through the ballast and soil
+// dashpots (docs/decisions/0004): give m_f when the soil is soft.
 #include <cmath>
 #include <rumble/params.hpp>
 #include <rumble/plugin.hpp>
@@ -34,7 +36,7 @@ class Clm final : public rumble::soils::LumpedSoil {
   "description": "give the five parameters m_f, k_f, c_f, k_c, c_c, or E, nu and rho (and optionally layers)",
   "oneOf": [{"required": ["m_f", "k_f", "c_f", "k_c", "c_c"]}, {"required": ["E", "nu", "rho"]}],
   "properties": {
-    "m_f": {"type": "number", "minimum": 0, "description": "foundation mass per footprint [kg]"},
+    "m_f": {"type": "number", "minimum": 0, "description": "foundation mass per footprint [kg]; with soil properties it overrides Wolf's trapped mass (0 for nu <= 1/3)"},
     "k_f": {"type": "number", "exclusiveMinimum": 0, "description": "spring to the ground per footprint [N/m]"},
     "c_f": {"type": "number", "minimum": 0, "description": "dashpot to the ground per footprint [N s/m]"},
     "k_c": {"type": "number", "minimum": 0, "description": "coupling spring between neighbouring footprints [N/m]"},
@@ -80,7 +82,7 @@ class Clm final : public rumble::soils::LumpedSoil {
       const double tau = rumble::soils::lysmer_dashpot(s, area) * g0;  // s
       c = tau * k;
       c_coupling_ = tau * k_coupling_;
-      m = rumble::soils::wolf_trapped_mass(s, area);
+      m = p_.has("m_f") ? p_.get<double>("m_f") : rumble::soils::wolf_trapped_mass(s, area);
     }
     std::fill(m_.begin(), m_.end(), m);
     std::fill(k_.begin(), k_.end(), k);
