@@ -1,124 +1,114 @@
 // clm: the Coupled Lumped Mass soil (Kouroussis, Gazetas, Anastasopoulos, Conti, Verlinden,
-// Soil Dyn. Earthq. Eng. 31(12), 2011): per footprint a mass m_f, spring k_f and dashpot c_f
-// to the ground, and a spring k_c and dashpot c_c to each neighbour. Five parameters, given
-// directly, or from soil properties by the static chain rule (physics.md §2.3 b, docs/soils.md):
-//   G0 = compliance of one loaded footprint, r = neighbour / direct compliance ratio (both from
-//   Boussinesq's solution for uniform pressure, averaged over the footprint), then
-//   k_f = (1/G0)(1 - r)/(1 + r),  k_c = (1/G0) r/(1 - r^2)  (the chain reproduces G0 and r);
-//   c_f, c_c = tau k_f, tau k_c with tau = C_z G0 (Lysmer's dashpot over the static stiffness);
-//   m_f = Wolf's cone trapped mass (0 for nu <= 1/3), or given: fit it with `rumble calibrate`.
-// A massless soil under explicit coupling closes an algebraic loop through the ballast and soil
-// dashpots (docs/decisions/0004): give m_f when the soil is soft.
+// Soil Dyn. Earthq. Eng. 31(12), 2011): per footprint a mass m_f, a spring k_f and a dashpot c_f
+// to the ground, and a spring k_c and a dashpot c_c to each neighbour. The five parameters are
+// given, or calibrated from soil properties, footprint size and spacing (chain_calibration.hpp,
+// docs/soils.md).
 #include <cmath>
-#include <rumble/params.hpp>
-#include <rumble/plugin.hpp>
+#include <optional>
 #include <sstream>
 #include <string>
+#include <vector>
 
-#include "half_space.hpp"
+#include "chain_calibration.hpp"
+#include "chain_layout.hpp"
+#include "layered_soil.hpp"
 #include "lumped_soil.hpp"
-#include "soil_properties_params.hpp"
+#include "soil_params.hpp"
 
 namespace {
 
-using rumble::soils::SoilProperties;
+using rumble::soils::LumpedParameters;
+using rumble::soils::SoilParams;
 
 class Clm final : public rumble::soils::LumpedSoil {
  public:
   static constexpr const char* kTypeName = "clm";
   static constexpr const char* kSummary =
-      "Coupled Lumped Mass soil (Kouroussis 2011): mass-spring-dashpot per footprint, coupled "
-      "to its neighbours; direct or calibrated from soil properties";
+      "Coupled Lumped Mass soil (Kouroussis 2011): mass-spring-dashpot per footprint coupled to "
+      "its neighbours; given or calibrated from E, nu, rho";
   static const char* params_schema() {
     static const std::string schema = std::string(R"schema({
+  "$schema": "http://json-schema.org/draft-07/schema#",
   "type": "object",
   "additionalProperties": false,
-  "description": "give the five parameters m_f, k_f, c_f, k_c, c_c, or E, nu and rho (and optionally layers)",
+  "description": "give m_f, k_f, c_f, k_c and c_c, or E, nu and rho (and optionally layers and m_f)",
   "oneOf": [{"required": ["m_f", "k_f", "c_f", "k_c", "c_c"]}, {"required": ["E", "nu", "rho"]}],
   "properties": {
-    "m_f": {"type": "number", "minimum": 0, "description": "foundation mass per footprint [kg]; with soil properties it overrides Wolf's trapped mass (0 for nu <= 1/3)"},
-    "k_f": {"type": "number", "exclusiveMinimum": 0, "description": "spring to the ground per footprint [N/m]"},
-    "c_f": {"type": "number", "minimum": 0, "description": "dashpot to the ground per footprint [N s/m]"},
-    "k_c": {"type": "number", "minimum": 0, "description": "coupling spring between neighbouring footprints [N/m]"},
-    "c_c": {"type": "number", "minimum": 0, "description": "coupling dashpot between neighbouring footprints [N s/m]"},
-    "max_step": {"type": "number", "exclusiveMinimum": 0, "description": "largest internal time step [s] (default: 1/20 of the shortest natural period, or a tenth of the relaxation time without mass)"},)schema") +
-                                      rumble::soils::kSoilPropertiesSchema + R"schema(
+    "m_f": {"type": "number", "minimum": 0, "description": "mass per footprint [kg]; from soil properties: Wolf's cone trapped mass (Wolf & Deeks 2004) 2.4 (nu - 1/3) rho pi r0^3, r0 = sqrt(A / pi), for nu > 1/3, else 0 (a value given with E, nu, rho replaces it)"},
+    "k_f": {"type": "number", "exclusiveMinimum": 0, "description": "spring from each footprint to the ground [N/m]; from soil properties: K_z (1 - r) / (1 + r), K_z Gazetas' (1991) rigid-rectangle stiffness 2 G L / (1 - nu) (0.73 + 1.54 (B/L)^0.75) of the 2L x 2B footprint, r the neighbour/direct ratio of Boussinesq displacements of flexible uniformly loaded footprints at the spacing (static chain rule)"},
+    "c_f": {"type": "number", "minimum": 0, "description": "dashpot from each footprint to the ground [N s/m]; from soil properties: C_z (1 - r) / (1 + r), C_z = rho V_La A, V_La = 3.4 c_s / (pi (1 - nu)) (Lysmer's analog)"},
+    "k_c": {"type": "number", "minimum": 0, "description": "spring between neighbouring footprints [N/m]; from soil properties: K_z r / (1 - r^2)"},
+    "c_c": {"type": "number", "minimum": 0, "description": "dashpot between neighbouring footprints [N s/m]; from soil properties: C_z r / (1 - r^2)"},)schema") +
+                                      rumble::soils::kSoilPropertiesSchema + "," +
+                                      rumble::soils::kMaxStepSchema + R"schema(
   }
 })schema";
     return schema.c_str();
   }
 
-  Clm(const std::string& params_json, const rumble::Host& /*host*/) : p_(params_json) {
-    if (p_.has("k_f") == p_.has("E")) {
-      throw std::invalid_argument(
-          "clm: give either the five parameters m_f, k_f, c_f, k_c, c_c or the soil properties "
-          "E, nu, rho, not both or neither");
-    }
-    max_step_ = p_.get_or<double>("max_step", 0.0);
-  }
+  Clm(const std::string& params_json, const rumble::Host& /*host*/)
+      : Clm(SoilParams(params_json, kTypeName)) {}
 
  private:
-  const char* name() const override { return kTypeName; }
-
-  void configure(const std::vector<rumble::Footprint>& fp) override {
-    check_chain(fp);
-    double m = 0.0, k = 0.0, c = 0.0;
-    if (p_.has("k_f")) {
-      m = p_.get<double>("m_f");
-      k = p_.get<double>("k_f");
-      c = p_.get<double>("c_f");
-      k_coupling_ = p_.get<double>("k_c");
-      c_coupling_ = p_.get<double>("c_c");
-    } else {
-      const rumble::Footprint& f = fp.front();
-      const double spacing = fp.size() > 1 ? fp[1].x - fp[0].x : 10.0 * f.length;
-      const SoilProperties s =
-          rumble::soils::equivalent_properties(p_, std::max(f.length, f.width));
-      const double g0 = rumble::soils::flexible_mean_compliance(s, f.length, f.width, 0.0);
-      const double r = rumble::soils::flexible_mean_compliance(s, f.length, f.width, spacing) / g0;
-      k = (1.0 / g0) * (1.0 - r) / (1.0 + r);
-      k_coupling_ = (1.0 / g0) * r / (1.0 - r * r);
-      const double area = f.length * f.width;
-      const double tau = rumble::soils::lysmer_dashpot(s, area) * g0;  // s
-      c = tau * k;
-      c_coupling_ = tau * k_coupling_;
-      m = p_.has("m_f") ? p_.get<double>("m_f") : rumble::soils::wolf_trapped_mass(s, area);
-    }
-    std::fill(m_.begin(), m_.end(), m);
-    std::fill(k_.begin(), k_.end(), k);
-    std::fill(c_.begin(), c_.end(), c);
-  }
-
-  /// The chain couples footprint i to i +- 1 only: equal footprints, equally spaced on a line.
-  void check_chain(const std::vector<rumble::Footprint>& fp) const {
-    if (fp.size() < 2) return;
-    const double spacing = fp[1].x - fp[0].x;
-    for (std::size_t i = 0; i < fp.size(); ++i) {
-      std::ostringstream m;
-      const double expected = fp[0].x + static_cast<double>(i) * spacing;
-      if (!(spacing > 0.0)) {
-        m << "footprints must be ordered along the track with a positive spacing; footprint 1 "
-             "is at x = "
-          << fp[1].x << " m, footprint 0 at " << fp[0].x << " m";
-      } else if (std::abs(fp[i].x - expected) > 1e-9 * spacing * static_cast<double>(fp.size())) {
-        m << "footprints must be equally spaced along the track; footprint " << i
-          << " is at x = " << fp[i].x << " m, expected " << expected << " m (spacing " << spacing
-          << " m)";
-      } else if (fp[i].y != fp[0].y || fp[i].length != fp[0].length || fp[i].width != fp[0].width) {
-        m << "all footprints must be equal and on one line; footprint " << i
-          << " differs from "
-             "footprint 0 (y, length, width)";
-      } else {
-        continue;
+  explicit Clm(const SoilParams& p)
+      : LumpedSoil(kTypeName, p.has("max_step") ? p.positive("max_step", "s") : 0.0),
+        direct_(p.direct({"k_f", "c_f", "k_c", "c_c"}, "m_f, k_f, c_f, k_c and c_c")) {
+    if (direct_ || p.has("m_f")) mass_ = p.non_negative("m_f", "kg");
+    if (direct_) {
+      given_ = {.m_f = mass_.value_or(0.0),
+                .k_f = p.positive("k_f", "N/m"),
+                .c_f = p.non_negative("c_f", "N s/m"),
+                .k_c = p.non_negative("k_c", "N/m"),
+                .c_c = p.non_negative("c_c", "N s/m")};
+      if (given_.m_f == 0.0 && given_.c_f == 0.0 && given_.c_c > 0.0) {
+        // The chain's uniform motion would have neither inertia nor a dashpot to the ground.
+        throw std::invalid_argument(
+            "clm: with m_f = 0 and c_c > 0 the ground dashpot c_f must be > 0, got 0; give "
+            "m_f > 0, c_f > 0 or c_c = 0");
       }
-      throw std::invalid_argument("clm: " + m.str() +
-                                  "; the chain couples neighbours only (use winkler otherwise)");
+    } else {
+      half_space_ = p.half_space();
+      layers_ = p.layers();
     }
   }
 
-  rumble::Params p_;
+  LumpedParameters parameters(const std::vector<rumble::Footprint>& footprints) const override {
+    const double spacing = rumble::soils::chain_spacing(footprints, !direct_);
+    const rumble::soils::ChainParameters c = direct_ ? given_ : calibrated(footprints[0], spacing);
+    const auto n = static_cast<Eigen::Index>(footprints.size());
+    return {.mass = Eigen::VectorXd::Constant(n, c.m_f),
+            .stiffness = Eigen::VectorXd::Constant(n, c.k_f),
+            .damping = Eigen::VectorXd::Constant(n, c.c_f),
+            .coupling_stiffness = c.k_c,
+            .coupling_damping = c.c_c};
+  }
+
+  rumble::soils::ChainParameters calibrated(const rumble::Footprint& f, double spacing) const {
+    std::ostringstream m;
+    if (!(f.length > 0.0 && f.width > 0.0) || !std::isfinite(f.length * f.width)) {
+      m << "clm: footprints are " << f.length << " m x " << f.width
+        << " m; calibrating from soil properties needs a length and width > 0";
+    } else if (spacing > 0.0 && spacing < f.width) {
+      m << "clm: footprints overlap: the spacing " << spacing << " m is less than their width "
+        << f.width << " m along the track; calibrating from soil properties needs footprints "
+        << "that do not overlap";
+    } else {
+      const auto soil =
+          rumble::soils::equivalent_properties(layers_, half_space_, f.length, f.width);
+      auto c = rumble::soils::calibrate_chain(soil, f.length, f.width, spacing);
+      c.m_f = mass_.value_or(c.m_f);
+      return c;
+    }
+    throw std::invalid_argument(m.str());
+  }
+
+  bool direct_;
+  rumble::soils::ChainParameters given_;  // direct
+  std::optional<double> mass_;            // kg; replaces Wolf's trapped mass when given
+  rumble::soils::SoilProperties half_space_;
+  std::vector<rumble::soils::SoilLayer> layers_;
 };
 
 }  // namespace
 
-RUMBLE_PLUGIN("clm", "0.1.0", Clm)
+RUMBLE_PLUGIN("clm", "0.2.0", Clm)

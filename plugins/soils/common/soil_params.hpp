@@ -1,0 +1,134 @@
+// Reading a reduced soil's params: the two ways of giving them (directly, or from soil
+// properties), range checks with messages that name the key, the value and the rule, and the
+// JSON Schema fragments both soils share. The host has validated the params against the schema
+// already; these checks repeat what a direct caller of the C API could still get wrong, and add
+// what the schema cannot say (a direct key mixed with a soil key).
+#pragma once
+
+#include <initializer_list>
+#include <rumble/params.hpp>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "half_space.hpp"
+#include "layered_soil.hpp"
+
+namespace rumble::soils {
+
+/// Schema properties shared by the soils that derive their parameters from soil properties
+/// (a fragment: the text between the braces of "properties", without the closing brace).
+inline constexpr const char* kSoilPropertiesSchema = R"schema(
+    "E": {"type": "number", "exclusiveMinimum": 0, "description": "Young's modulus of the half-space, below any layers [Pa]; with nu and rho it gives G = E / (2 (1 + nu)) [Pa] and c_s = sqrt(G / rho) [m/s], from which every parameter is derived"},
+    "nu": {"type": "number", "minimum": 0, "exclusiveMaximum": 0.5, "description": "Poisson ratio of the half-space [-], in [0, 0.5)"},
+    "rho": {"type": "number", "exclusiveMinimum": 0, "description": "density of the half-space [kg/m^3]"},
+    "layers": {
+      "type": "array",
+      "description": "layers over the half-space, top first; replaced per footprint by one equivalent soil: 1/E_eq = sum w_j / E_j, nu and rho averaged with w_j, w_j the share of the layer in the integral over depth of the Boussinesq vertical stress under the footprint centre (layer-summation settlement; docs/soils.md)",
+      "items": {
+        "type": "object",
+        "additionalProperties": false,
+        "required": ["thickness", "E", "nu", "rho"],
+        "properties": {
+          "thickness": {"type": "number", "exclusiveMinimum": 0, "description": "layer thickness [m]"},
+          "E": {"type": "number", "exclusiveMinimum": 0, "description": "Young's modulus of the layer [Pa]"},
+          "nu": {"type": "number", "minimum": 0, "exclusiveMaximum": 0.5, "description": "Poisson ratio of the layer [-], in [0, 0.5)"},
+          "rho": {"type": "number", "exclusiveMinimum": 0, "description": "density of the layer [kg/m^3]"}
+        }
+      }
+    })schema";
+
+/// Schema property of the internal time step, shared by the reduced soils.
+inline constexpr const char* kMaxStepSchema = R"schema(
+    "max_step": {"type": "number", "exclusiveMinimum": 0, "description": "longest internal sub-step [s]; each macro step H is cut into equal sub-steps no longer than this (default: 1/20 of the period of the fastest free motion, from the parameters; docs/soils.md)"})schema";
+
+class SoilParams {
+ public:
+  /// type_name prefixes every message ("winkler: params/k: ...").
+  SoilParams(const std::string& json_text, std::string type_name)
+      : p_(json_text), type_(std::move(type_name)) {}
+
+  bool has(const char* key) const { return p_.has(key); }
+
+  /// True for the direct parameters, false for soil properties. Throws when the params give
+  /// keys of both sets or of neither, naming them.
+  bool direct(std::initializer_list<const char*> direct_keys, const char* direct_text) const {
+    std::vector<std::string> given_direct, given_soil;
+    for (const char* k : direct_keys)
+      if (p_.has(k)) given_direct.emplace_back(k);
+    for (const char* k : {"E", "nu", "rho", "layers"})
+      if (p_.has(k)) given_soil.emplace_back(k);
+    if (!given_direct.empty() && given_soil.empty()) return true;
+    if (given_direct.empty() && !given_soil.empty()) return false;
+    std::string m = type_ + ": give either " + direct_text +
+                    " (direct), or E, nu and rho (from soil properties)";
+    if (given_direct.empty()) throw std::invalid_argument(m + "; got neither");
+    throw std::invalid_argument(m + ", not both; got " + list(given_direct) + " with " +
+                                list(given_soil));
+  }
+
+  /// Required number > 0 (positive) or >= 0 ([unit] for the message).
+  double positive(const char* key, const char* unit) const { return number(key, unit, true); }
+  double non_negative(const char* key, const char* unit) const { return number(key, unit, false); }
+  double non_negative_or(const char* key, const char* unit, double fallback) const {
+    return p_.has(key) ? number(key, unit, false) : fallback;
+  }
+
+  /// The half-space (E, nu, rho), checked.
+  SoilProperties half_space() const {
+    const SoilProperties s{required("E"), required("nu"), required("rho")};
+    check_properties(s, type_ + ": params");
+    return s;
+  }
+
+  /// The layers (empty when not given), checked.
+  std::vector<SoilLayer> layers() const {
+    std::vector<SoilLayer> out;
+    if (!p_.has("layers")) return out;
+    const auto& layers = p_.json().at("layers");
+    for (std::size_t i = 0; i < layers.size(); ++i) {
+      const auto& l = layers[i];
+      const std::string where = type_ + ": params/layers/" + std::to_string(i);
+      SoilLayer layer{l.value("thickness", 0.0),
+                      {l.value("E", 0.0), l.value("nu", -1.0), l.value("rho", 0.0)}};
+      if (!(layer.thickness > 0.0) || !std::isfinite(layer.thickness)) {
+        std::ostringstream m;
+        m << where << "/thickness: must be > 0 m, got " << layer.thickness;
+        throw std::invalid_argument(m.str());
+      }
+      check_properties(layer.properties, where);
+      out.push_back(layer);
+    }
+    return out;
+  }
+
+  const std::string& type_name() const { return type_; }
+
+ private:
+  double required(const char* key) const {
+    if (!p_.has(key)) throw std::invalid_argument(type_ + ": params/" + key + ": missing");
+    return p_.get<double>(key);
+  }
+
+  double number(const char* key, const char* unit, bool strictly) const {
+    const double x = required(key);
+    if ((strictly ? x > 0.0 : x >= 0.0) && std::isfinite(x)) return x;
+    std::ostringstream m;
+    m << type_ << ": params/" << key << ": must be " << (strictly ? "> 0 " : ">= 0 ") << unit
+      << ", got " << x;
+    throw std::invalid_argument(m.str());
+  }
+
+  static std::string list(const std::vector<std::string>& keys) {
+    std::string s;
+    for (std::size_t i = 0; i < keys.size(); ++i)
+      s += (i == 0 ? "" : (i + 1 == keys.size() ? " and " : ", ")) + keys[i];
+    return s;
+  }
+
+  rumble::Params p_;
+  std::string type_;
+};
+
+}  // namespace rumble::soils
