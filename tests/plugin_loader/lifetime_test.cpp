@@ -5,8 +5,10 @@
 
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <string>
 #include <vector>
 
+#include "core/errors.hpp"
 #include "fixture_paths.hpp"
 #include "plugin/instance.hpp"
 #include "plugin/registry.hpp"
@@ -74,6 +76,28 @@ TEST(PluginLifetime, EngineInstanceStillNamesItsTypeAfterRegistry) {
                             nlohmann::json::object(), ".");
   registry.reset();
   EXPECT_EQ(soil.type_name(), "loader_test_faulty");
+  // The error path names the type too.
+  soil.accept_layout(rumble::test::footprints(1));
+  const rumble::test::ConstantForce tensile({-1.0});
+  try {
+    soil.advance(0.0, 0.1, tensile.waveform);
+    FAIL() << "no error";
+  } catch (const rumble::RunError& e) {
+    EXPECT_NE(std::string(e.what()).find("soil 'loader_test_faulty' (/soil)"), std::string::npos)
+        << e.what();
+  }
+}
+
+// Loading more libraries after an instance exists grows the registry's type list (which may
+// move it); the instance must not care.
+TEST(PluginLifetime, EngineInstanceUnaffectedByLaterLoads) {
+  PluginRegistry registry;
+  registry.load_library(fixture::faulty);
+  rumble::SoilInstance soil(*registry.find(RUMBLE_KIND_SOIL, "loader_test_faulty"), "/soil",
+                            nlohmann::json::object(), ".");
+  for (const char* more : {fixture::forged_ok, fixture::dup_a}) registry.load_library(more);
+  EXPECT_EQ(soil.type_name(), "loader_test_faulty");
+  EXPECT_EQ(soil.type().library->path, registry.libraries().front()->path);
 }
 
 }  // namespace
