@@ -78,5 +78,28 @@ TEST(SoilCalibration, CliCalibrateRecoversWinklersTwoParameters) {
   expect_recovered(report.at("params"), truth, start);
 }
 
+// Across models: the clm calibrated from soil properties gives its loaded footprint exactly the
+// single footing's impedance K_z + i w C_z (C = (C_z / K_z) K, docs/soils.md §4), so a winkler
+// fitted to the clm's driving point alone (--terms 0) must land on Gazetas' K_z and Lysmer's C_z
+// of the same soil: 2.2228e8 N/m and 3.4237e5 N s/m for the medium one. The 20-footprint row of
+// small_scenario() changes the middle one's compliance by ~r^18 = 5e-8 (its ends), hence 1e-6.
+TEST(SoilCalibration, WinklerFittedToTheClmDrivingPointIsTheSingleFooting) {
+  namespace t = rumble::testing;
+  const auto dir = t::scratch_directory("soil_calibrate_winkler_on_clm");
+  nlohmann::json scenario = t::small_scenario();
+  scenario["soil"] = {{"type", "clm"}, {"params", soil_properties()}};
+  const auto result_file = dir / "calibration.json";
+  const t::CliResult r = t::run_rumble({"calibrate", t::write_scenario(dir, scenario).string(),
+                                        "--model", "winkler", "--params", R"({"k": 1e8, "c": 1e5})",
+                                        "--terms", "0", "--output", result_file.string()});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const nlohmann::json report = t::read_json(result_file);
+  auto single = make_soil("winkler", soil_properties(), sleeper_row(1));
+  const Lumped footing = lumped_parameters(*single, 1);
+  EXPECT_NEAR(report.at("params").at("k").get<double>() / footing.k_f, 1.0, 1e-6);
+  EXPECT_NEAR(report.at("params").at("c").get<double>() / footing.c_f, 1.0, 1e-6);
+  EXPECT_LT(report.at("relative_rms_residual").get<double>(), 1e-6);
+}
+
 }  // namespace
 }  // namespace rumble::soiltest

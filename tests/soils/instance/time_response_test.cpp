@@ -12,7 +12,7 @@
 //  * The linear interpolation of the force between macro-step ends, read at the sub-steps,
 //    keeps a fraction (sin(w H / 2) / (S sin(w h / 2)))^2 = 1 - (w^2 / 12)(H^2 - h^2) + ... of
 //    the harmonic, with no phase shift (a symmetric kernel); its images lie near multiples of
-//    1/H, where the soil barely responds (< 1e-4 of the tolerance below).
+//    1/H, where the soil barely responds (< 1 % of the tolerance below: see the 3-sub-step test).
 //  So |X / (H(w) F0) - 1| <= (1 + kappa)(w H)^2 / 12 for any h <= H, whatever the sub-step the
 //  plugin picks; the test allows 1.25 times that (the O((w H)^4) terms are < 1 % of it here).
 //  With one sub-step per macro step (max_step = H) the samples of the force are exact and the
