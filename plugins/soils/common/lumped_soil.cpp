@@ -246,7 +246,7 @@ bool LumpedSoil::frequency_response(double f_hz, std::complex<double>* receptanc
   for (Eigen::Index j = 0; j < n_; ++j) {  // column j: the response to a unit force at j
     frf_column_.setZero();
     frf_column_[j] = 1.0;
-    frf_lu_.solve(frf_column_);
+    frf_lu_.solve(frf_column_, j);
     Eigen::Map<VectorXcd>(receptance + j * n_, n_) = frf_column_;
   }
   return true;

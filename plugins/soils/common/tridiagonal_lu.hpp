@@ -7,10 +7,9 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <cmath>
 #include <complex>
-#include <cstddef>
-#include <stdexcept>
 
 namespace rumble::soils {
 
@@ -55,12 +54,15 @@ class TridiagonalLu {
         }
       }
     }
-    return n_ == 0 || d_[n_ - 1] != T(0);
+    if (n_ > 0 && d_[n_ - 1] == T(0)) return false;
+    d_ = d_.cwiseInverse();  // solve() multiplies: a complex division costs ~10 products
+    return true;
   }
 
-  /// Overwrites b with the solution x of A x = b.
-  void solve(Vector& b) const {
-    for (Eigen::Index i = 0; i + 1 < n_; ++i) {
+  /// Overwrites b with the solution x of A x = b; b[i] = 0 for i < first (a saving for unit
+  /// right-hand sides: the forward sweep starts there).
+  void solve(Vector& b, Eigen::Index first = 0) const {
+    for (Eigen::Index i = std::max<Eigen::Index>(first - 1, 0); i + 1 < n_; ++i) {
       if (!swapped_[i]) {
         b[i + 1] -= dl_[i] * b[i];
       } else {
@@ -70,17 +72,17 @@ class TridiagonalLu {
       }
     }
     if (n_ == 0) return;
-    b[n_ - 1] /= d_[n_ - 1];
-    if (n_ > 1) b[n_ - 2] = (b[n_ - 2] - du_[n_ - 2] * b[n_ - 1]) / d_[n_ - 2];
+    b[n_ - 1] *= d_[n_ - 1];
+    if (n_ > 1) b[n_ - 2] = (b[n_ - 2] - du_[n_ - 2] * b[n_ - 1]) * d_[n_ - 2];
     for (Eigen::Index i = n_ - 3; i >= 0; --i)
-      b[i] = (b[i] - du_[i] * b[i + 1] - du2_[i] * b[i + 2]) / d_[i];
+      b[i] = (b[i] - du_[i] * b[i + 1] - du2_[i] * b[i + 2]) * d_[i];
   }
 
   Eigen::Index size() const { return n_; }
 
  private:
   Eigen::Index n_ = 0;
-  Vector d_, dl_, du_, du2_;  // U's diagonals, L's multipliers (see ?gttrf)
+  Vector d_, dl_, du_, du2_;  // 1 / U's diagonal, U's upper diagonals, L's multipliers (?gttrf)
   Eigen::Matrix<bool, Eigen::Dynamic, 1> swapped_;
 };
 
