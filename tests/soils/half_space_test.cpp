@@ -1,0 +1,74 @@
+// The half-space formulas behind the soil-derived parameters, from their headers: Boussinesq
+// influence of flexible rectangles (physics.md §5.3, §2.3), the centre stress, and the layered
+// equivalent soil. Reference numbers: physics.md (3 digits) and an independent Python script
+// (40 x 40 and 80 x 80 Gauss points, scipy-free) for the 5-digit ones.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "boussinesq.hpp"
+#include "layered_soil.hpp"
+
+namespace rumble::soils {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+TEST(SoilHalfSpace, SquareMeanSettlementFactor) {
+  // Mean settlement of a flexible square of side B: q B (1 - nu^2) / E * 0.946 (physics.md
+  // §5.3), i.e. an influence of 0.946 pi / B; Python: 0.946402.
+  EXPECT_NEAR(mean_flexible_influence(1.0, 1.0, 0.0) / kPi, 0.946402, 1e-5);
+  EXPECT_NEAR(mean_flexible_influence(2.0, 2.0, 0.0) / kPi, 0.946402 / 2, 1e-5);
+}
+
+TEST(SoilHalfSpace, NeighbourRatiosOfTheTable) {
+  // physics.md §2.3: 0.395, 0.412, 0.513 and u2/u0 = 0.249; Python (80 x 80): 0.394742,
+  // 0.412464, 0.513439, 0.249256. 20 x 20 points are within 1e-5 of them.
+  EXPECT_NEAR(neighbour_compliance_ratio(2.6, 0.26, 0.6), 0.394742, 1e-5);
+  EXPECT_NEAR(neighbour_compliance_ratio(2.6, 0.30, 0.6), 0.412464, 1e-5);
+  EXPECT_NEAR(neighbour_compliance_ratio(3.0, 0.50, 0.6), 0.513439, 1e-5);
+  EXPECT_NEAR(neighbour_compliance_ratio(2.6, 0.26, 1.2), 0.249256, 1e-5);
+}
+
+TEST(SoilHalfSpace, CentreStressLimits) {
+  EXPECT_NEAR(centre_vertical_stress(2.6, 0.26, 1e-9), 1.0, 1e-8);  // q at the surface
+  // Far below, the load acts as a point force P = q A: 3 P / (2 pi z^2) (Boussinesq); the
+  // relative difference is O((L / z)^2) ~ 2e-4 at z = 100 m.
+  const double z = 100.0, point = 3 * 2.6 * 0.26 / (2 * kPi * z * z);
+  EXPECT_NEAR(centre_vertical_stress(2.6, 0.26, z), point, 1e-3 * point);
+}
+
+TEST(SoilHalfSpace, StressWeightsAddUp) {
+  const double total = stress_weight(2.6, 0.26, 0.0, kInf);
+  EXPECT_NEAR(total, 0.661516, 1e-6);  // Python, 20 to 640 points per panel agree
+  EXPECT_NEAR(stress_weight(2.6, 0.26, 0.0, 1.0) + stress_weight(2.6, 0.26, 1.0, 3.0) +
+                  stress_weight(2.6, 0.26, 3.0, kInf),
+              total, 1e-12);
+  EXPECT_NEAR(stress_weight(2.6, 0.26, 0.0, 1.0), 0.418212, 1e-6);
+}
+
+TEST(SoilHalfSpace, LayeredSoilEquivalent) {
+  const SoilProperties stiff{750e6, 0.3, 1800}, soft{10e6, 0.35, 1600};
+  // No layers, or layers of the half-space itself: the half-space.
+  EXPECT_EQ(equivalent_properties({}, stiff, 2.6, 0.26).E, stiff.E);
+  const SoilProperties same = equivalent_properties({{1.0, stiff}, {2.0, stiff}}, stiff, 2.6, 0.26);
+  EXPECT_NEAR(same.E, stiff.E, 1e-12 * stiff.E);
+  EXPECT_NEAR(same.nu, stiff.nu, 1e-12);
+  // A layer 1000 times the footprint's size: the layer (its share of the stress integral is
+  // 1 - O(A / depth) ~ 1 - 1e-4).
+  const SoilProperties deep = equivalent_properties({{2600.0, soft}}, stiff, 2.6, 0.26);
+  EXPECT_NEAR(deep.E, soft.E, 1e-3 * soft.E);
+  // 1 m of soft soil over the stiff one: its weight is 0.418212 / 0.661516 = 0.632205, so
+  // 1 / E_eq = 0.632205 / 10 MPa + 0.367795 / 750 MPa: E_eq = 15.69 MPa, the soft layer rules.
+  const SoilProperties two = equivalent_properties({{1.0, soft}}, stiff, 2.6, 0.26);
+  const double w = 0.418212 / 0.661516;
+  EXPECT_NEAR(two.E, 1.0 / (w / soft.E + (1 - w) / stiff.E), 1e-5 * two.E);
+  EXPECT_NEAR(two.nu, w * soft.nu + (1 - w) * stiff.nu, 1e-6);
+  EXPECT_NEAR(two.rho, w * soft.rho + (1 - w) * stiff.rho, 1e-3);
+}
+
+}  // namespace
+}  // namespace rumble::soils
