@@ -24,6 +24,7 @@
 #include <complex>
 #include <cstdio>
 #include <numbers>
+#include <string>
 
 #include "soil_rig.hpp"
 
@@ -128,6 +129,9 @@ TEST(SoilTimeResponse, HarmonicForceMatchesReceptanceWithinNewmarkPeriodError) {
       auto soil = make_soil(m.type, m.params, sleeper_row(kN));
       const Steady s = steady_response(*soil, f);
       const MatrixXcd H = receptance(*soil, f, kN);
+      ASSERT_GT(std::abs(H(kDriven, kDriven)), 0.0) << m.label;
+      // Coupling: the clm's neighbour moves, winkler's does not (checked below, exactly).
+      ASSERT_EQ(std::abs(H(kDriven + 1, kDriven)) > 0.0, std::string(m.type) == "clm") << m.label;
       const double wH = 2.0 * kPi * f * kMacroStep;
       for (const Index i : {kDriven, kDriven + 1}) {
         const cd exact = H(i, kDriven) * kF0;
