@@ -1,3 +1,5 @@
+// The lumped core (lumped_soil.hpp): parameters checked, Newmark sub-steps with a consistent
+// start, exact receptance; docs/soils.md sections 6 and 7.
 #include "lumped_soil.hpp"
 
 #include <algorithm>
