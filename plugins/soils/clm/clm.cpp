@@ -2,7 +2,8 @@
 // Soil Dyn. Earthq. Eng. 31(12), 2011): per footprint a mass m_f, a spring k_f and a dashpot c_f
 // to the ground, and a spring k_c and a dashpot c_c to each neighbour. The five parameters are
 // given, or calibrated from soil properties, footprint size and spacing (chain_calibration.hpp,
-// docs/soils.md).
+// docs/soils.md). A massless soil under explicit coupling closes an algebraic loop through the
+// ballast and soil dashpots (docs/decisions/0004, docs/soils.md §8): give m_f when it is soft.
 #include <cmath>
 #include <optional>
 #include <sstream>
