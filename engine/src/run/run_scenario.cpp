@@ -68,8 +68,10 @@ void check_finite(const TrackParticipant& track, const SoilSide& soil, double t,
       std::ostringstream m;
       m << "simulation diverged at t = " << t << " s: footprint " << i << " displacement is " << u
         << " m (limit " << kDivergedDisplacement
-        << " m); reduce time.macro_step: explicit coupling is stable only below a macro step "
-           "that shrinks as the soil softens (about c_soil / (2 k_ballast) for a massless soil)";
+        << " m). If the soil has no participating mass (winkler `m`, clm `m_f`), give it one: "
+           "a massless soil and the ballast dashpots close a loop that explicit coupling does not "
+           "survive at any time.macro_step (docs/decisions/0004); otherwise reduce "
+           "time.macro_step";
       throw RunError(m.str());
     }
   }

@@ -217,12 +217,13 @@ constexpr std::string_view kSchema = R"json({
           "if": {"required": ["type"], "properties": {"type": {"const": "wheel_flat"}}},
           "then": {
             "additionalProperties": false,
-            "required": ["length", "depth"],
+            "required": ["length"],
             "properties": {
               "type": {},
-              "length": {"type": "number", "exclusiveMinimum": 0, "description": "length of the flat [m]"},
-              "depth": {"type": "number", "exclusiveMinimum": 0, "description": "depth of the flat [m]"},
-              "wheel": {"type": "integer", "minimum": 0, "default": 0, "description": "index of the flat wheel among all wheels"}
+              "length": {"type": "number", "exclusiveMinimum": 0, "description": "length of the rounded flat [m]"},
+              "depth": {"type": "number", "exclusiveMinimum": 0, "description": "depth of the flat [m]; default L^2/(16 R), a worn (rounded) flat of length L"},
+              "wheel": {"type": "integer", "minimum": 0, "default": 0, "description": "index of the flat wheel among all wheels"},
+              "first_impact": {"type": "number", "minimum": 0, "description": "rolled distance at which the flat's centre first meets the rail [m]; default pi R (half a turn)"}
             }
           }
         },
@@ -233,7 +234,7 @@ constexpr std::string_view kSchema = R"json({
             "required": ["class", "seed", "wavelength_min", "wavelength_max"],
             "properties": {
               "type": {},
-              "class": {"enum": ["FRA1", "FRA2", "FRA3", "FRA4", "FRA5", "FRA6"], "description": "US FRA track class whose PSD the profile follows"},
+              "class": {"enum": ["FRA1", "FRA2", "FRA3", "FRA4", "FRA5", "FRA6", "ISO3095"], "description": "PSD the profile follows: US FRA track class 1 (worst) .. 6, or the ISO 3095:2013 rail roughness limit"},
               "seed": {"type": "integer", "minimum": 0, "description": "random seed"},
               "wavelength_min": {"type": "number", "exclusiveMinimum": 0, "description": "shortest wavelength [m]"},
               "wavelength_max": {"type": "number", "exclusiveMinimum": 0, "description": "longest wavelength [m]"}

@@ -1,0 +1,67 @@
+// `rumble validate` on the track and vehicle mistakes issue #3 names: each gives its pointer,
+// the value and the rule, exit code 1 (or 0 with a warning for the critical-speed regime).
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "cli_runner.hpp"
+
+namespace rumble::testing {
+namespace {
+
+using ::testing::HasSubstr;
+
+CliResult validate(const std::string& name, const nlohmann::json& scenario) {
+  return run_rumble({"validate", write_scenario(scratch_directory(name), scenario).string()});
+}
+
+TEST(CliValidate, NegativeMass) {
+  nlohmann::json s = small_scenario();
+  s["vehicles"][0]["params"]["mass"] = -750.0;
+  const CliResult r = validate("negative_mass", s);
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("error: /vehicles/0/params/mass: must be > 0, got -750"));
+}
+
+TEST(CliValidate, ZeroSleeperSpacing) {
+  nlohmann::json s = small_scenario();
+  s["track"]["sleepers"]["spacing"] = 0;
+  const CliResult r = validate("zero_spacing", s);
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("error: /track/sleepers/spacing: must be > 0, got 0"));
+}
+
+TEST(CliValidate, UnknownUnevennessClass) {
+  nlohmann::json s = small_scenario();
+  s["track"]["unevenness"] = {{"type", "random"}, {"class", "FRA7"}, {"seed", 1},
+                              {"wavelength_min", 1.0}, {"wavelength_max", 30.0}};
+  const CliResult r = validate("unevenness_class", s);
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("/track/unevenness/class: must be one of: FRA1, FRA2, FRA3, "
+                                  "FRA4, FRA5, FRA6, ISO3095, got \"FRA7\""));
+}
+
+TEST(CliValidate, WavelengthBandMustBeOrdered) {
+  nlohmann::json s = small_scenario();
+  s["track"]["unevenness"] = {{"type", "random"}, {"class", "FRA4"}, {"seed", 1},
+                              {"wavelength_min", 30.0}, {"wavelength_max", 1.0}};
+  const CliResult r = validate("wavelength_band", s);
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("/track/unevenness/wavelength_max: must be > wavelength_min = "
+                                  "30 m, got 1 m"));
+}
+
+// Soft soil: c_R = 42.9 m/s (physics.md §4.1); 50 m/s is above it: a warning with the number,
+// not an error (the run is allowed).
+TEST(CliValidate, SpeedAboveRayleighSpeedWarns) {
+  nlohmann::json s = small_scenario();
+  s["soil"] = {{"type", "winkler"}, {"params", {{"E", 1e7}, {"nu", 0.3}, {"rho", 1800.0}}}};
+  s["vehicles"][0]["speed"] = 50.0;
+  s["time"]["end"] = 0.1;
+  const CliResult r = validate("rayleigh", s);
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("warning: /vehicles/0/speed: the speed 50 m/s is above the "
+                                  "soil's Rayleigh wave speed 42.9 m/s (critical-speed regime)"));
+}
+
+}  // namespace
+}  // namespace rumble::testing
