@@ -32,8 +32,11 @@ TEST(CliValidate, ZeroSleeperSpacing) {
 
 TEST(CliValidate, UnknownUnevennessClass) {
   nlohmann::json s = small_scenario();
-  s["track"]["unevenness"] = {{"type", "random"}, {"class", "FRA7"}, {"seed", 1},
-                              {"wavelength_min", 1.0}, {"wavelength_max", 30.0}};
+  s["track"]["unevenness"] = {{"type", "random"},
+                              {"class", "FRA7"},
+                              {"seed", 1},
+                              {"wavelength_min", 1.0},
+                              {"wavelength_max", 30.0}};
   const CliResult r = validate("unevenness_class", s);
   EXPECT_EQ(r.exit_code, 1) << r.output;
   EXPECT_THAT(r.output, HasSubstr("/track/unevenness/class: must be one of: FRA1, FRA2, FRA3, "
@@ -42,8 +45,11 @@ TEST(CliValidate, UnknownUnevennessClass) {
 
 TEST(CliValidate, WavelengthBandMustBeOrdered) {
   nlohmann::json s = small_scenario();
-  s["track"]["unevenness"] = {{"type", "random"}, {"class", "FRA4"}, {"seed", 1},
-                              {"wavelength_min", 30.0}, {"wavelength_max", 1.0}};
+  s["track"]["unevenness"] = {{"type", "random"},
+                              {"class", "FRA4"},
+                              {"seed", 1},
+                              {"wavelength_min", 30.0},
+                              {"wavelength_max", 1.0}};
   const CliResult r = validate("wavelength_band", s);
   EXPECT_EQ(r.exit_code, 1) << r.output;
   EXPECT_THAT(r.output, HasSubstr("/track/unevenness/wavelength_max: must be > wavelength_min = "

@@ -436,6 +436,16 @@ class IssueBuilder {
     } else if (starts_with(d, "Target should not validate against schema specified in 'not'")) {
       issue.show_value = true;
       issue.message = "is a value that is not allowed here";
+      // A schema explains its own exclusion through the description of the `not` it violates.
+      for (const auto& ref : refs_) {
+        const auto n = ref.node->is_object() ? ref.node->find("not") : ref.node->end();
+        if (n == ref.node->end() || !n->is_object()) continue;
+        const auto why = n->find("description");
+        if (why == n->end() || !why->is_string()) continue;
+        if (!checker_.matches(ref.pointer + "/not", *value)) continue;
+        issue.message = why->get<std::string>();
+        break;
+      }
     } else if (starts_with(d, "Elements at indexes #")) {
       issue.message = "items must be unique: " + between(d, "indexes ", " violate") + " are equal";
     } else if (starts_with(d, "Missing dependency '")) {

@@ -30,7 +30,10 @@ class Winkler final : public rumble::soils::LumpedSoil {
   "type": "object",
   "additionalProperties": false,
   "description": "give k and c (and optionally m), or E, nu and rho (and optionally layers and m)",
-  "oneOf": [{"required": ["k", "c"]}, {"required": ["E", "nu", "rho"]}],
+  "oneOf": [
+    {"required": ["k", "c"], "not": {"description": "gives k and c together with soil properties; give either k and c (direct) or E, nu and rho (derived), not both", "anyOf": [{"required": ["E"]}, {"required": ["nu"]}, {"required": ["rho"]}, {"required": ["layers"]}]}},
+    {"required": ["E", "nu", "rho"], "not": {"description": "gives soil properties together with k or c; give either k and c (direct) or E, nu and rho (derived), not both", "anyOf": [{"required": ["k"]}, {"required": ["c"]}]}}
+  ],
   "properties": {
     "k": {"type": "number", "exclusiveMinimum": 0, "description": "spring per footprint [N/m]; from soil properties: Gazetas (1991) rigid rectangle 2L x 2B on a half-space, K_z = 2 G L / (1 - nu) (0.73 + 1.54 chi^0.75), chi = B / L <= 1"},
     "c": {"type": "number", "minimum": 0, "description": "dashpot per footprint [N s/m]; from soil properties: Lysmer's analog (Gazetas 1991), C_z = rho V_La A, V_La = 3.4 c_s / (pi (1 - nu)) [m/s], A the footprint area [m^2]"},
