@@ -4,6 +4,10 @@
 # to Rumble::sdk, so that the one entry point exported by RUMBLE_PLUGIN() is all it shows.
 # Output goes to RUMBLE_PLUGIN_OUTPUT_DIR when set (the engine's build tree does), otherwise to
 # the caller's binary directory. Point RUMBLE_PLUGIN_PATH at that directory to use it.
+# `cmake --install` puts it in <prefix>/${CMAKE_INSTALL_LIBDIR}/rumble/plugins (or
+# RUMBLE_PLUGIN_INSTALL_DIR when set): with the engine's prefix, `rumble` finds it unaided.
+include(GNUInstallDirs)
+
 function(rumble_add_plugin name)
   cmake_parse_arguments(ARG "" "" "SOURCES" ${ARGN})
   if(NOT ARG_SOURCES)
@@ -21,6 +25,8 @@ function(rumble_add_plugin name)
   endif()
   if(RUMBLE_PLUGIN_INSTALL_DIR)
     install(TARGETS ${name} LIBRARY DESTINATION ${RUMBLE_PLUGIN_INSTALL_DIR})
+  else()
+    install(TARGETS ${name} LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}/rumble/plugins)
   endif()
   # Refuse symbols left undefined at link time (the loader uses RTLD_NOW anyway, but failing
   # here names the missing symbol at build time), and export the entry point only.

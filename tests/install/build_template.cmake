@@ -56,3 +56,15 @@ step("build the template" ${CMAKE_COMMAND} --build ${build})
 if(NOT EXISTS ${build}/template_soil.so)
   message(FATAL_ERROR "the template build produced no ${build}/template_soil.so")
 endif()
+
+# `cmake --install` of the plugin into the engine's prefix puts it in lib/rumble/plugins, the
+# directory an installed `rumble` loads unaided and the package names as Rumble_PLUGIN_DIR.
+step("install the template" ${CMAKE_COMMAND} --install ${build} --prefix ${prefix})
+if(NOT EXISTS ${prefix}/lib/rumble/plugins/template_soil.so)
+  message(FATAL_ERROR "cmake --install put no template_soil.so in ${prefix}/lib/rumble/plugins")
+endif()
+file(GLOB_RECURSE config ${prefix}/*/RumbleConfig.cmake)
+file(STRINGS "${config}" plugin_dir REGEX "^set\\(Rumble_PLUGIN_DIR ")
+if(NOT plugin_dir STREQUAL "set(Rumble_PLUGIN_DIR \"\${PACKAGE_PREFIX_DIR}/lib/rumble/plugins\")")
+  message(FATAL_ERROR "RumbleConfig.cmake sets '${plugin_dir}', not the prefix's lib/rumble/plugins")
+endif()

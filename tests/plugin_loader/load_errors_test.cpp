@@ -104,15 +104,19 @@ TEST(PluginLoadErrors, NewerAbiMinor) {
 TEST(PluginLoadErrors, ShortDescriptor) {
   PluginRegistry registry;
   EXPECT_EQ(load_error(registry, fixture::short_descriptor),
-            "plugin " + quoted(fixture::short_descriptor) + ": malformed descriptor");
+            "plugin " + quoted(fixture::short_descriptor) +
+                ": malformed descriptor (struct_size 8 bytes, ABI 1.0 needs 56); build the plugin "
+                "with RUMBLE_PLUGIN() from the Rumble SDK");
   EXPECT_TRUE(registry.libraries().empty());
 }
 
 TEST(PluginLoadErrors, UnknownComponentKind) {
   PluginRegistry registry;
-  EXPECT_EQ(load_error(registry, fixture::unknown_kind),
-            "plugin " + quoted(fixture::unknown_kind) +
-                ": factory 0 is malformed (missing name, create, table or unknown kind)");
+  EXPECT_EQ(
+      load_error(registry, fixture::unknown_kind),
+      "plugin " + quoted(fixture::unknown_kind) +
+          ": factory 0 ('loader_test_forged') is malformed: unknown kind 99; build the plugin with "
+          "RUMBLE_PLUGIN() from the Rumble SDK");
   EXPECT_TRUE(registry.types().empty());
 }
 

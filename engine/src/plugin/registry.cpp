@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <boost/dll/runtime_symbol_info.hpp>
 #include <boost/dll/shared_library.hpp>
+#include <cstddef>
 #include <cstdlib>
 #include <sstream>
 
@@ -96,8 +97,17 @@ void PluginRegistry::load_library(const fs::path& requested) {
                           ", newer than this engine's ABI " + host_abi +
                           "; upgrade Rumble or rebuild the plugin against this engine's SDK");
   }
-  if (d->struct_size < sizeof(rumble_plugin_descriptor) || d->factories == nullptr) {
-    throw PluginLoadError("plugin " + quoted(path) + ": malformed descriptor");
+  // A later 1.x appends fields, so a descriptor is only required to hold those of ABI 1.0.
+  constexpr std::size_t kDescriptorV1_0 =
+      offsetof(rumble_plugin_descriptor, factories) + sizeof(d->factories);
+  if (d->struct_size < kDescriptorV1_0 || (d->factories == nullptr && d->n_factories > 0)) {
+    const std::string defect =
+        d->struct_size < kDescriptorV1_0
+            ? "struct_size " + std::to_string(d->struct_size) + " bytes, ABI 1.0 needs " +
+                  std::to_string(kDescriptorV1_0)
+            : "n_factories is " + std::to_string(d->n_factories) + " but factories is null";
+    throw PluginLoadError("plugin " + quoted(path) + ": malformed descriptor (" + defect +
+                          "); build the plugin with RUMBLE_PLUGIN() from the Rumble SDK");
   }
 
   auto loaded = std::make_shared<LoadedLibrary>();
@@ -109,10 +119,27 @@ void PluginRegistry::load_library(const fs::path& requested) {
   for (std::uint64_t i = 0; i < d->n_factories; ++i) {
     const rumble_factory& f = d->factories[i];
     const auto kind = static_cast<rumble_kind>(f.kind);
-    if (f.type_name == nullptr || f.create == nullptr || f.api == nullptr ||
-        std::string(kind_name(kind)) == "unknown") {
+    constexpr std::size_t kFactoryV1_0 = offsetof(rumble_factory, api) + sizeof(f.api);
+    std::string defect;
+    if (f.struct_size < kFactoryV1_0) {
+      defect = "struct_size " + std::to_string(f.struct_size) + " bytes, ABI 1.0 needs " +
+               std::to_string(kFactoryV1_0);
+    } else if (f.type_name == nullptr) {
+      defect = "no type name";
+    } else if (std::string(kind_name(kind)) == "unknown") {
+      defect = "unknown kind " + std::to_string(f.kind);
+    } else if (f.create == nullptr) {
+      defect = "no create function";
+    } else if (f.api == nullptr) {
+      defect = "no function table";
+    }
+    if (!defect.empty()) {
       throw PluginLoadError("plugin " + quoted(path) + ": factory " + std::to_string(i) +
-                            " is malformed (missing name, create, table or unknown kind)");
+                            (f.struct_size >= kFactoryV1_0 && f.type_name != nullptr
+                                 ? " ('" + std::string(f.type_name) + "')"
+                                 : std::string()) +
+                            " is malformed: " + defect +
+                            "; build the plugin with RUMBLE_PLUGIN() from the Rumble SDK");
     }
     for (const auto* existing : {&types_, &added}) {
       for (const ComponentType& t : *existing) {
