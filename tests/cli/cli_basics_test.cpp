@@ -8,6 +8,7 @@ namespace rumble::testing {
 namespace {
 
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 TEST(Cli, VersionAndHelp) {
   const CliResult v = run_rumble({"--version"});
@@ -32,6 +33,21 @@ TEST(Cli, UnknownOptionAndBadLogLevel) {
   const CliResult r = run_rumble({"--log-level", "loud", "plugins"});
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_THAT(r.output, HasSubstr("--log-level loud is not a level; choose trace, debug, info"));
+  const CliResult missing = run_rumble({"plugins", "--log-level"});
+  EXPECT_EQ(missing.exit_code, 1);
+  EXPECT_THAT(missing.output, HasSubstr("--log-level needs a level; see rumble --help"));
+}
+
+// --log-level is global but may follow the command, where users tend to put it.
+TEST(Cli, LogLevelAfterTheCommand) {
+  const auto dir = scratch_directory("log_level_after_command");
+  const auto scenario = write_scenario(dir, small_scenario()).string();
+  const CliResult quiet = run_rumble({"run", scenario, "--no-progress", "--log-level", "warn"});
+  EXPECT_EQ(quiet.exit_code, 0) << quiet.output;
+  EXPECT_THAT(quiet.output, Not(HasSubstr("run completed")));
+  const CliResult chatty = run_rumble({"run", scenario, "--log-level=info", "--no-progress"});
+  EXPECT_EQ(chatty.exit_code, 0) << chatty.output;
+  EXPECT_THAT(chatty.output, HasSubstr("run completed"));
 }
 
 TEST(Cli, PluginsListsInTreeTypes) {

@@ -16,7 +16,7 @@ namespace {
 
 constexpr const char* kUsage = R"(rumble: railway ground-vibration co-simulation
 
-usage: rumble [--log-level LEVEL] COMMAND [ARGS]
+usage: rumble [--log-level LEVEL] COMMAND [ARGS]   (--log-level may also follow the command)
 
 commands:
   run FILE [--output DIR] [--no-progress] [--no-plots]
@@ -52,7 +52,26 @@ std::map<std::string, Command>& command_table() {
 int main(int argc, char** argv) {
   std::vector<std::string> args(argv + 1, argv + argc);
   try {
-    // Global options come before the command.
+    // --log-level is global and may stand anywhere ("rumble run x.json --log-level warn" too);
+    // the other global options come before the command.
+    for (std::size_t j = 0; j < args.size();) {
+      std::string level;
+      if (args[j].rfind("--log-level=", 0) == 0) {
+        level = args[j].substr(12);
+        args.erase(args.begin() + static_cast<long>(j));
+      } else if (args[j] == "--log-level") {
+        if (j + 1 == args.size()) throw UsageError("--log-level needs a level; see rumble --help");
+        level = args[j + 1];
+        args.erase(args.begin() + static_cast<long>(j), args.begin() + static_cast<long>(j) + 2);
+      } else {
+        ++j;
+        continue;
+      }
+      if (!set_log_level(level)) {
+        throw UsageError("--log-level " + level +
+                         " is not a level; choose trace, debug, info, warn, error or off");
+      }
+    }
     std::size_t i = 0;
     for (; i < args.size() && args[i].rfind("--", 0) == 0; ++i) {
       const std::string& a = args[i];
@@ -65,18 +84,7 @@ int main(int argc, char** argv) {
                   << RUMBLE_ABI_MINOR << ")\n";
         return kExitOk;
       }
-      std::string level;
-      if (a.rfind("--log-level=", 0) == 0) {
-        level = a.substr(12);
-      } else if (a == "--log-level" && i + 1 < args.size()) {
-        level = args[++i];
-      } else {
-        throw UsageError("unknown option '" + a + "'; see rumble --help");
-      }
-      if (!set_log_level(level)) {
-        throw UsageError("--log-level " + level +
-                         " is not a level; choose trace, debug, info, warn, error or off");
-      }
+      throw UsageError("unknown option '" + a + "'; see rumble --help");
     }
     if (i == args.size()) {
       std::cerr << kUsage;
