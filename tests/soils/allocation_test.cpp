@@ -1,48 +1,14 @@
-// advance() and motion() allocate nothing: every buffer is sized in accept_layout(). Counted by
-// replacing malloc in this executable (glibc's documented way: the executable's malloc, calloc,
-// realloc and free interpose for every library, the plugins included), delegating to glibc.
-// Its own executable, so that no other test runs on the replaced allocator.
+// advance() and motion() allocate nothing: every buffer is sized in accept_layout(). Counted with
+// tests/support/allocation_counter (a replaced malloc), in an executable of its own.
 #include <gtest/gtest.h>
 
-#include <atomic>
 #include <cstddef>
 #include <nlohmann/json.hpp>
+#include <vector>
 
+#include "allocation_counter.hpp"
 #include "soil_cases.hpp"
 #include "soil_harness.hpp"
-
-extern "C" {
-void* __libc_malloc(std::size_t);  // NOLINT: glibc's own allocator
-void* __libc_calloc(std::size_t, std::size_t);
-void* __libc_realloc(void*, std::size_t);
-void __libc_free(void*);
-}
-
-namespace {
-std::atomic<bool> counting{false};
-std::atomic<long> allocations{0};
-void count() {
-  if (counting.load(std::memory_order_relaxed)) allocations.fetch_add(1);
-}
-}  // namespace
-
-extern "C" {
-void* malloc(std::size_t n) {
-  count();
-  return __libc_malloc(n);
-}
-void* calloc(std::size_t n, std::size_t size) {
-  count();
-  return __libc_calloc(n, size);
-}
-void* realloc(void* p, std::size_t n) {
-  count();
-  return __libc_realloc(p, n);
-}
-void free(void* p) {
-  __libc_free(p);
-}
-}
 
 namespace rumble::test {
 namespace {
@@ -58,15 +24,17 @@ long allocations_while_stepping(const std::string& type, const nlohmann::json& p
   const rumble_waveform w{2, static_cast<std::uint64_t>(n), coeff.data()};
   VectorXd u(n), v(n);
   soil.api().advance(soil.self(), 0.0, 1e-3, &w);  // the first step factors K_eff (no alloc)
-  allocations = 0;
-  counting = true;
-  for (int k = 1; k < 50; ++k) {
-    soil.api().advance(soil.self(), k * 1e-3, 1e-3, &w);
-    soil.api().motion(soil.self(), u.data(), v.data(), n);
+  long allocations = 0;
+  {
+    const rumble::testing::AllocationCounter counter;
+    for (int k = 1; k < 50; ++k) {
+      soil.api().advance(soil.self(), k * 1e-3, 1e-3, &w);
+      soil.api().motion(soil.self(), u.data(), v.data(), n);
+    }
+    allocations = counter.count();
   }
-  counting = false;
   EXPECT_GT(u.norm(), 0.0);
-  return allocations.load();
+  return allocations;
 }
 
 TEST(SoilAllocation, AdvanceAndMotionAllocateNothing) {
@@ -79,12 +47,15 @@ TEST(SoilAllocation, AdvanceAndMotionAllocateNothing) {
 
 TEST(SoilAllocation, TheCounterCounts) {
   // The test above can fail: an allocation in the counted window is seen.
-  counting = true;
-  allocations = 0;
-  auto* p = new std::vector<double>(100);
-  counting = false;
+  long allocations = 0;
+  std::vector<double>* p = nullptr;
+  {
+    const rumble::testing::AllocationCounter counter;
+    p = new std::vector<double>(100);
+    allocations = counter.count();
+  }
   delete p;
-  EXPECT_GE(allocations.load(), 1);
+  EXPECT_GE(allocations, 1);
 }
 
 }  // namespace

@@ -25,7 +25,8 @@ double max_abs(const Eigen::VectorXd& v) {
   return v.size() == 0 ? 0.0 : v.cwiseAbs().maxCoeff();
 }
 
-double dot_rail(const TrackStructure::RailPoint& p, const Eigen::VectorXd& x) {
+// Ref, not const VectorXd&: a column of z_t_ binds without a temporary copy (an allocation).
+double dot_rail(const TrackStructure::RailPoint& p, const Eigen::Ref<const Eigen::VectorXd>& x) {
   double w = 0.0;
   for (std::size_t k = 0; k < 4; ++k) w += p.shape[k] * x[static_cast<Eigen::Index>(p.dof[k])];
   return w;
@@ -431,10 +432,10 @@ void TrackParticipant::micro_step(double t1, double h, double tau) {
     y_t_ = r_t_;
     a_track_.solve(y_t_.data());
     y_v_ = lu_vehicle_.solve(r_v_);
-    for (std::size_t w = 0; w < nw; ++w) {
-      const auto wi = static_cast<Eigen::Index>(w);
-      z_v_.col(wi) = -(lu_vehicle_.solve(j_w_.row(wi).transpose()));
-    }
+    // All wheels at once into the whole of z_v_, then negated in place: a solve() negated, or
+    // assigned to a column block, evaluates into a temporary (an allocation per Newton step).
+    z_v_ = lu_vehicle_.solve(j_w_.transpose());
+    z_v_ *= -1.0;
     for (std::size_t w = 0; w < nw; ++w) {
       const auto wi = static_cast<Eigen::Index>(w);
       const double kw = contact_stiffness_[w];

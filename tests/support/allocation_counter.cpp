@@ -1,0 +1,52 @@
+#include "allocation_counter.hpp"
+
+#include <atomic>
+#include <cstddef>
+
+extern "C" {
+void* __libc_malloc(std::size_t);  // NOLINT: glibc's own allocator
+void* __libc_calloc(std::size_t, std::size_t);
+void* __libc_realloc(void*, std::size_t);
+void __libc_free(void*);
+}
+
+namespace {
+std::atomic<bool> counting{false};
+std::atomic<long> allocations{0};
+void count() {
+  if (counting.load(std::memory_order_relaxed)) allocations.fetch_add(1);
+}
+}  // namespace
+
+extern "C" {
+void* malloc(std::size_t n) {
+  count();
+  return __libc_malloc(n);
+}
+void* calloc(std::size_t n, std::size_t size) {
+  count();
+  return __libc_calloc(n, size);
+}
+void* realloc(void* p, std::size_t n) {
+  count();
+  return __libc_realloc(p, n);
+}
+void free(void* p) {
+  __libc_free(p);
+}
+}
+
+namespace rumble::testing {
+
+AllocationCounter::AllocationCounter() {
+  allocations = 0;
+  counting = true;
+}
+AllocationCounter::~AllocationCounter() {
+  counting = false;
+}
+long AllocationCounter::count() const {
+  return allocations.load();
+}
+
+}  // namespace rumble::testing
