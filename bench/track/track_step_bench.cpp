@@ -1,6 +1,7 @@
 // Cost of the vehicle/track participant's micro-step (the hot loop of every run): REF-A track
 // (railFE values), 100 sleepers at 0.6 m, 4 elements per bay, footprints held still, one wheel
-// (750 kg, 100 kN) rolling at 30 m/s. Reports the time per micro-step and per simulated second.
+// (750 kg, 100 kN) rolling at 30 m/s. Reports the time per micro-step and per simulated second,
+// and the Newton iterations a micro-step takes.
 //   build/release/bench/track/track_bench --benchmark_counters_tabular=true
 #include <benchmark/benchmark.h>
 
@@ -44,9 +45,10 @@ void BM_TrackMacroStep(benchmark::State& state) {
   auto track = make_track(static_cast<int>(state.range(0)));
   const double H = 1e-3;  // s
   const double h = H / std::ceil(H / track->micro_step_limit() - 1e-9);
-  double t = 0.0;
+  double t = 0.0, newton_iterations = 0.0;
   for (auto _ : state) {
     track->advance(t, H);
+    newton_iterations += track->newton_iterations_last_step();
     t += H;
     if (t > 1.0) {  // stay on the track: restart from the static state
       state.PauseTiming();
@@ -58,6 +60,8 @@ void BM_TrackMacroStep(benchmark::State& state) {
   const double micro_steps = static_cast<double>(state.iterations()) * H / h;
   state.counters["micro_step_us"] = h * 1e6;
   state.counters["dofs"] = static_cast<double>(track->track_x().size());
+  // Newton iterations of the last micro-step of each macro step, on average.
+  state.counters["newton_its"] = newton_iterations / static_cast<double>(state.iterations());
   state.counters["per_micro_step"] =
       benchmark::Counter(micro_steps, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
   state.counters["wall_per_simulated_s"] =
