@@ -4,9 +4,9 @@
 # to Rumble::sdk, so that the one entry point exported by RUMBLE_PLUGIN() is all it shows.
 # Output goes to RUMBLE_PLUGIN_OUTPUT_DIR when set (the engine's build tree does), otherwise to
 # the caller's binary directory. Point RUMBLE_PLUGIN_PATH at that directory to use it.
-# `cmake --install` puts it in <prefix>/${CMAKE_INSTALL_LIBDIR}/rumble/plugins (or
-# RUMBLE_PLUGIN_INSTALL_DIR when set): with the engine's prefix, `rumble` finds it unaided.
-include(GNUInstallDirs)
+# `cmake --install` puts it in <prefix>/lib/rumble/plugins (or RUMBLE_PLUGIN_INSTALL_DIR when
+# set): installed into the prefix the engine was installed in, `rumble` finds it unaided. Always
+# lib/, never lib64: that is where the engine looks, next to its bin/.
 
 function(rumble_add_plugin name)
   cmake_parse_arguments(ARG "" "" "SOURCES" ${ARGN})
@@ -26,7 +26,7 @@ function(rumble_add_plugin name)
   if(RUMBLE_PLUGIN_INSTALL_DIR)
     install(TARGETS ${name} LIBRARY DESTINATION ${RUMBLE_PLUGIN_INSTALL_DIR})
   else()
-    install(TARGETS ${name} LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}/rumble/plugins)
+    install(TARGETS ${name} LIBRARY DESTINATION lib/rumble/plugins)
   endif()
   # Refuse symbols left undefined at link time (the loader uses RTLD_NOW anyway, but failing
   # here names the missing symbol at build time), and export the entry point only.

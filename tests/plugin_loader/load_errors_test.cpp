@@ -120,6 +120,24 @@ TEST(PluginLoadErrors, UnknownComponentKind) {
   EXPECT_TRUE(registry.types().empty());
 }
 
+TEST(PluginLoadErrors, ShortFactory) {
+  PluginRegistry registry;
+  EXPECT_EQ(load_error(registry, fixture::short_factory),
+            "plugin " + quoted(fixture::short_factory) +
+                ": factory 0 is malformed: struct_size 8 bytes, ABI 1.0 needs 48; build the "
+                "plugin with RUMBLE_PLUGIN() from the Rumble SDK");
+  EXPECT_TRUE(registry.types().empty());
+}
+
+TEST(PluginLoadErrors, NoFactories) {
+  PluginRegistry registry;
+  EXPECT_EQ(load_error(registry, fixture::no_factories),
+            "plugin " + quoted(fixture::no_factories) +
+                ": provides no component types (n_factories is 0); list the plugin's classes in "
+                "RUMBLE_PLUGIN(name, version, Classes...)");
+  EXPECT_TRUE(registry.libraries().empty());
+}
+
 // The same C source without a forged defect loads: the failures above are the defects only.
 TEST(PluginLoadErrors, UnforgedCDescriptorLoads) {
   PluginRegistry registry;

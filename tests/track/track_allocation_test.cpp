@@ -44,8 +44,8 @@ TEST(TrackAllocation, SingleWheelOnRandomUnevenness) {
                      {"seed", 7},
                      {"wavelength_min", 0.5},
                      {"wavelength_max", 20.0}};
-  auto track = testing::make_track(
-      t, nlohmann::json::array({testing::single_wheel(750.0, 1e5, 30.0, 6.0)}));
+  auto track =
+      testing::make_track(t, nlohmann::json::array({testing::single_wheel(750.0, 1e5, 30.0, 6.0)}));
   track->solve_static({});
   EXPECT_EQ(allocations_while_stepping(*track), 0);
 }

@@ -115,15 +115,28 @@ void PluginRegistry::load_library(const fs::path& requested) {
   loaded->library = library;
   loaded->descriptor = d;
 
+  if (d->n_factories == 0) {
+    throw PluginLoadError("plugin " + quoted(path) +
+                          ": provides no component types (n_factories is 0); list the plugin's "
+                          "classes in RUMBLE_PLUGIN(name, version, Classes...)");
+  }
+  // The factories lie the plugin's sizeof(rumble_factory) apart, which a later 1.x may make
+  // larger than this host's: step by the size the plugin states, read only the 1.0 fields.
+  constexpr std::size_t kFactoryV1_0 =
+      offsetof(rumble_factory, api) + sizeof(static_cast<rumble_factory*>(nullptr)->api);
+  const std::size_t stride = d->factories[0].struct_size;
   std::vector<ComponentType> added;
   for (std::uint64_t i = 0; i < d->n_factories; ++i) {
-    const rumble_factory& f = d->factories[i];
+    const auto& f = *reinterpret_cast<const rumble_factory*>(
+        reinterpret_cast<const char*>(d->factories) + i * std::max(stride, kFactoryV1_0));
     const auto kind = static_cast<rumble_kind>(f.kind);
-    constexpr std::size_t kFactoryV1_0 = offsetof(rumble_factory, api) + sizeof(f.api);
     std::string defect;
     if (f.struct_size < kFactoryV1_0) {
       defect = "struct_size " + std::to_string(f.struct_size) + " bytes, ABI 1.0 needs " +
                std::to_string(kFactoryV1_0);
+    } else if (f.struct_size != stride) {
+      defect = "struct_size " + std::to_string(f.struct_size) + " bytes, the first factory's is " +
+               std::to_string(stride) + " (all entries of the array have one size)";
     } else if (f.type_name == nullptr) {
       defect = "no type name";
     } else if (std::string(kind_name(kind)) == "unknown") {

@@ -231,7 +231,8 @@ typedef struct rumble_plugin_descriptor {
   const char* plugin_name;       /**< e.g. "winkler" */
   const char* plugin_version;    /**< semver */
   const char* build_fingerprint; /**< compiler and build type, printed, never enforced */
-  uint64_t n_factories;
+  uint64_t n_factories;          /**< at least 1 */
+  /** n_factories entries, each factories[0].struct_size bytes (the plugin's sizeof) apart. */
   const rumble_factory* factories;
 } rumble_plugin_descriptor;
 
