@@ -9,6 +9,7 @@ namespace rumble::testing {
 namespace {
 
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 CliResult validate(const std::string& name, const nlohmann::json& scenario) {
   return run_rumble({"validate", write_scenario(scratch_directory(name), scenario).string()});
@@ -54,6 +55,24 @@ TEST(CliValidate, WavelengthBandMustBeOrdered) {
   EXPECT_EQ(r.exit_code, 1) << r.output;
   EXPECT_THAT(r.output, HasSubstr("/track/unevenness/wavelength_max: must be > wavelength_min = "
                                   "30 m, got 1 m"));
+}
+
+// ISO 3095 is a rail roughness spectrum (3 mm to 0.45 m): a track-geometry band is refused by
+// validate (exit 1), not left to fail the run (exit 3).
+TEST(CliValidate, Iso3095BandOutsideItsRange) {
+  nlohmann::json s = small_scenario();
+  s["track"]["unevenness"] = {{"type", "random"},
+                              {"class", "ISO3095"},
+                              {"seed", 1},
+                              {"wavelength_min", 1.0},
+                              {"wavelength_max", 30.0}};
+  const CliResult r = validate("iso3095_band", s);
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_THAT(r.output,
+              HasSubstr("error: /track/unevenness/wavelength_max: the ISO3095 spectrum "
+                        "is defined for wavelengths from 0.00281838 m to 0.446684 m, got 30 m"));
+  EXPECT_THAT(r.output, HasSubstr("for track geometry (1 to 30 m) use an FRA class"));
+  EXPECT_THAT(r.output, Not(HasSubstr("wavelength_min")));  // 1 m is inside the range
 }
 
 // Soft soil: c_R = 42.9 m/s (physics.md §4.1); 50 m/s is above it: a warning with the number,

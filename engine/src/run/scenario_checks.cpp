@@ -5,6 +5,7 @@
 
 #include "core/wave_speeds.hpp"
 #include "track/track_config.hpp"
+#include "track/unevenness_psd.hpp"
 
 namespace rumble {
 namespace {
@@ -57,6 +58,30 @@ std::vector<Diagnostic> check_scenario_relations(const nlohmann::json& sc) {
                     " m, got " + num(unevenness["wavelength_max"].get<double>()) + " m",
                 "the profile covers wavelengths from wavelength_min to wavelength_max, "
                 "e.g. 1 to 30 m for track geometry"));
+  } else if (unevenness.value("type", "none") == "random" && unevenness.contains("class") &&
+             unevenness.contains("wavelength_min") && unevenness.contains("wavelength_max")) {
+    // The band must lie where the spectrum is defined (ISO 3095 covers rail roughness only).
+    // The 1e-9 slack is the one the profile generator allows (unevenness_random.cpp).
+    const auto spectrum = RoughnessSpectrum::from_name(unevenness["class"].get<std::string>());
+    const double lo = unevenness["wavelength_min"].get<double>();
+    const double hi = unevenness["wavelength_max"].get<double>();
+    const std::string range = "the " + spectrum.name() +
+                              " spectrum is defined for wavelengths "
+                              "from " +
+                              num(spectrum.min_wavelength()) + " m to " +
+                              num(spectrum.max_wavelength()) + " m";
+    const std::string hint = spectrum.name() == "ISO3095"
+                                 ? "ISO 3095 is rail roughness (short waves); for track "
+                                   "geometry (1 to 30 m) use an FRA class"
+                                 : "choose a band inside the spectrum's range";
+    if (lo < spectrum.min_wavelength() * (1.0 - 1e-9)) {
+      out.push_back(
+          finding("/track/unevenness/wavelength_min", range + ", got " + num(lo) + " m", hint));
+    }
+    if (hi > spectrum.max_wavelength() * (1.0 + 1e-9)) {
+      out.push_back(
+          finding("/track/unevenness/wavelength_max", range + ", got " + num(hi) + " m", hint));
+    }
   }
   // The vehicle reference must stay on the rail for the whole run (the wheels' offsets are
   // checked again once the vehicle plugins are loaded).
