@@ -34,11 +34,14 @@ int run_command(const std::vector<std::string>& args) {
   if (outcome.status != "failed" && doc->json.at("outputs").value("plots", true)) {
     run_plot_script("plot_results.py", outcome.results_dir);
   }
+  // Printed as "results/x", not "scenarios/paper/../../results/x"; only printed: lexically
+  // dropping "dir/.." is wrong when dir is a symbolic link, so the path written to is not.
+  const std::string shown = outcome.results_dir.lexically_normal().string();
   if (outcome.exit_code == kExitOk) {
-    log->info("run completed; results in {}", outcome.results_dir.string());
+    log->info("run completed; results in {}", shown);
   } else {
     std::cerr << "rumble: error: " << outcome.message << '\n'
-              << "rumble: note: results computed so far are in " << outcome.results_dir.string()
+              << "rumble: note: results computed so far are in " << shown
               << " (summary.json status \"" << outcome.status << "\")\n";
   }
   return outcome.exit_code;

@@ -116,8 +116,7 @@ class ProgressLine {
 
 fs::path results_directory(const nlohmann::json& scenario, const fs::path& scenario_path) {
   const fs::path dir = scenario.at("outputs").at("directory").get<std::string>();
-  // lexically_normal: "scenarios/paper/../../results/x" is printed as "results/x".
-  return (dir.is_absolute() ? dir : scenario_path.parent_path() / dir).lexically_normal();
+  return dir.is_absolute() ? dir : scenario_path.parent_path() / dir;
 }
 
 RunOutcome run_scenario(const nlohmann::json& scenario, const fs::path& scenario_path,
