@@ -7,6 +7,7 @@ extern "C" {
 void* __libc_malloc(std::size_t);  // NOLINT: glibc's own allocator
 void* __libc_calloc(std::size_t, std::size_t);
 void* __libc_realloc(void*, std::size_t);
+void* __libc_memalign(std::size_t, std::size_t);
 void __libc_free(void*);
 }
 
@@ -30,6 +31,20 @@ void* calloc(std::size_t n, std::size_t size) {
 void* realloc(void* p, std::size_t n) {
   count();
   return __libc_realloc(p, n);
+}
+// Aligned allocations (C++17 aligned operator new, Eigen with over-aligned types) come here.
+void* aligned_alloc(std::size_t alignment, std::size_t n) {
+  count();
+  return __libc_memalign(alignment, n);
+}
+void* memalign(std::size_t alignment, std::size_t n) {
+  count();
+  return __libc_memalign(alignment, n);
+}
+int posix_memalign(void** p, std::size_t alignment, std::size_t n) {
+  count();
+  *p = __libc_memalign(alignment, n);
+  return *p == nullptr ? 12 : 0;  // ENOMEM
 }
 void free(void* p) {
   __libc_free(p);
