@@ -34,8 +34,8 @@ class Clm final : public rumble::soils::LumpedSoil {
   "additionalProperties": false,
   "description": "give m_f, k_f, c_f, k_c and c_c, or E, nu and rho (and optionally layers and m_f)",
   "oneOf": [
-    {"required": ["m_f", "k_f", "c_f", "k_c", "c_c"], "not": {"description": "gives the five parameters together with soil properties; give either m_f, k_f, c_f, k_c and c_c (direct) or E, nu and rho (calibrated), not both", "anyOf": [{"required": ["E"]}, {"required": ["nu"]}, {"required": ["rho"]}, {"required": ["layers"]}]}},
-    {"required": ["E", "nu", "rho"], "not": {"description": "gives soil properties together with k_f, c_f, k_c or c_c; give either the five parameters (direct) or E, nu and rho (calibrated, optionally with m_f), not both", "anyOf": [{"required": ["k_f"]}, {"required": ["c_f"]}, {"required": ["k_c"]}, {"required": ["c_c"]}]}}
+    {"required": ["m_f", "k_f", "c_f", "k_c", "c_c"], "not": {"description": "gives the five parameters together with soil properties; give either m_f, k_f, c_f, k_c and c_c (direct) or E, nu and rho (from soil properties), not both", "anyOf": [{"required": ["E"]}, {"required": ["nu"]}, {"required": ["rho"]}, {"required": ["layers"]}]}},
+    {"required": ["E", "nu", "rho"], "not": {"description": "gives soil properties together with k_f, c_f, k_c or c_c; give either the five parameters (direct) or E, nu and rho (from soil properties, optionally with m_f), not both", "anyOf": [{"required": ["k_f"]}, {"required": ["c_f"]}, {"required": ["k_c"]}, {"required": ["c_c"]}]}}
   ],
   "properties": {
     "m_f": {"type": "number", "minimum": 0, "description": "mass per footprint [kg]; from soil properties: Wolf's cone trapped mass (Wolf & Deeks 2004) 2.4 (nu - 1/3) rho pi r0^3, r0 = sqrt(A / pi), for nu > 1/3, else 0 (a value given with E, nu, rho replaces it)"},

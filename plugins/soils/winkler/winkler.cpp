@@ -31,8 +31,8 @@ class Winkler final : public rumble::soils::LumpedSoil {
   "additionalProperties": false,
   "description": "give k and c (and optionally m), or E, nu and rho (and optionally layers and m)",
   "oneOf": [
-    {"required": ["k", "c"], "not": {"description": "gives k and c together with soil properties; give either k and c (direct) or E, nu and rho (derived), not both", "anyOf": [{"required": ["E"]}, {"required": ["nu"]}, {"required": ["rho"]}, {"required": ["layers"]}]}},
-    {"required": ["E", "nu", "rho"], "not": {"description": "gives soil properties together with k or c; give either k and c (direct) or E, nu and rho (derived), not both", "anyOf": [{"required": ["k"]}, {"required": ["c"]}]}}
+    {"required": ["k", "c"], "not": {"description": "gives k and c together with soil properties; give either k and c (direct) or E, nu and rho (from soil properties), not both", "anyOf": [{"required": ["E"]}, {"required": ["nu"]}, {"required": ["rho"]}, {"required": ["layers"]}]}},
+    {"required": ["E", "nu", "rho"], "not": {"description": "gives soil properties together with k or c; give either k and c (direct) or E, nu and rho (from soil properties), not both", "anyOf": [{"required": ["k"]}, {"required": ["c"]}]}}
   ],
   "properties": {
     "k": {"type": "number", "exclusiveMinimum": 0, "description": "spring per footprint [N/m]; from soil properties: Gazetas (1991) rigid rectangle 2L x 2B on a half-space, K_z = 2 G L / (1 - nu) (0.73 + 1.54 chi^0.75), chi = B / L <= 1"},

@@ -113,12 +113,14 @@ TEST(SoilInputErrors, SchemaRulesThroughValidate) {
       {"winkler_k_c_with_E",
        {{"type", "winkler"}, {"params", {{"k", 1e8}, {"c", 2e5}, {"E", 155e6}}}},
        "error: /soil/params: gives k and c together with soil properties; give either k and c "
-       "(direct) or E, nu and rho (derived), not both, got {\"E\":155000000.0,\"c\":200000.0,"
+       "(direct) or E, nu and rho (from soil properties), not both, got "
+       "{\"E\":155000000.0,\"c\":200000.0,"
        "\"k\":100000..."},
       {"clm_properties_with_k_c",
        {{"type", "clm"}, {"params", {{"E", 155e6}, {"nu", 0.3}, {"rho", 1800.0}, {"k_c", 1e8}}}},
        "error: /soil/params: gives soil properties together with k_f, c_f, k_c or c_c; give "
-       "either the five parameters (direct) or E, nu and rho (calibrated, optionally with m_f), "
+       "either the five parameters (direct) or E, nu and rho (from soil properties, optionally "
+       "with m_f), "
        "not both, got {\"E\":155000000.0,\"k_c\":100000000.0,\"nu\":..."},
   };
   for (const auto& c : cases) {
