@@ -1,8 +1,8 @@
 // Cost of the vehicle/track participant's micro-step (the hot loop of every run): REF-A track
 // (railFE values), 100 sleepers at 0.6 m, 4 elements per bay, footprints held still, one wheel
 // (750 kg, 100 kN) rolling at 30 m/s. Reports the time per micro-step and per simulated second,
-// and the Newton iterations a micro-step takes.
-//   build/release/bench/track/track_bench --benchmark_counters_tabular=true
+// and the Newton iterations of the last micro-step of each macro step (on average).
+//   build/release/bin/track_bench --benchmark_counters_tabular=true
 #include <benchmark/benchmark.h>
 
 #include <nlohmann/json.hpp>
