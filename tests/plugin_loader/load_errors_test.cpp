@@ -129,6 +129,15 @@ TEST(PluginLoadErrors, ShortFactory) {
   EXPECT_TRUE(registry.types().empty());
 }
 
+TEST(PluginLoadErrors, FunctionTableWithoutARequiredFunction) {
+  PluginRegistry registry;
+  EXPECT_EQ(load_error(registry, fixture::no_advance),
+            "plugin " + quoted(fixture::no_advance) +
+                ": factory 0 ('loader_test_forged') is malformed: function table has no "
+                "'advance'; build the plugin with RUMBLE_PLUGIN() from the Rumble SDK");
+  EXPECT_TRUE(registry.types().empty());
+}
+
 TEST(PluginLoadErrors, NoFactories) {
   PluginRegistry registry;
   EXPECT_EQ(load_error(registry, fixture::no_factories),

@@ -3,6 +3,8 @@
 // a missing schema.
 #include <rumble/abi.h>
 
+#include "stub_soil_api.h"
+
 namespace {
 
 rumble_status create(const char*, const rumble_host*, rumble_instance** out, const char** error) {
@@ -11,8 +13,15 @@ rumble_status create(const char*, const rumble_host*, rumble_instance** out, con
   return RUMBLE_ERROR;
 }
 
-const rumble_soil_api kApi = {
-    sizeof(rumble_soil_api), {}, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr};
+const rumble_soil_api kApi = {.struct_size = sizeof(rumble_soil_api),
+                              .common = RUMBLE_STUB_COMMON_API,
+                              .accept_layout = rumble_stub_accept_layout,
+                              .initialize = rumble_stub_initialize,
+                              .advance = rumble_stub_advance,
+                              .motion = rumble_stub_motion,
+                              .frequency_response = nullptr,
+                              .set_receivers = nullptr,
+                              .receiver_velocity = nullptr};
 
 const rumble_factory kFactories[] = {
     {sizeof(rumble_factory), RUMBLE_KIND_SOIL, "no_schema_soil", "test: declares no schema",

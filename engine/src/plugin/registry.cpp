@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "core/errors.hpp"
+#include "plugin/function_table.hpp"
 
 namespace rumble {
 namespace {
@@ -145,6 +146,8 @@ void PluginRegistry::load_library(const fs::path& requested) {
       defect = "no create function";
     } else if (f.api == nullptr) {
       defect = "no function table";
+    } else {
+      defect = function_table_defect(kind, f.api);
     }
     if (!defect.empty()) {
       throw PluginLoadError("plugin " + quoted(path) + ": factory " + std::to_string(i) +
