@@ -9,6 +9,7 @@ soil recorded surface receivers, ppv_vs_distance.png. Needs python3-matplotlib a
 (Debian packages); uses the system interpreter, not a virtual environment.
 """
 import json
+import os
 import sys
 from pathlib import Path
 
@@ -79,7 +80,8 @@ def main(directory):
         fig.savefig(d / "ppv_vs_distance.png", dpi=120)
         written.append("ppv_vs_distance.png")
 
-    print("plots: " + ", ".join(str(d / w) for w in written))
+    # Shown normalised ("results/x", not "scenarios/paper/../../results/x"), as rumble does.
+    print(f"plots in {os.path.normpath(d)}: " + ", ".join(written))
 
 
 if __name__ == "__main__":
