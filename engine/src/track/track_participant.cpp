@@ -74,6 +74,8 @@ TrackParticipant::TrackParticipant(const TrackConfig& config, VehicleSet vehicle
   c_v_.setZero(nv, nv);
   j_w_.setZero(nwi, nv);
   z_t_.setZero(nt, nwi);
+  // Two elements' DOFs per wheel: the one under it and the one it just left.
+  inverse_columns_.resize(structure_.dof_count(), 8 * nw);
   z_v_.setZero(nv, nwi);
   s_small_.setZero(nwi, nwi);
   lu_small_ = Eigen::PartialPivLU<Eigen::MatrixXd>(nwi);
@@ -314,6 +316,7 @@ void TrackParticipant::factorize_dynamic(double h) {
                                     structure_.damping(), newmark_.c_a(h), structure_.mass());
   a_track_ = a_track_operator_;
   if (!a_track_.factorize()) throw RunError("track: dynamic matrix is not positive definite");
+  inverse_columns_.clear();
   h_factored_ = h;
 }
 
@@ -385,14 +388,17 @@ void TrackParticipant::micro_step(double t1, double h, double tau) {
   q_ += h * qd_ + 0.5 * h * h * qdd_;
 
   // The contact points depend on t1 only: the track's response to a unit force at each one,
-  // A^-1 N_w (the track half of Woodbury's D^-1 B), is computed once per micro-step.
+  // A^-1 N_w (the track half of Woodbury's D^-1 B), is computed once per micro-step from the
+  // cached columns of A^-1 of the contact point's four DOFs.
   evaluate_contacts(t1, x_, q_);
+  const auto nt = x_.size();
   for (std::size_t w = 0; w < nw; ++w) {
     const auto wi = static_cast<Eigen::Index>(w);
     z_t_.col(wi).setZero();
-    for (std::size_t k = 0; k < 4; ++k)
-      z_t_(static_cast<Eigen::Index>(contact_point_[w].dof[k]), wi) = contact_point_[w].shape[k];
-    a_track_.solve(z_t_.col(wi).data());
+    for (std::size_t k = 0; k < 4; ++k) {
+      const double* column = inverse_columns_.column(contact_point_[w].dof[k], a_track_);
+      z_t_.col(wi) += contact_point_[w].shape[k] * Eigen::Map<const Eigen::VectorXd>(column, nt);
+    }
   }
 
   // Force scale [N] for the convergence test: the contact forces, and the inertial and

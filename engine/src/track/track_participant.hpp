@@ -18,6 +18,7 @@
 #include <rumble/newmark.hpp>
 #include <vector>
 
+#include "track/inverse_columns.hpp"
 #include "track/track_structure.hpp"
 #include "track/unevenness.hpp"
 #include "track/vehicle_set.hpp"
@@ -103,6 +104,7 @@ class TrackParticipant {
   double h_factored_ = -1.0;
   BandedSymmetric a_track_operator_;  // K + c_v C + c_a M, for residuals
   BandedSymmetric a_track_;           // its Cholesky factor
+  InverseColumns inverse_columns_;    // columns of A^-1 under the wheels
   Eigen::MatrixXd a_vehicle_;
   Eigen::PartialPivLU<Eigen::MatrixXd> lu_vehicle_;
 
