@@ -64,7 +64,8 @@ TrackParticipant::TrackParticipant(const TrackConfig& config, VehicleSet vehicle
   for (Eigen::VectorXd* v :
        {&q_, &qd_, &qdd_, &pa_v_, &pv_v_, &r_v_, &y_v_, &f_v_, &vel_v_, &acc_v_, &q_old_})
     v->setZero(nv);
-  for (Eigen::VectorXd* v : {&z_w_, &s_rhs_, &s_sol_}) v->setZero(nwi);
+  for (Eigen::VectorXd* v : {&z_w_, &s_rhs_, &s_sol_, &contact_force_linear_, &force_error_})
+    v->setZero(nwi);
   a_track_ = BandedSymmetric(structure_.dof_count(), structure_.mass().half_bandwidth());
   a_track_operator_ = a_track_;
   a_vehicle_.setZero(nv, nv);
@@ -412,12 +413,26 @@ void TrackParticipant::micro_step(double t1, double h, double tau) {
     acc_v_ = ca * q_ - pa_v_;
     evaluate_contacts(t1, x_, q_);
     // Residuals: r_t = A x - rhs - N F ; r_v = M(q) a - f + J^T F.
-    a_track_operator_.multiply(x_.data(), r_t_.data());
-    r_t_ -= rhs_t_;
-    for (std::size_t w = 0; w < nw; ++w)
-      for (std::size_t k = 0; k < 4; ++k)
-        r_t_[static_cast<Eigen::Index>(contact_point_[w].dof[k])] -=
-            contact_point_[w].shape[k] * contact_force_[w];
+    if (it == 0) {
+      a_track_operator_.multiply(x_.data(), r_t_.data());
+      r_t_ -= rhs_t_;
+      for (std::size_t w = 0; w < nw; ++w)
+        for (std::size_t k = 0; k < 4; ++k)
+          r_t_[static_cast<Eigen::Index>(contact_point_[w].dof[k])] -=
+              contact_point_[w].shape[k] * contact_force_[w];
+    } else {
+      // After a Newton update the linear track's residual lives on the contact DOFs only: the
+      // update solved A y_t = r_t - N (F_lin - F), so r_t' = N (F_lin - F'), F_lin the contact
+      // force the update predicted and F' the force now (exact up to the solve's round-off).
+      r_t_.setZero();
+      for (std::size_t w = 0; w < nw; ++w) {
+        const auto wi = static_cast<Eigen::Index>(w);
+        force_error_[wi] = contact_force_linear_[wi] - contact_force_[w];
+        for (std::size_t k = 0; k < 4; ++k)
+          r_t_[static_cast<Eigen::Index>(contact_point_[w].dof[k])] +=
+              contact_point_[w].shape[k] * force_error_[wi];
+      }
+    }
     vehicles_.mass(q_, m_v_);
     vehicles_.forces(t1, q_, vel_v_, f_v_);
     vehicles_.tangent(t1, q_, vel_v_, k_v_, c_v_);
@@ -435,8 +450,12 @@ void TrackParticipant::micro_step(double t1, double h, double tau) {
     a_vehicle_ = ca * m_v_ + cv * c_v_ + k_v_;
     lu_vehicle_.compute(a_vehicle_);
     // Woodbury: y = D^-1 r, Z = D^-1 B, S = I + K B^T Z, dx = y - Z S^-1 K B^T y.
-    y_t_ = r_t_;
-    a_track_.solve(y_t_.data());
+    if (it == 0) {
+      y_t_ = r_t_;
+      a_track_.solve(y_t_.data());
+    } else {
+      y_t_.noalias() = z_t_ * force_error_;  // A^-1 N (F_lin - F'), no solve
+    }
     y_v_ = lu_vehicle_.solve(r_v_);
     // All wheels at once into the whole of z_v_, then negated in place: a solve() negated, or
     // assigned to a column block, evaluates into a temporary (an allocation per Newton step).
@@ -459,6 +478,13 @@ void TrackParticipant::micro_step(double t1, double h, double tau) {
     y_v_.noalias() -= z_v_ * s_sol_;
     x_ -= y_t_;
     q_ -= y_v_;
+    // The contact forces this update predicts (delta changes by N^T y_t - J y_v).
+    for (std::size_t w = 0; w < nw; ++w) {
+      const auto wi = static_cast<Eigen::Index>(w);
+      contact_force_linear_[wi] =
+          contact_force_[w] +
+          contact_stiffness_[w] * (dot_rail(contact_point_[w], y_t_) - j_w_.row(wi).dot(y_v_));
+    }
   }
   if (!converged) {
     std::ostringstream m;

@@ -113,6 +113,7 @@ class TrackParticipant {
       acc_v_, x_old_, q_old_;
   Eigen::MatrixXd m_v_, k_v_, c_v_, j_w_, z_t_, z_v_, s_small_;
   Eigen::VectorXd s_rhs_, s_sol_;
+  Eigen::VectorXd contact_force_linear_, force_error_;  // N, per wheel
   Eigen::PartialPivLU<Eigen::MatrixXd> lu_small_;
   std::vector<TrackStructure::RailPoint> contact_point_;
   std::vector<double> contact_force_, contact_stiffness_, contact_delta_;
