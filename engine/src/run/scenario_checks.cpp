@@ -61,7 +61,6 @@ std::vector<Diagnostic> check_scenario_relations(const nlohmann::json& sc) {
   } else if (unevenness.value("type", "none") == "random" && unevenness.contains("class") &&
              unevenness.contains("wavelength_min") && unevenness.contains("wavelength_max")) {
     // The band must lie where the spectrum is defined (ISO 3095 covers rail roughness only).
-    // The 1e-9 slack is the one the profile generator allows (unevenness_random.cpp).
     const auto spectrum = RoughnessSpectrum::from_name(unevenness["class"].get<std::string>());
     const double lo = unevenness["wavelength_min"].get<double>();
     const double hi = unevenness["wavelength_max"].get<double>();
@@ -74,11 +73,11 @@ std::vector<Diagnostic> check_scenario_relations(const nlohmann::json& sc) {
                                  ? "ISO 3095 is rail roughness (short waves); for track "
                                    "geometry (1 to 30 m) use an FRA class"
                                  : "choose a band inside the spectrum's range";
-    if (lo < spectrum.min_wavelength() * (1.0 - 1e-9)) {
+    if (!spectrum.above_min(lo)) {
       out.push_back(
           finding("/track/unevenness/wavelength_min", range + ", got " + num(lo) + " m", hint));
     }
-    if (hi > spectrum.max_wavelength() * (1.0 + 1e-9)) {
+    if (!spectrum.below_max(hi)) {
       out.push_back(
           finding("/track/unevenness/wavelength_max", range + ", got " + num(hi) + " m", hint));
     }

@@ -52,6 +52,10 @@ class RoughnessSpectrum {
   /// Wavelength range [m] over which the spectrum is defined (FRA: 0 to infinity).
   double min_wavelength() const { return min_wavelength_; }
   double max_wavelength() const { return max_wavelength_; }
+  /// Whether a wavelength lies within that range, with a relative slack of 1e-9 so that the
+  /// documented limits, rounded to 3 digits, pass.
+  bool above_min(double wavelength) const { return wavelength >= min_wavelength_ * (1.0 - 1e-9); }
+  bool below_max(double wavelength) const { return wavelength <= max_wavelength_ * (1.0 + 1e-9); }
   const std::string& name() const { return name_; }
 
  private:

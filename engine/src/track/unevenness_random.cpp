@@ -58,9 +58,7 @@ RandomProfile::RandomProfile(const RoughnessSpectrum& spectrum, double wavelengt
     throw std::invalid_argument("random profile: need 0 < wavelength_min < wavelength_max, got " +
                                 num(wavelength_min) + " m and " + num(wavelength_max) + " m");
   }
-  // A relative slack of 1e-9 lets the documented limits, rounded to 3 digits, pass.
-  if (wavelength_min < spectrum.min_wavelength() * (1.0 - 1e-9) ||
-      wavelength_max > spectrum.max_wavelength() * (1.0 + 1e-9)) {
+  if (!spectrum.above_min(wavelength_min) || !spectrum.below_max(wavelength_max)) {
     throw std::invalid_argument(
         "random profile: the " + spectrum.name() + " spectrum is defined for wavelengths from " +
         num(spectrum.min_wavelength()) + " m to " + num(spectrum.max_wavelength()) + " m, got " +
