@@ -12,6 +12,7 @@
 #include <cstddef>
 #include <cstdlib>
 #include <fstream>
+#include <map>
 #include <memory>
 #include <regex>
 #include <set>
@@ -120,6 +121,34 @@ TEST(AbiLayout, MatchesCommittedTable) {
   }
 }
 
+// Growth is append-only in fact: every constant and every field of ABI 1.0 (the table frozen at
+// its release) is still there with the same value, offset, size and type, and no struct shrank.
+// Only RUMBLE_ABI_MINOR may differ.
+TEST(AbiLayout, EveryAbi10FieldIsWhereItWas) {
+  if (!is_lp64()) GTEST_SKIP() << "the tables hold the LP64 layout";
+  const std::vector<std::string> v1_0 =
+      read_table(RUMBLE_TEST_SOURCE_DIR "/tests/abi/abi_layout_1_0.txt");
+  ASSERT_GT(v1_0.size(), 50u);
+  std::set<std::string> now;
+  std::map<std::string, unsigned long long> size_now;
+  for (const Item& i : cxx_layout()) {
+    now.insert(line_of(i));
+    if (i.kind == "struct") size_now[i.name] = i.a;
+  }
+  for (const std::string& line : v1_0) {
+    std::istringstream words(line);
+    std::string kind, name;
+    unsigned long long size = 0;
+    words >> kind >> name >> size;
+    if (name == "RUMBLE_ABI_MINOR") continue;
+    if (kind == "struct") {
+      EXPECT_GE(size_now[name], size) << name << " shrank";
+    } else {
+      EXPECT_EQ(now.count(line), 1u) << "ABI 1.0 entry changed or removed: " << line;
+    }
+  }
+}
+
 TEST(AbiLayout, CAndCxxCompilersAgree) {
   unsigned long long n = 0;
   const abi_layout_entry* c = abi_layout_from_c(&n);
@@ -182,9 +211,16 @@ TEST(AbiLayout, ListCoversTheWholeHeader) {
 // Versioning rule: every table/descriptor the other side may see in an older or newer size
 // begins with its size in bytes, so that appended members can be detected.
 TEST(AbiLayout, VersionedStructsBeginWithTheirSize) {
-  const std::set<std::string> versioned = {
-      "rumble_host",       "rumble_vehicle_api", "rumble_soil_api",         "rumble_coupler_api",
-      "rumble_cosim_host", "rumble_factory",     "rumble_plugin_descriptor"};
+  const std::set<std::string> versioned = {"rumble_host",
+                                           "rumble_vehicle_api",
+                                           "rumble_soil_api",
+                                           "rumble_coupler_api",
+                                           "rumble_cosim_host",
+                                           "rumble_factory",
+                                           "rumble_plugin_descriptor",
+                                           "rumble_lifecycle_api",
+                                           "rumble_capabilities",
+                                           "rumble_step_report"};
   const std::vector<Item> items = cxx_layout();
   std::size_t seen = 0;
   for (std::size_t k = 0; k + 1 < items.size(); ++k) {

@@ -2,6 +2,7 @@
 // wrappers of all three kinds (RUMBLE_PLUGIN with a minimal vehicle, soil and coupler) under the
 // strict warnings a plugin author may use (-Wconversion, -Wsign-conversion, ... see
 // CMakeLists.txt), so that the SDK headers never warn in a plugin's build. Compiled, not run.
+#include <rumble/coupling.hpp>
 #include <rumble/newmark.hpp>
 #include <rumble/params.hpp>
 #include <rumble/plugin.hpp>
@@ -58,12 +59,26 @@ class MinimalCoupler final : public rumble::Coupler {
   static const char* params_schema() { return "{}"; }
   MinimalCoupler(const std::string&, const rumble::Host&) {}
   void run(const rumble::CosimHost& host, double t0, double t_end, double H) override {
-    std::vector<double> y(host.output_size(rumble::CosimHost::kSoil));
-    for (double t = t0; t < t_end; t += H) {
-      host.get_output(rumble::CosimHost::kSoil, y);
-      host.set_input(rumble::CosimHost::kTrack, 0, y);
-      host.advance(rumble::CosimHost::kTrack, t, H);
-      host.step_done(t, H, 0.0);
+    using rumble::CosimHost;
+    namespace coupling = rumble::coupling;
+    coupling::OutputHistory soil(host, CosimHost::kSoil);
+    const coupling::Link to_track(host, CosimHost::kSoil, CosimHost::kTrack);
+    coupling::GroupResiduals residuals(host, CosimHost::kSoil);
+    rumble::StepReport report;
+    report.residuals.resize(residuals.groups());
+    std::vector<double> wave, input;
+    soil.sample(t0);
+    for (std::size_t k = 0; k < coupling::macro_step_count(t0, t_end, H); ++k) {
+      const double t = coupling::macro_step_start(t0, H, k);
+      const double h = coupling::macro_step_length(t0, t_end, H, k);
+      const std::uint32_t order = soil.extrapolate(2, t, h, wave);
+      to_track.map(wave, order, input);
+      host.set_input(CosimHost::kTrack, order, input);
+      if (host.advance(CosimHost::kTrack, t, h) == RUMBLE_DISCARD)
+        coupling::refused_step(host, t, h, CosimHost::kTrack, "instantiation check");
+      soil.sample(t + h);
+      residuals.measure(wave, order, soil.latest(), report.residuals.data());
+      host.step_report(report);
     }
   }
 };

@@ -1,6 +1,7 @@
 // The CLI's informational commands and its usage errors, as a user sees them.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <rumble/abi.h>
 
 #include "cli_runner.hpp"
 
@@ -13,7 +14,8 @@ using ::testing::Not;
 TEST(Cli, VersionAndHelp) {
   const CliResult v = run_rumble({"--version"});
   EXPECT_EQ(v.exit_code, 0);
-  EXPECT_THAT(v.output, HasSubstr("rumble 0.1.0 (plugin ABI 1.0)"));
+  EXPECT_THAT(v.output, HasSubstr("rumble 0.1.0 (plugin ABI " + std::to_string(RUMBLE_ABI_MAJOR) +
+                                  "." + std::to_string(RUMBLE_ABI_MINOR) + ")"));
   const CliResult h = run_rumble({"--help"});
   EXPECT_EQ(h.exit_code, 0);
   EXPECT_THAT(h.output, HasSubstr("usage: rumble"));

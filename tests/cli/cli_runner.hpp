@@ -31,4 +31,12 @@ std::size_t csv_rows(const std::filesystem::path& file);
 
 nlohmann::json read_json(const std::filesystem::path& file);
 
+/// The numbers of a CSV file after its header line: the first column (time) in `times`, the
+/// others in `values`, row by row.
+void read_csv(const std::filesystem::path& file, std::vector<double>& times,
+              std::vector<double>& values);
+
+/// The whole file as text ("" when it cannot be read).
+std::string file_text(const std::filesystem::path& file);
+
 }  // namespace rumble::testing

@@ -133,7 +133,7 @@ TEST_F(TemplatePlugin, WrongChannelCountIsAnErrorWithReason) {
   const std::vector<double> coeff{1.0, 2.0, 3.0};
   const rumble_waveform force{0, 3, coeff.data()};
   EXPECT_EQ(api_->advance(instance_, 0.0, 0.01, &force), RUMBLE_ERROR);
-  EXPECT_EQ(last_message(), "advance: force has 3 channels, the layout has 2");
+  EXPECT_EQ(last_message(), "advance: force waveform has 3 entries, expected 2");
 }
 
 // rumble_add_plugin() from the installed package hides everything but the entry point.

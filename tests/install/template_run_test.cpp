@@ -24,23 +24,6 @@ constexpr double kDamping = 2.0e5;     // N s/m per footprint
 constexpr double kWinklerStep = 1e-5;  // s, winkler's sub-step bound
 constexpr double kTolerance = 1e-5;    // of the peak, 5x the trapezoidal error bound above
 
-/// The numbers of a CSV file after its header line: the first column (time) in `times`, the
-/// others in `values`, row by row.
-void read_csv(const std::filesystem::path& file, std::vector<double>& times,
-              std::vector<double>& values) {
-  std::ifstream in(file);
-  std::string line;
-  std::getline(in, line);
-  while (std::getline(in, line)) {
-    std::replace(line.begin(), line.end(), ',', ' ');
-    std::istringstream row(line);
-    double x = 0.0;
-    row >> x;
-    times.push_back(x);
-    while (row >> x) values.push_back(x);
-  }
-}
-
 std::filesystem::path run(const std::string& name, const nlohmann::json& soil,
                           const nlohmann::json& plugins) {
   const auto dir = scratch_directory(name);

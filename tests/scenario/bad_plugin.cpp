@@ -21,13 +21,19 @@ const rumble_soil_api kApi = {.struct_size = sizeof(rumble_soil_api),
                               .motion = rumble_stub_motion,
                               .frequency_response = nullptr,
                               .set_receivers = nullptr,
-                              .receiver_velocity = nullptr};
+                              .receiver_velocity = nullptr,
+                              .lifecycle = nullptr,
+                              .set_probes = nullptr,
+                              .probe_samples = nullptr,
+                              .write_fields = nullptr,
+                              .wave_speeds = nullptr,
+                              .linear_matrix = nullptr};
 
 const rumble_factory kFactories[] = {
     {sizeof(rumble_factory), RUMBLE_KIND_SOIL, "no_schema_soil", "test: declares no schema",
-     nullptr, &create, &kApi},
+     nullptr, &create, &kApi, nullptr},
     {sizeof(rumble_factory), RUMBLE_KIND_SOIL, "bad_schema_soil", "test: schema is not JSON",
-     "{\"type\": \"object\", ", &create, &kApi},
+     "{\"type\": \"object\", ", &create, &kApi, nullptr},
 };
 
 const rumble_plugin_descriptor kDescriptor = {sizeof(rumble_plugin_descriptor),

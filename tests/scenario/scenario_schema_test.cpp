@@ -94,7 +94,8 @@ DocumentedKeys check_document() {
       in_section = true;
       if (title == "Top level") {
         section = {};
-      } else if (title == "`time`" || title == "`track`" || title == "`outputs`") {
+      } else if (title == "`time`" || title == "`track`" || title == "`outputs`" ||
+                 title == "`coupling`") {
         section = {title.substr(1, title.size() - 2)};
       } else if (title == "`vehicles[i]`") {
         section = {"vehicles", "[]"};

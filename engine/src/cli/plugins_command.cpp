@@ -5,6 +5,7 @@
 #include "cli/arguments.hpp"
 #include "cli/commands.hpp"
 #include "cli/exit_codes.hpp"
+#include "plugin/capabilities.hpp"
 #include "plugin/registry.hpp"
 
 namespace rumble::cli {
@@ -21,7 +22,16 @@ int plugins_command(const std::vector<std::string>& args) {
       for (const ComponentType& t : registry.types())
         if (t.library == lib)
           types.push_back(
-              {{"type", t.type_name}, {"kind", kind_name(t.kind)}, {"summary", t.summary}});
+              {{"type", t.type_name},
+               {"kind", kind_name(t.kind)},
+               {"summary", t.summary},
+               {"capabilities",
+                {{"declared", t.capabilities.declared},
+                 {"offers", capability_keys(t.capabilities.offers)},
+                 {"soil_needs", capability_keys(t.capabilities.soil_needs)},
+                 {"max_macro_step_s", t.capabilities.max_macro_step},
+                 {"participants",
+                  nlohmann::json::parse(t.capabilities.participants_json, nullptr, false)}}}});
       const auto* d = lib->descriptor;
       out.push_back({{"plugin", d->plugin_name},
                      {"version", d->plugin_version},
@@ -45,6 +55,18 @@ int plugins_command(const std::vector<std::string>& args) {
     for (const ComponentType& t : registry.types()) {
       if (t.library != lib) continue;
       std::cout << "  " << kind_name(t.kind) << ' ' << t.type_name << ": " << t.summary << '\n';
+      const Capabilities& c = t.capabilities;
+      std::string offers;
+      for (const std::string& key : capability_keys(c.offers))
+        offers += (offers.empty() ? "" : ", ") + key;
+      std::cout << "    offers: " << (offers.empty() ? "-" : offers)
+                << (c.declared ? "" : " (ABI 1.0: derived, not declared)") << '\n';
+      if (c.soil_needs != 0) {
+        std::string needs;
+        for (const std::string& key : capability_keys(c.soil_needs))
+          needs += (needs.empty() ? "" : ", ") + key;
+        std::cout << "    needs of every soil: " << needs << '\n';
+      }
     }
   }
   return kExitOk;

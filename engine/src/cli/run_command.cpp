@@ -8,8 +8,8 @@
 #include "cli/exit_codes.hpp"
 #include "cli/plot_script.hpp"
 #include "cli/scenario_prepare.hpp"
+#include "core/interrupt.hpp"
 #include "core/logging.hpp"
-#include "run/interrupt.hpp"
 #include "run/run_scenario.hpp"
 
 namespace rumble::cli {

@@ -5,13 +5,15 @@
 
 #include <rumble/abi.h>
 
+#include <cstdint>
 #include <string>
 
 namespace rumble {
 
-/// "" when the table of a component of `kind` holds every ABI 1.0 function the engine calls
-/// unconditionally (optional ones may be null, in the pairs abi.h defines); otherwise what is
-/// wrong, e.g. "function table has no 'advance'".
-std::string function_table_defect(rumble_kind kind, const void* api);
+/// "" when the table of a component of `kind`, from a plugin built for ABI 1.`abi_minor`, is as
+/// long as that minor's table (never this host's sizeof: a 1.0 table is shorter than a 1.1 one)
+/// and holds every function the engine calls unconditionally (optional ones may be null, in the
+/// pairs abi.h defines); otherwise what is wrong, e.g. "function table has no 'advance'".
+std::string function_table_defect(rumble_kind kind, const void* api, std::uint32_t abi_minor);
 
 }  // namespace rumble

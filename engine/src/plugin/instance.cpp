@@ -1,6 +1,9 @@
 #include "plugin/instance.hpp"
 
+#include <algorithm>
+
 #include "core/errors.hpp"
+#include "core/interrupt.hpp"
 #include "core/logging.hpp"
 
 namespace rumble {
@@ -19,6 +22,20 @@ const rumble_common_api* common_table(const ComponentType& type) {
   throw PluginLoadError("unknown component kind " + std::to_string(type.kind));
 }
 
+/// The 1.1 lifecycle table of a factory's function table, or null (1.0 plugin, none offered).
+const rumble_lifecycle_api* lifecycle_table(const ComponentType& type) {
+  if (type.abi_minor < 1) return nullptr;
+  switch (type.kind) {
+    case RUMBLE_KIND_VEHICLE:
+      return static_cast<const rumble_vehicle_api*>(type.factory->api)->lifecycle;
+    case RUMBLE_KIND_SOIL:
+      return static_cast<const rumble_soil_api*>(type.factory->api)->lifecycle;
+    case RUMBLE_KIND_COUPLER:
+      return static_cast<const rumble_coupler_api*>(type.factory->api)->lifecycle;
+  }
+  return nullptr;
+}
+
 }  // namespace
 
 Instance::Instance(const ComponentType& type, std::string label, const nlohmann::json& params,
@@ -32,7 +49,11 @@ Instance::Instance(const ComponentType& type, std::string label, const nlohmann:
   host_.host_data = this;
   host_.log = &Instance::log_callback;
   host_.scenario_dir = scenario_dir_.c_str();
+  host_.results_dir = results_dir_.c_str();
+  host_.threads = 1;
+  host_.progress = &Instance::progress_callback;
   common_ = common_table(type);
+  lifecycle_ = lifecycle_table(type);
   const std::string text = params.dump();
   const char* error = nullptr;
   const rumble_status s = type.factory->create(text.c_str(), &host_, &handle_, &error);
@@ -62,6 +83,36 @@ void Instance::log_callback(void* host_data, int32_t level, const char* message)
     default:
       self->logger_->info("{}", message);
   }
+}
+
+int32_t Instance::progress_callback(void* /*host_data*/, double /*fraction*/) {
+  return interrupt_requested() ? 1 : 0;
+}
+
+void Instance::set_run_context(const std::filesystem::path& results_dir, unsigned threads) {
+  results_dir_ = results_dir.string();
+  host_.results_dir = results_dir_.c_str();
+  host_.threads = std::max(1u, threads);
+}
+
+void Instance::finalize() {
+  if (lifecycle_ != nullptr && lifecycle_->finalize != nullptr)
+    check(lifecycle_->finalize(handle_), "finalize");
+}
+
+bool Instance::owns_checkpoints() const {
+  return lifecycle_ != nullptr && lifecycle_->checkpoint_save != nullptr &&
+         type_.capabilities.has(RUMBLE_CAP_OWN_CHECKPOINTS);
+}
+void Instance::checkpoint_save(std::uint32_t slot) {
+  check(lifecycle_->checkpoint_save(handle_, slot), "checkpoint_save");
+}
+void Instance::checkpoint_restore(std::uint32_t slot) {
+  check(lifecycle_->checkpoint_restore(handle_, slot), "checkpoint_restore");
+}
+void Instance::checkpoint_free(std::uint32_t slot) {
+  if (lifecycle_->checkpoint_free != nullptr)
+    check(lifecycle_->checkpoint_free(handle_, slot), "checkpoint_free");
 }
 
 rumble_status Instance::check(rumble_status status, const char* call) const {
@@ -120,19 +171,42 @@ VehicleInstance::VehicleInstance(const ComponentType& type, std::string label,
                       std::to_string(n_dof_) + " DOFs and " + std::to_string(wheels_.size()) +
                       " wheels; a vehicle needs at least one of each");
   }
+  n_outputs_ = output_names().size();
+}
+
+bool VehicleInstance::has_lengths() const {
+  return this->type().abi_minor >= 1;  // the loader checked the 1.1 table is complete
 }
 
 void VehicleInstance::mass_matrix(const double* q, double* mass) const {
-  check(api_->mass_matrix(handle(), q, mass), "mass_matrix");
+  if (has_lengths()) {
+    check(api_->mass_matrix2(handle(), q, n_dof_, mass, n_dof_ * n_dof_), "mass_matrix");
+  } else {
+    check(api_->mass_matrix(handle(), q, mass), "mass_matrix");
+  }
 }
 void VehicleInstance::forces(double t, const double* q, const double* qd, double* f) const {
-  check(api_->forces(handle(), t, q, qd, f), "forces");
+  if (has_lengths()) {
+    check(api_->forces2(handle(), t, q, qd, n_dof_, f), "forces");
+  } else {
+    check(api_->forces(handle(), t, q, qd, f), "forces");
+  }
 }
 void VehicleInstance::wheel_kinematics(const double* q, double* z, double* jacobian) const {
-  check(api_->wheel_kinematics(handle(), q, z, jacobian), "wheel_kinematics");
+  if (has_lengths()) {
+    check(api_->wheel_kinematics2(handle(), q, n_dof_, z, wheels_.size(), jacobian),
+          "wheel_kinematics");
+  } else {
+    check(api_->wheel_kinematics(handle(), q, z, jacobian), "wheel_kinematics");
+  }
 }
 bool VehicleInstance::tangent(double t, const double* q, const double* qd, double* k,
                               double* c) const {
+  if (has_lengths()) {
+    if (!capabilities().has(RUMBLE_CAP_TANGENT) || api_->tangent2 == nullptr) return false;
+    check(api_->tangent2(handle(), t, q, qd, n_dof_, k, c), "tangent");
+    return true;
+  }
   if (api_->tangent == nullptr) return false;
   try {
     check(api_->tangent(handle(), t, q, qd, k, c), "tangent");
@@ -143,6 +217,14 @@ bool VehicleInstance::tangent(double t, const double* q, const double* qd, doubl
 }
 std::vector<std::string> VehicleInstance::output_names() const {
   std::vector<std::string> names;
+  if (has_lengths() && api_->output_names2 != nullptr) {
+    std::uint64_t n = 0;
+    check(api_->output_names2(handle(), nullptr, 0, &n), "output_names");
+    std::vector<const char*> raw(static_cast<std::size_t>(n), nullptr);
+    check(api_->output_names2(handle(), raw.data(), n, &n), "output_names");
+    for (const char* name : raw) names.emplace_back(name != nullptr ? name : "");
+    return names;
+  }
   if (api_->output_names == nullptr) return names;
   const std::string all = api_->output_names(handle());
   std::size_t start = 0;
@@ -155,7 +237,11 @@ std::vector<std::string> VehicleInstance::output_names() const {
   return names;
 }
 void VehicleInstance::outputs(double t, const double* q, const double* qd, double* values) const {
-  if (api_->outputs != nullptr) check(api_->outputs(handle(), t, q, qd, values), "outputs");
+  if (has_lengths() && api_->outputs2 != nullptr) {
+    check(api_->outputs2(handle(), t, q, qd, n_dof_, values, n_outputs_), "outputs");
+  } else if (api_->outputs != nullptr) {
+    check(api_->outputs(handle(), t, q, qd, values), "outputs");
+  }
 }
 
 // ---------------------------------------------------------------- soil
@@ -210,6 +296,36 @@ bool SoilInstance::set_receivers(const std::vector<rumble_receiver>& receivers) 
 }
 void SoilInstance::receiver_velocity(double* v, std::size_t n) const {
   check(api_->receiver_velocity(handle(), v, n), "receiver_velocity");
+}
+bool SoilInstance::set_probes(const std::vector<rumble_probe>& probes, double sample_interval) {
+  if (type().abi_minor < 1 || !capabilities().has(RUMBLE_CAP_RECEIVERS)) return false;
+  check(api_->set_probes(handle(), probes.data(), probes.size(), sample_interval), "set_probes");
+  n_probes_ = probes.size();
+  return true;
+}
+void SoilInstance::take_probe_samples(std::vector<double>& times, std::vector<double>& values) {
+  if (n_probes_ == 0) return;
+  std::uint64_t n = 0;
+  check(api_->probe_samples(handle(), nullptr, nullptr, 0, &n), "probe_samples");
+  if (n == 0) return;
+  const std::size_t t0 = times.size(), v0 = values.size();
+  times.resize(t0 + n);
+  values.resize(v0 + n * n_probes_ * RUMBLE_PROBE_VALUES);
+  std::uint64_t written = 0;
+  check(api_->probe_samples(handle(), times.data() + t0, values.data() + v0, n, &written),
+        "probe_samples");
+  times.resize(t0 + written);
+  values.resize(v0 + written * n_probes_ * RUMBLE_PROBE_VALUES);
+}
+bool SoilInstance::write_fields(double t, const std::filesystem::path& path) {
+  if (type().abi_minor < 1 || !capabilities().has(RUMBLE_CAP_FIELD_OUTPUT)) return false;
+  check(api_->write_fields(handle(), t, path.c_str()), "write_fields");
+  return true;
+}
+bool SoilInstance::wave_speeds(double& c_s_min, double& c_r_min) const {
+  if (type().abi_minor < 1 || !capabilities().has(RUMBLE_CAP_WAVE_SPEEDS)) return false;
+  check(api_->wave_speeds(handle(), &c_s_min, &c_r_min), "wave_speeds");
+  return true;
 }
 
 // ---------------------------------------------------------------- coupler

@@ -6,6 +6,7 @@
 #include <rumble/abi.h>
 
 #include <complex>
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -40,25 +41,42 @@ class Instance {
   const std::string& label() const { return label_; }
   const ComponentType& type() const { return type_; }
 
+  const Capabilities& capabilities() const { return type_.capabilities; }
+
   std::size_t state_size() const;
   void save_state(std::vector<double>& buffer) const;  // resized once; no allocation after
   void restore_state(const std::vector<double>& buffer);
+  /// True when the plugin keeps checkpoints itself (ABI 1.1 lifecycle, declared capability).
+  bool owns_checkpoints() const;
+  void checkpoint_save(std::uint32_t slot);
+  void checkpoint_restore(std::uint32_t slot);
+  void checkpoint_free(std::uint32_t slot);
+
+  /// What a run gives the plugin through rumble_host (ABI 1.1): its results directory and the
+  /// threads it may use. Set before the run's first call.
+  void set_run_context(const std::filesystem::path& results_dir, unsigned threads);
+  /// The lifecycle finalize call (ABI 1.1), when the plugin has one.
+  void finalize();
 
  protected:
   /// Throws RunError (ERROR/FATAL) or Discarded, naming the call and the plugin.
   rumble_status check(rumble_status status, const char* call) const;
   rumble_instance* handle() const { return handle_; }
   const rumble_common_api& common() const { return *common_; }
+  const rumble_lifecycle_api* lifecycle() const { return lifecycle_; }
 
  private:
   static void log_callback(void* host_data, int32_t level, const char* message);
+  static int32_t progress_callback(void* host_data, double fraction);
   ComponentType type_;  // a copy: the instance may outlive the registry; type_.library keeps
                         // the code (and the factory and tables it points to) mapped
   std::string label_;
   std::string scenario_dir_;
+  std::string results_dir_;
   std::shared_ptr<spdlog::logger> logger_;
   rumble_host host_{};
   const rumble_common_api* common_ = nullptr;
+  const rumble_lifecycle_api* lifecycle_ = nullptr;  // null: a 1.0 plugin, or none offered
   rumble_instance* handle_ = nullptr;
 };
 
@@ -77,7 +95,10 @@ class VehicleInstance final : public Instance {
   void outputs(double t, const double* q, const double* qd, double* values) const;
 
  private:
+  /// True when the plugin's table has the ABI 1.1 calls with array lengths.
+  bool has_lengths() const;
   const rumble_vehicle_api* api_;
+  std::size_t n_outputs_ = 0;
   std::size_t n_dof_ = 0;
   std::vector<rumble_wheel> wheels_;
 };
@@ -95,10 +116,21 @@ class SoilInstance final : public Instance {
                           std::vector<std::complex<double>>& receptance);
   bool set_receivers(const std::vector<rumble_receiver>& receivers);
   void receiver_velocity(double* v, std::size_t n) const;
+  /// ABI 1.1 receivers; false when the soil does not declare RUMBLE_CAP_RECEIVERS.
+  bool set_probes(const std::vector<rumble_probe>& probes, double sample_interval);
+  /// Appends the samples recorded since the last call: times, and per sample
+  /// probe_count x RUMBLE_PROBE_VALUES values.
+  void take_probe_samples(std::vector<double>& times, std::vector<double>& values);
+  std::size_t probe_count() const { return n_probes_; }
+  /// ABI 1.1 field output; false when not offered.
+  bool write_fields(double t, const std::filesystem::path& path);
+  /// ABI 1.1: slowest shear and Rayleigh speeds [m/s]; false when not offered.
+  bool wave_speeds(double& c_s_min, double& c_r_min) const;
 
  private:
   const rumble_soil_api* api_;
   std::vector<double> re_, im_;  // scratch for frequency_response
+  std::size_t n_probes_ = 0;
 };
 
 class CouplerInstance final : public Instance {

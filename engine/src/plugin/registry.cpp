@@ -5,6 +5,7 @@
 #include <boost/dll/shared_library.hpp>
 #include <cstddef>
 #include <cstdlib>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "core/errors.hpp"
@@ -29,6 +30,49 @@ std::string clean_load_error(std::string what) {
   const auto close = inner.rfind(')');
   if (close != std::string::npos) inner.resize(close);
   return inner;
+}
+
+/// The factory's capabilities: as declared (ABI 1.1), or derived from a 1.0 factory's optional
+/// functions (save/restore assumed: the 1.0 table always has it; state_size says at run time).
+Capabilities declared_capabilities(rumble_kind kind, const rumble_factory* f) {
+  Capabilities c;
+  const rumble_capabilities* declared =
+      RUMBLE_HAS_FIELD(f, rumble_factory, capabilities) ? f->capabilities : nullptr;
+  if (declared != nullptr) {
+    c.declared = true;
+    c.offers = declared->offers;
+    c.soil_needs = declared->soil_needs;
+    c.max_macro_step = declared->max_macro_step;
+    if (declared->participants_json != nullptr) c.participants_json = declared->participants_json;
+    return c;
+  }
+  c.offers = RUMBLE_CAP_SAVE_RESTORE;
+  if (kind == RUMBLE_KIND_SOIL) {
+    const auto* soil = static_cast<const rumble_soil_api*>(f->api);
+    if (soil->frequency_response != nullptr) c.offers |= RUMBLE_CAP_FREQUENCY_RESPONSE;
+  } else if (kind == RUMBLE_KIND_VEHICLE) {
+    const auto* vehicle = static_cast<const rumble_vehicle_api*>(f->api);
+    if (vehicle->tangent != nullptr) c.offers |= RUMBLE_CAP_TANGENT;
+  }
+  return c;
+}
+
+/// "" when a factory's declared capabilities are well formed, else what is wrong.
+std::string capabilities_defect(const rumble_factory* f) {
+  if (!RUMBLE_HAS_FIELD(f, rumble_factory, capabilities) || f->capabilities == nullptr) return "";
+  const rumble_capabilities& c = *f->capabilities;
+  constexpr std::size_t kCapabilitiesV1_1 =
+      offsetof(rumble_capabilities, participants_json) + sizeof(c.participants_json);
+  if (c.struct_size < kCapabilitiesV1_1) {
+    return "capabilities struct_size " + std::to_string(c.struct_size) + " bytes, ABI 1.1 needs " +
+           std::to_string(kCapabilitiesV1_1);
+  }
+  if (!(c.max_macro_step >= 0.0)) return "capabilities max_macro_step is negative or NaN";
+  if (c.participants_json != nullptr) {
+    const auto j = nlohmann::json::parse(c.participants_json, nullptr, false);
+    if (!j.is_object()) return "capabilities participants_json is not a JSON object";
+  }
+  return "";
 }
 
 }  // namespace
@@ -147,8 +191,14 @@ void PluginRegistry::load_library(const fs::path& requested) {
     } else if (f.api == nullptr) {
       defect = "no function table";
     } else {
-      defect = function_table_defect(kind, f.api);
+      defect = function_table_defect(kind, f.api, d->abi_minor);
     }
+    constexpr std::size_t kFactoryV1_1 =
+        offsetof(rumble_factory, capabilities) + sizeof(rumble_factory::capabilities);
+    if (defect.empty() && d->abi_minor >= 1 && f.struct_size < kFactoryV1_1)
+      defect = "struct_size " + std::to_string(f.struct_size) + " bytes, ABI 1.1 needs " +
+               std::to_string(kFactoryV1_1);
+    if (defect.empty()) defect = capabilities_defect(&f);
     if (!defect.empty()) {
       throw PluginLoadError("plugin " + quoted(path) + ": factory " + std::to_string(i) +
                             (f.struct_size >= kFactoryV1_0 && f.type_name != nullptr
@@ -175,6 +225,8 @@ void PluginRegistry::load_library(const fs::path& requested) {
     t.params_schema = f.params_schema != nullptr ? f.params_schema : "{}";
     t.factory = &f;
     t.library = loaded;
+    t.abi_minor = d->abi_minor;
+    t.capabilities = declared_capabilities(kind, &f);
     added.push_back(std::move(t));
   }
   libraries_.push_back(loaded);

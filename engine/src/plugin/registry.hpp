@@ -7,6 +7,7 @@
 
 #include <rumble/abi.h>
 
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -28,6 +29,18 @@ struct LoadedLibrary {
   const rumble_plugin_descriptor* descriptor = nullptr;  // static data inside the library
 };
 
+/// What a component type offers and needs (rumble_capabilities), as the engine uses it.
+struct Capabilities {
+  std::uint64_t offers = 0;              // RUMBLE_CAP_* bits
+  std::uint64_t soil_needs = 0;          // coupler: bits every soil participant must offer
+  double max_macro_step = 0.0;           // [s], 0: no limit
+  std::string participants_json = "{}";  // coupler: extra participants (abi.h)
+  /// False for an ABI 1.0 factory: offers were derived from non-null optional functions and
+  /// save/restore is only known at run time (state_size > 0).
+  bool declared = false;
+  bool has(std::uint64_t bits) const { return (offers & bits) == bits; }
+};
+
 struct ComponentType {
   rumble_kind kind{};
   std::string type_name;
@@ -35,6 +48,8 @@ struct ComponentType {
   std::string params_schema;  // JSON Schema text, as the plugin declared it
   const rumble_factory* factory = nullptr;
   std::shared_ptr<const LoadedLibrary> library;
+  Capabilities capabilities;
+  std::uint32_t abi_minor = 0;  // the ABI minor the plugin was built for
 };
 
 class PluginRegistry {

@@ -1,21 +1,59 @@
 #include "run/cosim_host.hpp"
 
+#include <algorithm>
 #include <chrono>
 
 #include "core/errors.hpp"
 #include "core/logging.hpp"
+#include "plugin/instance.hpp"
 
 namespace rumble {
 
-CosimHostImpl::CosimHostImpl(Participant& track, Participant& soil, StepDone step_done)
-    : participants_{&track, &soil}, step_done_(std::move(step_done)) {
+double StepOutcome::max_relative_residual() const {
+  double r = 0.0;
+  for (const rumble_group_residual& g : residuals) r = std::max(r, g.relative);
+  return r;
+}
+
+template <class F>
+rumble_status CosimHostImpl::guard(F&& f, bool allow_discard) {
+  if (failed()) return RUMBLE_ERROR;  // a stop was requested: refuse every further call
+  try {
+    f();
+    return RUMBLE_OK;
+  } catch (const Discarded& e) {
+    if (allow_discard && coupler_abi_minor_ >= 1) {
+      ++discards_;
+      logger("coupler")->debug("{}", e.what());
+      return RUMBLE_DISCARD;
+    }
+    const std::lock_guard<std::mutex> lock(error_mutex_);
+    if (!error_) error_ = std::current_exception();
+    return RUMBLE_ERROR;
+  } catch (...) {
+    const std::lock_guard<std::mutex> lock(error_mutex_);
+    if (!error_) error_ = std::current_exception();
+    return RUMBLE_ERROR;
+  }
+}
+
+CosimHostImpl::CosimHostImpl(std::vector<Participant*> participants,
+                             std::uint32_t coupler_abi_minor, StepDone step_done)
+    : participants_(std::move(participants)),
+      coupler_abi_minor_(coupler_abi_minor),
+      step_done_(std::move(step_done)) {
+  if (participants_.size() < 2) throw RunError("a co-simulation needs a track and a soil");
+  fill_table();
+}
+
+void CosimHostImpl::fill_table() {
   table_.struct_size = sizeof(rumble_cosim_host);
   table_.ctx = this;
   table_.interface_size = [](void* ctx) -> uint64_t {
     return self(ctx).participants_[RUMBLE_PARTICIPANT_TRACK]->output_size();
   };
   table_.output_size = [](void* ctx, uint32_t p) -> uint64_t {
-    return p < 2 ? self(ctx).participants_[p]->output_size() : 0;
+    return p < self(ctx).participants_.size() ? self(ctx).participants_[p]->output_size() : 0;
   };
   table_.get_output = [](void* ctx, uint32_t p, double* y, uint64_t n) {
     return self(ctx).guard([&] {
@@ -31,33 +69,30 @@ CosimHostImpl::CosimHostImpl(Participant& track, Participant& soil, StepDone ste
     return self(ctx).guard([&] { self(ctx).checked(p)->set_input(*u); });
   };
   table_.advance = [](void* ctx, uint32_t p, double t, double H) {
-    return self(ctx).guard([&] {
-      Participant* part = self(ctx).checked(p);
-      const auto start = std::chrono::steady_clock::now();
-      part->advance(t, H);
-      part->wall_seconds +=
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    });
+    return self(ctx).guard(
+        [&] {
+          Participant* part = self(ctx).checked(p);
+          const auto start = std::chrono::steady_clock::now();
+          part->advance(t, H);
+          part->wall_seconds +=
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        },
+        true);
   };
   table_.save = [](void* ctx, uint32_t p, uint32_t slot) {
-    return self(ctx).guard([&] {
-      Participant* part = self(ctx).checked(p);
-      if (slot >= kSlots) throw RunError("checkpoint slot " + std::to_string(slot) + " >= 4");
-      auto& buffer = self(ctx).slots_[p][slot];
-      buffer.resize(part->state_size());
-      part->save_state(buffer.data());
-    });
+    return self(ctx).guard([&] { self(ctx).checked(p)->checkpoint(slot); });
   };
   table_.restore = [](void* ctx, uint32_t p, uint32_t slot) {
-    return self(ctx).guard([&] {
-      Participant* part = self(ctx).checked(p);
-      if (slot >= kSlots || self(ctx).slots_[p][slot].empty())
-        throw RunError("restore from checkpoint slot " + std::to_string(slot) + " never saved");
-      part->restore_state(self(ctx).slots_[p][slot].data());
-    });
+    return self(ctx).guard([&] { self(ctx).checked(p)->rollback(slot); });
   };
   table_.step_done = [](void* ctx, double t, double H, double residual) {
-    return self(ctx).guard([&] { self(ctx).step_done_(t, H, residual); });
+    return self(ctx).guard([&] {
+      StepOutcome s;
+      s.t = t;
+      s.H = H;
+      s.residuals.push_back({"interface", residual, residual});
+      self(ctx).step_done_(s);
+    });
   };
   table_.log = [](void*, int32_t level, const char* message) {
     auto log = logger("coupler");
@@ -71,10 +106,59 @@ CosimHostImpl::CosimHostImpl(Participant& track, Participant& soil, StepDone ste
       log->info("{}", message);
     }
   };
+  // ---- ABI 1.1
+  table_.participant_count = [](void* ctx) -> uint32_t {
+    return static_cast<uint32_t>(self(ctx).participants_.size());
+  };
+  table_.participant_name = [](void* ctx, uint32_t p) -> const char* {
+    return p < self(ctx).participants_.size() ? self(ctx).participants_[p]->name().c_str()
+                                              : nullptr;
+  };
+  table_.channel_groups = [](void* ctx, uint32_t p, uint32_t side, rumble_channel_group* out,
+                             uint64_t capacity, uint64_t* n) {
+    return self(ctx).guard([&] {
+      const Participant* part = self(ctx).checked(p);
+      if (side != RUMBLE_SIDE_OUTPUT && side != RUMBLE_SIDE_INPUT)
+        throw RunError("coupler asked for channel groups of side " + std::to_string(side) +
+                       " (0 outputs, 1 inputs)");
+      const auto& groups =
+          side == RUMBLE_SIDE_OUTPUT ? part->output_groups() : part->input_groups();
+      *n = groups.size();
+      for (std::size_t i = 0; i < groups.size() && i < capacity; ++i) out[i] = groups[i];
+    });
+  };
+  table_.step_report = [](void* ctx, const rumble_step_report* r) {
+    return self(ctx).guard([&] {
+      if (!RUMBLE_HAS_FIELD(r, rumble_step_report, participants))
+        throw RunError("coupler's step report is shorter than ABI 1.1's");
+      StepOutcome s;
+      s.t = r->t;
+      s.H = r->H;
+      s.iterations = r->iterations;
+      s.converged = r->converged != 0;
+      s.participants = r->participants;
+      if (r->n_residuals > 0 && r->residuals == nullptr)
+        throw RunError("coupler's step report has residuals but no array");
+      s.residuals.assign(r->residuals, r->residuals + r->n_residuals);
+      self(ctx).step_done_(s);
+    });
+  };
+  table_.free_checkpoint = [](void* ctx, uint32_t p, uint32_t slot) {
+    return self(ctx).guard([&] { self(ctx).checked(p)->free_checkpoint(slot); });
+  };
+  table_.can_checkpoint = [](void* ctx, uint32_t p) -> int32_t {
+    int32_t can = 0;
+    self(ctx).guard([&] { can = self(ctx).checked(p)->can_checkpoint() ? 1 : 0; });
+    return can;
+  };
 }
 
 Participant* CosimHostImpl::checked(std::uint32_t index) const {
-  if (index > 1) throw RunError("coupler named participant " + std::to_string(index) + " (0 or 1)");
+  if (index >= participants_.size()) {
+    throw RunError("coupler named participant " + std::to_string(index) + " (there are " +
+                   std::to_string(participants_.size()) + ": 0.." +
+                   std::to_string(participants_.size() - 1) + ")");
+  }
   return participants_[index];
 }
 

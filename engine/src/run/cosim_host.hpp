@@ -1,11 +1,14 @@
 // The participant interface handed to a coupler plugin (rumble_cosim_host). Every call is
 // checked and timed; an exception inside a participant never crosses into the plugin: it is kept
-// here, the call returns RUMBLE_ERROR, and the engine rethrows it when the coupler returns.
+// here, the call returns RUMBLE_ERROR, and the engine rethrows it when the coupler returns. A
+// participant that refuses a step (DISCARD, state unchanged) is reported to an ABI 1.1 coupler
+// as DISCARD so that it can retry smaller; for a 1.0 coupler it stops the run as before.
 #pragma once
 
 #include <rumble/abi.h>
 
-#include <array>
+#include <atomic>
+#include <cstdint>
 #include <exception>
 #include <functional>
 #include <mutex>
@@ -16,42 +19,53 @@
 
 namespace rumble {
 
+/// A final macro step as a coupler reported it (rumble_step_report, or a 1.0 step_done).
+struct StepOutcome {
+  double t = 0.0, H = 0.0;  // [s]
+  std::uint32_t iterations = 1;
+  bool converged = true;
+  std::vector<rumble_group_residual> residuals;  // names valid during the callback only
+  std::uint64_t participants = 0;                // bit p: final for participant p; 0: all
+  /// The largest relative residual of any group (the 1.0 single residual).
+  double max_relative_residual() const;
+  bool final_for(std::uint32_t participant) const {
+    return participants == 0 || ((participants >> participant) & 1u) != 0;
+  }
+};
+
 class CosimHostImpl {
  public:
-  /// Called after each macro step; throw to stop the run (the exception is kept and rethrown).
-  using StepDone = std::function<void(double t, double H, double residual)>;
-  static constexpr std::uint32_t kSlots = 4;
+  /// Called after each final macro step; throw to stop the run (the exception is kept and
+  /// rethrown).
+  using StepDone = std::function<void(const StepOutcome&)>;
 
-  CosimHostImpl(Participant& track, Participant& soil, StepDone step_done);
+  /// participants[0] is the track, [1] the soil, then the coupler's extras. coupler_abi_minor:
+  /// the ABI minor the coupler was built for (DISCARD reaches it from 1.1 on).
+  CosimHostImpl(std::vector<Participant*> participants, std::uint32_t coupler_abi_minor,
+                StepDone step_done);
   const rumble_cosim_host* table() const { return &table_; }
   /// Rethrows the first exception a participant or step_done raised, if any.
   void rethrow_if_failed() const;
   bool failed() const;
-  Participant& participant(std::uint32_t index) const { return *participants_[index]; }
+  Participant& participant(std::uint32_t index) const { return *participants_.at(index); }
+  std::size_t discards() const { return discards_; }
 
  private:
-  /// Runs f; any exception is kept (the first one wins) and becomes RUMBLE_ERROR.
+  /// Runs f; any exception is kept (the first one wins) and becomes RUMBLE_ERROR. A refused step
+  /// becomes RUMBLE_DISCARD when allow_discard (ABI 1.1 coupler, advance).
   template <class F>
-  rumble_status guard(F&& f) {
-    if (failed()) return RUMBLE_ERROR;  // a stop was requested: refuse every further call
-    try {
-      f();
-      return RUMBLE_OK;
-    } catch (...) {
-      const std::lock_guard<std::mutex> lock(error_mutex_);
-      if (!error_) error_ = std::current_exception();
-      return RUMBLE_ERROR;
-    }
-  }
+  rumble_status guard(F&& f, bool allow_discard = false);
   static CosimHostImpl& self(void* ctx) { return *static_cast<CosimHostImpl*>(ctx); }
   Participant* checked(std::uint32_t index) const;
+  void fill_table();
 
-  std::array<Participant*, 2> participants_;
+  std::vector<Participant*> participants_;
+  std::uint32_t coupler_abi_minor_;
   StepDone step_done_;
-  std::array<std::array<std::vector<double>, kSlots>, 2> slots_;
   rumble_cosim_host table_{};
   mutable std::mutex error_mutex_;
   std::exception_ptr error_;
+  std::atomic<std::size_t> discards_{0};
 };
 
 }  // namespace rumble

@@ -7,7 +7,54 @@
 #include "track/track_participant.hpp"
 
 namespace rumble {
+namespace {
 
+// Group names and units at the cut (abi.h, rumble_channel_group).
+constexpr const char* kForce = "footprint_force";
+constexpr const char* kDisplacement = "footprint_displacement";
+constexpr const char* kVelocity = "footprint_velocity";
+
+std::vector<rumble_channel_group> force_group(std::size_t n) {
+  return {{kForce, "N", 0, n}};
+}
+std::vector<rumble_channel_group> motion_groups(std::size_t n) {
+  return {{kDisplacement, "m", 0, n}, {kVelocity, "m/s", n, n}};
+}
+
+}  // namespace
+
+void Participant::check_slot(std::uint32_t slot) {
+  if (slot >= RUMBLE_CHECKPOINT_SLOTS) {
+    throw RunError("checkpoint slot " + std::to_string(slot) + " does not exist (slots 0.." +
+                   std::to_string(RUMBLE_CHECKPOINT_SLOTS - 1) + ")");
+  }
+}
+
+void Participant::checkpoint(std::uint32_t slot) {
+  check_slot(slot);
+  save_state(slots_[slot]);
+  saved_[slot] = true;
+}
+
+void Participant::rollback(std::uint32_t slot) {
+  check_slot(slot);
+  if (!saved_[slot])
+    throw RunError("restore from checkpoint slot " + std::to_string(slot) + " never saved");
+  restore_state(slots_[slot]);
+}
+
+void Participant::free_checkpoint(std::uint32_t slot) {
+  check_slot(slot);
+  std::vector<double>().swap(slots_[slot]);
+  saved_[slot] = false;
+}
+
+// ---------------------------------------------------------------- track
+
+TrackSide::TrackSide(TrackParticipant& track) : Participant("track"), track_(track) {
+  const std::size_t n = track.interface_size();
+  set_groups(force_group(n), motion_groups(n));
+}
 std::size_t TrackSide::output_size() const {
   return track_.interface_size();
 }
@@ -23,18 +70,22 @@ void TrackSide::advance(double t, double H) {
 std::size_t TrackSide::state_size() const {
   return track_.state_size();
 }
-void TrackSide::save_state(double* b) const {
-  track_.save_state(b);
+void TrackSide::save_state(std::vector<double>& b) const {
+  b.resize(track_.state_size());
+  track_.save_state(b.data());
 }
-void TrackSide::restore_state(const double* b) {
-  track_.restore_state(b);
+void TrackSide::restore_state(const std::vector<double>& b) {
+  track_.restore_state(b.data());
 }
 
-SoilSide::SoilSide(SoilInstance& soil, std::size_t n_footprints)
-    : soil_(soil), n_(n_footprints), coeff_(3 * n_footprints, 0.0) {
+// ---------------------------------------------------------------- soil
+
+SoilSide::SoilSide(std::string name, SoilInstance& soil, std::size_t n_footprints)
+    : Participant(std::move(name)), soil_(soil), n_(n_footprints), coeff_(3 * n_footprints, 0.0) {
   input_ = rumble_waveform{0, n_, coeff_.data()};
+  set_groups(motion_groups(n_), force_group(n_));
 }
-std::string SoilSide::name() const {
+std::string SoilSide::description() const {
   return "soil/" + soil_.type_name();
 }
 void SoilSide::get_output(double* y) const {
@@ -52,17 +103,32 @@ void SoilSide::set_input(const rumble_waveform& u) {
 void SoilSide::advance(double t, double H) {
   soil_.advance(t, H, input_);
 }
+bool SoilSide::can_checkpoint() const {
+  return soil_.owns_checkpoints() || state_size() > 0;
+}
+void SoilSide::checkpoint(std::uint32_t slot) {
+  if (!soil_.owns_checkpoints()) return Participant::checkpoint(slot);
+  check_slot(slot);
+  soil_.checkpoint_save(slot);
+}
+void SoilSide::rollback(std::uint32_t slot) {
+  if (!soil_.owns_checkpoints()) return Participant::rollback(slot);
+  check_slot(slot);
+  soil_.checkpoint_restore(slot);
+}
+void SoilSide::free_checkpoint(std::uint32_t slot) {
+  if (!soil_.owns_checkpoints()) return Participant::free_checkpoint(slot);
+  check_slot(slot);
+  soil_.checkpoint_free(slot);
+}
 std::size_t SoilSide::state_size() const {
   return soil_.state_size();
 }
-void SoilSide::save_state(double* b) const {
-  soil_.save_state(state_);
-  std::copy(state_.begin(), state_.end(), b);
+void SoilSide::save_state(std::vector<double>& b) const {
+  soil_.save_state(b);
 }
-void SoilSide::restore_state(const double* b) {
-  if (state_.empty()) state_.resize(soil_.state_size());
-  std::copy(b, b + state_.size(), state_.begin());
-  soil_.restore_state(state_);
+void SoilSide::restore_state(const std::vector<double>& b) {
+  soil_.restore_state(b);
 }
 
 }  // namespace rumble

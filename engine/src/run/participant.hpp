@@ -1,10 +1,13 @@
-// The two sides of the cut as the co-simulation host sees them: outputs, input waveform,
-// advance, checkpoint. The host forwards coupler calls here and times each participant.
+// The participants of a co-simulation as the host sees them: a name ("track", "soil", or an
+// extra participant's scenario name), named channel groups on each side, the outputs, the input
+// waveform, advance, and checkpoints. The host forwards coupler calls here and times each one.
 #pragma once
 
 #include <rumble/abi.h>
 
+#include <array>
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -15,54 +18,89 @@ class TrackParticipant;
 
 class Participant {
  public:
+  explicit Participant(std::string name) : name_(std::move(name)) {}
   virtual ~Participant() = default;
-  virtual std::string name() const = 0;
+  /// The name couplers use: "track", "soil", or an extra participant's scenario name.
+  const std::string& name() const { return name_; }
+  /// What it is, for logs and timings: "vehicle/track", "soil/clm".
+  virtual std::string description() const = 0;
   virtual std::size_t output_size() const = 0;
   virtual void get_output(double* y) const = 0;
   virtual void set_input(const rumble_waveform& u) = 0;
   virtual void advance(double t, double H) = 0;
-  virtual std::size_t state_size() const = 0;
-  virtual void save_state(double* buffer) const = 0;
-  virtual void restore_state(const double* buffer) = 0;
+  /// Channel groups of the outputs and of the input waveform (names and units: abi.h).
+  const std::vector<rumble_channel_group>& output_groups() const { return outputs_; }
+  const std::vector<rumble_channel_group>& input_groups() const { return inputs_; }
+
+  /// Checkpoints, slot < RUMBLE_CHECKPOINT_SLOTS. By default the state is copied into a buffer
+  /// held here (allocated once per slot); a participant whose plugin keeps its own overrides.
+  virtual bool can_checkpoint() const { return state_size() > 0; }
+  virtual void checkpoint(std::uint32_t slot);
+  virtual void rollback(std::uint32_t slot);
+  virtual void free_checkpoint(std::uint32_t slot);
+
   double wall_seconds = 0.0;  // accumulated time spent in advance()
+
+ protected:
+  virtual std::size_t state_size() const = 0;
+  virtual void save_state(std::vector<double>& buffer) const = 0;
+  virtual void restore_state(const std::vector<double>& buffer) = 0;
+  void set_groups(std::vector<rumble_channel_group> outputs,
+                  std::vector<rumble_channel_group> inputs) {
+    outputs_ = std::move(outputs);
+    inputs_ = std::move(inputs);
+  }
+  static void check_slot(std::uint32_t slot);
+
+ private:
+  std::string name_;
+  std::vector<rumble_channel_group> outputs_, inputs_;
+  std::array<std::vector<double>, RUMBLE_CHECKPOINT_SLOTS> slots_;
+  std::array<bool, RUMBLE_CHECKPOINT_SLOTS> saved_{};
 };
 
-/// Track side: output F (n), input u then v (2n).
+/// The vehicle/track: output footprint_force (n), input footprint_displacement then
+/// footprint_velocity (2n).
 class TrackSide final : public Participant {
  public:
-  explicit TrackSide(TrackParticipant& track) : track_(track) {}
-  std::string name() const override { return "vehicle/track"; }
+  explicit TrackSide(TrackParticipant& track);
+  std::string description() const override { return "vehicle/track"; }
   std::size_t output_size() const override;
   void get_output(double* y) const override;
   void set_input(const rumble_waveform& u) override;
   void advance(double t, double H) override;
-  std::size_t state_size() const override;
-  void save_state(double* buffer) const override;
-  void restore_state(const double* buffer) override;
 
  private:
+  std::size_t state_size() const override;
+  void save_state(std::vector<double>& buffer) const override;
+  void restore_state(const std::vector<double>& buffer) override;
   TrackParticipant& track_;
 };
 
-/// Soil side: output u then v (2n), input F (n).
+/// A soil: output footprint_displacement then footprint_velocity (2n), input footprint_force
+/// (n).
 class SoilSide final : public Participant {
  public:
-  SoilSide(SoilInstance& soil, std::size_t n_footprints);
-  std::string name() const override;
+  SoilSide(std::string name, SoilInstance& soil, std::size_t n_footprints);
+  std::string description() const override;
   std::size_t output_size() const override { return 2 * n_; }
   void get_output(double* y) const override;
   void set_input(const rumble_waveform& u) override;
   void advance(double t, double H) override;
-  std::size_t state_size() const override;
-  void save_state(double* buffer) const override;
-  void restore_state(const double* buffer) override;
+  bool can_checkpoint() const override;
+  void checkpoint(std::uint32_t slot) override;
+  void rollback(std::uint32_t slot) override;
+  void free_checkpoint(std::uint32_t slot) override;
+  SoilInstance& soil() const { return soil_; }
 
  private:
+  std::size_t state_size() const override;
+  void save_state(std::vector<double>& buffer) const override;
+  void restore_state(const std::vector<double>& buffer) override;
   SoilInstance& soil_;
   std::size_t n_;
   std::vector<double> coeff_;  // the force waveform until the next advance
   rumble_waveform input_{0, 0, nullptr};
-  mutable std::vector<double> state_;
 };
 
 }  // namespace rumble

@@ -7,13 +7,15 @@
 #include <cstdio>
 #include <fstream>
 #include <sstream>
+#include <thread>
 
 #include "core/errors.hpp"
+#include "core/interrupt.hpp"
 #include "core/logging.hpp"
 #include "plugin/instance.hpp"
 #include "run/cosim_host.hpp"
-#include "run/interrupt.hpp"
 #include "run/participant.hpp"
+#include "run/probe_recorder.hpp"
 #include "run/run_recorder.hpp"
 #include "track/track_participant.hpp"
 
@@ -54,6 +56,13 @@ const ComponentType& resolve(const PluginRegistry& registry, rumble_kind kind,
                       "'; run `rumble plugins` to list the known types");
   }
   return *t;
+}
+
+/// Threads an instance may use: all cores, less one for the track when the coupler runs
+/// participants at once (it declares RUMBLE_CAP_THREADS, as jacobi does).
+unsigned soil_threads(const CouplerInstance& coupler) {
+  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  return coupler.capabilities().has(RUMBLE_CAP_THREADS) ? std::max(1u, cores - 1) : cores;
 }
 
 /// Throws RunError when the interface values show the coupled solution has blown up.
@@ -147,19 +156,41 @@ RunOutcome run_scenario(const nlohmann::json& scenario, const fs::path& scenario
   const auto& cj = scenario.at("coupling");
   CouplerInstance coupler(resolve(registry, RUMBLE_KIND_COUPLER, cj, "/coupling"), "/coupling",
                           cj.value("params", nlohmann::json::object()), scenario_dir);
+  // The coupler's extra participants (ABI 1.1), each a soil on the same footprints.
+  std::vector<std::pair<std::string, std::unique_ptr<SoilInstance>>> extras;
+  const nlohmann::json extra_components = cj.value("participants", nlohmann::json::object());
+  for (const auto& [name, component] : extra_components.items()) {
+    const std::string ptr = "/coupling/participants/" + name;
+    extras.emplace_back(name,
+                        std::make_unique<SoilInstance>(
+                            resolve(registry, RUMBLE_KIND_SOIL, component, ptr), ptr,
+                            component.value("params", nlohmann::json::object()), scenario_dir));
+    extras.back().second->accept_layout(track.footprints());
+  }
 
   const auto& outputs = scenario.at("outputs");
-  const std::vector<double> distances = outputs.value("receivers", std::vector<double>{});
-  bool receivers_offered = false;
-  if (!distances.empty()) {
-    const double x_mid = 0.5 * (track_config.sleeper_count - 1) * track_config.sleeper_spacing;
-    std::vector<rumble_receiver> points;
-    for (double d : distances) points.push_back({x_mid, d});
-    receivers_offered = soil.set_receivers(points);
-    if (!receivers_offered) {
+  const double x_mid = 0.5 * (track_config.sleeper_count - 1) * track_config.sleeper_spacing;
+  const std::vector<ReceiverPoint> receivers = receiver_points(outputs, x_mid);
+  std::vector<double> distances;  // ABI 1.0 receivers: surface points at x_mid only
+  bool receivers_offered = false, probes_offered = false;
+  if (!receivers.empty()) {
+    std::vector<rumble_probe> probes;
+    for (const ReceiverPoint& r : receivers) probes.push_back({r.name.c_str(), r.x, r.y, r.depth});
+    probes_offered = soil.set_probes(probes, outputs.value("receiver_interval", 0.0));
+    if (!probes_offered) {
+      std::vector<rumble_receiver> points;
+      for (const ReceiverPoint& r : receivers) {
+        if (r.depth == 0.0 && r.x == x_mid) {
+          points.push_back({r.x, r.y});
+          distances.push_back(r.y);
+        }
+      }
+      receivers_offered = !points.empty() && soil.set_receivers(points);
+    }
+    if (!probes_offered && !receivers_offered) {
       log->warn(
-          "/outputs/receivers: soil type '{}' offers no surface receivers; the receivers "
-          "are ignored (footprint motions are still recorded)",
+          "/outputs/receivers: soil type '{}' offers no receivers; the receivers are ignored "
+          "(footprint motions are still recorded)",
           soil.type_name());
     }
   }
@@ -197,6 +228,10 @@ RunOutcome run_scenario(const nlohmann::json& scenario, const fs::path& scenario
   }
   summary["plugins"] = plugins;
   write_summary(outcome.results_dir, summary);
+  const unsigned threads = soil_threads(coupler);
+  soil.set_run_context(outcome.results_dir, threads);
+  for (auto& [name, extra] : extras) extra->set_run_context(outcome.results_dir, threads);
+  coupler.set_run_context(outcome.results_dir, 1);
 
   // Anything failing from here on leaves summary.json saying so, then propagates.
   try {
@@ -206,6 +241,11 @@ RunOutcome run_scenario(const nlohmann::json& scenario, const fs::path& scenario
         track.solve_static([&](const std::vector<double>& force, std::vector<double>& u) {
           soil.initialize(0.0, force, u);
         });
+    if (!extras.empty()) {  // the extra soils start from the same static footprint forces
+      std::vector<double> force(track.interface_size()), u;
+      track.footprint_forces(force.data());
+      for (auto& [name, extra] : extras) extra->initialize(0.0, force, u);
+    }
     const double statics_seconds = seconds_since(statics_start);
     nlohmann::json wheel_loads = nlohmann::json::array();
     for (std::size_t w = 0; w < track.vehicles().wheel_count(); ++w)
@@ -218,35 +258,72 @@ RunOutcome run_scenario(const nlohmann::json& scenario, const fs::path& scenario
 
     RunRecorder recorder(outcome.results_dir, track, soil, distances, receivers_offered);
     recorder.record(0.0, 0.0, 0.0);
+    std::unique_ptr<ProbeRecorder> probe_recorder;
+    if (probes_offered) {
+      probe_recorder = std::make_unique<ProbeRecorder>(outcome.results_dir, soil, receivers);
+      probe_recorder->take();  // samples at t = 0, if the soil records one there
+    }
     TrackSide track_side(track);
-    SoilSide soil_side(soil, track.interface_size());
+    SoilSide soil_side("soil", soil, track.interface_size());
+    std::vector<std::unique_ptr<SoilSide>> extra_sides;
+    std::vector<Participant*> participants{&track_side, &soil_side};
+    for (auto& [name, extra] : extras) {
+      extra_sides.push_back(std::make_unique<SoilSide>(name, *extra, track.interface_size()));
+      participants.push_back(extra_sides.back().get());
+    }
     double t_reached = 0.0, t_recorded = 0.0;
     std::size_t steps = 0;
     const std::size_t every = outputs.value("every", std::size_t{1});
     std::vector<double> scratch;
     ProgressLine progress(options.progress, t_end);
-    CosimHostImpl host(track_side, soil_side, [&](double t, double step, double residual) {
-      t_reached = t + step;
+    std::size_t partial_reports = 0;
+    CosimHostImpl host(participants, coupler.type().abi_minor, [&](const StepOutcome& step) {
+      const double t = step.t;
+      // The recorder reads the track and the soil together: a step counts once final for both.
+      // (Schemes that finish participants at different times, as two-step will, need a
+      // recorder per participant; until then their partial reports are only counted.)
+      if (!step.final_for(RUMBLE_PARTICIPANT_TRACK) || !step.final_for(RUMBLE_PARTICIPANT_SOIL)) {
+        ++partial_reports;
+        return;
+      }
+      t_reached = t + step.H;
       ++steps;
+      if (probe_recorder) probe_recorder->take();
       if (steps % every == 0 || t_reached >= t_end * (1.0 - 1e-12)) {
-        recorder.record(t_reached, t_reached - t_recorded, residual);
+        recorder.record(t_reached, t_reached - t_recorded, step.max_relative_residual());
         t_recorded = t_reached;
       }
-      check_finite(track, soil_side, t + step, scratch);
+      check_finite(track, soil_side, t + step.H, scratch);
       if (interrupt_requested()) {
         std::ostringstream m;
-        m << "interrupted at t = " << t + step << " s (Ctrl-C); results up to that time are in "
+        m << "interrupted at t = " << t + step.H << " s (Ctrl-C); results up to that time are in "
           << outcome.results_dir.string();
         throw Interrupted(m.str());
       }
-      progress.update(t + step);
+      progress.update(t + step.H);
     });
 
     std::string coupler_message;
     const rumble_status status = coupler.run(*host.table(), 0.0, t_end, H, coupler_message);
     outcome.status = "completed";
     try {
-      host.rethrow_if_failed();
+      // A plugin that honoured a stop request inside its step returns ERROR: an interruption
+      // too, not a failure (the host's own Interrupted, raised between steps, passes as it is).
+      const auto interrupted_inside_step = [&] {
+        std::ostringstream m;
+        m << "interrupted (Ctrl-C) inside the step after t = " << t_reached
+          << " s; results up to that time are in " << outcome.results_dir.string();
+        return Interrupted(m.str());
+      };
+      try {
+        host.rethrow_if_failed();
+      } catch (const Interrupted&) {
+        throw;
+      } catch (const std::exception&) {
+        if (interrupt_requested()) throw interrupted_inside_step();
+        throw;
+      }
+      if (status != RUMBLE_OK && interrupt_requested()) throw interrupted_inside_step();
       if (status == RUMBLE_ERROR || status == RUMBLE_FATAL) {
         throw RunError("coupler '" + coupler.type_name() + "' failed: " + coupler_message);
       }
@@ -263,6 +340,11 @@ RunOutcome run_scenario(const nlohmann::json& scenario, const fs::path& scenario
       outcome.message = e.what();
     }
     outcome.exit_code = outcome.status == "completed" ? 0 : 3;
+    if (outcome.status != "failed") {  // a run that stopped cleanly: let plugins flush
+      coupler.finalize();
+      soil.finalize();
+      for (auto& [name, extra] : extras) extra->finalize();
+    }
 
     summary["status"] = outcome.status;
     if (!outcome.message.empty()) summary["message"] = outcome.message;
@@ -273,12 +355,17 @@ RunOutcome run_scenario(const nlohmann::json& scenario, const fs::path& scenario
                        {"micro_step", h}};
     summary["wall_time_s"] = {{"total", seconds_since(run_start)},
                               {"statics", statics_seconds},
-                              {track_side.name(), track_side.wall_seconds},
-                              {soil_side.name(), soil_side.wall_seconds}};
+                              {track_side.description(), track_side.wall_seconds},
+                              {soil_side.description(), soil_side.wall_seconds}};
+    for (const auto& side : extra_sides)
+      summary["wall_time_s"][side->name() + " (" + side->description() + ")"] = side->wall_seconds;
     summary["static"] = {{"wheel_loads_N", wheel_loads}, {"iterations", static_iterations}};
     summary["interface"] = {{"max_relative_residual", recorder.max_residual()},
                             {"energy_exchanged_J", recorder.energy_exchanged()}};
     summary["peak_footprint_velocity_m_s"] = recorder.peak_footprint_velocity();
+    summary["coupling"] = {{"discarded_steps", host.discards()},
+                           {"partial_step_reports", partial_reports}};
+    if (probe_recorder) summary["ppv"] = probe_recorder->peaks();
     if (receivers_offered) {
       nlohmann::json ppv = nlohmann::json::array();
       for (std::size_t r = 0; r < distances.size(); ++r)
@@ -287,6 +374,7 @@ RunOutcome run_scenario(const nlohmann::json& scenario, const fs::path& scenario
       summary["ppv"] = ppv;
     }
     summary["files"] = recorder.files();
+    if (probe_recorder) summary["files"].push_back(probe_recorder->file());
     write_summary(outcome.results_dir, summary);
   } catch (const std::exception& e) {
     summary["status"] = "failed";

@@ -145,7 +145,23 @@ constexpr std::string_view kSchema = R"json({
       }
     },
     "soil": {"$ref": "#/definitions/component", "description": "the soil: a soil plugin type and its params"},
-    "coupling": {"$ref": "#/definitions/component", "description": "the coupling scheme: a coupler plugin type and its params"},
+    "coupling": {
+      "type": "object",
+      "additionalProperties": false,
+      "required": ["type"],
+      "description": "the coupling scheme: a coupler plugin type, its params, and the extra participants it drives",
+      "properties": {
+        "type": {"type": "string", "description": "a coupler plugin type"},
+        "params": {"type": "object", "default": {}, "description": "validated against the plugin's schema"},
+        "participants": {
+          "type": "object",
+          "default": {},
+          "description": "extra soil participants the coupler drives besides the track and /soil, by the names the coupler declares (e.g. two_step's reduced_soil)",
+          "patternProperties": {"^[a-z][a-z0-9_]*$": {"$ref": "#/definitions/component"}},
+          "additionalProperties": false
+        }
+      }
+    },
     "outputs": {
       "type": "object",
       "description": "where and what to record: {\"directory\": ...}",
@@ -155,10 +171,27 @@ constexpr std::string_view kSchema = R"json({
         "directory": {"type": "string", "minLength": 1, "description": "results directory, relative to the scenario file"},
         "receivers": {
           "type": "array",
-          "items": {"type": "number", "exclusiveMinimum": 0},
+          "items": {
+            "description": "a distance from the track axis of a surface receiver at mid-track [m], or a named point {name, y, x, depth}",
+            "oneOf": [
+              {"type": "number", "exclusiveMinimum": 0},
+              {
+                "type": "object",
+                "additionalProperties": false,
+                "required": ["name", "y"],
+                "properties": {
+                  "name": {"type": "string", "minLength": 1, "maxLength": 64, "description": "column name in receivers.csv"},
+                  "y": {"type": "number", "description": "distance across the track from its axis [m]"},
+                  "x": {"type": "number", "description": "position along the track [m]; default the middle of the sleepers"},
+                  "depth": {"type": "number", "minimum": 0, "default": 0, "description": "depth below the surface [m]"}
+                }
+              }
+            ]
+          },
           "default": [],
-          "description": "distances from the track axis of surface receivers (soils that offer them) [m]"
+          "description": "receivers whose motion is recorded (soils that offer them)"
         },
+        "receiver_interval": {"type": "number", "minimum": 0, "default": 0, "description": "sampling interval of receivers [s]; 0: every step of the soil"},
         "every": {"type": "integer", "minimum": 1, "default": 1, "description": "record every n-th macro step"},
         "plots": {"type": "boolean", "default": true, "description": "run tools/plot_results.py after the run when python3 and matplotlib exist"}
       }

@@ -8,6 +8,7 @@
 
 #include "core/errors.hpp"
 #include "plugin/registry.hpp"
+#include "scenario/capability_check.hpp"
 #include "scenario/did_you_mean.hpp"
 #include "scenario/json_position.hpp"
 #include "scenario/scenario_schema.hpp"
@@ -125,6 +126,14 @@ struct Component {
   rumble_kind kind;
 };
 
+/// The names the engine schema accepts under /coupling/participants (safe in a JSON pointer).
+bool valid_participant_name(const std::string& name) {
+  return !name.empty() && name[0] >= 'a' && name[0] <= 'z' &&
+         std::all_of(name.begin(), name.end(), [](char ch) {
+           return (ch >= 'a' && ch <= 'z') || (ch >= '0' && ch <= '9') || ch == '_';
+         });
+}
+
 std::vector<Component> components(const json& root) {
   std::vector<Component> list;
   if (const auto v = root.find("vehicles"); v != root.end() && v->is_array()) {
@@ -134,6 +143,14 @@ std::vector<Component> components(const json& root) {
   }
   list.push_back({"/soil", RUMBLE_KIND_SOIL});
   list.push_back({"/coupling", RUMBLE_KIND_COUPLER});
+  const auto c = root.find("coupling");
+  if (c == root.end() || !c->is_object()) return list;
+  const auto extras = c->find("participants");
+  if (extras == c->end() || !extras->is_object()) return list;
+  for (const auto& [name, component] : extras->items()) {
+    if (valid_participant_name(name))
+      list.push_back({"/coupling/participants/" + name, RUMBLE_KIND_SOIL});
+  }
   return list;
 }
 
@@ -297,6 +314,13 @@ std::vector<Diagnostic> validate(Document& doc, const PluginRegistry& registry) 
   if (doc.json.is_object()) {
     for (const Component& c : components(doc.json)) check_component(doc, at, registry, c, out);
     name_vehicles(doc.json);
+  }
+  if (out.empty()) {  // capabilities are matched on a scenario whose shape is right
+    for (Diagnostic& d : check_capabilities(doc.json, registry)) {
+      Diagnostic placed = at.make(d.pointer, d.message, d.hint);
+      placed.severity = d.severity;
+      out.push_back(std::move(placed));
+    }
   }
 
   sort_diagnostics(out);

@@ -20,12 +20,30 @@
  * and grow only by appending (a minor bump); any other change is a major bump. The layout of
  * every struct is checked against a committed table (tests/abi/abi_layout_test.cpp).
  *
+ * GROWTH RULES (what "append-only" means in practice):
+ *   - Every table, descriptor and record that may grow begins with uint32_t struct_size, the
+ *     sizeof its producer compiled. A reader touches a field only when the producer's struct_size
+ *     covers it: RUMBLE_HAS_FIELD(ptr, type, field). Hosts check a plugin's tables against the
+ *     size of the ABI minor the plugin declares, never against the host's own sizeof.
+ *   - rumble_common_api is embedded by value in every kind's table (1.0) and is FROZEN: it never
+ *     grows. Functions common to every kind added from 1.1 on live in rumble_lifecycle_api,
+ *     reached through a pointer appended to each kind's table; that table grows by appending.
+ *   - Optional function pointers may be null; the capabilities a factory declares
+ *     (rumble_capabilities) say which optional features a component offers.
+ *
  * Revisions:
  *   1.0 (2026-11-23) first version: vehicle, soil and coupler kinds.
+ *   1.1 (2026-12-01) appended, no field moved (docs/decisions/0005-abi-1-1.md): declared
+ *       capabilities on factories; rumble_lifecycle_api (finalize, plugin-held checkpoints);
+ *       host services (results directory, thread budget, stop/progress); named participants and
+ *       channel groups, step reports with per-group residuals, DISCARD passed to couplers;
+ *       probes (3-component velocity and displacement at depth, sampled within a step), field
+ *       output, soil wave speeds and linear matrices (CSC); array lengths on every call.
  */
 #ifndef RUMBLE_ABI_H
 #define RUMBLE_ABI_H
 
+#include <stddef.h>
 #include <stdint.h>
 
 #ifdef __cplusplus
@@ -33,18 +51,35 @@ extern "C" {
 #endif
 
 #define RUMBLE_ABI_MAJOR 1
-#define RUMBLE_ABI_MINOR 0
+#define RUMBLE_ABI_MINOR 1
 
 /** Name of the one symbol every plugin library exports (see rumble_plugin_entry_fn). */
 #define RUMBLE_PLUGIN_ENTRY_SYMBOL "rumble_plugin_entry"
+
+/** Nonzero when the struct at PTR (which begins with uint32_t struct_size, as its producer
+ *  compiled it) holds FIELD of TYPE. Use before reading any field added after 1.0. */
+#ifdef __cplusplus
+#define RUMBLE_HAS_FIELD(PTR, TYPE, FIELD) \
+  ((PTR) != nullptr && (PTR)->struct_size >= offsetof(TYPE, FIELD) + sizeof(TYPE::FIELD))
+#else
+#define RUMBLE_HAS_FIELD(PTR, TYPE, FIELD) \
+  ((PTR) != NULL &&                        \
+   (PTR)->struct_size >= offsetof(TYPE, FIELD) + sizeof(((const TYPE*)NULL)->FIELD))
+#endif
+
+/** Number of checkpoint slots (0 .. RUMBLE_CHECKPOINT_SLOTS - 1) per participant. */
+#define RUMBLE_CHECKPOINT_SLOTS 4u
 
 /** Status returned by every call across the waist. */
 typedef enum rumble_status {
   RUMBLE_OK = 0,      /**< done */
   RUMBLE_WARNING = 1, /**< done, result valid, last_message says what is doubtful */
-  RUMBLE_DISCARD = 2, /**< step refused, instance state unchanged (caller may retry) */
-  RUMBLE_ERROR = 3,   /**< this instance is unusable; the run stops cleanly */
-  RUMBLE_FATAL = 4    /**< process state suspect; stop at once */
+  /** Only from a step (advance): the step was refused and the instance state is exactly as
+   *  before the call; the caller may retry with a smaller step. From any other call, or from a
+   *  not-offered optional feature, it is not used (1.1: see rumble_capabilities). */
+  RUMBLE_DISCARD = 2,
+  RUMBLE_ERROR = 3, /**< this instance is unusable; the run stops cleanly */
+  RUMBLE_FATAL = 4  /**< process state suspect; stop at once */
 } rumble_status;
 
 typedef enum rumble_kind {
@@ -69,12 +104,26 @@ typedef struct rumble_host {
   void (*log)(void* host_data, int32_t level, const char* message);
   /** Directory of the scenario file, for resolving relative paths (UTF-8, no trailing slash). */
   const char* scenario_dir;
+  /* ---- 1.1 (check with RUMBLE_HAS_FIELD before use) */
+  /** The run's results directory (UTF-8, exists, no trailing slash); "" when the instance is
+   *  not part of a run (validate, soil-frf, calibrate). Files a plugin writes go here. */
+  const char* results_dir;
+  /** Threads this instance may use inside one call (>= 1). The host divides the machine among
+   *  participants that run at once (a Jacobi step runs two). */
+  uint32_t threads;
+  uint32_t reserved0; /**< 0 */
+  /** Call from inside a long call (every 0.1 s of work or so), from the thread the host called
+   *  on: reports progress of that call (fraction in [0, 1], or < 0 when unknown) and returns
+   *  nonzero when the host asks the instance to stop (Ctrl-C). The plugin then returns
+   *  RUMBLE_ERROR promptly; its state may be left mid-step (the run is over). */
+  int32_t (*progress)(void* host_data, double fraction);
 } rumble_host;
 
 /** Opaque instance handle created by a factory. */
 typedef struct rumble_instance rumble_instance;
 
-/** Functions every kind's table begins with. */
+/** Functions every kind's table begins with. FROZEN at 1.0 (embedded by value); later common
+ *  functions go to rumble_lifecycle_api. */
 typedef struct rumble_common_api {
   void (*destroy)(rumble_instance* self);
   /** Text of the last WARNING/DISCARD/ERROR/FATAL; valid until the next call on self. */
@@ -84,6 +133,58 @@ typedef struct rumble_common_api {
   rumble_status (*save_state)(rumble_instance* self, double* buffer, uint64_t n_doubles);
   rumble_status (*restore_state)(rumble_instance* self, const double* buffer, uint64_t n_doubles);
 } rumble_common_api;
+
+/**
+ * 1.1: functions common to every kind added after 1.0, reached through each kind table's
+ * `lifecycle` pointer (null: none offered). Grows by appending; every pointer may be null.
+ */
+typedef struct rumble_lifecycle_api {
+  uint32_t struct_size;
+  /** Called once after the last step of a run that completed or stopped (not after a crash),
+   *  before destroy: flush and close files, report. */
+  rumble_status (*finalize)(rumble_instance* self);
+  /** Plugin-held checkpoints (capability RUMBLE_CAP_OWN_CHECKPOINTS): the plugin keeps the
+   *  state of slot 0 .. RUMBLE_CHECKPOINT_SLOTS - 1 itself, so a large state is never copied
+   *  across the boundary. restore leaves the slot intact; free releases its memory. */
+  rumble_status (*checkpoint_save)(rumble_instance* self, uint32_t slot);
+  rumble_status (*checkpoint_restore)(rumble_instance* self, uint32_t slot);
+  rumble_status (*checkpoint_free)(rumble_instance* self, uint32_t slot);
+} rumble_lifecycle_api;
+
+/* ------------------------------------------------------------------ capabilities --------- */
+
+/** Capability bits (rumble_capabilities.offers and .needs). */
+#define RUMBLE_CAP_SAVE_RESTORE (UINT64_C(1) << 0)       /**< full state save/restore */
+#define RUMBLE_CAP_OWN_CHECKPOINTS (UINT64_C(1) << 1)    /**< lifecycle checkpoint_* */
+#define RUMBLE_CAP_FREQUENCY_RESPONSE (UINT64_C(1) << 2) /**< soil: receptance H(f) */
+#define RUMBLE_CAP_RECEIVERS (UINT64_C(1) << 3)          /**< soil: probes (1.1) */
+#define RUMBLE_CAP_FIELD_OUTPUT (UINT64_C(1) << 4)       /**< soil: write_fields (VTU) */
+#define RUMBLE_CAP_TANGENT (UINT64_C(1) << 5)            /**< vehicle: analytic tangent */
+#define RUMBLE_CAP_LINEAR_MATRICES (UINT64_C(1) << 6)    /**< soil: linear_matrix (CSC) */
+#define RUMBLE_CAP_THREADS (UINT64_C(1) << 7)            /**< uses rumble_host.threads > 1 */
+#define RUMBLE_CAP_ONCE_PER_PROCESS (UINT64_C(1) << 8)   /**< at most one live instance */
+#define RUMBLE_CAP_WAVE_SPEEDS (UINT64_C(1) << 9)        /**< soil: wave_speeds */
+
+/**
+ * 1.1: what a component type offers and, for a coupler, what it needs, declared on its factory
+ * so that `rumble validate` can match them before any instance exists. A 1.0 factory has none:
+ * the host derives its offers from which optional functions are non-null.
+ */
+typedef struct rumble_capabilities {
+  uint32_t struct_size;
+  uint32_t reserved0; /**< 0 */
+  uint64_t offers;    /**< RUMBLE_CAP_* bits this component offers */
+  /** Coupler: RUMBLE_CAP_* bits every soil participant must offer (e.g. SAVE_RESTORE for an
+   *  iterating scheme, LINEAR_MATRICES for a monolithic one). 0 for other kinds. */
+  uint64_t soil_needs;
+  /** [s] largest macro step this component accepts (0: no limit). A step beyond it is refused
+   *  at validate time; a plugin may still DISCARD a step it cannot take. */
+  double max_macro_step;
+  /** Coupler: JSON text of the extra participants it drives besides "track" and "soil", e.g.
+   *  {"reduced_soil": {"kind": "soil", "required": true, "description": "..."}}, which a
+   *  scenario gives under /coupling/participants/<name> as {type, params}. NULL or "{}": none. */
+  const char* participants_json;
+} rumble_capabilities;
 
 /* ------------------------------------------------------------------ vehicles ------------- */
 
@@ -120,6 +221,24 @@ typedef struct rumble_vehicle_api {
   const char* (*output_names)(rumble_instance* self);
   rumble_status (*outputs)(rumble_instance* self, double t, const double* q, const double* qd,
                            double* values);
+  /* ---- 1.1: the same calls with the length of every array (n_dof = dof_count, checked by the
+   * plugin); a 1.1 host calls these when present and the 1.0 ones otherwise. */
+  const rumble_lifecycle_api* lifecycle; /**< may be null */
+  rumble_status (*mass_matrix2)(rumble_instance* self, const double* q, uint64_t n_dof,
+                                double* mass, uint64_t n_mass);
+  rumble_status (*forces2)(rumble_instance* self, double t, const double* q, const double* qd,
+                           uint64_t n_dof, double* f);
+  /** z: n_wheels values; jacobian: n_wheels x n_dof, column-major. */
+  rumble_status (*wheel_kinematics2)(rumble_instance* self, const double* q, uint64_t n_dof,
+                                     double* z, uint64_t n_wheels, double* jacobian);
+  rumble_status (*tangent2)(rumble_instance* self, double t, const double* q, const double* qd,
+                            uint64_t n_dof, double* stiffness, double* damping);
+  /** Output channel names ("name [unit]"), valid until the next call on self: writes at most
+   *  capacity pointers to names and the channel count to *n (call with capacity 0 first). */
+  rumble_status (*output_names2)(rumble_instance* self, const char** names, uint64_t capacity,
+                                 uint64_t* n);
+  rumble_status (*outputs2)(rumble_instance* self, double t, const double* q, const double* qd,
+                            uint64_t n_dof, double* values, uint64_t n_values);
 } rumble_vehicle_api;
 
 /* ------------------------------------------------------------------ soils ---------------- */
@@ -146,6 +265,34 @@ typedef struct rumble_receiver {
   double x, y; /**< [m] surface point */
 } rumble_receiver;
 
+/** 1.1: a named point of the soil whose motion is recorded (receiver). */
+typedef struct rumble_probe {
+  const char* name; /**< e.g. "r5.0"; unique; valid during set_probes only (copy it) */
+  double x;         /**< [m] along the track */
+  double y;         /**< [m] across the track (0 on the track axis) */
+  double depth;     /**< [m] below the surface, >= 0 (0: on the surface) */
+} rumble_probe;
+
+/** Values per probe and sample in probe_samples, in this order. */
+#define RUMBLE_PROBE_VALUES 6u /**< vx, vy, vz [m/s], ux, uy, uz [m]; z down + (as above) */
+
+/** 1.1: a compressed-sparse-column matrix; indices 0-based, rows sorted within a column. */
+typedef struct rumble_csc {
+  uint64_t rows, cols;
+  uint64_t nnz;       /**< set by the plugin when values is null (size query) */
+  int64_t* col_ptr;   /**< cols + 1 entries, or null for a size query */
+  int64_t* row_index; /**< nnz entries, or null */
+  double* values;     /**< nnz entries, or null */
+} rumble_csc;
+
+/** 1.1: which matrix linear_matrix returns (M x'' + C x' + K x = B F; u = B^T x, v = B^T x'). */
+typedef enum rumble_matrix {
+  RUMBLE_MATRIX_MASS = 0,      /**< M [kg], n_x x n_x */
+  RUMBLE_MATRIX_DAMPING = 1,   /**< C [N s/m] */
+  RUMBLE_MATRIX_STIFFNESS = 2, /**< K [N/m] */
+  RUMBLE_MATRIX_INPUT = 3      /**< B, n_x x n_footprints: footprint forces to DOFs */
+} rumble_matrix;
+
 typedef struct rumble_soil_api {
   uint32_t struct_size;
   rumble_common_api common;
@@ -166,13 +313,75 @@ typedef struct rumble_soil_api {
   /** Optional: surface receivers; velocity() writes the vertical velocity [m/s] of each. */
   rumble_status (*set_receivers)(rumble_instance* self, const rumble_receiver* r, uint64_t n);
   rumble_status (*receiver_velocity)(rumble_instance* self, double* v, uint64_t n);
+  /* ---- 1.1 */
+  const rumble_lifecycle_api* lifecycle; /**< may be null */
+  /** Optional (RUMBLE_CAP_RECEIVERS): record the motion of these points from now on, at every
+   *  internal step (sample_interval 0) or every sample_interval [s] (interpolated). ERROR with a
+   *  message naming the probe when one lies outside the soil. */
+  rumble_status (*set_probes)(rumble_instance* self, const rumble_probe* probes, uint64_t n,
+                              double sample_interval);
+  /** Takes the samples recorded since the last call, oldest first (a restore drops those not
+   *  yet taken: their step is taken again): times [s] (capacity
+   *  entries at most) and values (capacity x n_probes x RUMBLE_PROBE_VALUES); *n_samples is
+   *  the number written, or with capacity 0 the number waiting. */
+  rumble_status (*probe_samples)(rumble_instance* self, double* times, double* values,
+                                 uint64_t capacity, uint64_t* n_samples);
+  /** Optional (RUMBLE_CAP_FIELD_OUTPUT): write the soil's fields at the current time to path
+   *  (a VTK XML unstructured grid, .vtu); the host names the files and writes the .pvd index. */
+  rumble_status (*write_fields)(rumble_instance* self, double t, const char* path);
+  /** Optional (RUMBLE_CAP_WAVE_SPEEDS): the slowest shear and Rayleigh wave speeds [m/s] of
+   *  any layer, for the host's critical-speed check (the host never reads a soil's params). */
+  rumble_status (*wave_speeds)(rumble_instance* self, double* c_s_min, double* c_r_min);
+  /** Optional (RUMBLE_CAP_LINEAR_MATRICES), after accept_layout: one matrix of the soil's linear
+   *  equations (rumble_matrix). With out->values null the plugin sets rows, cols and nnz;
+   *  then the host calls again with arrays of that size. */
+  rumble_status (*linear_matrix)(rumble_instance* self, int32_t which, rumble_csc* out);
 } rumble_soil_api;
 
 /* ------------------------------------------------------------------ couplers ------------- */
 
-/** Participant indices in rumble_cosim_host calls. */
+/** Participant indices in rumble_cosim_host calls: the vehicle/track is always 0 ("track"), the
+ *  scenario's soil always 1 ("soil"); a coupler's extra participants follow (1.1). */
 #define RUMBLE_PARTICIPANT_TRACK 0u
 #define RUMBLE_PARTICIPANT_SOIL 1u
+
+/** 1.1: sides of a participant's interface. */
+#define RUMBLE_SIDE_OUTPUT 0u
+#define RUMBLE_SIDE_INPUT 1u
+
+/**
+ * 1.1: a named group of a participant's interface channels: channels offset .. offset+count-1
+ * of its output vector (or input waveform). A coupler links an output group to the input group
+ * of the same name on another participant. Groups of the vehicle/track and soils:
+ *   "footprint_force" [N]: track output, soil input
+ *   "footprint_displacement" [m], "footprint_velocity" [m/s]: soil output, track input
+ */
+typedef struct rumble_channel_group {
+  const char* name; /**< valid while the host lives */
+  const char* unit; /**< SI, e.g. "N", "m", "m/s" */
+  uint64_t offset;
+  uint64_t count;
+} rumble_channel_group;
+
+/** 1.1: the interface residual of one channel group at the end of a macro step. */
+typedef struct rumble_group_residual {
+  const char* group; /**< channel group name */
+  double absolute;   /**< max |value used - value produced| over the group [group's unit] */
+  double relative;   /**< absolute / the group's scale (see the coupler's documentation) */
+} rumble_group_residual;
+
+/** 1.1: what a coupler reports when a macro step is final. */
+typedef struct rumble_step_report {
+  uint32_t struct_size;
+  uint32_t iterations; /**< 1 for an explicit scheme; passes of an iterating one */
+  double t;            /**< [s] step start */
+  double H;            /**< [s] step length */
+  int32_t converged;   /**< 1: converged (or explicit); 0: accepted at the iteration limit */
+  uint32_t n_residuals;
+  const rumble_group_residual* residuals; /**< n_residuals entries */
+  /** Bit p set: participant p's step [t, t + H] is final (recorded). 0 means every one. */
+  uint64_t participants;
+} rumble_step_report;
 
 /**
  * The host's participant interface given to a coupler. A coupler never calls a vehicle or soil
@@ -198,6 +407,22 @@ typedef struct rumble_cosim_host {
    *  run must stop (Ctrl-C, diverging results); the coupler then returns that status. */
   rumble_status (*step_done)(void* ctx, double t, double H, double interface_residual);
   void (*log)(void* ctx, int32_t level, const char* message);
+  /* ---- 1.1 (advance now returns DISCARD when a participant refused the step, state unchanged;
+   * a 1.0 coupler keeps the 1.0 behaviour: the host turns it into ERROR for it) */
+  uint32_t (*participant_count)(void* ctx);
+  /** "track", "soil", or an extra participant's name; NULL for an unknown index. */
+  const char* (*participant_name)(void* ctx, uint32_t participant);
+  /** Channel groups of a participant's side (RUMBLE_SIDE_*): writes at most capacity and the
+   *  count to *n (call with capacity 0 first). */
+  rumble_status (*channel_groups)(void* ctx, uint32_t participant, uint32_t side,
+                                  rumble_channel_group* out, uint64_t capacity, uint64_t* n);
+  /** Replaces step_done: the step is final for the participants in report->participants. */
+  rumble_status (*step_report)(void* ctx, const rumble_step_report* report);
+  /** Releases a checkpoint slot (its memory, on the host or in the plugin). */
+  rumble_status (*free_checkpoint)(void* ctx, uint32_t participant, uint32_t slot);
+  /** Nonzero when the participant can save and restore (every soil a coupler needing
+   *  RUMBLE_CAP_SAVE_RESTORE drives can: validate checked it). */
+  int32_t (*can_checkpoint)(void* ctx, uint32_t participant);
 } rumble_cosim_host;
 
 typedef struct rumble_coupler_api {
@@ -205,6 +430,8 @@ typedef struct rumble_coupler_api {
   rumble_common_api common;
   rumble_status (*run)(rumble_instance* self, const rumble_cosim_host* host, double t0,
                        double t_end, double H);
+  /* ---- 1.1 */
+  const rumble_lifecycle_api* lifecycle; /**< may be null */
 } rumble_coupler_api;
 
 /* ------------------------------------------------------------------ descriptor ----------- */
@@ -222,6 +449,8 @@ typedef struct rumble_factory {
   /** Creates an instance. On failure *error_message points to static or thread-local text. */
   rumble_create_fn create;
   const void* api; /**< rumble_vehicle_api / rumble_soil_api / rumble_coupler_api by kind */
+  /* ---- 1.1 */
+  const rumble_capabilities* capabilities; /**< may be null (1.0 rules: derived by the host) */
 } rumble_factory;
 
 typedef struct rumble_plugin_descriptor {

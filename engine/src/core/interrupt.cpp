@@ -1,4 +1,4 @@
-#include "run/interrupt.hpp"
+#include "core/interrupt.hpp"
 
 #include <atomic>
 #include <csignal>

@@ -1,0 +1,74 @@
+#include "run/probe_recorder.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "plugin/instance.hpp"
+
+namespace rumble {
+
+std::vector<ReceiverPoint> receiver_points(const nlohmann::json& outputs, double x_mid) {
+  std::vector<ReceiverPoint> points;
+  const auto list = outputs.find("receivers");
+  if (list == outputs.end()) return points;
+  for (const nlohmann::json& r : *list) {
+    ReceiverPoint p;
+    if (r.is_number()) {
+      p.y = r.get<double>();
+      p.x = x_mid;
+      char name[48];
+      std::snprintf(name, sizeof name, "d=%g m", p.y);
+      p.name = name;
+    } else {
+      p.name = r.at("name").get<std::string>();
+      p.y = r.at("y").get<double>();
+      p.x = r.value("x", x_mid);
+      p.depth = r.value("depth", 0.0);
+    }
+    points.push_back(std::move(p));
+  }
+  return points;
+}
+
+ProbeRecorder::ProbeRecorder(const std::filesystem::path& directory, SoilInstance& soil,
+                             const std::vector<ReceiverPoint>& points)
+    : soil_(soil), points_(points), ppv_z_(points.size(), 0.0), ppv_3c_(points.size(), 0.0) {
+  std::vector<std::string> cols{"t [s]"};
+  for (const ReceiverPoint& p : points_) {
+    for (const char* c : {"vx [m/s]", "vy [m/s]", "vz [m/s]", "ux [m]", "uy [m]", "uz [m]"})
+      cols.push_back(p.name + " " + c);
+  }
+  csv_ = std::make_unique<CsvFile>(directory / "receivers.csv", cols);
+}
+
+void ProbeRecorder::take() {
+  times_.clear();
+  values_.clear();
+  soil_.take_probe_samples(times_, values_);
+  const std::size_t width = points_.size() * RUMBLE_PROBE_VALUES;
+  for (std::size_t s = 0; s < times_.size(); ++s) {
+    const double* row = values_.data() + s * width;
+    for (std::size_t p = 0; p < points_.size(); ++p) {
+      const double* v = row + p * RUMBLE_PROBE_VALUES;  // vx vy vz ux uy uz
+      ppv_z_[p] = std::max(ppv_z_[p], std::abs(v[2]));
+      ppv_3c_[p] = std::max(ppv_3c_[p], std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]));
+    }
+    csv_->row(times_[s], row, width);
+  }
+}
+
+nlohmann::json ProbeRecorder::peaks() const {
+  nlohmann::json out = nlohmann::json::array();
+  for (std::size_t p = 0; p < points_.size(); ++p) {
+    out.push_back({{"name", points_[p].name},
+                   {"x_m", points_[p].x},
+                   {"distance_m", points_[p].y},
+                   {"depth_m", points_[p].depth},
+                   {"ppv_m_s", ppv_z_[p]},
+                   {"ppv_3c_m_s", ppv_3c_[p]}});
+  }
+  return out;
+}
+
+}  // namespace rumble

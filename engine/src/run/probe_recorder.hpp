@@ -1,0 +1,49 @@
+// Receivers of an ABI 1.1 soil (probes): named points, possibly at depth, whose three velocity
+// and displacement components the soil samples inside its steps. The engine takes the samples
+// after every final macro step and writes them to receivers.csv, one row per sample:
+//   t [s], then per probe: vx vy vz [m/s], ux uy uz [m]   (z down +, abi.h)
+// and keeps the peaks: vertical PPV max|vz| and three-component PPV max|v|.
+#pragma once
+
+#include <rumble/abi.h>
+
+#include <filesystem>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "run/csv_file.hpp"
+
+namespace rumble {
+
+class SoilInstance;
+
+/// A receiver as the scenario gives it (/outputs/receivers): a distance, or a named point.
+struct ReceiverPoint {
+  std::string name;
+  double x = 0.0, y = 0.0, depth = 0.0;  // [m]
+};
+
+/// /outputs/receivers resolved: numbers are surface points at x_mid [m], named "d=<y> m".
+std::vector<ReceiverPoint> receiver_points(const nlohmann::json& outputs, double x_mid);
+
+class ProbeRecorder {
+ public:
+  ProbeRecorder(const std::filesystem::path& directory, SoilInstance& soil,
+                const std::vector<ReceiverPoint>& points);
+  /// Writes the samples the soil recorded since the last call.
+  void take();
+  /// [{name, x_m, y_m, depth_m, ppv_m_s (vertical), ppv_3c_m_s}]
+  nlohmann::json peaks() const;
+  std::string file() const { return csv_->path().filename().string(); }
+
+ private:
+  SoilInstance& soil_;
+  std::vector<ReceiverPoint> points_;
+  std::unique_ptr<CsvFile> csv_;
+  std::vector<double> times_, values_;
+  std::vector<double> ppv_z_, ppv_3c_;
+};
+
+}  // namespace rumble

@@ -1,0 +1,25 @@
+// Matches what the scenario's components need against what they declare they offer (ABI 1.1
+// capabilities), before anything runs: a coupler's soil_needs against /soil and its extra
+// participants, the extra participants a coupler declares against /coupling/participants,
+// each component's largest macro step against /time/macro_step, once-per-process types used
+// twice, receivers asked of a soil that offers none. Each finding names its JSON pointer; the
+// caller places it in the text.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <vector>
+
+#include "scenario/diagnostic.hpp"
+
+namespace rumble {
+class PluginRegistry;
+}
+
+namespace rumble::scenario {
+
+/// scenario: schema-checked, defaults filled. Components of unknown type are skipped (validate
+/// has reported them).
+std::vector<Diagnostic> check_capabilities(const nlohmann::json& scenario,
+                                           const PluginRegistry& registry);
+
+}  // namespace rumble::scenario

@@ -1,0 +1,207 @@
+// ABI 1.1 test fixtures (not shipped):
+//   picky_soil      c u' + k u = F per footprint (backward Euler, sub-steps of at most
+//                   `sub_step`), that refuses (DISCARD, state unchanged) any step longer than
+//                   `max_step`; records probes (the nearest footprint's u and v as uz and vz at
+//                   every sub-step); stalls from `stall_at` [s] until the host asks it to stop;
+//                   finalize() writes finalized.json (advances, refusals, threads) to the
+//                   results directory.
+//   forgetful_soil  the same spring-dashpot with no save/restore, once per process, no probes.
+//   needy_coupler   needs save/restore of every soil, a participant "reduced_soil", and macro
+//                   steps of at most 1 ms (declared only: validate refuses before it runs).
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <rumble/params.hpp>
+#include <rumble/plugin.hpp>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace {
+
+/// c u' + k u = F per footprint, backward Euler in sub-steps.
+class SpringDashpot {
+ public:
+  void configure(const rumble::Params& p) {
+    k_ = p.get<double>("k");
+    c_ = p.get<double>("c");
+    sub_step_ = p.get<double>("sub_step");
+  }
+  void resize(std::size_t n) {
+    u_.assign(n, 0.0);
+    v_.assign(n, 0.0);
+  }
+  void statics(const double* force, double* u) {
+    for (std::size_t i = 0; i < u_.size(); ++i) u[i] = u_[i] = force[i] / k_;
+  }
+  /// Integrates over [t, t + H]; after each sub-step calls observe(t_now).
+  template <class Observe>
+  void step(double t, double H, const rumble::Waveform& force, Observe&& observe) {
+    const int n_sub = std::max(1, static_cast<int>(std::ceil(H / sub_step_ - 1e-9)));
+    const double h = H / n_sub;
+    for (int s = 1; s <= n_sub; ++s) {
+      for (std::size_t i = 0; i < u_.size(); ++i) {
+        const double f = force.at(i, static_cast<double>(s) / n_sub);
+        const double u = (c_ * u_[i] + h * f) / (c_ + h * k_);
+        v_[i] = (u - u_[i]) / h;
+        u_[i] = u;
+      }
+      observe(t + s * h);
+    }
+  }
+  std::vector<double> u_, v_;  // m, m/s
+
+ private:
+  double k_ = 0.0, c_ = 0.0, sub_step_ = 0.0;  // N/m, N s/m, s
+};
+
+constexpr const char* kSpringSchema = R"(
+    "k": {"type": "number", "exclusiveMinimum": 0, "default": 1.0e8},
+    "c": {"type": "number", "exclusiveMinimum": 0, "default": 2.0e5},
+    "sub_step": {"type": "number", "exclusiveMinimum": 0, "default": 1.25e-4})";
+
+class PickySoil final : public rumble::Soil {
+ public:
+  static constexpr const char* kTypeName = "picky_soil";
+  static constexpr const char* kSummary = "test fixture: refuses long steps, records probes";
+  static const char* params_schema() {
+    static const std::string s = std::string(R"({"type": "object", "additionalProperties": false,
+  "properties": {)") + kSpringSchema +
+                                 R"(,
+    "max_step": {"type": "number", "exclusiveMinimum": 0, "default": 1.0},
+    "stall_at": {"type": "number", "default": 1.0e30}}})";
+    return s.c_str();
+  }
+  PickySoil(const std::string& params, const rumble::Host& host) : host_(host) {
+    const rumble::Params p(params);
+    spring_.configure(p);
+    max_step_ = p.get<double>("max_step");
+    stall_at_ = p.get<double>("stall_at");
+  }
+  void accept_layout(const std::vector<rumble::Footprint>& f) override {
+    footprints_ = f;
+    spring_.resize(f.size());
+  }
+  void initialize(double, const double* force, double* u) override { spring_.statics(force, u); }
+  void advance(double t, double H, const rumble::Waveform& force) override {
+    if (H > max_step_ * (1.0 + 1e-12)) {
+      ++refusals_;
+      throw rumble::Discard("picky_soil takes steps of at most " + std::to_string(max_step_) +
+                            " s, asked " + std::to_string(H));
+    }
+    if (t >= stall_at_) stall();
+    ++advances_;
+    spring_.step(t, H, force, [&](double now) { record(now); });
+  }
+  void motion(double* u, double* v) const override {
+    for (std::size_t i = 0; i < spring_.u_.size(); ++i) {
+      u[i] = spring_.u_[i];
+      v[i] = spring_.v_[i];
+    }
+  }
+  std::size_t state_size() const override { return 2 * spring_.u_.size(); }
+  void save_state(double* b) const override {
+    const std::size_t n = spring_.u_.size();
+    std::copy(spring_.u_.begin(), spring_.u_.end(), b);
+    std::copy(spring_.v_.begin(), spring_.v_.end(), b + n);
+  }
+  void restore_state(const double* b) override {
+    const std::size_t n = spring_.u_.size();
+    std::copy(b, b + n, spring_.u_.begin());
+    std::copy(b + n, b + 2 * n, spring_.v_.begin());
+  }
+  void set_probes(const std::vector<rumble::Probe>& probes, double) override {
+    nearest_.clear();
+    for (const rumble::Probe& p : probes) {
+      std::size_t best = 0;
+      for (std::size_t i = 1; i < footprints_.size(); ++i)
+        if (std::abs(footprints_[i].x - p.x) < std::abs(footprints_[best].x - p.x)) best = i;
+      nearest_.push_back(best);
+    }
+    row_.assign(probes.size() * RUMBLE_PROBE_VALUES, 0.0);
+  }
+  void finalize() override {
+    std::ofstream out(host_.results_dir() + "/finalized.json");
+    out << "{\"advances\": " << advances_ << ", \"refusals\": " << refusals_
+        << ", \"threads\": " << host_.threads() << "}\n";
+  }
+
+ private:
+  void record(double t) {
+    if (nearest_.empty()) return;
+    for (std::size_t p = 0; p < nearest_.size(); ++p) {
+      row_[p * RUMBLE_PROBE_VALUES + 2] = spring_.v_[nearest_[p]];
+      row_[p * RUMBLE_PROBE_VALUES + 5] = spring_.u_[nearest_[p]];
+    }
+    samples().push(t, row_.data());
+  }
+  /// A long advance, as a big FEM soil's: works in 10 ms slices and honours a stop request.
+  void stall() {
+    const auto start = std::chrono::steady_clock::now();
+    while (std::chrono::steady_clock::now() - start < std::chrono::seconds(60)) {
+      host_.check_stop(-1.0);
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    throw std::runtime_error("picky_soil stalled 60 s and no stop request came");
+  }
+
+  rumble::Host host_;
+  SpringDashpot spring_;
+  std::vector<rumble::Footprint> footprints_;
+  std::vector<std::size_t> nearest_;  // footprint of each probe
+  std::vector<double> row_;
+  double max_step_ = 0.0, stall_at_ = 0.0;  // s
+  long advances_ = 0, refusals_ = 0;
+};
+
+class ForgetfulSoil final : public rumble::Soil {
+ public:
+  static constexpr const char* kTypeName = "forgetful_soil";
+  static constexpr const char* kSummary = "test fixture: no save/restore, once per process";
+  static constexpr std::uint64_t kCapabilities = rumble::kCapOncePerProcess;
+  static const char* params_schema() {
+    static const std::string s = std::string(R"({"type": "object", "additionalProperties": false,
+  "properties": {)") + kSpringSchema +
+                                 "}}";
+    return s.c_str();
+  }
+  ForgetfulSoil(const std::string& params, const rumble::Host&) {
+    spring_.configure(rumble::Params(params));
+  }
+  void accept_layout(const std::vector<rumble::Footprint>& f) override { spring_.resize(f.size()); }
+  void initialize(double, const double* force, double* u) override { spring_.statics(force, u); }
+  void advance(double t, double H, const rumble::Waveform& force) override {
+    spring_.step(t, H, force, [](double) {});
+  }
+  void motion(double* u, double* v) const override {
+    for (std::size_t i = 0; i < spring_.u_.size(); ++i) {
+      u[i] = spring_.u_[i];
+      v[i] = spring_.v_[i];
+    }
+  }
+
+ private:
+  SpringDashpot spring_;
+};
+
+class NeedyCoupler final : public rumble::Coupler {
+ public:
+  static constexpr const char* kTypeName = "needy_coupler";
+  static constexpr const char* kSummary = "test fixture: declares needs, never runs";
+  static constexpr std::uint64_t kSoilNeeds = rumble::kCapSaveRestore;
+  static constexpr double kMaxMacroStep = 1e-3;  // s
+  static const char* participants_json() {
+    return R"({"reduced_soil": {"kind": "soil", "required": true,
+               "description": "the soil of the first pass"}})";
+  }
+  static const char* params_schema() { return R"({"type": "object"})"; }
+  NeedyCoupler(const std::string&, const rumble::Host&) {}
+  void run(const rumble::CosimHost&, double, double, double) override {
+    throw std::logic_error("needy_coupler is a validate-only fixture");
+  }
+};
+
+}  // namespace
+
+RUMBLE_PLUGIN("boundary_fixtures", "1.1.0", PickySoil, ForgetfulSoil, NeedyCoupler)

@@ -1,0 +1,86 @@
+// DISCARD means one thing: the participant refused the step and its state is unchanged; the host
+// passes it to an ABI 1.1 coupler, which takes the step again as halves. picky_soil refuses any
+// step longer than max_step, so a run at H = 1 ms on a soil that takes at most 0.25 ms must be
+// exactly the run at H = 0.25 ms: the same accepted steps in the same order, the same numbers.
+// Per macro step the soil refuses H once and H/2 twice: 3 refusals. Times are binary fractions
+// (H = 1/1024 s), so that the halves' start times are exact and "the same" can mean the same bytes.
+#include <gtest/gtest.h>
+
+#include "boundary_support.hpp"
+
+namespace rumble::testing {
+namespace {
+
+constexpr double kMacro = 1.0 / 1024;    // s
+constexpr double kQuarter = kMacro / 4;  // s
+constexpr std::size_t kMacroSteps = 50;
+
+nlohmann::json picky(double max_step) {
+  return {{"type", "picky_soil"}, {"params", {{"max_step", max_step}}}};
+}
+
+void expect_same_as_small_steps(const nlohmann::json& coupling, const std::string& name,
+                                std::size_t macro_steps = kMacroSteps) {
+  nlohmann::json refused = fixture_scenario(picky(kQuarter), coupling);
+  refused["time"] = {{"end", macro_steps * kMacro}, {"macro_step", kMacro}};
+  nlohmann::json reference = fixture_scenario(picky(1.0), coupling);
+  reference["time"] = {{"end", macro_steps * kMacro}, {"macro_step", kQuarter}};
+  CliResult a, b;
+  const auto dir_a = run_in(name + "_refused", refused, a);
+  const auto dir_b = run_in(name + "_reference", reference, b);
+  ASSERT_EQ(a.exit_code, 0) << a.output;
+  ASSERT_EQ(b.exit_code, 0) << b.output;
+  for (const char* file : {"contact.csv", "vehicles.csv", "footprint_force.csv",
+                           "footprint_displacement.csv", "footprint_velocity.csv", "interface.csv"})
+    EXPECT_TRUE(same_bytes(dir_a / file, dir_b / file)) << file << " differs";
+  const auto summary = read_json(dir_a / "summary.json");
+  EXPECT_EQ(summary["coupling"]["discarded_steps"], 3 * macro_steps);
+  EXPECT_EQ(summary["time"]["macro_steps"], 4 * macro_steps);  // accepted steps, as reported
+  const auto plugin_side = nlohmann::json::parse(file_text(dir_a / "finalized.json"));
+  EXPECT_EQ(plugin_side["refusals"], 3 * macro_steps);
+  EXPECT_EQ(plugin_side["advances"], 4 * macro_steps);
+}
+
+TEST(DiscardRetry, GaussSeidelHalvesARefusedStep) {
+  expect_same_as_small_steps({{"type", "gauss_seidel"}}, "discard_gauss_seidel");
+}
+
+TEST(DiscardRetry, GaussSeidelHalvesWithLinearExtrapolationToo) {
+  // Extrapolation uses the recorded step times, so variable steps give the small-step run. On
+  // this massless soil linear extrapolation diverges after about 0.02 s (decision 0004): the
+  // comparison stops before.
+  expect_same_as_small_steps({{"type", "gauss_seidel"}, {"params", {{"extrapolation", 1}}}},
+                             "discard_gauss_seidel_linear", 16);
+}
+
+TEST(DiscardRetry, JacobiRestoresTheTrackAndHalves) {
+  expect_same_as_small_steps({{"type", "jacobi"}}, "discard_jacobi");
+}
+
+TEST(DiscardRetry, NoHalvingsAllowedStopsWithTheReason) {
+  CliResult r;
+  const auto dir =
+      run_in("discard_no_halvings",
+             fixture_scenario(picky(kQuarter),
+                              {{"type", "gauss_seidel"}, {"params", {{"max_step_halvings", 0}}}}),
+             r);
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_NE(r.output.find("participant 'soil' refused the step starting at t = 0.000000 s"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("max_step_halvings (0) reached"), std::string::npos) << r.output;
+  EXPECT_EQ(read_json(dir / "summary.json")["status"], "failed");
+}
+
+TEST(DiscardRetry, AnAbi10CouplerStillSeesARefusalAsAnError) {
+  // 1.0 promised that a refused step stops the run; a 1.0 coupler never learns of DISCARD.
+  CliResult r;
+  const auto dir = run_in("discard_abi_1_0",
+                          fixture_scenario(picky(kQuarter), {{"type", "fixture_coupler_1_0"}}), r);
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_NE(r.output.find("advance refused: picky_soil takes steps of at most"), std::string::npos)
+      << r.output;
+}
+
+}  // namespace
+}  // namespace rumble::testing

@@ -1,0 +1,48 @@
+// Ctrl-C reaches a plugin inside a long advance: the host's progress callback (ABI 1.1) reports
+// the stop request, the plugin returns, and the run ends "interrupted" with what it recorded so
+// far, instead of waiting for a soil that may run for minutes. picky_soil stalls in its first step
+// starting after 0.0095 s (t = 0.01 s), for 60 s at most, in 10 ms slices, asking the host each
+// time.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <thread>
+
+#include "boundary_support.hpp"
+#include "cli/scenario_prepare.hpp"
+#include "core/interrupt.hpp"
+#include "run/run_scenario.hpp"
+
+namespace rumble::testing {
+namespace {
+
+TEST(Stop, RequestReachesAPluginInsideALongAdvance) {
+  nlohmann::json s = fixture_scenario({{"type", "picky_soil"}, {"params", {{"stall_at", 0.0095}}}},
+                                      {{"type", "gauss_seidel"}});
+  const auto dir = scratch_directory("stop_inside_advance");
+  const auto path = write_scenario(dir, s);
+  PluginRegistry registry;
+  auto doc = cli::prepare_scenario(path, registry, scenario::Format::kText);
+  ASSERT_TRUE(doc.has_value());
+  clear_interrupt();
+  const auto start = std::chrono::steady_clock::now();
+  std::thread ctrl_c([] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(500));
+    request_interrupt();
+  });
+  const RunOutcome outcome = run_scenario(doc->json, path, registry, RunOptions{});
+  ctrl_c.join();
+  clear_interrupt();
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_EQ(outcome.status, "interrupted") << outcome.message;
+  EXPECT_EQ(outcome.exit_code, 3);
+  EXPECT_LT(seconds, 30.0);  // the stall lasts 60 s unless the stop reached it
+  EXPECT_NE(outcome.message.find("inside the step after t = 0.01"), std::string::npos)
+      << outcome.message;
+  EXPECT_EQ(read_json(outcome.results_dir / "summary.json")["status"], "interrupted");
+  EXPECT_EQ(csv_rows(outcome.results_dir / "contact.csv"), 11u);  // t = 0 .. 0.01 s
+}
+
+}  // namespace
+}  // namespace rumble::testing
