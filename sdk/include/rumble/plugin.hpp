@@ -408,13 +408,13 @@ namespace detail {
 struct Box {
   std::unique_ptr<Component> object;
   std::string message;
-  std::size_t n_footprints = 0;        // soil: the accepted layout's size
+  std::size_t n_footprints = 0;         // soil: the accepted layout's size
   std::size_t n_dof = 0, n_wheels = 0;  // vehicle: read once at creation (fixed for life)
   std::size_t n_outputs = 0;            // vehicle: output channels
-  std::vector<std::string> names;      // vehicle: output names (ABI 1.1 output_names2)
-  std::vector<const char*> name_ptrs;  // ... and the pointers handed out
-  CscMatrix matrix;                    // soil: linear_matrix between size query and fill
-  std::int32_t matrix_which = -1;      // which matrix `matrix` holds
+  std::vector<std::string> names;       // vehicle: output names (ABI 1.1 output_names2)
+  std::vector<const char*> name_ptrs;   // ... and the pointers handed out
+  CscMatrix matrix;                     // soil: linear_matrix between size query and fill
+  std::int32_t matrix_which = -1;       // which matrix `matrix` holds
 };
 
 inline Box* box(rumble_instance* self) {
