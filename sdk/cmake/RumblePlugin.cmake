@@ -1,12 +1,19 @@
 # rumble_add_plugin(<name> SOURCES <files...>)
 #
 # Builds a Rumble plugin: a MODULE library named <name>.so with hidden visibility, linked only
-# to Rumble::sdk, so that the one entry point exported by RUMBLE_PLUGIN() is all it shows.
+# to Rumble::sdk, so that the one entry point exported by RUMBLE_PLUGIN() is all it shows (link
+# Rumble::params too with target_link_libraries() to use rumble/params.hpp).
 # Output goes to RUMBLE_PLUGIN_OUTPUT_DIR when set (the engine's build tree does), otherwise to
 # the caller's binary directory. Point RUMBLE_PLUGIN_PATH at that directory to use it.
 # `cmake --install` puts it in <prefix>/lib/rumble/plugins (or RUMBLE_PLUGIN_INSTALL_DIR when
 # set): installed into the prefix the engine was installed in, `rumble` finds it unaided. Always
 # lib/, never lib64: that is where the engine looks, next to its bin/.
+#
+# Built without a build type (a single-config generator and no CMAKE_BUILD_TYPE, which is what
+# a plain `cmake -S . -B build` gives), CMake would compile with no optimisation at all: a plugin
+# then runs many times slower inside every co-simulation step with nothing to tell why. So the
+# plugin gets -O2 in that case only; an explicit build type or an -O flag of the user's in
+# CMAKE_CXX_FLAGS is left alone.
 
 function(rumble_add_plugin name)
   cmake_parse_arguments(ARG "" "" "SOURCES" ${ARGN})
@@ -20,6 +27,10 @@ function(rumble_add_plugin name)
     CXX_VISIBILITY_PRESET hidden
     VISIBILITY_INLINES_HIDDEN ON
     POSITION_INDEPENDENT_CODE ON)
+  get_property(multi_config GLOBAL PROPERTY GENERATOR_IS_MULTI_CONFIG)
+  if(NOT multi_config AND NOT CMAKE_BUILD_TYPE AND NOT CMAKE_CXX_FLAGS MATCHES "(^| )-O")
+    target_compile_options(${name} PRIVATE -O2)
+  endif()
   if(RUMBLE_PLUGIN_OUTPUT_DIR)
     set_target_properties(${name} PROPERTIES LIBRARY_OUTPUT_DIRECTORY ${RUMBLE_PLUGIN_OUTPUT_DIR})
   endif()

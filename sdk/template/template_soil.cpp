@@ -47,8 +47,7 @@ std::array<double, 3> psi(double x) {
 class TemplateSoil final : public rumble::Soil {
  public:
   static constexpr const char* kTypeName = "template_soil";
-  static constexpr const char* kSummary =
-      "one spring-dashpot per footprint, integrated exactly (SDK template)";
+  static constexpr const char* kSummary = "one spring-dashpot per footprint, integrated exactly";
   static const char* params_schema() {
     return R"({
   "type": "object",
@@ -68,10 +67,13 @@ class TemplateSoil final : public rumble::Soil {
     const rumble::Params p(params_json);
     stiffness_ = p.get<double>("stiffness");
     damping_ = p.get<double>("damping");
-    if (!(stiffness_ > 0.0) || !(damping_ > 0.0)) {
-      throw std::invalid_argument("params: stiffness and damping must be > 0 (got " +
-                                  std::to_string(stiffness_) + " N/m, " + std::to_string(damping_) +
-                                  " N s/m)");
+    if (!(stiffness_ > 0.0)) {
+      throw std::invalid_argument("params/stiffness: " + std::to_string(stiffness_) +
+                                  " N/m; must be > 0 (a spring holds the static load)");
+    }
+    if (!(damping_ > 0.0)) {
+      throw std::invalid_argument("params/damping: " + std::to_string(damping_) +
+                                  " N s/m; must be > 0 (the model is first order in time)");
     }
   }
 

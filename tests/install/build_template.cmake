@@ -18,6 +18,7 @@ function(step name)
     message(FATAL_ERROR "${name} failed (${rc}):\n${ARGN}\n${out}")
   endif()
   message(STATUS "${name}: ok")
+  set(step_output "${out}" PARENT_SCOPE)
 endfunction()
 
 set(prefix ${WORK_DIR}/prefix)
@@ -55,6 +56,13 @@ endif()
 step("build the template" ${CMAKE_COMMAND} --build ${build})
 if(NOT EXISTS ${build}/template_soil.so)
   message(FATAL_ERROR "the template build produced no ${build}/template_soil.so")
+endif()
+
+# The template's own test (enable_testing() + add_test in its CMakeLists.txt): a third party runs
+# `ctest` after building, and it must find and pass the closed-form checks.
+step("the template's ctest" ${CMAKE_CTEST_COMMAND} --test-dir ${build} --output-on-failure)
+if(NOT step_output MATCHES "100% tests passed, 0 tests failed out of [1-9]")
+  message(FATAL_ERROR "the template's ctest ran no test:\n${step_output}")
 endif()
 
 # `cmake --install` of the plugin into the engine's prefix puts it in lib/rumble/plugins, the

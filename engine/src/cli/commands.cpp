@@ -26,6 +26,8 @@ commands:
   schema TYPE [--json]              the parameters of a type: units, defaults, ranges
   soil-frf FILE [options]           receptance of the scenario's soil at its footprints (CSV)
   calibrate FILE [options]          fit a reduced soil's parameters to a target soil's receptance
+  new-plugin KIND NAME [DIR]        start a plugin project (KIND soil, vehicle or coupler) in DIR
+                                    (default ./NAME) from the SDK's template, with its own test
 
 options:
   --log-level LEVEL   trace, debug, info (default), warn, error, off
@@ -40,10 +42,13 @@ exit codes: 0 ok, 1 configuration or usage error, 2 plugin load error, 3 run fai
 using Command = int (*)(const std::vector<std::string>&);
 
 std::map<std::string, Command>& command_table() {
-  static std::map<std::string, Command> table{
-      {"run", &run_command},           {"validate", &validate_command},
-      {"plugins", &plugins_command},   {"schema", &schema_command},
-      {"soil-frf", &soil_frf_command}, {"calibrate", &calibrate_command}};
+  static std::map<std::string, Command> table{{"run", &run_command},
+                                              {"validate", &validate_command},
+                                              {"plugins", &plugins_command},
+                                              {"schema", &schema_command},
+                                              {"soil-frf", &soil_frf_command},
+                                              {"calibrate", &calibrate_command},
+                                              {"new-plugin", &new_plugin_command}};
   return table;
 }
 

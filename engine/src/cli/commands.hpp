@@ -15,5 +15,6 @@ int plugins_command(const std::vector<std::string>& args);
 int schema_command(const std::vector<std::string>& args);
 int soil_frf_command(const std::vector<std::string>& args);
 int calibrate_command(const std::vector<std::string>& args);
+int new_plugin_command(const std::vector<std::string>& args);
 
 }  // namespace rumble::cli

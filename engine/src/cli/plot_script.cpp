@@ -3,33 +3,27 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <boost/dll/runtime_symbol_info.hpp>
-
+#include "cli/share_dir.hpp"
 #include "core/logging.hpp"
 
 namespace rumble::cli {
-namespace {
 
 namespace fs = std::filesystem;
 
-fs::path find_script(const std::string& script) {
-  // Installed next to the executable (share/rumble), or the source tree's tools/.
-  const fs::path exe_dir = boost::dll::program_location().parent_path();
-  for (const fs::path& candidate : {exe_dir.parent_path() / "share" / "rumble" / script,
-                                    fs::path(RUMBLE_SOURCE_DIR) / "tools" / script}) {
-    if (fs::exists(candidate)) return candidate;
-  }
-  return {};
-}
-
-}  // namespace
-
 bool run_plot_script(const std::string& script, const fs::path& directory) {
   const auto log = logger("engine");
-  const fs::path path = find_script(script);
+  // Installed with the engine, and copied into the build tree's share/rumble by the build.
+  const fs::path path = share_directory() / script;
+  if (!fs::exists(path)) {
+    log->warn(
+        "plots skipped: {} not found (the plot scripts belong in share/rumble next to the bin/ "
+        "holding rumble); reinstall Rumble with cmake --install, or rebuild it",
+        path.string());
+    return false;
+  }
   const char* python = "/usr/bin/python3";
-  if (path.empty() || access(python, X_OK) != 0) {
-    log->warn("plots skipped: {} or {} not found (install python3-matplotlib)", script, python);
+  if (access(python, X_OK) != 0) {
+    log->warn("plots skipped: {} not found; install python3 and python3-matplotlib", python);
     return false;
   }
   const pid_t pid = fork();

@@ -1,5 +1,6 @@
-// Runs one of the project's plotting scripts (tools/*.py, system python3 + matplotlib) on a
-// results directory. Plots are a convenience: a missing interpreter or library is a warning.
+// Runs one of the project's plotting scripts (tools/*.py, copied to share/rumble by the build and
+// the install; system python3 + matplotlib) on a results directory. Plots are a convenience: a
+// missing interpreter or library is a warning.
 #pragma once
 
 #include <filesystem>

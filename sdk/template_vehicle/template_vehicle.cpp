@@ -1,0 +1,88 @@
+// template_vehicle: the copy-me example of a Rumble vehicle plugin (see README.md next to this
+// file). Start your own with `rumble new-plugin vehicle <name>`.
+//
+// Model: one rigid mass m on one wheel, carrying a static preload P besides its own weight (the
+// part of the vehicle above the wheel, as a constant force). One DOF: the vertical displacement
+// q of the mass [m], down +, which is also the wheel's contact point: z = q, J = dz/dq = 1.
+//   m q'' = m g + P - F        (F >= 0 the contact force, pushing the wheel up)
+// The engine integrates it with the track; the plugin only states M, f, z, J and the tangent.
+// At rest the wheel carries F = m g + P.
+#include <rumble/params.hpp>
+#include <rumble/plugin.hpp>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace {
+
+constexpr double kGravity = 9.81;  // m/s^2, acting in +z (down)
+
+class TemplateVehicle final : public rumble::Vehicle {
+ public:
+  static constexpr const char* kTypeName = "template_vehicle";
+  static constexpr const char* kSummary = "one mass on one wheel with a static preload, 1 DOF";
+  static const char* params_schema() {
+    return R"({
+  "type": "object",
+  "additionalProperties": false,
+  "properties": {
+    "mass": {"type": "number", "exclusiveMinimum": 0, "default": 1000.0,
+             "description": "mass on the wheel [kg]"},
+    "preload": {"type": "number", "minimum": 0, "default": 0.0,
+                "description": "static load on the wheel besides the mass's own weight [N]"},
+    "wheel_radius": {"type": "number", "exclusiveMinimum": 0, "default": 0.46,
+                     "description": "rolling radius [m]"}
+  }
+})";
+  }
+
+  // The host has validated params against the schema and filled the defaults; the checks here
+  // guard direct use (tests) and say what, the value and the fix.
+  TemplateVehicle(const std::string& params_json, const rumble::Host& /*host*/) {
+    const rumble::Params p(params_json);
+    mass_ = p.get_or<double>("mass", 1000.0);
+    preload_ = p.get_or<double>("preload", 0.0);
+    radius_ = p.get_or<double>("wheel_radius", 0.46);
+    if (!(mass_ > 0.0)) {
+      throw std::invalid_argument("params/mass: " + std::to_string(mass_) +
+                                  " kg; must be > 0 (the wheel needs inertia)");
+    }
+    if (!(preload_ >= 0.0)) {
+      throw std::invalid_argument("params/preload: " + std::to_string(preload_) +
+                                  " N; must be >= 0 (a load pulling the wheel up lifts it)");
+    }
+  }
+
+  std::size_t dof_count() const override { return 1; }
+  std::vector<rumble::Wheel> wheels() const override { return {rumble::Wheel{0.0, radius_}}; }
+
+  void mass_matrix(const double* /*q*/, double* mass) override { mass[0] = mass_; }
+
+  // Gravity and the preload: constant, so the tangent below is zero.
+  void forces(double /*t*/, const double* /*q*/, const double* /*qd*/, double* f) override {
+    f[0] = mass_ * kGravity + preload_;
+  }
+
+  void wheel_kinematics(const double* q, double* z, double* jacobian) override {
+    z[0] = q[0];
+    jacobian[0] = 1.0;
+  }
+
+  // K = -df/dq, C = -df/dq': both zero. Given analytically, it spares the engine finite
+  // differences of forces().
+  bool tangent(double /*t*/, const double* /*q*/, const double* /*qd*/, double* stiffness,
+               double* damping) override {
+    stiffness[0] = 0.0;
+    damping[0] = 0.0;
+    return true;
+  }
+
+ private:
+  double mass_ = 0.0;     // kg
+  double preload_ = 0.0;  // N
+  double radius_ = 0.0;   // m
+};
+
+}  // namespace
+
+RUMBLE_PLUGIN("template_vehicle", "0.1.0", TemplateVehicle)
