@@ -51,6 +51,8 @@ class SpringDashpot {
     }
   }
   std::vector<double> u_, v_;  // m, m/s
+  double k() const { return k_; }
+  double c() const { return c_; }
 
  private:
   double k_ = 0.0, c_ = 0.0, sub_step_ = 0.0;  // N/m, N s/m, s
@@ -70,6 +72,7 @@ class PickySoil final : public rumble::Soil {
   "properties": {)") + kSpringSchema +
                                  R"(,
     "max_step": {"type": "number", "exclusiveMinimum": 0, "default": 1.0},
+    "csc_defect": {"enum": ["none", "unsorted", "nan"], "default": "none"},
     "stall_at": {"type": "number", "default": 1.0e30}}})";
     return s.c_str();
   }
@@ -77,6 +80,7 @@ class PickySoil final : public rumble::Soil {
     const rumble::Params p(params);
     spring_.configure(p);
     max_step_ = p.get<double>("max_step");
+    csc_defect_ = p.get<std::string>("csc_defect");
     stall_at_ = p.get<double>("stall_at");
   }
   void accept_layout(const std::vector<rumble::Footprint>& f) override {
@@ -121,6 +125,27 @@ class PickySoil final : public rumble::Soil {
     }
     row_.assign(probes.size() * RUMBLE_PROBE_VALUES, 0.0);
   }
+  /// M = 0, C = c I, K = k I, B = I; or, on request, a CSC with the defect named.
+  void linear_matrix(rumble_matrix which, rumble::CscMatrix& out) override {
+    const std::size_t n = spring_.u_.size();
+    const double value = which == RUMBLE_MATRIX_DAMPING     ? spring_.c()
+                         : which == RUMBLE_MATRIX_STIFFNESS ? spring_.k()
+                         : which == RUMBLE_MATRIX_INPUT     ? 1.0
+                                                            : 0.0;
+    out.rows = out.cols = n;
+    out.col_ptr.assign(1, 0);
+    for (std::size_t j = 0; j < n; ++j) {
+      if (value != 0.0) {
+        out.row_index.push_back(static_cast<std::int64_t>(j));
+        out.values.push_back(csc_defect_ == "nan" ? std::nan("") : value);
+        if (csc_defect_ == "unsorted" && j > 0) {  // a second entry above the diagonal
+          out.row_index.push_back(0);
+          out.values.push_back(value);
+        }
+      }
+      out.col_ptr.push_back(static_cast<std::int64_t>(out.values.size()));
+    }
+  }
   void finalize() override {
     std::ofstream out(host_.results_dir() + "/finalized.json");
     out << "{\"advances\": " << advances_ << ", \"refusals\": " << refusals_
@@ -152,6 +177,7 @@ class PickySoil final : public rumble::Soil {
   std::vector<std::size_t> nearest_;  // footprint of each probe
   std::vector<double> row_;
   double max_step_ = 0.0, stall_at_ = 0.0;  // s
+  std::string csc_defect_;
   long advances_ = 0, refusals_ = 0;
 };
 

@@ -1,6 +1,7 @@
 #include "plugin/instance.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "core/errors.hpp"
 #include "core/interrupt.hpp"
@@ -322,6 +323,48 @@ bool SoilInstance::write_fields(double t, const std::filesystem::path& path) {
   check(api_->write_fields(handle(), t, path.c_str()), "write_fields");
   return true;
 }
+bool SoilInstance::linear_matrix(rumble_matrix which, Eigen::SparseMatrix<double>& out) {
+  if (type().abi_minor < 1 || !capabilities().has(RUMBLE_CAP_LINEAR_MATRICES)) return false;
+  rumble_csc csc{};
+  check(api_->linear_matrix(handle(), which, &csc), "linear_matrix");
+  const std::uint64_t rows = csc.rows, cols = csc.cols, nnz = csc.nnz;
+  std::vector<std::int64_t> col_ptr(cols + 1), row_index(nnz);
+  std::vector<double> values(nnz);
+  csc.col_ptr = col_ptr.data();
+  csc.row_index = row_index.data();
+  csc.values = values.data();
+  check(api_->linear_matrix(handle(), which, &csc), "linear_matrix");
+  const auto defect = [&](const std::string& what) {
+    return RunError("soil '" + type_name() + "' (" + label() + "): linear_matrix " +
+                    std::to_string(static_cast<int>(which)) +
+                    " is not a valid CSC matrix: " + what);
+  };
+  if (csc.rows != rows || csc.cols != cols || csc.nnz != nnz)
+    throw defect("its size changed between the size query and the fill");
+  if (col_ptr[0] != 0 || col_ptr[cols] != static_cast<std::int64_t>(nnz))
+    throw defect("col_ptr must run from 0 to nnz");
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(nnz);
+  for (std::uint64_t j = 0; j < cols; ++j) {
+    if (col_ptr[j + 1] < col_ptr[j])
+      throw defect("col_ptr decreases at column " + std::to_string(j));
+    for (std::int64_t k = col_ptr[j]; k < col_ptr[j + 1]; ++k) {
+      const std::int64_t r = row_index[static_cast<std::size_t>(k)];
+      const double v = values[static_cast<std::size_t>(k)];
+      if (r < 0 || static_cast<std::uint64_t>(r) >= rows)
+        throw defect("row index " + std::to_string(r) + " out of range in column " +
+                     std::to_string(j));
+      if (k > col_ptr[j] && r <= row_index[static_cast<std::size_t>(k - 1)])
+        throw defect("rows not sorted (or repeated) in column " + std::to_string(j));
+      if (!std::isfinite(v)) throw defect("a value is not finite in column " + std::to_string(j));
+      entries.emplace_back(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(j), v);
+    }
+  }
+  out.resize(static_cast<Eigen::Index>(rows), static_cast<Eigen::Index>(cols));
+  out.setFromTriplets(entries.begin(), entries.end());
+  return true;
+}
+
 bool SoilInstance::wave_speeds(double& c_s_min, double& c_r_min) const {
   if (type().abi_minor < 1 || !capabilities().has(RUMBLE_CAP_WAVE_SPEEDS)) return false;
   check(api_->wave_speeds(handle(), &c_s_min, &c_r_min), "wave_speeds");

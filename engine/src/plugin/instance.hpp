@@ -5,6 +5,7 @@
 
 #include <rumble/abi.h>
 
+#include <Eigen/SparseCore>
 #include <complex>
 #include <cstdint>
 #include <filesystem>
@@ -126,6 +127,10 @@ class SoilInstance final : public Instance {
   bool write_fields(double t, const std::filesystem::path& path);
   /// ABI 1.1: slowest shear and Rayleigh speeds [m/s]; false when not offered.
   bool wave_speeds(double& c_s_min, double& c_r_min) const;
+  /// ABI 1.1, after accept_layout: one matrix of M x'' + C x' + K x = B F (u = B^T x); false
+  /// when the soil does not offer RUMBLE_CAP_LINEAR_MATRICES. The CSC the plugin gives is
+  /// checked (sizes, sorted in-range indices, finite values): RunError naming the defect.
+  bool linear_matrix(rumble_matrix which, Eigen::SparseMatrix<double>& out);
 
  private:
   const rumble_soil_api* api_;

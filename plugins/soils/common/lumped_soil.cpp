@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numbers>
 #include <sstream>
@@ -116,6 +117,40 @@ void LumpedSoil::assemble(T wk, T wc, T wm, Eigen::Matrix<T, Eigen::Dynamic, 1>&
               wc * (p_.damping[i] + neighbours(i) * cc) + wm * p_.mass[i];
   }
   for (Eigen::Index i = 0; i + 1 < n_; ++i) off[i] = -(wk * kc + wc * cc);
+}
+
+void LumpedSoil::linear_matrix(rumble_matrix which, CscMatrix& out) {
+  require_layout("linear_matrix");
+  switch (which) {
+    case RUMBLE_MATRIX_MASS:
+      return chain_csc(p_.mass, 0.0, out);
+    case RUMBLE_MATRIX_DAMPING:
+      return chain_csc(p_.damping, p_.coupling_damping, out);
+    case RUMBLE_MATRIX_STIFFNESS:
+      return chain_csc(p_.stiffness, p_.coupling_stiffness, out);
+    case RUMBLE_MATRIX_INPUT:
+      return chain_csc(Eigen::VectorXd::Ones(n_), 0.0, out);
+  }
+  throw std::invalid_argument(type_ + ": linear_matrix: no matrix number " +
+                              std::to_string(static_cast<int>(which)) + " (0..3: M, C, K, B)");
+}
+
+void LumpedSoil::chain_csc(const Eigen::VectorXd& diagonal, double coupling, CscMatrix& out) const {
+  out.rows = out.cols = static_cast<std::uint64_t>(n_);
+  out.col_ptr.assign(1, 0);
+  out.row_index.clear();
+  out.values.clear();
+  const auto add = [&](Eigen::Index row, double value) {
+    if (value == 0.0) return;
+    out.row_index.push_back(row);
+    out.values.push_back(value);
+  };
+  for (Eigen::Index j = 0; j < n_; ++j) {  // column j: rows j-1, j, j+1 (sorted)
+    if (j > 0) add(j - 1, -coupling);
+    add(j, diagonal[j] + neighbours(j) * coupling);
+    if (j + 1 < n_) add(j + 1, -coupling);
+    out.col_ptr.push_back(static_cast<std::int64_t>(out.values.size()));
+  }
 }
 
 double LumpedSoil::chain_row(const Eigen::VectorXd& diagonal, double coupling,

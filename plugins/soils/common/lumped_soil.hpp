@@ -37,6 +37,8 @@ class LumpedSoil : public rumble::Soil {
   void advance(double t, double H, const Waveform& force) final;
   void motion(double* u, double* v) const final;
   bool frequency_response(double f_hz, std::complex<double>* receptance) final;
+  /// M = diag(m), C and K the tridiagonal chains above, B = I (the footprint DOFs are the soil's).
+  void linear_matrix(rumble_matrix which, CscMatrix& out) final;
   /// The state is u and v: a is recomputed from them and the waveform at every advance.
   std::size_t state_size() const final { return 2 * static_cast<std::size_t>(n_); }
   void save_state(double* buffer) const final;
@@ -63,6 +65,8 @@ class LumpedSoil : public rumble::Soil {
   template <class T>
   void assemble(T wk, T wc, T wm, Eigen::Matrix<T, Eigen::Dynamic, 1>& diag,
                 Eigen::Matrix<T, Eigen::Dynamic, 1>& off) const;
+  /// diag(diagonal) + coupling L (L the chain's Laplacian) as CSC, zeros left out.
+  void chain_csc(const Eigen::VectorXd& diagonal, double coupling, CscMatrix& out) const;
   /// Row i of (diag(diagonal) + coupling L) x, L the chain's Laplacian: K x or C x.
   double chain_row(const Eigen::VectorXd& diagonal, double coupling, const Eigen::VectorXd& x,
                    Eigen::Index i) const;
