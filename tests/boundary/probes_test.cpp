@@ -65,9 +65,14 @@ TEST(Probes, ARestoreDropsTheSamplesOfTheStepTakenAgain) {
   registry.load_library(fixture_plugin("boundary_fixtures"));
   const ComponentType* type = registry.find(RUMBLE_KIND_SOIL, "picky_soil");
   ASSERT_NE(type, nullptr);
-  SoilInstance soil(
-      *type, "/soil",
-      {{"k", 1e8}, {"c", 2e5}, {"sub_step", 1.25e-4}, {"max_step", 1.0}, {"stall_at", 1e30}}, ".");
+  SoilInstance soil(*type, "/soil",
+                    {{"k", 1e8},
+                     {"c", 2e5},
+                     {"sub_step", 1.25e-4},
+                     {"max_step", 1.0},
+                     {"stall_at", 1e30},
+                     {"csc_defect", "none"}},
+                    ".");
   soil.accept_layout({{0.0, 0.0, 2.6, 0.26}, {0.6, 0.0, 2.6, 0.26}});
   std::vector<double> u;
   soil.initialize(0.0, {1e4, 2e4}, u);
