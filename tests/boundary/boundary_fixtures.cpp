@@ -146,6 +146,23 @@ class PickySoil final : public rumble::Soil {
       out.col_ptr.push_back(static_cast<std::int64_t>(out.values.size()));
     }
   }
+  /// A VTU of the footprint centres with their displacement u (vertical) as point data.
+  void write_fields(double t, const std::string& path) override {
+    std::ofstream out(path);
+    const std::size_t n = footprints_.size();
+    out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\">\n"
+        << "<!-- picky_soil at t = " << t << " s -->\n<UnstructuredGrid><Piece NumberOfPoints=\""
+        << n << "\" NumberOfCells=\"0\">\n<Points><DataArray type=\"Float64\" "
+        << "NumberOfComponents=\"3\" format=\"ascii\">";
+    for (const rumble::Footprint& f : footprints_) out << ' ' << f.x << ' ' << f.y << " 0";
+    out << "</DataArray></Points>\n<PointData><DataArray type=\"Float64\" Name=\"u\" "
+        << "format=\"ascii\">";
+    for (double u : spring_.u_) out << ' ' << u;
+    out << "</DataArray></PointData>\n<Cells><DataArray type=\"Int64\" Name=\"connectivity\"/>"
+        << "<DataArray type=\"Int64\" Name=\"offsets\"/><DataArray type=\"UInt8\" "
+        << "Name=\"types\"/></Cells>\n</Piece></UnstructuredGrid>\n</VTKFile>\n";
+    if (!out) throw std::runtime_error("picky_soil: cannot write " + path);
+  }
   void finalize() override {
     std::ofstream out(host_.results_dir() + "/finalized.json");
     out << "{\"advances\": " << advances_ << ", \"refusals\": " << refusals_

@@ -14,6 +14,7 @@
 #include "core/logging.hpp"
 #include "plugin/instance.hpp"
 #include "run/cosim_host.hpp"
+#include "run/field_writer.hpp"
 #include "run/participant.hpp"
 #include "run/probe_recorder.hpp"
 #include "run/run_recorder.hpp"
@@ -263,6 +264,12 @@ RunOutcome run_scenario(const nlohmann::json& scenario, const fs::path& scenario
       probe_recorder = std::make_unique<ProbeRecorder>(outcome.results_dir, soil, receivers);
       probe_recorder->take();  // samples at t = 0, if the soil records one there
     }
+    std::unique_ptr<FieldWriter> fields;
+    if (outputs.contains("fields") && soil.capabilities().has(RUMBLE_CAP_FIELD_OUTPUT)) {
+      fields = std::make_unique<FieldWriter>(outcome.results_dir, soil,
+                                             outputs.at("fields").at("interval").get<double>());
+      fields->at(0.0);
+    }
     TrackSide track_side(track);
     SoilSide soil_side("soil", soil, track.interface_size());
     std::vector<std::unique_ptr<SoilSide>> extra_sides;
@@ -289,6 +296,7 @@ RunOutcome run_scenario(const nlohmann::json& scenario, const fs::path& scenario
       t_reached = t + step.H;
       ++steps;
       if (probe_recorder) probe_recorder->take();
+      if (fields) fields->at(t_reached);
       if (steps % every == 0 || t_reached >= t_end * (1.0 - 1e-12)) {
         recorder.record(t_reached, t_reached - t_recorded, step.max_relative_residual());
         t_recorded = t_reached;
@@ -375,6 +383,10 @@ RunOutcome run_scenario(const nlohmann::json& scenario, const fs::path& scenario
     }
     summary["files"] = recorder.files();
     if (probe_recorder) summary["files"].push_back(probe_recorder->file());
+    if (fields) {
+      summary["files"].push_back(fields->index_file());
+      summary["field_snapshots"] = fields->snapshots();
+    }
     write_summary(outcome.results_dir, summary);
   } catch (const std::exception& e) {
     summary["status"] = "failed";

@@ -126,6 +126,18 @@ void check_once_per_process(const std::vector<Used>& used, std::vector<Diagnosti
   }
 }
 
+void check_fields(const json& scenario, const Used& soil, std::vector<Diagnostic>& out) {
+  const Capabilities& c = soil.type->capabilities;
+  if (!scenario.at("outputs").contains("fields") || c.has(RUMBLE_CAP_FIELD_OUTPUT)) return;
+  Diagnostic d = error("/outputs/fields",
+                       "soil type \"" + soil.type->type_name +
+                           "\" writes no field output; no snapshots will be written",
+                       "remove /outputs/fields, or use a soil that offers field output (the fem "
+                       "soil)");
+  d.severity = Diagnostic::Severity::kWarning;
+  out.push_back(std::move(d));
+}
+
 void check_receivers(const json& scenario, const Used& soil, std::vector<Diagnostic>& out) {
   const json& receivers = scenario.at("outputs").value("receivers", json::array());
   const Capabilities& c = soil.type->capabilities;
@@ -170,7 +182,10 @@ std::vector<Diagnostic> check_capabilities(const json& scenario, const PluginReg
   }
   check_max_step(scenario, used, out);
   check_once_per_process(used, out);
-  if (!soils.empty() && soils.front().pointer == "/soil") check_receivers(scenario, soils[0], out);
+  if (!soils.empty() && soils.front().pointer == "/soil") {
+    check_receivers(scenario, soils[0], out);
+    check_fields(scenario, soils[0], out);
+  }
   return out;
 }
 

@@ -192,6 +192,15 @@ constexpr std::string_view kSchema = R"json({
           "description": "receivers whose motion is recorded (soils that offer them)"
         },
         "receiver_interval": {"type": "number", "minimum": 0, "default": 0, "description": "sampling interval of receivers [s]; 0: every step of the soil"},
+        "fields": {
+          "type": "object",
+          "additionalProperties": false,
+          "required": ["interval"],
+          "description": "soil field snapshots (VTU, soils that offer them) and their ParaView index soil.pvd",
+          "properties": {
+            "interval": {"type": "number", "exclusiveMinimum": 0, "description": "time between snapshots, the first at t = 0 [s]"}
+          }
+        },
         "every": {"type": "integer", "minimum": 1, "default": 1, "description": "record every n-th macro step"},
         "plots": {"type": "boolean", "default": true, "description": "run tools/plot_results.py after the run when python3 and matplotlib exist"}
       }

@@ -1,0 +1,32 @@
+// Soil field snapshots (ABI 1.1 write_fields) at the cadence of /outputs/fields: the soil writes
+// each fields/soil_<k>.vtu itself; the engine names the files and keeps the ParaView index
+// soil.pvd (time of each snapshot) valid after every one, so a run that stops early still opens.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace rumble {
+
+class SoilInstance;
+
+class FieldWriter {
+ public:
+  /// interval [s] > 0 between snapshots, the first at t = 0.
+  FieldWriter(const std::filesystem::path& results_dir, SoilInstance& soil, double interval);
+  /// Writes a snapshot when t [s] has reached the next one's time.
+  void at(double t);
+  std::size_t snapshots() const { return times_.size(); }
+  std::string index_file() const { return "soil.pvd"; }
+
+ private:
+  void write_index() const;
+  std::filesystem::path dir_;
+  SoilInstance& soil_;
+  double interval_;
+  std::vector<double> times_;
+  std::vector<std::string> files_;  // relative to dir_
+};
+
+}  // namespace rumble

@@ -1,0 +1,47 @@
+// Soil field snapshots (ABI 1.1 write_fields) at the cadence of /outputs/fields: the soil writes
+// each .vtu, the engine names them and keeps soil.pvd, the ParaView index, valid after each one.
+// picky_soil writes its footprint displacements; 0.05 s at an interval of 0.01 s is 6 snapshots
+// (t = 0 included).
+#include <gtest/gtest.h>
+
+#include <regex>
+
+#include "boundary_support.hpp"
+
+namespace rumble::testing {
+namespace {
+
+TEST(Fields, SnapshotsAtTheIntervalWithAParaViewIndex) {
+  nlohmann::json s = fixture_scenario({{"type", "picky_soil"}}, {{"type", "gauss_seidel"}});
+  s["outputs"]["fields"] = {{"interval", 0.01}};
+  CliResult r;
+  const auto dir = run_in("fields_snapshots", s, r);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::string index = file_text(dir / "soil.pvd");
+  const std::regex dataset(R"re(<DataSet timestep="([^"]+)" group="" part="0" file="([^"]+)"/>)re");
+  std::vector<double> times;
+  for (auto it = std::sregex_iterator(index.begin(), index.end(), dataset);
+       it != std::sregex_iterator(); ++it) {
+    times.push_back(std::stod((*it)[1].str()));
+    const std::string vtu = file_text(dir / (*it)[2].str());
+    EXPECT_NE(vtu.find("<VTKFile type=\"UnstructuredGrid\""), std::string::npos) << (*it)[2];
+  }
+  ASSERT_EQ(times.size(), 6u) << index;
+  for (std::size_t k = 0; k < times.size(); ++k) EXPECT_NEAR(times[k], 0.01 * k, 1e-12);
+  const auto summary = read_json(dir / "summary.json");
+  EXPECT_EQ(summary["field_snapshots"], 6);
+}
+
+TEST(Fields, ASoilWithoutFieldOutputIsAWarningOnly) {
+  nlohmann::json s = fixture_scenario({{"type", "forgetful_soil"}}, {{"type", "gauss_seidel"}});
+  s["outputs"]["fields"] = {{"interval", 0.01}};
+  CliResult r;
+  const auto dir = run_in("fields_not_offered", s, r);
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("soil type \"forgetful_soil\" writes no field output"), std::string::npos)
+      << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "soil.pvd"));
+}
+
+}  // namespace
+}  // namespace rumble::testing
