@@ -3,7 +3,8 @@
 #include <algorithm>
 #include <iostream>
 
-#include "run/scenario_checks.hpp"
+#include "scenario/component_check.hpp"
+#include "scenario/relation_checks.hpp"
 
 namespace rumble::cli {
 
@@ -19,8 +20,19 @@ std::optional<scenario::Document> prepare_scenario(const std::filesystem::path& 
     const bool schema_ok = std::none_of(diagnostics.begin(), diagnostics.end(), [](const auto& d) {
       return d.severity == scenario::Diagnostic::Severity::kError;
     });
+    const auto no_errors = [&] {
+      return std::none_of(diagnostics.begin(), diagnostics.end(), [](const auto& d) {
+        return d.severity == scenario::Diagnostic::Severity::kError;
+      });
+    };
     if (schema_ok) {
       for (scenario::Diagnostic& d : check_scenario_relations(doc->json))
+        diagnostics.push_back(
+            scenario::make_diagnostic(*doc, d.pointer, d.message, d.hint, d.severity));
+    }
+    if (schema_ok && no_errors()) {  // the components are built from a scenario that is right
+      for (scenario::Diagnostic& d :
+           scenario::check_components(doc->json, doc->path.parent_path(), registry))
         diagnostics.push_back(
             scenario::make_diagnostic(*doc, d.pointer, d.message, d.hint, d.severity));
     }

@@ -73,6 +73,7 @@ class Clm final : public rumble::soils::LumpedSoil {
     } else {
       half_space_ = p.half_space();
       layers_ = p.layers();
+      set_slowest_wave_speeds(rumble::soils::slowest_wave_speeds(layers_, half_space_));
     }
   }
 

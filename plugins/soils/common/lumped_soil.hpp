@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "tridiagonal_lu.hpp"
+#include "wave_speeds.hpp"
 
 namespace rumble::soils {
 
@@ -39,6 +40,12 @@ class LumpedSoil : public rumble::Soil {
   bool frequency_response(double f_hz, std::complex<double>* receptance) final;
   /// M = diag(m), C and K the tridiagonal chains above, B = I (the footprint DOFs are the soil's).
   void linear_matrix(rumble_matrix which, CscMatrix& out) final;
+  /// The slowest shear and Rayleigh speeds of the soil profile the model was derived from;
+  /// 0 (unknown) for a model given by its springs and dashpots.
+  void wave_speeds(double& c_s_min, double& c_r_min) const final {
+    c_s_min = slowest_.shear;
+    c_r_min = slowest_.rayleigh;
+  }
   /// The state is u and v: a is recomputed from them and the waveform at every advance.
   std::size_t state_size() const final { return 2 * static_cast<std::size_t>(n_); }
   void save_state(double* buffer) const final;
@@ -53,6 +60,8 @@ class LumpedSoil : public rumble::Soil {
   virtual LumpedParameters parameters(const std::vector<Footprint>& footprints) const = 0;
 
   const std::string& type_name() const { return type_; }
+  /// A model derived from a soil profile records its slowest wave speeds (wave_speeds.hpp).
+  void set_slowest_wave_speeds(const WaveSpeeds& s) { slowest_ = s; }
 
  private:
   using VectorXcd = Eigen::VectorXcd;
@@ -74,6 +83,7 @@ class LumpedSoil : public rumble::Soil {
   void require_layout(const char* call) const;
 
   std::string type_;
+  WaveSpeeds slowest_;     // m/s; zeros: unknown (direct parameters)
   double max_step_;        // s, user bound (0: automatic)
   double sub_step_ = 0.0;  // s, the bound in force for this layout
   Eigen::Index n_ = 0;

@@ -330,7 +330,8 @@ typedef struct rumble_soil_api {
    *  (a VTK XML unstructured grid, .vtu); the host names the files and writes the .pvd index. */
   rumble_status (*write_fields)(rumble_instance* self, double t, const char* path);
   /** Optional (RUMBLE_CAP_WAVE_SPEEDS): the slowest shear and Rayleigh wave speeds [m/s] of
-   *  any layer, for the host's critical-speed check (the host never reads a soil's params). */
+   *  any layer, for the host's critical-speed check (the host never reads a soil's params);
+   *  0 when not known for these params (e.g. a soil given by its springs). Needs no layout. */
   rumble_status (*wave_speeds)(rumble_instance* self, double* c_s_min, double* c_r_min);
   /** Optional (RUMBLE_CAP_LINEAR_MATRICES), after accept_layout: one matrix of the soil's linear
    *  equations (rumble_matrix). With out->values null the plugin sets rows, cols and nnz;

@@ -1,6 +1,6 @@
 // Soil wave speeds against physics.md §4.1 (table of c_s, c_p, c_R for the seed's soils) and
 // §4.2 (c_R/c_s to 4 digits), the Pekeris closed form and the unrationalized Rayleigh equation.
-#include "core/wave_speeds.hpp"
+#include "wave_speeds.hpp"
 
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 
 #include "expect_message.hpp"
 
-namespace rumble {
+namespace rumble::soils {
 namespace {
 
 struct SoilRow {
@@ -93,5 +93,14 @@ TEST(WaveSpeeds, RejectsBadInputWithClearText) {
                           "wave speeds: density rho must be > 0 kg/m^3, got 0");
 }
 
+TEST(WaveSpeeds, TheSlowestOfALayeredProfileIsItsSoftestLayers) {
+  // 2 m of 10 MPa over 750 MPa (issue #10's case): the top layer governs (42.9 m/s above).
+  const SoilProperties stiff{750e6, 0.3, 1800.0}, soft{10e6, 0.3, 1800.0};
+  const WaveSpeeds s = slowest_wave_speeds({SoilLayer{2.0, soft}}, stiff);
+  EXPECT_NEAR(s.rayleigh, 42.9, 0.05);
+  EXPECT_NEAR(s.shear, 46.2, 0.05);
+  EXPECT_NEAR(slowest_wave_speeds({}, stiff).rayleigh, 371.3, 0.05);
+}
+
 }  // namespace
-}  // namespace rumble
+}  // namespace rumble::soils

@@ -1,9 +1,8 @@
-#include "run/scenario_checks.hpp"
+#include "scenario/relation_checks.hpp"
 
 #include <cmath>
 #include <sstream>
 
-#include "core/wave_speeds.hpp"
 #include "track/track_config.hpp"
 #include "track/unevenness_psd.hpp"
 
@@ -105,23 +104,6 @@ std::vector<Diagnostic> check_scenario_relations(const nlohmann::json& sc) {
                                 num(track.rail_end()) + " m",
                             "lower time.end or the speed, or use at least " +
                                 std::to_string(needed) + " sleepers (track.sleepers.count)"));
-    }
-    // Critical-speed regime: the reduced soils do not represent the Mach cone that forms above
-    // the Rayleigh wave speed; warn with the number when the soil's properties are known.
-    const auto& soil = sc.at("soil").value("params", nlohmann::json::object());
-    if (soil.contains("E") && soil.contains("nu") && soil.contains("rho") &&
-        soil["E"].is_number() && soil["nu"].is_number() && soil["rho"].is_number()) {
-      const double c_r = rayleigh_wave_speed(soil["E"].get<double>(), soil["nu"].get<double>(),
-                                             soil["rho"].get<double>());
-      if (speed > c_r) {
-        out.push_back(finding(
-            ptr + "/speed",
-            "the speed " + num(speed) + " m/s is above the soil's Rayleigh wave speed " +
-                num(std::round(c_r * 10.0) / 10.0) + " m/s (critical-speed regime)",
-            "results then depend on the soil model capturing the Mach cone; check with a full "
-            "3D soil, or lower the speed",
-            Diagnostic::Severity::kWarning));
-      }
     }
   }
   return out;
