@@ -88,5 +88,48 @@ TEST(CliValidate, SpeedAboveRayleighSpeedWarns) {
                                   "soil's Rayleigh wave speed 42.9 m/s (critical-speed regime)"));
 }
 
+// A layered soil: the warning takes the slowest layer, not the half-space (the soil reports it;
+// the engine does not read its params). 2 m of 10 MPa over 750 MPa: c_R = 42.9 m/s on top.
+TEST(CliValidate, SpeedAboveTheTopLayersRayleighSpeedWarns) {
+  nlohmann::json s = small_scenario();
+  s["soil"] = {{"type", "clm"},
+               {"params",
+                {{"E", 7.5e8},
+                 {"nu", 0.3},
+                 {"rho", 1800.0},
+                 {"layers", {{{"thickness", 2.0}, {"E", 1e7}, {"nu", 0.3}, {"rho", 1800.0}}}}}}};
+  s["vehicles"][0]["speed"] = 50.0;
+  s["time"]["end"] = 0.1;
+  const CliResult r = validate("rayleigh_layered", s);
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("warning: /vehicles/0/speed: the speed 50 m/s is above the "
+                                  "soil's Rayleigh wave speed 42.9 m/s (critical-speed regime)"));
+}
+
+// What only the plugin knows is found by validate too (it builds the components as a run does):
+// a constructor refusing its params, and a soil refusing the track's footprint layout.
+TEST(CliValidate, ASoilRefusingItsParamsIsAValidateError) {
+  nlohmann::json s = small_scenario();
+  s["soil"] = {{"type", "clm"},
+               {"params", {{"m_f", 0.0}, {"k_f", 1e8}, {"c_f", 0.0}, {"k_c", 1e8}, {"c_c", 1e5}}}};
+  const CliResult r = validate("soil_refuses_params", s);
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("error: /soil/params: /soil: soil type 'clm' refused its params: "
+                                  "clm: with m_f = 0 and c_c > 0 the ground dashpot c_f must be "
+                                  "> 0, got 0"));
+}
+
+TEST(CliValidate, ASoilRefusingTheLayoutIsAValidateError) {
+  nlohmann::json s = small_scenario();
+  s["soil"] = {{"type", "clm"}, {"params", {{"E", 1.55e8}, {"nu", 0.3}, {"rho", 1800.0}}}};
+  s["track"]["sleepers"]["spacing"] = 0.2;  // narrower than the 0.26 m sleepers
+  s["vehicles"][0]["start"] = 1.0;
+  s["time"]["end"] = 0.01;
+  const CliResult r = validate("soil_refuses_layout", s);
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("error: /soil: soil 'clm' (/soil): accept_layout failed: clm: "
+                                  "footprints overlap"));
+}
+
 }  // namespace
 }  // namespace rumble::testing
