@@ -30,12 +30,13 @@ TEST(Stop, RequestReachesAPluginInsideALongAdvance) {
     std::this_thread::sleep_for(std::chrono::milliseconds(500));
     request_interrupt();
   });
-  const RunOutcome outcome = run_scenario(doc->json, path, registry, RunOptions{});
+  const RunOutcome outcome =
+      run_scenario(scenario::make_run_spec(doc->json, path), registry, RunOptions{});
   ctrl_c.join();
   clear_interrupt();
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  EXPECT_EQ(outcome.status, "interrupted") << outcome.message;
+  EXPECT_EQ(outcome.status, RunStatus::kInterrupted) << outcome.message;
   EXPECT_EQ(outcome.exit_code, 3);
   EXPECT_LT(seconds, 30.0);  // the stall lasts 60 s unless the stop reached it
   EXPECT_NE(outcome.message.find("inside the step after t = 0.01"), std::string::npos)

@@ -29,9 +29,10 @@ int run_command(const std::vector<std::string>& args) {
   install_interrupt_handler();
   RunOptions options;
   options.progress = !a.flag("no-progress") && isatty(STDERR_FILENO) != 0;
-  const RunOutcome outcome = run_scenario(doc->json, doc->path, registry, options);
+  const scenario::RunSpec spec = scenario::make_run_spec(doc->json, doc->path);
+  const RunOutcome outcome = run_scenario(spec, registry, options);
   const auto log = logger("engine");
-  if (outcome.status != "failed" && doc->json.at("outputs").value("plots", true)) {
+  if (outcome.status != RunStatus::kFailed && spec.outputs.plots) {
     run_plot_script("plot_results.py", outcome.results_dir);
   }
   // Printed as "results/x", not "scenarios/paper/../../results/x"; only printed: lexically
@@ -42,7 +43,7 @@ int run_command(const std::vector<std::string>& args) {
   } else {
     std::cerr << "rumble: error: " << outcome.message << '\n'
               << "rumble: note: results computed so far are in " << shown
-              << " (summary.json status \"" << outcome.status << "\")\n";
+              << " (summary.json status \"" << status_name(outcome.status) << "\")\n";
   }
   return outcome.exit_code;
 }

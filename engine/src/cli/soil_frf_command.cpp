@@ -36,7 +36,7 @@ int soil_frf_command(const std::vector<std::string>& args) {
     if (!doc) return kExitConfig;
     if (out_dir.empty()) {
       out_dir = a.value("output") ? std::filesystem::path(*a.value("output"))
-                                  : results_directory(doc->json, doc->path) / "soil_frf";
+                                  : scenario::results_directory(doc->json, doc->path) / "soil_frf";
       std::filesystem::create_directories(out_dir);
     }
     const auto layout = footprint_layout(TrackConfig::from_json(doc->json.at("track")));

@@ -8,34 +8,11 @@
 
 namespace rumble {
 
-std::vector<ReceiverPoint> receiver_points(const nlohmann::json& outputs, double x_mid) {
-  std::vector<ReceiverPoint> points;
-  const auto list = outputs.find("receivers");
-  if (list == outputs.end()) return points;
-  for (const nlohmann::json& r : *list) {
-    ReceiverPoint p;
-    if (r.is_number()) {
-      p.y = r.get<double>();
-      p.x = x_mid;
-      char name[48];
-      std::snprintf(name, sizeof name, "d=%g m", p.y);
-      p.name = name;
-    } else {
-      p.name = r.at("name").get<std::string>();
-      p.y = r.at("y").get<double>();
-      p.x = r.value("x", x_mid);
-      p.depth = r.value("depth", 0.0);
-    }
-    points.push_back(std::move(p));
-  }
-  return points;
-}
-
 ProbeRecorder::ProbeRecorder(const std::filesystem::path& directory, SoilInstance& soil,
-                             const std::vector<ReceiverPoint>& points)
+                             const std::vector<scenario::ReceiverSpec>& points)
     : soil_(soil), points_(points), ppv_z_(points.size(), 0.0), ppv_3c_(points.size(), 0.0) {
   std::vector<std::string> cols{"t [s]"};
-  for (const ReceiverPoint& p : points_) {
+  for (const scenario::ReceiverSpec& p : points_) {
     for (const char* c : {"vx [m/s]", "vy [m/s]", "vz [m/s]", "ux [m]", "uy [m]", "uz [m]"})
       cols.push_back(p.name + " " + c);
   }

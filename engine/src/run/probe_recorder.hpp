@@ -14,24 +14,16 @@
 #include <vector>
 
 #include "run/csv_file.hpp"
+#include "scenario/run_spec.hpp"
 
 namespace rumble {
 
 class SoilInstance;
 
-/// A receiver as the scenario gives it (/outputs/receivers): a distance, or a named point.
-struct ReceiverPoint {
-  std::string name;
-  double x = 0.0, y = 0.0, depth = 0.0;  // [m]
-};
-
-/// /outputs/receivers resolved: numbers are surface points at x_mid [m], named "d=<y> m".
-std::vector<ReceiverPoint> receiver_points(const nlohmann::json& outputs, double x_mid);
-
 class ProbeRecorder {
  public:
   ProbeRecorder(const std::filesystem::path& directory, SoilInstance& soil,
-                const std::vector<ReceiverPoint>& points);
+                const std::vector<scenario::ReceiverSpec>& points);
   /// Writes the samples the soil recorded since the last call.
   void take();
   /// [{name, x_m, y_m, depth_m, ppv_m_s (vertical), ppv_3c_m_s}]
@@ -40,7 +32,7 @@ class ProbeRecorder {
 
  private:
   SoilInstance& soil_;
-  std::vector<ReceiverPoint> points_;
+  std::vector<scenario::ReceiverSpec> points_;
   std::unique_ptr<CsvFile> csv_;
   std::vector<double> times_, values_;
   std::vector<double> ppv_z_, ppv_3c_;

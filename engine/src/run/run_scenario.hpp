@@ -1,13 +1,15 @@
-// Runs a validated scenario: builds the participants, solves the static state, hands both sides
-// to the coupler plugin and records every macro step. Whatever happens, summary.json says how
-// the run ended, and every row recorded before a failure stays on disk.
+// Runs a validated scenario: builds the components (run_components), solves the static state,
+// hands the participants to the coupler plugin, records every final macro step (step_observer)
+// and writes summary.json (summary_writer). Whatever happens, summary.json says how the run
+// ended, and every row recorded before a failure stays on disk.
 #pragma once
 
 #include <filesystem>
-#include <nlohmann/json.hpp>
 #include <string>
 
 #include "plugin/registry.hpp"
+#include "run/summary_writer.hpp"
+#include "scenario/run_spec.hpp"
 
 namespace rumble {
 
@@ -17,19 +19,14 @@ struct RunOptions {
 
 struct RunOutcome {
   std::filesystem::path results_dir;
-  std::string status;   // "completed", "interrupted", "failed"
+  RunStatus status = RunStatus::kFailed;
   std::string message;  // why, when not completed
-  int exit_code = 0;
+  int exit_code = 3;
 };
 
-/// scenario: validated, defaults filled. scenario_path: its file (relative paths resolve there).
 /// Throws ConfigError for problems found while building (exit 1); run failures are reported in
 /// the outcome (exit 3) after summary.json is written.
-RunOutcome run_scenario(const nlohmann::json& scenario, const std::filesystem::path& scenario_path,
-                        const PluginRegistry& registry, const RunOptions& options);
-
-/// Results directory of a scenario: outputs.directory relative to the scenario file.
-std::filesystem::path results_directory(const nlohmann::json& scenario,
-                                        const std::filesystem::path& scenario_path);
+RunOutcome run_scenario(const scenario::RunSpec& spec, const PluginRegistry& registry,
+                        const RunOptions& options);
 
 }  // namespace rumble

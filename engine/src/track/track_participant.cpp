@@ -347,15 +347,19 @@ void TrackParticipant::evaluate_contacts(double t, const Eigen::VectorXd& x,
   }
 }
 
-void TrackParticipant::advance(double t, double H) {
+int TrackParticipant::micro_steps(double H) const {
   if (!(h_max_ > 0.0)) throw RunError("track: advance() before solve_static()");
-  const auto n_sub = static_cast<int>(std::ceil(H / h_max_ - 1e-9));
-  const double h = H / std::max(n_sub, 1);
+  return std::max(static_cast<int>(std::ceil(H / h_max_ - 1e-9)), 1);
+}
+
+void TrackParticipant::advance(double t, double H) {
+  const int n_sub = micro_steps(H);
+  const double h = H / n_sub;
   factorize_dynamic(h);
   input_t0_ = t;
   input_H_ = H;
-  for (int s = 1; s <= std::max(n_sub, 1); ++s) {
-    const double tau = static_cast<double>(s) / std::max(n_sub, 1);
+  for (int s = 1; s <= n_sub; ++s) {
+    const double tau = static_cast<double>(s) / n_sub;
     micro_step(t + tau * H, h, tau);
   }
   t_ = t + H;

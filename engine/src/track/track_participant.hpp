@@ -41,6 +41,9 @@ class TrackParticipant {
   /// Largest micro-step [s]: the scenario's, or 1/20 of the period of the wheel-on-rail
   /// contact resonance (wheel mass against rail mass over one bay, linearized Hertz spring).
   double micro_step_limit() const { return h_max_; }
+  /// The one micro-step rule: a macro step H [s] is taken in ceil(H / micro_step_limit())
+  /// equal micro-steps (at least one); this is their number.
+  int micro_steps(double H) const;
 
   /// Static equilibrium under the vehicles' weight, iterated with the soil to consistency;
   /// with no soil (empty function) the footprints are fixed. Returns the iterations used.

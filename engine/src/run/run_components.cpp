@@ -1,0 +1,105 @@
+#include "run/run_components.hpp"
+
+#include <algorithm>
+#include <thread>
+
+#include "core/errors.hpp"
+#include "core/logging.hpp"
+
+namespace rumble {
+namespace {
+
+const ComponentType& resolve(const PluginRegistry& registry, rumble_kind kind,
+                             const scenario::ComponentSpec& c) {
+  const ComponentType* t = registry.find(kind, c.type);
+  if (t == nullptr) {
+    throw ConfigError(c.pointer + "/type: unknown " + kind_name(kind) + " type '" + c.type +
+                      "'; run `rumble plugins` to list the known types");
+  }
+  return *t;
+}
+
+std::unique_ptr<SoilInstance> make_soil(const scenario::ComponentSpec& c,
+                                        const PluginRegistry& registry,
+                                        const std::filesystem::path& dir,
+                                        const std::vector<rumble_footprint>& layout) {
+  auto soil = std::make_unique<SoilInstance>(resolve(registry, RUMBLE_KIND_SOIL, c), c.pointer,
+                                             c.params, dir);
+  soil->accept_layout(layout);
+  return soil;
+}
+
+ReceiverSetup attach_receivers(SoilInstance& soil, const scenario::RunSpec& spec) {
+  ReceiverSetup setup;
+  const auto& receivers = spec.outputs.receivers;
+  if (receivers.empty()) return setup;
+  std::vector<rumble_probe> probes;
+  for (const auto& r : receivers) probes.push_back({r.name.c_str(), r.x, r.y, r.depth});
+  setup.probes = soil.set_probes(probes, spec.outputs.receiver_interval);
+  if (!setup.probes) {
+    std::vector<rumble_receiver> points;
+    for (const auto& r : receivers) {
+      if (r.depth == 0.0 && r.x == spec.track_middle()) {
+        points.push_back({r.x, r.y});
+        setup.distances.push_back(r.y);
+      }
+    }
+    setup.surface = !points.empty() && soil.set_receivers(points);
+  }
+  if (!setup.probes && !setup.surface) {
+    logger("engine")->warn(
+        "/outputs/receivers: soil type '{}' offers no receivers; the receivers are ignored "
+        "(footprint motions are still recorded)",
+        soil.type_name());
+  }
+  return setup;
+}
+
+}  // namespace
+
+std::vector<Instance*> RunComponents::instances() const {
+  std::vector<Instance*> all{soil.get()};
+  for (const auto& [name, extra] : extras) all.push_back(extra.get());
+  all.push_back(coupler.get());
+  for (const auto& v : track->vehicles().vehicles()) all.push_back(v.instance.get());
+  return all;
+}
+
+RunComponents build_components(const scenario::RunSpec& spec, const PluginRegistry& registry) {
+  const std::filesystem::path dir = spec.path.parent_path();
+  RunComponents c;
+  VehicleSet vehicles;
+  for (const scenario::VehicleSpec& v : spec.vehicles) {
+    vehicles.add(
+        std::make_unique<VehicleInstance>(resolve(registry, RUMBLE_KIND_VEHICLE, v.component),
+                                          v.component.pointer, v.component.params, dir),
+        v.name, v.speed, v.start);
+  }
+  c.track = std::make_unique<TrackParticipant>(spec.track, std::move(vehicles));
+  const std::vector<rumble_footprint> layout = c.track->footprints();
+  c.soil = make_soil(spec.soil, registry, dir, layout);
+  c.coupler =
+      std::make_unique<CouplerInstance>(resolve(registry, RUMBLE_KIND_COUPLER, spec.coupling),
+                                        spec.coupling.pointer, spec.coupling.params, dir);
+  for (const auto& [name, component] : spec.participants)
+    c.extras.emplace_back(name, make_soil(component, registry, dir, layout));
+  c.receivers = attach_receivers(*c.soil, spec);
+  return c;
+}
+
+void give_run_context(RunComponents& c, const std::filesystem::path& results_dir) {
+  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  const unsigned soil_threads =
+      c.coupler->capabilities().has(RUMBLE_CAP_THREADS) ? std::max(1u, cores - 1) : cores;
+  c.soil->set_run_context(results_dir, soil_threads);
+  for (auto& [name, extra] : c.extras) extra->set_run_context(results_dir, soil_threads);
+  c.coupler->set_run_context(results_dir, 1);
+}
+
+void finalize_components(RunComponents& c) {
+  c.coupler->finalize();
+  c.soil->finalize();
+  for (auto& [name, extra] : c.extras) extra->finalize();
+}
+
+}  // namespace rumble

@@ -1,0 +1,55 @@
+// What the engine does after every final macro step a coupler reports: record it (CSV rows,
+// receiver samples, field snapshots), check that the coupled solution has not blown up, honour
+// Ctrl-C between steps, and move the progress line. It throws to stop the run (the host keeps
+// the exception and the coupler returns).
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <vector>
+
+#include "run/cosim_host.hpp"
+#include "run/progress_line.hpp"
+
+namespace rumble {
+
+class FieldWriter;
+class ProbeRecorder;
+class RunRecorder;
+class SoilSide;
+class TrackParticipant;
+
+class StepObserver {
+ public:
+  /// Where a final step goes; probes and fields may be null (not asked for, or not offered).
+  struct Sinks {
+    RunRecorder& recorder;
+    ProbeRecorder* probes = nullptr;
+    FieldWriter* fields = nullptr;
+  };
+  StepObserver(const TrackParticipant& track, const SoilSide& soil, Sinks sinks, double t_end,
+               std::size_t every, std::filesystem::path results_dir, bool progress);
+
+  /// The host's step callback. Throws RunError when the run diverged, Interrupted on Ctrl-C.
+  void operator()(const StepOutcome& step);
+
+  double t_reached() const { return t_reached_; }  // s, end of the last recorded step
+  std::size_t steps() const { return steps_; }     // final steps, for track and soil
+  std::size_t partial_reports() const { return partial_; }
+
+ private:
+  void check_finite(double t);
+
+  const TrackParticipant& track_;
+  const SoilSide& soil_;
+  Sinks sinks_;
+  double t_end_;       // s
+  std::size_t every_;  // record every n-th step
+  std::filesystem::path results_dir_;
+  ProgressLine progress_;
+  double t_reached_ = 0.0, t_recorded_ = 0.0;  // s
+  std::size_t steps_ = 0, partial_ = 0;
+  std::vector<double> scratch_;  // soil outputs, sized once
+};
+
+}  // namespace rumble

@@ -1,0 +1,68 @@
+// A validated scenario as typed values, built once before a run: what the run needs and where
+// each part came from (JSON pointers for messages). The JSON document itself is kept, as
+// validated with its defaults filled, for summary.json.
+#pragma once
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "track/track_config.hpp"
+
+namespace rumble::scenario {
+
+/// A plugin component: {type, params} at a JSON pointer.
+struct ComponentSpec {
+  std::string pointer;  // e.g. "/soil", "/coupling/participants/reduced_soil"
+  std::string type;
+  nlohmann::json params = nlohmann::json::object();
+};
+
+struct VehicleSpec {
+  ComponentSpec component;
+  std::string name;    // label in results
+  double speed = 0.0;  // m/s
+  double start = 0.0;  // m, position of the vehicle reference at t = 0
+};
+
+/// A receiver: a surface distance from the scenario (named "d=<y> m", at mid-track) or a named
+/// point.
+struct ReceiverSpec {
+  std::string name;
+  double x = 0.0, y = 0.0, depth = 0.0;  // m
+};
+
+struct OutputSpec {
+  std::filesystem::path directory;  // resolved: relative to the scenario file
+  std::vector<ReceiverSpec> receivers;
+  double receiver_interval = 0.0;        // s, 0: every soil step
+  std::optional<double> field_interval;  // s, soil field snapshots
+  std::size_t every = 1;                 // record every n-th macro step
+  bool plots = true;
+};
+
+struct RunSpec {
+  std::filesystem::path path;  // the scenario file
+  nlohmann::json document;     // as validated, defaults filled
+  double t_end = 0.0;          // s
+  double macro_step = 0.0;     // s
+  std::vector<VehicleSpec> vehicles;
+  TrackConfig track;
+  ComponentSpec soil, coupling;
+  std::vector<std::pair<std::string, ComponentSpec>> participants;  // the coupler's extras
+  OutputSpec outputs;
+
+  /// x [m] of the middle of the sleepers: where distance receivers stand.
+  double track_middle() const;
+};
+
+/// document: valid against the engine's and the plugins' schemas, defaults filled.
+RunSpec make_run_spec(const nlohmann::json& document, const std::filesystem::path& path);
+
+/// Results directory of a scenario: outputs.directory relative to the scenario file.
+std::filesystem::path results_directory(const nlohmann::json& document,
+                                        const std::filesystem::path& path);
+
+}  // namespace rumble::scenario
