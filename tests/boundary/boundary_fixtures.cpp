@@ -2,12 +2,14 @@
 //   picky_soil      c u' + k u = F per footprint (backward Euler, sub-steps of at most
 //                   `sub_step`), that refuses (DISCARD, state unchanged) any step longer than
 //                   `max_step`; records probes (the nearest footprint's u and v as uz and vz at
-//                   every sub-step); stalls from `stall_at` [s] until the host asks it to stop;
-//                   finalize() writes finalized.json (advances, refusals, threads) to the
-//                   results directory.
+//                   every sub-step); keeps its own checkpoints; stalls from `stall_at` [s] until
+//                   the host asks it to stop; writes field snapshots and its linear matrices;
+//                   finalize() writes finalized.json (advances, refusals, threads, checkpoint
+//                   and state-copy counts) to the results directory.
 //   forgetful_soil  the same spring-dashpot with no save/restore, once per process, no probes.
 //   needy_coupler   needs save/restore of every soil, a participant "reduced_soil", and macro
 //                   steps of at most 1 ms (declared only: validate refuses before it runs).
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <fstream>
@@ -16,6 +18,7 @@
 #include <rumble/plugin.hpp>
 #include <string>
 #include <thread>
+#include <tuple>
 #include <vector>
 
 namespace {
@@ -106,6 +109,7 @@ class PickySoil final : public rumble::Soil {
   }
   std::size_t state_size() const override { return 2 * spring_.u_.size(); }
   void save_state(double* b) const override {
+    ++state_copies_;
     const std::size_t n = spring_.u_.size();
     std::copy(spring_.u_.begin(), spring_.u_.end(), b);
     std::copy(spring_.v_.begin(), spring_.v_.end(), b + n);
@@ -114,6 +118,22 @@ class PickySoil final : public rumble::Soil {
     const std::size_t n = spring_.u_.size();
     std::copy(b, b + n, spring_.u_.begin());
     std::copy(b + n, b + 2 * n, spring_.v_.begin());
+    ++state_copies_;
+  }
+  // Own checkpoints: the state stays here; the host never copies it (state_copies_ stays 0).
+  void checkpoint_save(std::uint32_t slot) override {
+    slots_.at(slot) = {spring_.u_, spring_.v_};
+    saved_.at(slot) = true;
+    ++checkpoints_;
+  }
+  void checkpoint_restore(std::uint32_t slot) override {
+    if (!saved_.at(slot))
+      throw std::runtime_error("picky_soil: checkpoint slot " + std::to_string(slot) + " is empty");
+    std::tie(spring_.u_, spring_.v_) = slots_[slot];
+  }
+  void checkpoint_free(std::uint32_t slot) override {
+    slots_.at(slot) = {};
+    saved_.at(slot) = false;
   }
   void set_probes(const std::vector<rumble::Probe>& probes, double) override {
     nearest_.clear();
@@ -166,7 +186,8 @@ class PickySoil final : public rumble::Soil {
   void finalize() override {
     std::ofstream out(host_.results_dir() + "/finalized.json");
     out << "{\"advances\": " << advances_ << ", \"refusals\": " << refusals_
-        << ", \"threads\": " << host_.threads() << "}\n";
+        << ", \"threads\": " << host_.threads() << ", \"checkpoints\": " << checkpoints_
+        << ", \"state_copies\": " << state_copies_ << "}\n";
   }
 
  private:
@@ -195,7 +216,10 @@ class PickySoil final : public rumble::Soil {
   std::vector<double> row_;
   double max_step_ = 0.0, stall_at_ = 0.0;  // s
   std::string csc_defect_;
-  long advances_ = 0, refusals_ = 0;
+  long advances_ = 0, refusals_ = 0, checkpoints_ = 0;
+  mutable long state_copies_ = 0;  // save_state/restore_state: the host-copy path
+  std::array<std::pair<std::vector<double>, std::vector<double>>, RUMBLE_CHECKPOINT_SLOTS> slots_;
+  std::array<bool, RUMBLE_CHECKPOINT_SLOTS> saved_{};
 };
 
 class ForgetfulSoil final : public rumble::Soil {

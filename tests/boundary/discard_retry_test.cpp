@@ -57,6 +57,19 @@ TEST(DiscardRetry, JacobiRestoresTheTrackAndHalves) {
   expect_same_as_small_steps({{"type", "jacobi"}}, "discard_jacobi");
 }
 
+TEST(DiscardRetry, APluginThatKeepsItsOwnCheckpointsIsNeverCopied) {
+  // jacobi checkpoints both participants at every step start; picky_soil declares its own
+  // checkpoints, so its state never crosses the boundary (a large FEM state is not copied).
+  CliResult r;
+  nlohmann::json s = fixture_scenario(picky(kQuarter), {{"type", "jacobi"}});
+  s["time"] = {{"end", 8 * kMacro}, {"macro_step", kMacro}};
+  const auto dir = run_in("discard_own_checkpoints", s, r);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto soil = nlohmann::json::parse(file_text(dir / "finalized.json"));
+  EXPECT_EQ(soil["state_copies"], 0);
+  EXPECT_EQ(soil["checkpoints"], 8 * 7);  // attempts per step: H, 2 x H/2, 4 x H/4
+}
+
 TEST(DiscardRetry, NoHalvingsAllowedStopsWithTheReason) {
   CliResult r;
   const auto dir =

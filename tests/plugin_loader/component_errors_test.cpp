@@ -110,14 +110,21 @@ TEST_F(FaultySoil, WarningMeansDoneAndExplained) {
   EXPECT_DOUBLE_EQ(u0(), 1.0);
 }
 
-TEST_F(FaultySoil, OptionalCallsNotOfferedAreDiscarded) {
+// DISCARD means only "step refused" (ABI 1.1): an optional call that is not offered is not
+// declared, the host does not make it, and made anyway it is an error that says so.
+TEST_F(FaultySoil, OptionalCallsNotOfferedAreErrorsAndUndeclared) {
   create_ready(2);
   std::vector<double> re(4), im(4);
-  EXPECT_EQ(api_->frequency_response(instance_, 10.0, re.data(), im.data(), 2), RUMBLE_DISCARD);
+  EXPECT_EQ(api_->frequency_response(instance_, 10.0, re.data(), im.data(), 2), RUMBLE_ERROR);
   EXPECT_EQ(last_message(), "frequency response not offered");
   const rumble_receiver r{5.0, 2.5};
-  EXPECT_EQ(api_->set_receivers(instance_, &r, 1), RUMBLE_DISCARD);
+  EXPECT_EQ(api_->set_receivers(instance_, &r, 1), RUMBLE_ERROR);
   EXPECT_EQ(last_message(), "receivers not offered");
+  const rumble::Capabilities& caps = type_->capabilities;
+  EXPECT_TRUE(caps.declared);
+  EXPECT_FALSE(caps.has(RUMBLE_CAP_FREQUENCY_RESPONSE));
+  EXPECT_FALSE(caps.has(RUMBLE_CAP_SURFACE_RECEIVERS));
+  EXPECT_FALSE(caps.has(RUMBLE_CAP_RECEIVERS));
   std::uint64_t n = 99;
   EXPECT_EQ(api_->common.state_size(instance_, &n), RUMBLE_OK);
   EXPECT_EQ(n, 0u) << "no save/restore unless the component offers it";

@@ -274,6 +274,7 @@ void SoilInstance::motion(double* u, double* v, std::size_t n) const {
 bool SoilInstance::frequency_response(double f_hz, std::size_t n,
                                       std::vector<std::complex<double>>& receptance) {
   if (api_->frequency_response == nullptr) return false;
+  if (type().abi_minor >= 1 && !capabilities().has(RUMBLE_CAP_FREQUENCY_RESPONSE)) return false;
   re_.resize(n * n);
   im_.resize(n * n);
   try {
@@ -288,6 +289,7 @@ bool SoilInstance::frequency_response(double f_hz, std::size_t n,
 }
 bool SoilInstance::set_receivers(const std::vector<rumble_receiver>& receivers) {
   if (api_->set_receivers == nullptr) return false;
+  if (type().abi_minor >= 1 && !capabilities().has(RUMBLE_CAP_SURFACE_RECEIVERS)) return false;
   try {
     check(api_->set_receivers(handle(), receivers.data(), receivers.size()), "set_receivers");
   } catch (const Discarded&) {

@@ -50,6 +50,7 @@ Capabilities declared_capabilities(rumble_kind kind, const rumble_factory* f) {
   if (kind == RUMBLE_KIND_SOIL) {
     const auto* soil = static_cast<const rumble_soil_api*>(f->api);
     if (soil->frequency_response != nullptr) c.offers |= RUMBLE_CAP_FREQUENCY_RESPONSE;
+    if (soil->set_receivers != nullptr) c.offers |= RUMBLE_CAP_SURFACE_RECEIVERS;
   } else if (kind == RUMBLE_KIND_VEHICLE) {
     const auto* vehicle = static_cast<const rumble_vehicle_api*>(f->api);
     if (vehicle->tangent != nullptr) c.offers |= RUMBLE_CAP_TANGENT;

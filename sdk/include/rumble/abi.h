@@ -75,8 +75,9 @@ typedef enum rumble_status {
   RUMBLE_OK = 0,      /**< done */
   RUMBLE_WARNING = 1, /**< done, result valid, last_message says what is doubtful */
   /** Only from a step (advance): the step was refused and the instance state is exactly as
-   *  before the call; the caller may retry with a smaller step. From any other call, or from a
-   *  not-offered optional feature, it is not used (1.1: see rumble_capabilities). */
+   *  before the call; the caller may retry with a smaller step. (A 1.0 plugin also returned it
+   *  from tangent, frequency_response and set_receivers for "not offered"; from 1.1 on a host
+   *  reads the declared capabilities instead and never calls what is not offered.) */
   RUMBLE_DISCARD = 2,
   RUMBLE_ERROR = 3, /**< this instance is unusable; the run stops cleanly */
   RUMBLE_FATAL = 4  /**< process state suspect; stop at once */
@@ -164,6 +165,7 @@ typedef struct rumble_lifecycle_api {
 #define RUMBLE_CAP_THREADS (UINT64_C(1) << 7)            /**< uses rumble_host.threads > 1 */
 #define RUMBLE_CAP_ONCE_PER_PROCESS (UINT64_C(1) << 8)   /**< at most one live instance */
 #define RUMBLE_CAP_WAVE_SPEEDS (UINT64_C(1) << 9)        /**< soil: wave_speeds */
+#define RUMBLE_CAP_SURFACE_RECEIVERS (UINT64_C(1) << 10) /**< soil: 1.0 set_receivers pair */
 
 /**
  * 1.1: what a component type offers and, for a coupler, what it needs, declared on its factory

@@ -519,6 +519,7 @@ const rumble_capabilities* capabilities() {
       if (RUMBLE_DETAIL_OVERRIDES(T, Soil, frequency_response))
         offers |= RUMBLE_CAP_FREQUENCY_RESPONSE;
       if (RUMBLE_DETAIL_OVERRIDES(T, Soil, set_probes)) offers |= RUMBLE_CAP_RECEIVERS;
+      if (RUMBLE_DETAIL_OVERRIDES(T, Soil, set_receivers)) offers |= RUMBLE_CAP_SURFACE_RECEIVERS;
       if (RUMBLE_DETAIL_OVERRIDES(T, Soil, write_fields)) offers |= RUMBLE_CAP_FIELD_OUTPUT;
       if (RUMBLE_DETAIL_OVERRIDES(T, Soil, wave_speeds)) offers |= RUMBLE_CAP_WAVE_SPEEDS;
       if (RUMBLE_DETAIL_OVERRIDES(T, Soil, linear_matrix)) offers |= RUMBLE_CAP_LINEAR_MATRICES;
@@ -608,13 +609,10 @@ const rumble_vehicle_api* vehicle_api() {
     };
     a.tangent = [](rumble_instance* s, double t, const double* q, const double* qd, double* k,
                    double* c) {
-      bool known = false;
-      const rumble_status st = guard(s, [&] { known = object<T>(s).tangent(t, q, qd, k, c); });
-      if (st == RUMBLE_OK && !known) {
-        box(s)->message = "no analytical tangent";
-        return RUMBLE_DISCARD;
-      }
-      return st;
+      return guard(s, [&] {
+        if (!object<T>(s).tangent(t, q, qd, k, c))
+          throw std::logic_error("no analytical tangent (not declared: the host asks tangent2)");
+      });
     };
     a.output_names = [](rumble_instance* s) -> const char* {
       Box* b = box(s);
@@ -721,30 +719,21 @@ const rumble_soil_api* soil_api() {
     };
     a.frequency_response = [](rumble_instance* s, double f, double* re, double* im,
                               std::uint64_t n) {
-      bool offered = false;
-      const rumble_status st = guard(s, [&] {
+      return guard(s, [&] {
         std::vector<std::complex<double>> h(static_cast<std::size_t>(n * n));
-        offered = object<T>(s).frequency_response(f, h.data());
-        for (std::size_t k = 0; offered && k < h.size(); ++k) {
+        if (!object<T>(s).frequency_response(f, h.data()))
+          throw std::logic_error("frequency response not offered");
+        for (std::size_t k = 0; k < h.size(); ++k) {
           re[k] = h[k].real();
           im[k] = h[k].imag();
         }
       });
-      if (st == RUMBLE_OK && !offered) {
-        box(s)->message = "frequency response not offered";
-        return RUMBLE_DISCARD;
-      }
-      return st;
     };
     a.set_receivers = [](rumble_instance* s, const rumble_receiver* r, std::uint64_t n) {
-      bool offered = false;
-      const rumble_status st =
-          guard(s, [&] { offered = object<T>(s).set_receivers(std::vector<Receiver>(r, r + n)); });
-      if (st == RUMBLE_OK && !offered) {
-        box(s)->message = "receivers not offered";
-        return RUMBLE_DISCARD;
-      }
-      return st;
+      return guard(s, [&] {
+        if (!object<T>(s).set_receivers(std::vector<Receiver>(r, r + n)))
+          throw std::logic_error("receivers not offered");
+      });
     };
     a.receiver_velocity = [](rumble_instance* s, double* v, std::uint64_t) {
       return guard(s, [&] { object<T>(s).receiver_velocity(v); });
