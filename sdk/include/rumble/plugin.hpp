@@ -146,7 +146,9 @@ class Vehicle : public Component {
   virtual void forces(double t, const double* q, const double* qd, double* f) = 0;
   /// z: n_wheels positions [m] (down +, 0 at the nominal height); jacobian: n_wheels x dof.
   virtual void wheel_kinematics(const double* q, double* z, double* jacobian) = 0;
-  /// Return true and fill K = -df/dq, C = -df/dq' when known analytically.
+  /// Fill K = -df/dq, C = -df/dq' and return true. Overriding it declares an analytic tangent
+  /// (ABI 1.1): return it at every state; a class without one does not override it, and the
+  /// engine differentiates forces() numerically.
   virtual bool tangent(double /*t*/, const double* /*q*/, const double* /*qd*/,
                        double* /*stiffness*/, double* /*damping*/) {
     return false;
@@ -659,7 +661,12 @@ const rumble_vehicle_api* vehicle_api() {
       const rumble_status st = guard(s, [&] {
         check_length("tangent", "q", n, box(s)->n_dof);
         known = object<T>(s).tangent(t, q, qd, k, c);
-        if (!known) throw std::logic_error("no analytical tangent");
+        if (!known) {
+          throw std::logic_error(
+              "tangent() returned false, but overriding it declares an analytic tangent: return "
+              "it at every state, or do not override tangent() (the engine then differentiates "
+              "forces())");
+        }
       });
       return st;
     };
