@@ -87,10 +87,13 @@ void CosimHostImpl::fill_table() {
   };
   table_.step_done = [](void* ctx, double t, double H, double residual) {
     return self(ctx).guard([&] {
-      StepOutcome s;
+      StepOutcome& s = self(ctx).outcome_;  // reused: no allocation per step
       s.t = t;
       s.H = H;
-      s.residuals.push_back({"interface", residual, residual});
+      s.iterations = 1;
+      s.converged = true;
+      s.participants = 0;
+      s.residuals.assign(1, {"interface", residual, residual});
       self(ctx).step_done_(s);
     });
   };
@@ -131,7 +134,7 @@ void CosimHostImpl::fill_table() {
     return self(ctx).guard([&] {
       if (!RUMBLE_HAS_FIELD(r, rumble_step_report, participants))
         throw RunError("coupler's step report is shorter than ABI 1.1's");
-      StepOutcome s;
+      StepOutcome& s = self(ctx).outcome_;  // reused: no allocation per step
       s.t = r->t;
       s.H = r->H;
       s.iterations = r->iterations;

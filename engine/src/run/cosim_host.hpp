@@ -66,6 +66,7 @@ class CosimHostImpl {
   mutable std::mutex error_mutex_;
   std::exception_ptr error_;
   std::atomic<std::size_t> discards_{0};
+  StepOutcome outcome_;  // the step being reported, reused from step to step
 };
 
 }  // namespace rumble
