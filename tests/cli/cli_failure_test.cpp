@@ -76,6 +76,20 @@ TEST(CliFailure, DivergingCouplingStopsWithAdvice) {
   EXPECT_GT(csv_rows(dir / "results" / "contact.csv"), 1u);  // the steps before are kept
 }
 
+// A micro-step far too small for the macro step (issue #8: 1e-15 s at 1 ms overflowed an int
+// count and ran one micro-step per macro step): refused with the count and the fix.
+TEST(CliFailure, AbsurdMicroStepCountIsRefused) {
+  const auto dir = scratch_directory("absurd_micro_step");
+  nlohmann::json s = small_scenario();
+  s["track"]["integrator"] = {{"micro_step", 1e-15}};
+  const CliResult r = run_rumble({"run", write_scenario(dir, s).string(), "--no-progress"});
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("track: a macro step of 0.001 s in micro-steps of 1e-15 s is "
+                                  "1e+12 micro-steps, more than 1e+07; raise "
+                                  "/track/integrator/micro_step or lower /time/macro_step"));
+  EXPECT_EQ(read_json(dir / "results" / "summary.json")["status"], "failed");
+}
+
 // Ctrl-C: the run stops at the end of the current macro step, says so, keeps every row.
 TEST(CliFailure, InterruptKeepsResults) {
   const auto dir = scratch_directory("interrupt");

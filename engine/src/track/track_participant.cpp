@@ -347,19 +347,28 @@ void TrackParticipant::evaluate_contacts(double t, const Eigen::VectorXd& x,
   }
 }
 
-int TrackParticipant::micro_steps(double H) const {
+std::int64_t TrackParticipant::micro_steps(double H) const {
   if (!(h_max_ > 0.0)) throw RunError("track: advance() before solve_static()");
-  return std::max(static_cast<int>(std::ceil(H / h_max_ - 1e-9)), 1);
+  // Counted in floating point first: a tiny micro-step must not overflow the integer count.
+  const double n = std::max(std::ceil(H / h_max_ - 1e-9), 1.0);
+  if (!(n <= kMaxMicroStepsPerMacroStep)) {
+    std::ostringstream m;
+    m << "track: a macro step of " << H << " s in micro-steps of " << h_max_ << " s is " << n
+      << " micro-steps, more than " << kMaxMicroStepsPerMacroStep
+      << "; raise /track/integrator/micro_step or lower /time/macro_step";
+    throw RunError(m.str());
+  }
+  return static_cast<std::int64_t>(n);
 }
 
 void TrackParticipant::advance(double t, double H) {
-  const int n_sub = micro_steps(H);
-  const double h = H / n_sub;
+  const std::int64_t n_sub = micro_steps(H);
+  const double h = H / static_cast<double>(n_sub);
   factorize_dynamic(h);
   input_t0_ = t;
   input_H_ = H;
-  for (int s = 1; s <= n_sub; ++s) {
-    const double tau = static_cast<double>(s) / n_sub;
+  for (std::int64_t s = 1; s <= n_sub; ++s) {
+    const double tau = static_cast<double>(s) / static_cast<double>(n_sub);
     micro_step(t + tau * H, h, tau);
   }
   t_ = t + H;

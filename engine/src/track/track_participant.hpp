@@ -13,6 +13,7 @@
 #include <rumble/abi.h>
 
 #include <Eigen/Dense>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <rumble/newmark.hpp>
@@ -42,8 +43,10 @@ class TrackParticipant {
   /// contact resonance (wheel mass against rail mass over one bay, linearized Hertz spring).
   double micro_step_limit() const { return h_max_; }
   /// The one micro-step rule: a macro step H [s] is taken in ceil(H / micro_step_limit())
-  /// equal micro-steps (at least one); this is their number.
-  int micro_steps(double H) const;
+  /// equal micro-steps (at least one); this is their number. Throws RunError beyond
+  /// kMaxMicroStepsPerMacroStep (a step size that cannot be meant).
+  std::int64_t micro_steps(double H) const;
+  static constexpr double kMaxMicroStepsPerMacroStep = 1e7;
 
   /// Static equilibrium under the vehicles' weight, iterated with the soil to consistency;
   /// with no soil (empty function) the footprints are fixed. Returns the iterations used.
