@@ -138,6 +138,18 @@ TEST(PluginLoadErrors, FunctionTableWithoutARequiredFunction) {
   EXPECT_TRUE(registry.types().empty());
 }
 
+// ABI 1.1: a capability declared without the functions it needs is refused at load, not a null
+// call when the engine relies on the declaration.
+TEST(PluginLoadErrors, DeclaredCapabilityWithoutItsFunction) {
+  PluginRegistry registry;
+  EXPECT_EQ(load_error(registry, fixture::unbacked_capability),
+            "plugin " + quoted(fixture::unbacked_capability) +
+                ": factory 0 ('loader_test_forged') is malformed: declares receivers but its "
+                "function table has no 'set_probes'; build the plugin with RUMBLE_PLUGIN() from "
+                "the Rumble SDK");
+  EXPECT_TRUE(registry.types().empty());
+}
+
 TEST(PluginLoadErrors, NoFactories) {
   PluginRegistry registry;
   EXPECT_EQ(load_error(registry, fixture::no_factories),

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <initializer_list>
 #include <utility>
+#include <vector>
 
 namespace rumble {
 namespace {
@@ -69,6 +70,13 @@ std::string function_table_defect(rumble_kind kind, const void* api, std::uint32
       }
       if (d.empty() && t.output_names != nullptr && t.outputs == nullptr)
         d = "function table has 'output_names' but no 'outputs'";
+      if (d.empty() && v1_1) {  // the 1.1 host calls these instead of their 1.0 forms
+        d = first_missing({{"mass_matrix2", t.mass_matrix2 != nullptr},
+                           {"forces2", t.forces2 != nullptr},
+                           {"wheel_kinematics2", t.wheel_kinematics2 != nullptr}});
+      }
+      if (d.empty() && v1_1 && (t.output_names2 == nullptr) != (t.outputs2 == nullptr))
+        d = "function table has only one of 'output_names2' and 'outputs2'";
       if (d.empty() && v1_1) d = lifecycle_defect(t.lifecycle);
       return d;
     }
@@ -105,6 +113,47 @@ std::string function_table_defect(rumble_kind kind, const void* api, std::uint32
     }
   }
   return "unknown kind";
+}
+
+std::string declared_functions_defect(rumble_kind kind, const void* api, std::uint64_t offers) {
+  struct Need {
+    std::uint64_t bit;
+    const char* capability;
+    const char* function;
+    bool present;
+  };
+  std::vector<Need> needs;
+  const rumble_lifecycle_api* lifecycle = nullptr;
+  if (kind == RUMBLE_KIND_SOIL) {
+    const auto& t = *static_cast<const rumble_soil_api*>(api);
+    lifecycle = t.lifecycle;
+    needs = {{RUMBLE_CAP_RECEIVERS, "receivers", "set_probes", t.set_probes != nullptr},
+             {RUMBLE_CAP_RECEIVERS, "receivers", "probe_samples", t.probe_samples != nullptr},
+             {RUMBLE_CAP_SURFACE_RECEIVERS, "surface_receivers", "set_receivers",
+              t.set_receivers != nullptr},
+             {RUMBLE_CAP_FREQUENCY_RESPONSE, "frequency_response", "frequency_response",
+              t.frequency_response != nullptr},
+             {RUMBLE_CAP_FIELD_OUTPUT, "field_output", "write_fields", t.write_fields != nullptr},
+             {RUMBLE_CAP_WAVE_SPEEDS, "wave_speeds", "wave_speeds", t.wave_speeds != nullptr},
+             {RUMBLE_CAP_LINEAR_MATRICES, "linear_matrices", "linear_matrix",
+              t.linear_matrix != nullptr}};
+  } else if (kind == RUMBLE_KIND_VEHICLE) {
+    const auto& t = *static_cast<const rumble_vehicle_api*>(api);
+    lifecycle = t.lifecycle;
+    needs = {{RUMBLE_CAP_TANGENT, "tangent", "tangent2", t.tangent2 != nullptr}};
+  } else if (kind == RUMBLE_KIND_COUPLER) {
+    lifecycle = static_cast<const rumble_coupler_api*>(api)->lifecycle;
+  }
+  const bool own = lifecycle != nullptr && lifecycle->checkpoint_save != nullptr &&
+                   lifecycle->checkpoint_restore != nullptr;
+  needs.push_back(
+      {RUMBLE_CAP_OWN_CHECKPOINTS, "own_checkpoints", "lifecycle checkpoint_save", own});
+  for (const Need& n : needs) {
+    if ((offers & n.bit) != 0 && !n.present)
+      return std::string("declares ") + n.capability + " but its function table has no '" +
+             n.function + "'";
+  }
+  return "";
 }
 
 }  // namespace rumble

@@ -16,4 +16,9 @@ namespace rumble {
 /// pairs abi.h defines); otherwise what is wrong, e.g. "function table has no 'advance'".
 std::string function_table_defect(rumble_kind kind, const void* api, std::uint32_t abi_minor);
 
+/// "" when every capability a 1.1 factory declares (offers, RUMBLE_CAP_* bits) has the functions
+/// the host then calls; otherwise what is missing, e.g. "declares receivers but its function
+/// table has no 'set_probes'".
+std::string declared_functions_defect(rumble_kind kind, const void* api, std::uint64_t offers);
+
 }  // namespace rumble

@@ -200,6 +200,8 @@ void PluginRegistry::load_library(const fs::path& requested) {
       defect = "struct_size " + std::to_string(f.struct_size) + " bytes, ABI 1.1 needs " +
                std::to_string(kFactoryV1_1);
     if (defect.empty()) defect = capabilities_defect(&f);
+    if (defect.empty() && d->abi_minor >= 1 && f.capabilities != nullptr)
+      defect = declared_functions_defect(kind, f.api, f.capabilities->offers);
     if (!defect.empty()) {
       throw PluginLoadError("plugin " + quoted(path) + ": factory " + std::to_string(i) +
                             (f.struct_size >= kFactoryV1_0 && f.type_name != nullptr
