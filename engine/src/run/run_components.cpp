@@ -94,12 +94,15 @@ void give_run_context(RunComponents& c, const std::filesystem::path& results_dir
   c.soil->set_run_context(results_dir, soil_threads);
   for (auto& [name, extra] : c.extras) extra->set_run_context(results_dir, soil_threads);
   c.coupler->set_run_context(results_dir, 1);
+  for (const auto& v : c.track->vehicles().vehicles())  // integrated by the engine: one thread
+    v.instance->set_run_context(results_dir, 1);
 }
 
 void finalize_components(RunComponents& c) {
   c.coupler->finalize();
   c.soil->finalize();
   for (auto& [name, extra] : c.extras) extra->finalize();
+  for (const auto& v : c.track->vehicles().vehicles()) v.instance->finalize();
 }
 
 }  // namespace rumble
