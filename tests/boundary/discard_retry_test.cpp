@@ -34,6 +34,10 @@ void expect_same_as_small_steps(const nlohmann::json& coupling, const std::strin
                            "footprint_displacement.csv", "footprint_velocity.csv", "interface.csv"})
     EXPECT_TRUE(same_bytes(dir_a / file, dir_b / file)) << file << " differs";
   const auto summary = read_json(dir_a / "summary.json");
+  const auto& by_group = summary["interface"]["max_relative_residual_by_group"];
+  EXPECT_TRUE(by_group.contains("footprint_displacement")) << by_group;
+  EXPECT_EQ(read_json(dir_b / "summary.json")["interface"]["max_relative_residual_by_group"],
+            by_group);
   EXPECT_EQ(summary["coupling"]["discarded_steps"], 3 * macro_steps);
   EXPECT_EQ(summary["time"]["macro_steps"], 4 * macro_steps);  // accepted steps, as reported
   const auto plugin_side = nlohmann::json::parse(file_text(dir_a / "finalized.json"));

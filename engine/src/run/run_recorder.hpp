@@ -3,7 +3,8 @@
 //   vehicles.csv          vehicle DOFs [m or rad]
 //   footprint_force.csv   force on the soil at every footprint [N] (down +)
 //   footprint_displacement.csv, footprint_velocity.csv   footprint u [m], v [m/s] (down +)
-//   interface.csv         coupler's relative interface residual, power [W] and energy [J]
+//   interface.csv         coupler's relative interface residual (the largest of its channel
+//                         groups'), power [W] and energy [J]
 //                         exchanged at the cut
 //   receivers.csv         vertical velocity of surface receivers [m/s] (soils that offer them)
 // and keeps the peaks (PPV) for the summary.

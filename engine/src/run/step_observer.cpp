@@ -1,7 +1,9 @@
 #include "run/step_observer.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <string_view>
 
 #include "core/errors.hpp"
 #include "core/interrupt.hpp"
@@ -42,6 +44,12 @@ void StepObserver::operator()(const StepOutcome& step) {
   }
   t_reached_ = step.t + step.H;
   ++steps_;
+  for (const rumble_group_residual& g : step.residuals) {
+    const std::string_view name = g.group != nullptr ? g.group : "";
+    auto it = max_residuals_.find(name);  // heterogeneous: no string built once the key exists
+    if (it == max_residuals_.end()) it = max_residuals_.emplace(std::string(name), 0.0).first;
+    it->second = std::max(it->second, g.relative);
+  }
   if (sinks_.probes != nullptr) sinks_.probes->take();
   if (sinks_.fields != nullptr) sinks_.fields->at(t_reached_);
   if (steps_ % every_ == 0 || t_reached_ >= t_end_ * (1.0 - 1e-12)) {

@@ -6,6 +6,9 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <functional>
+#include <map>
+#include <string>
 #include <vector>
 
 #include "run/cosim_host.hpp"
@@ -33,6 +36,8 @@ class StepObserver {
   /// The host's step callback. Throws RunError when the run diverged, Interrupted on Ctrl-C.
   void operator()(const StepOutcome& step);
 
+  /// The largest relative residual of each channel group the coupler reported, over the run.
+  const std::map<std::string, double, std::less<>>& max_residuals() const { return max_residuals_; }
   double t_reached() const { return t_reached_; }  // s, end of the last recorded step
   std::size_t steps() const { return steps_; }     // final steps, for track and soil
   std::size_t partial_reports() const { return partial_; }
@@ -49,7 +54,8 @@ class StepObserver {
   ProgressLine progress_;
   double t_reached_ = 0.0, t_recorded_ = 0.0;  // s
   std::size_t steps_ = 0, partial_ = 0;
-  std::vector<double> scratch_;  // soil outputs, sized once
+  std::vector<double> scratch_;                               // soil outputs, sized once
+  std::map<std::string, double, std::less<>> max_residuals_;  // by group; keys made once
 };
 
 }  // namespace rumble
