@@ -3,11 +3,11 @@
 #include <rumble/abi.h>
 
 #include <map>
-#include <sstream>
 #include <string>
 
 #include "plugin/capabilities.hpp"
 #include "plugin/registry.hpp"
+#include "scenario/value_text.hpp"
 
 namespace rumble::scenario {
 namespace {
@@ -29,20 +29,6 @@ const ComponentType* known(const json& scenario, const std::string& pointer, rum
   return registry.find(kind, c.at("type").get<std::string>());
 }
 
-Diagnostic error(std::string pointer, std::string message, std::string hint) {
-  Diagnostic d;
-  d.pointer = std::move(pointer);
-  d.message = std::move(message);
-  d.hint = std::move(hint);
-  return d;
-}
-
-std::string number(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
-
 /// Soils that offer every bit of `bits`, for a hint.
 std::string soils_offering(const PluginRegistry& registry, std::uint64_t bits) {
   std::string list;
@@ -60,12 +46,12 @@ void check_needs(const ComponentType& coupler, const std::vector<Used>& soils,
     const Capabilities& offers = soil.type->capabilities;
     const std::uint64_t missing = needs & ~offers.offers;
     if (missing == 0 || !offers.declared) continue;  // a 1.0 soil is checked at run time
-    out.push_back(error(soil.pointer + "/type",
-                        "soil type \"" + soil.type->type_name + "\" cannot " +
-                            capability_text(missing) + ", which coupler \"" + coupler.type_name +
-                            "\" needs of every soil it drives",
-                        "choose a soil that can (" + soils_offering(registry, missing) +
-                            ") or a coupler that does not need it"));
+    out.push_back(finding(soil.pointer + "/type",
+                          "soil type \"" + soil.type->type_name + "\" cannot " +
+                              capability_text(missing) + ", which coupler \"" + coupler.type_name +
+                              "\" needs of every soil it drives",
+                          "choose a soil that can (" + soils_offering(registry, missing) +
+                              ") or a coupler that does not need it"));
   }
 }
 
@@ -77,10 +63,10 @@ void check_participants(const json& scenario, const ComponentType& coupler,
   for (const auto& [name, spec] : declared.items()) {
     if (spec.is_object() && spec.value("required", false) && !given.contains(name)) {
       out.push_back(
-          error("/coupling",
-                "coupler \"" + coupler.type_name + "\" needs a participant \"" + name + "\" (" +
-                    spec.value("description", std::string("a soil")) + ")",
-                "add /coupling/participants/" + name + " = {\"type\": ..., \"params\": {...}}"));
+          finding("/coupling",
+                  "coupler \"" + coupler.type_name + "\" needs a participant \"" + name + "\" (" +
+                      spec.value("description", std::string("a soil")) + ")",
+                  "add /coupling/participants/" + name + " = {\"type\": ..., \"params\": {...}}"));
     }
   }
   for (const auto& [name, component] : given.items()) {
@@ -89,10 +75,10 @@ void check_participants(const json& scenario, const ComponentType& coupler,
     for (const auto& [known_name, spec] : declared.items())
       names += (names.empty() ? "" : ", ") + known_name;
     out.push_back(
-        error("/coupling/participants/" + name,
-              "coupler \"" + coupler.type_name + "\" drives no participant \"" + name + "\"",
-              names.empty() ? "this coupler drives only the track and /soil; remove it"
-                            : "its participants are: " + names));
+        finding("/coupling/participants/" + name,
+                "coupler \"" + coupler.type_name + "\" drives no participant \"" + name + "\"",
+                names.empty() ? "this coupler drives only the track and /soil; remove it"
+                              : "its participants are: " + names));
   }
 }
 
@@ -102,11 +88,11 @@ void check_max_step(const json& scenario, const std::vector<Used>& used,
   for (const Used& u : used) {
     const double limit = u.type->capabilities.max_macro_step;
     if (limit > 0.0 && H > limit) {
-      out.push_back(error("/time/macro_step",
-                          "must be <= " + number(limit) + " s, the largest macro step " +
-                              kind_name(u.type->kind) + " type \"" + u.type->type_name + "\" (" +
-                              u.pointer + ") accepts, got " + number(H),
-                          "set /time/macro_step to " + number(limit) + " or less"));
+      out.push_back(finding("/time/macro_step",
+                            "must be <= " + format_number(limit) + " s, the largest macro step " +
+                                kind_name(u.type->kind) + " type \"" + u.type->type_name + "\" (" +
+                                u.pointer + ") accepts, got " + format_number(H),
+                            "set /time/macro_step to " + format_number(limit) + " or less"));
     }
   }
 }
@@ -117,11 +103,11 @@ void check_once_per_process(const std::vector<Used>& used, std::vector<Diagnosti
     if (!u.type->capabilities.has(RUMBLE_CAP_ONCE_PER_PROCESS)) continue;
     const auto [it, fresh] = first_use.emplace(u.type->type_name, u.pointer);
     if (!fresh) {
-      out.push_back(error(u.pointer + "/type",
-                          "type \"" + u.type->type_name +
-                              "\" allows one instance per process and is already used at " +
-                              it->second,
-                          "use another type here, or run the two in separate scenarios"));
+      out.push_back(finding(u.pointer + "/type",
+                            "type \"" + u.type->type_name +
+                                "\" allows one instance per process and is already used at " +
+                                it->second,
+                            "use another type here, or run the two in separate scenarios"));
     }
   }
 }
@@ -129,11 +115,11 @@ void check_once_per_process(const std::vector<Used>& used, std::vector<Diagnosti
 void check_fields(const json& scenario, const Used& soil, std::vector<Diagnostic>& out) {
   const Capabilities& c = soil.type->capabilities;
   if (!scenario.at("outputs").contains("fields") || c.has(RUMBLE_CAP_FIELD_OUTPUT)) return;
-  Diagnostic d = error("/outputs/fields",
-                       "soil type \"" + soil.type->type_name +
-                           "\" writes no field output; no snapshots will be written",
-                       "remove /outputs/fields, or use a soil that offers field output (the fem "
-                       "soil)");
+  Diagnostic d = finding("/outputs/fields",
+                         "soil type \"" + soil.type->type_name +
+                             "\" writes no field output; no snapshots will be written",
+                         "remove /outputs/fields, or use a soil that offers field output (the fem "
+                         "soil)");
   d.severity = Diagnostic::Severity::kWarning;
   out.push_back(std::move(d));
 }
@@ -142,7 +128,7 @@ void check_receivers(const json& scenario, const Used& soil, std::vector<Diagnos
   const json& receivers = scenario.at("outputs").value("receivers", json::array());
   const Capabilities& c = soil.type->capabilities;
   if (receivers.empty() || !c.declared || c.has(RUMBLE_CAP_RECEIVERS)) return;
-  Diagnostic d = error(
+  Diagnostic d = finding(
       "/outputs/receivers",
       "soil type \"" + soil.type->type_name + "\" offers no receivers; they will not be recorded",
       "footprint motions are still recorded; use a soil that offers receivers "

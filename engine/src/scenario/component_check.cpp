@@ -15,16 +15,6 @@ namespace {
 
 using nlohmann::json;
 
-Diagnostic finding(std::string pointer, std::string message, std::string hint = "",
-                   Diagnostic::Severity severity = Diagnostic::Severity::kError) {
-  Diagnostic d;
-  d.severity = severity;
-  d.pointer = std::move(pointer);
-  d.message = std::move(message);
-  d.hint = std::move(hint);
-  return d;
-}
-
 std::string one_decimal(double x) {
   std::ostringstream s;
   s << std::round(x * 10.0) / 10.0;

@@ -3,6 +3,7 @@
 
 #include <cstddef>
 #include <string>
+#include <utility>
 
 namespace rumble::scenario {
 
@@ -15,5 +16,16 @@ struct Diagnostic {
   std::string message;     // "must be > 0, got -2.5e7"
   std::string hint;        // "did you mean \"winkler\"? known soil types: clm, winkler"; may be ""
 };
+
+/// A finding without a position (the caller places it in the text).
+inline Diagnostic finding(std::string pointer, std::string message, std::string hint = "",
+                          Diagnostic::Severity severity = Diagnostic::Severity::kError) {
+  Diagnostic d;
+  d.severity = severity;
+  d.pointer = std::move(pointer);
+  d.message = std::move(message);
+  d.hint = std::move(hint);
+  return d;
+}
 
 }  // namespace rumble::scenario

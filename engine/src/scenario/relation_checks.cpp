@@ -11,15 +11,7 @@ namespace {
 
 using scenario::Diagnostic;
 
-Diagnostic finding(std::string pointer, std::string message, std::string hint,
-                   Diagnostic::Severity severity = Diagnostic::Severity::kError) {
-  Diagnostic d;
-  d.severity = severity;
-  d.pointer = std::move(pointer);
-  d.message = std::move(message);
-  d.hint = std::move(hint);
-  return d;
-}
+using scenario::finding;
 
 std::string num(double x) {
   std::ostringstream s;
