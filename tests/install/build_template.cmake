@@ -11,15 +11,7 @@ foreach(var SDK_BINARY_DIR TEMPLATE_DIR WORK_DIR GENERATOR CXX_COMPILER)
   endif()
 endforeach()
 
-# Runs a command; on failure prints its output and stops with the step's name.
-function(step name)
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
-  if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "${name} failed (${rc}):\n${ARGN}\n${out}")
-  endif()
-  message(STATUS "${name}: ok")
-  set(step_output "${out}" PARENT_SCOPE)
-endfunction()
+include(${CMAKE_CURRENT_LIST_DIR}/../support/script_step.cmake)  # step(name command...)
 
 set(prefix ${WORK_DIR}/prefix)
 set(build ${WORK_DIR}/build)
