@@ -150,6 +150,22 @@ TEST(PluginLoadErrors, DeclaredCapabilityWithoutItsFunction) {
   EXPECT_TRUE(registry.types().empty());
 }
 
+TEST(PluginLoadErrors, MalformedCapabilities) {
+  PluginRegistry registry;
+  const std::string tail = "; build the plugin with RUMBLE_PLUGIN() from the Rumble SDK";
+  EXPECT_EQ(load_error(registry, fixture::bad_participants),
+            "plugin " + quoted(fixture::bad_participants) +
+                ": factory 0 ('loader_test_forged') is malformed: capabilities participants_json "
+                "is not a JSON object" +
+                tail);
+  EXPECT_EQ(load_error(registry, fixture::negative_max_step),
+            "plugin " + quoted(fixture::negative_max_step) +
+                ": factory 0 ('loader_test_forged') is malformed: capabilities max_macro_step is "
+                "negative or NaN" +
+                tail);
+  EXPECT_TRUE(registry.types().empty());
+}
+
 TEST(PluginLoadErrors, NoFactories) {
   PluginRegistry registry;
   EXPECT_EQ(load_error(registry, fixture::no_factories),

@@ -1,6 +1,5 @@
 #include "run/field_writer.hpp"
 
-#include <cmath>
 #include <cstdio>
 #include <fstream>
 
