@@ -1,0 +1,49 @@
+// A symmetric sparse matrix over the 3 DOFs per node of a mesh (DOF 3 i + c, c = x, y, z), in
+// compressed rows: 8 B values + 4 B column indices per nonzero, the layout the explicit step
+// streams once per sub-step (numerics.md §5: memory-bound at 12 B/nnz). Row 3 i + c holds the
+// 3 x deg(i) entries of node i's neighbours j (sorted, i included), columns 3 j + d.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "tet_mesh.hpp"
+
+namespace rumble::fem {
+
+class CsrMatrix {
+ public:
+  /// The pattern of the mesh's node graph (zeros).
+  explicit CsrMatrix(const TetMesh& mesh);
+
+  std::int64_t rows() const { return static_cast<std::int64_t>(row_start_.size()) - 1; }
+  std::int64_t nonzeros() const { return row_start_.back(); }
+  /// The 3 x 3 block (node i, node j) as 3 pointers to its rows (each 3 contiguous values).
+  /// j must be a neighbour of i (they share a tetrahedron), else std::out_of_range.
+  double* block_row(std::int32_t i, std::int32_t j, int c);
+  /// y = A x over rows [begin, end); x, y of size rows().
+  void multiply_rows(const double* x, double* y, std::int64_t begin, std::int64_t end) const;
+  /// Row r's product with x.
+  double row_dot(std::int64_t r, const double* x) const {
+    double s = 0.0;
+    for (std::int64_t k = row_start_[r]; k < row_start_[r + 1]; ++k) s += value_[k] * x[column_[k]];
+    return s;
+  }
+
+  const std::vector<std::int64_t>& row_start() const { return row_start_; }
+  const std::vector<std::int32_t>& column() const { return column_; }
+  const std::vector<double>& value() const { return value_; }
+  std::size_t bytes() const {
+    return row_start_.size() * 8 + column_.size() * 4 + value_.size() * 8 +
+           neighbour_start_.size() * 8 + neighbour_.size() * 4;
+  }
+
+ private:
+  std::vector<std::int64_t> neighbour_start_;  // node graph (node i: its sorted neighbours)
+  std::vector<std::int32_t> neighbour_;
+  std::vector<std::int64_t> row_start_;  // rows() + 1
+  std::vector<std::int32_t> column_;
+  std::vector<double> value_;
+};
+
+}  // namespace rumble::fem

@@ -1,0 +1,73 @@
+// Central-difference time stepping of  M w'' + C w' + K w = f  (velocity Verlet form, second
+// order; numerics.md §3.1) with M the lumped mass, C = a0 M + a1 K + D (Rayleigh damping and
+// the boundary's dashpot blocks) and K the elastic stiffness plus the boundary's spring blocks:
+//   v+ = v + dt/2 a;   w += dt v+;   r = f - K (w + a1 v+) - S w
+//   (M + dt/2 (a0 M + D)) v' = M v+ + dt/2 r;   a = 2 (v' - v+) / dt
+// Every operator is diagonal or block-diagonal except one K product per step, so a step is one
+// pass over K (memory-bound) plus vector updates, split over the threads. The damping terms
+// a0 M and D are taken at the new velocity (unconditionally stable); a1 K v+ lags half a step,
+// which shortens the stable step as stable_step() says. Fixed nodes never move.
+// This class is the soil's operator back end: a distributed (MPI) or matrix-free kernel
+// replaces it behind the same calls (docs/decisions/0006-fem-soil.md).
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <vector>
+
+#include "absorbing_boundary.hpp"
+#include "csr_matrix.hpp"
+
+namespace rumble::fem {
+
+struct ExplicitState {
+  Eigen::VectorXd w, v, a;  // displacement from the static state [m], velocity, acceleration
+};
+
+class ExplicitSolver {
+ public:
+  /// K: elastic stiffness; mass per node [kg]; boundary blocks (springs used when
+  /// `springs`); fixed: per node, never moves; a0 [1/s], a1 [s]: Rayleigh coefficients.
+  ExplicitSolver(CsrMatrix K, Eigen::VectorXd mass, std::vector<BoundaryNode> boundary,
+                 bool springs, std::vector<char> fixed, double a0, double a1, unsigned threads);
+
+  Eigen::Index dofs() const { return 3 * mass_.size(); }
+  /// Largest stable step [s]: 2 / omega_max (sqrt(1 + xi^2) - xi), xi = a1 omega_max / 2,
+  /// omega_max^2 the largest eigenvalue of M^-1 K from power iteration (to 1e-6, 2 % margin).
+  double stable_step() const { return stable_step_; }
+  double omega_max() const { return omega_max_; }
+  int power_iterations() const { return power_iterations_; }
+
+  /// One step of dt [s] with the external force f [N] at its end (size dofs()).
+  void step(ExplicitState& s, const Eigen::VectorXd& f, double dt) const;
+  /// Adds M^-1 df to the acceleration: the external force changed by df at the current time.
+  void force_jump(ExplicitState& s, const Eigen::VectorXd& df) const;
+
+  /// y = K x + S x (the boundary springs when they act): the static operator.
+  void stiffness_times(const Eigen::VectorXd& x, Eigen::VectorXd& y, bool with_springs) const;
+  const CsrMatrix& stiffness() const { return K_; }
+  const std::vector<BoundaryNode>& boundary() const { return boundary_; }
+  const std::vector<char>& fixed() const { return fixed_; }
+  const Eigen::VectorXd& mass() const { return mass_; }
+  std::size_t bytes() const;
+  /// Energies of a state [J]: kinetic 1/2 v^T M v and strain 1/2 w^T (K + S) w.
+  double kinetic_energy(const ExplicitState& s) const;
+  double strain_energy(const ExplicitState& s) const;
+
+ private:
+  void estimate_stable_step();
+
+  CsrMatrix K_;
+  Eigen::VectorXd mass_;  // per node [kg]
+  std::vector<BoundaryNode> boundary_;
+  std::vector<std::int32_t> boundary_of_;  // per node: index into boundary_, or -1
+  bool springs_;
+  std::vector<char> fixed_;  // per node
+  double a0_, a1_;
+  unsigned threads_;
+  double omega_max_ = 0.0, stable_step_ = 0.0;
+  int power_iterations_ = 0;
+  mutable Eigen::VectorXd y_;  // scratch: w + a1 v+
+};
+
+}  // namespace rumble::fem

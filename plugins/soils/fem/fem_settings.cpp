@@ -1,0 +1,155 @@
+#include "fem_settings.hpp"
+
+#include <cmath>
+#include <numbers>
+#include <sstream>
+#include <stdexcept>
+
+#include "soil_params.hpp"
+
+namespace rumble::fem {
+
+namespace {
+
+[[noreturn]] void refuse(const std::string& key, const std::string& rule, double value) {
+  std::ostringstream m;
+  m << "fem: params/" << key << ": " << rule << ", got " << value;
+  throw std::invalid_argument(m.str());
+}
+
+double read(const nlohmann::json& object, const char* key, double fallback) {
+  return object.contains(key) ? object.at(key).get<double>() : fallback;
+}
+
+}  // namespace
+
+double DampingRequest::mass_coefficient() const {
+  const double w1 = 2.0 * std::numbers::pi * f_low, w2 = 2.0 * std::numbers::pi * f_high;
+  return 2.0 * ratio * w1 * w2 / (w1 + w2);
+}
+
+double DampingRequest::stiffness_coefficient() const {
+  const double w1 = 2.0 * std::numbers::pi * f_low, w2 = 2.0 * std::numbers::pi * f_high;
+  return 2.0 * ratio / (w1 + w2);
+}
+
+const soils::SoilProperties& FemSettings::properties_at(double depth) const {
+  double bottom = 0.0;
+  for (const soils::SoilLayer& l : layers) {
+    bottom += l.thickness;
+    if (depth < bottom) return l.properties;
+  }
+  return half_space;
+}
+
+const char* settings_schema() {
+  static const std::string schema = R"schema({
+  "$schema": "http://json-schema.org/draft-07/schema#",
+  "type": "object",
+  "additionalProperties": false,
+  "required": ["E", "nu", "rho"],
+  "properties": {
+    "E": {"type": "number", "exclusiveMinimum": 0, "description": "Young's modulus of the half-space, below any layers [Pa]"},
+    "nu": {"type": "number", "minimum": 0, "exclusiveMaximum": 0.5, "description": "Poisson ratio of the half-space [-], in [0, 0.5)"},
+    "rho": {"type": "number", "exclusiveMinimum": 0, "description": "density of the half-space [kg/m^3]"},
+    "layers": {
+      "type": "array",
+      "description": "horizontal layers over the half-space, top first, meshed as they are: element faces follow each interface",
+      "items": {
+        "type": "object", "additionalProperties": false, "required": ["thickness", "E", "nu", "rho"],
+        "properties": {
+          "thickness": {"type": "number", "exclusiveMinimum": 0, "description": "layer thickness [m]"},
+          "E": {"type": "number", "exclusiveMinimum": 0, "description": "Young's modulus of the layer [Pa]"},
+          "nu": {"type": "number", "minimum": 0, "exclusiveMaximum": 0.5, "description": "Poisson ratio of the layer [-], in [0, 0.5)"},
+          "rho": {"type": "number", "exclusiveMinimum": 0, "description": "density of the layer [kg/m^3]"}
+        }
+      }
+    },
+    "mesh": {
+      "type": "object", "additionalProperties": false, "default": {},
+      "description": "the tetrahedral mesh, generated with gmsh when the track announces its footprints (docs/soils.md, FEM soil)",
+      "properties": {
+        "shape": {"enum": ["hemisphere", "box"], "default": "hemisphere", "description": "truncation of the half-space: a hemisphere centred under the footprints (waves meet its surface near normal incidence, where the absorbing boundary works best), or a box around them"},
+        "radius": {"type": "number", "exclusiveMinimum": 0, "default": 20, "description": "hemisphere radius, or the box's margin beyond the footprints on each side and below [m]; put it at least one Rayleigh wavelength of the lowest frequency of interest beyond the farthest receiver"},
+        "f_max": {"type": "number", "exclusiveMinimum": 0, "maximum": 2000, "default": 80, "description": "highest frequency resolved near the track [Hz]"},
+        "elements_per_wavelength": {"type": "number", "minimum": 4, "maximum": 40, "default": 10, "description": "linear tetrahedra per Rayleigh wavelength at f_max near the track (8-10 classic; 15-20 for waveform phase at tens of metres, numerics.md)"},
+        "near_distance": {"type": "number", "exclusiveMinimum": 0, "default": 5, "description": "full resolution within this distance of the footprints [m]; beyond it the size grows in proportion to the distance (f_max resolved falls as near_distance / distance)"},
+        "h_near": {"type": "number", "exclusiveMinimum": 0, "description": "element size near the track [m]; default: slowest Rayleigh speed / (f_max x elements_per_wavelength)"},
+        "h_max": {"type": "number", "exclusiveMinimum": 0, "description": "largest element size [m]; default radius / 4"},
+        "max_dofs": {"type": "number", "minimum": 1000, "default": 3e6, "description": "largest mesh accepted, in degrees of freedom (3 per node), estimated before meshing; about 1 GB per million DOFs for the explicit scheme"},
+        "algorithm": {"enum": ["delaunay", "hxt"], "default": "delaunay", "description": "gmsh's 3D algorithm: delaunay gives the same mesh for the same input on every run; hxt is 2-5x faster on large meshes but its mesh differs slightly from run to run"},
+        "threads": {"type": "integer", "minimum": 1, "maximum": 64, "default": 1, "description": "gmsh meshing threads (used by hxt)"}
+      }
+    },
+    "boundary": {
+      "type": "object", "additionalProperties": false, "default": {},
+      "description": "the truncation surface",
+      "properties": {
+        "type": {"enum": ["viscous_spring", "dashpot", "fixed"], "default": "viscous_spring", "description": "viscous_spring: Lysmer-Kuhlemeyer dashpots rho c_p (normal) and rho c_s (tangential) per unit area plus springs alpha G / r (Liu et al. 2006), which hold the static load without drift; dashpot: the dashpots alone (the static state comes from the springs, the dynamics have no static support: a net force drifts); fixed: no motion (reflects every wave, for checks)"},
+        "alpha_normal": {"type": "number", "minimum": 0, "default": 1.3333333333333333, "description": "normal spring factor alpha_N [-] of K_N = alpha_N G / r [N/m^3], r the distance from the footprints' centre"},
+        "alpha_tangential": {"type": "number", "minimum": 0, "default": 0.6666666666666666, "description": "tangential spring factor alpha_T [-] of K_T = alpha_T G / r [N/m^3]"}
+      }
+    },
+    "damping": {
+      "type": "object", "additionalProperties": false, "default": {},
+      "description": "Rayleigh material damping C = a0 M + a1 K with the given ratio at f_low and f_high (below and above them the ratio grows, between them it dips: physics.md 4.4)",
+      "properties": {
+        "ratio": {"type": "number", "minimum": 0, "maximum": 0.5, "default": 0, "description": "damping ratio at f_low and f_high [-]; 0: none"},
+        "f_low": {"type": "number", "exclusiveMinimum": 0, "default": 5, "description": "lower anchor frequency [Hz]"},
+        "f_high": {"type": "number", "exclusiveMinimum": 0, "default": 100, "description": "upper anchor frequency [Hz], > f_low"}
+      }
+    },
+    "courant": {"type": "number", "exclusiveMinimum": 0, "maximum": 1, "default": 0.8, "description": "the explicit step as a fraction of the stable step 2 / omega_max, omega_max the largest eigenfrequency of the mesh (power iteration) [-]"}
+  }
+})schema";
+  return schema.c_str();
+}
+
+FemSettings read_settings(const std::string& params_json) {
+  const soils::SoilParams p(params_json, "fem");
+  const nlohmann::json j = nlohmann::json::parse(params_json);
+  FemSettings s;
+  s.half_space = p.half_space();
+  s.layers = p.layers();
+
+  const nlohmann::json mesh = j.value("mesh", nlohmann::json::object());
+  MeshRequest& m = s.mesh;
+  m.shape = mesh.value("shape", "hemisphere") == "box" ? MeshShape::kBox : MeshShape::kHemisphere;
+  m.radius = read(mesh, "radius", m.radius);
+  m.f_max = read(mesh, "f_max", m.f_max);
+  m.elements_per_wavelength = read(mesh, "elements_per_wavelength", m.elements_per_wavelength);
+  m.near_distance = read(mesh, "near_distance", m.near_distance);
+  m.h_near = read(mesh, "h_near", 0.0);
+  m.h_max = read(mesh, "h_max", 0.0);
+  m.max_dofs = read(mesh, "max_dofs", m.max_dofs);
+  s.mesh_threads = mesh.value("threads", 1u);
+  m.fast_algorithm = mesh.value("algorithm", "delaunay") == "hxt";
+  if (!(m.radius > 0.0) || !std::isfinite(m.radius))
+    refuse("mesh/radius", "must be > 0 m", m.radius);
+  if (!(m.f_max > 0.0)) refuse("mesh/f_max", "must be > 0 Hz", m.f_max);
+  if (m.h_max > 0.0 && m.h_near > m.h_max)
+    refuse("mesh/h_near", "must not exceed mesh/h_max (" + std::to_string(m.h_max) + " m)",
+           m.h_near);
+
+  const nlohmann::json boundary = j.value("boundary", nlohmann::json::object());
+  const std::string kind = boundary.value("type", "viscous_spring");
+  s.boundary.kind = kind == "fixed"     ? BoundaryKind::kFixed
+                    : kind == "dashpot" ? BoundaryKind::kDashpot
+                                        : BoundaryKind::kViscousSpring;
+  s.boundary.alpha_normal = read(boundary, "alpha_normal", s.boundary.alpha_normal);
+  s.boundary.alpha_tangential = read(boundary, "alpha_tangential", s.boundary.alpha_tangential);
+
+  const nlohmann::json damping = j.value("damping", nlohmann::json::object());
+  s.damping.ratio = read(damping, "ratio", 0.0);
+  s.damping.f_low = read(damping, "f_low", s.damping.f_low);
+  s.damping.f_high = read(damping, "f_high", s.damping.f_high);
+  if (s.damping.ratio > 0.0 && !(s.damping.f_high > s.damping.f_low))
+    refuse("damping/f_high",
+           "must exceed damping/f_low (" + std::to_string(s.damping.f_low) + " Hz)",
+           s.damping.f_high);
+  s.courant = read(j, "courant", s.courant);
+  if (!(s.courant > 0.0 && s.courant <= 1.0)) refuse("courant", "must be in (0, 1]", s.courant);
+  return s;
+}
+
+}  // namespace rumble::fem

@@ -1,0 +1,66 @@
+// The FEM soil's settings as typed values, read once from its params (the host has validated
+// them against fem_schema.hpp and filled the defaults): the soil profile, the mesh request, the
+// absorbing boundary, material damping and the explicit step's safety factor. SI units.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "half_space.hpp"
+#include "layered_soil.hpp"
+
+namespace rumble::fem {
+
+enum class MeshShape { kHemisphere, kBox };
+
+/// Lysmer-Kuhlemeyer dashpots with springs (viscous-spring boundary, Liu et al. 2006: static
+/// support, no drift), dashpots only (the static state then comes from the springs and the
+/// dynamics see no static support), or a fixed truncation surface (reflects everything).
+enum class BoundaryKind { kViscousSpring, kDashpot, kFixed };
+
+struct MeshRequest {
+  MeshShape shape = MeshShape::kHemisphere;
+  double radius = 20.0;                 // m: hemisphere radius, or the box's margin
+  double f_max = 80.0;                  // Hz resolved near the track
+  double elements_per_wavelength = 10;  // linear tetrahedra per Rayleigh wavelength at f_max
+  double near_distance = 5.0;           // m: full resolution within this distance of the track
+  double h_near = 0.0;                  // m: 0 = from f_max and the slowest Rayleigh speed
+  double h_max = 0.0;                   // m: cap of the element size far away; 0 = radius / 4
+  double max_dofs = 3e6;                // refused before meshing beyond this estimate
+  bool fast_algorithm = false;          // gmsh HXT (fast, not reproducible) instead of Delaunay
+};
+
+struct BoundaryRequest {
+  BoundaryKind kind = BoundaryKind::kViscousSpring;
+  double alpha_normal = 4.0 / 3.0;      // spring K_N = alpha_N G / r per unit area [-]
+  double alpha_tangential = 2.0 / 3.0;  // spring K_T = alpha_T G / r per unit area [-]
+};
+
+/// Rayleigh damping C = a0 M + a1 K with the ratio `ratio` at f_low and f_high (physics.md §4.4).
+struct DampingRequest {
+  double ratio = 0.0;                    // [-]; 0: no material damping
+  double f_low = 5.0, f_high = 100.0;    // Hz
+  double mass_coefficient() const;       // a0 [1/s]
+  double stiffness_coefficient() const;  // a1 [s]
+};
+
+struct FemSettings {
+  soils::SoilProperties half_space;
+  std::vector<soils::SoilLayer> layers;  // top first
+  MeshRequest mesh;
+  BoundaryRequest boundary;
+  DampingRequest damping;
+  double courant = 0.8;  // explicit step = courant x the stable step from the mesh
+  unsigned mesh_threads = 1;
+
+  /// The properties at depth z [m] (>= 0).
+  const soils::SoilProperties& properties_at(double depth) const;
+};
+
+/// Reads and checks params (JSON text); messages start "fem: params/<key>: ...".
+FemSettings read_settings(const std::string& params_json);
+
+/// JSON Schema (draft 7) of the params.
+const char* settings_schema();
+
+}  // namespace rumble::fem

@@ -1,0 +1,291 @@
+// fem: the soil as a 3D finite-element half-space (docs/soils.md, "FEM soil"). Meshed with gmsh
+// when the track announces its footprints; linear tetrahedra, lumped mass, Rayleigh damping,
+// Lysmer-Kuhlemeyer dashpots with springs on the truncation surface; the static state from one
+// sparse Cholesky solve, the motion about it by explicit central differences sub-cycled inside
+// each macro step. The footprint forces act as uniform pressures on the footprints; the track
+// sees their area-averaged vertical motion (footprint_loads.hpp).
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "absorbing_boundary.hpp"
+#include "elasticity.hpp"
+#include "explicit_solver.hpp"
+#include "fem_settings.hpp"
+#include "footprint_loads.hpp"
+#include "mesh_generator.hpp"
+#include "probe_locator.hpp"
+#include "static_solver.hpp"
+#include "vtu_writer.hpp"
+#include "wave_speeds.hpp"
+
+namespace {
+
+using rumble::fem::ExplicitState;
+
+std::string format(double x, int digits = 3) {
+  std::ostringstream s;
+  s.precision(digits);
+  s << x;
+  return s.str();
+}
+
+class FemSoil final : public rumble::Soil {
+ public:
+  static constexpr const char* kTypeName = "fem";
+  static constexpr const char* kSummary =
+      "3D finite-element half-space meshed with gmsh (linear tetrahedra, Lysmer-Kuhlemeyer "
+      "viscous-spring boundary, explicit sub-cycled steps, receivers at any depth, VTU fields)";
+  static constexpr std::uint64_t kCapabilities = rumble::kCapThreads;
+  static const char* params_schema() { return rumble::fem::settings_schema(); }
+
+  FemSoil(const std::string& params_json, const rumble::Host& host)
+      : settings_(rumble::fem::read_settings(params_json)), host_(host) {}
+
+  void accept_layout(const std::vector<rumble::Footprint>& footprints) override {
+    using namespace rumble::fem;
+    const auto start = std::chrono::steady_clock::now();
+    footprints_ = footprints;
+    plan_ = plan_mesh(settings_, footprints);
+    host_.info("fem: meshing about " + format(3.0 * plan_.estimated_nodes) + " DOFs (h_near " +
+               format(plan_.h_near) + " m, h_max " + format(plan_.h_max) + " m, radius " +
+               format(plan_.radius) + " m)");
+    mesh_ = generate_mesh(settings_, footprints, plan_);
+    const double mesh_seconds = seconds_since(start);
+    weights_ = footprint_weights(mesh_, footprints);
+    std::vector<BoundaryNode> boundary = absorbing_boundary(mesh_, settings_, plan_.region);
+    std::vector<char> fixed(mesh_.node_count(), 0);
+    if (settings_.boundary.kind == BoundaryKind::kFixed)
+      for (const BoundaryNode& b : boundary) fixed[b.node] = 1;
+    op_.emplace(assemble_stiffness(mesh_, settings_), lumped_mass(mesh_, settings_),
+                std::move(boundary), settings_.boundary.kind == BoundaryKind::kViscousSpring,
+                std::move(fixed), settings_.damping.mass_coefficient(),
+                settings_.damping.stiffness_coefficient(), host_.threads());
+    statics_ = std::make_unique<StaticSolver>(*op_);
+    const Eigen::Index n = op_->dofs();
+    state_ = {Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n)};
+    u_static_ = Eigen::VectorXd::Zero(n);
+    f_ = Eigen::VectorXd::Zero(n);
+    df_ = Eigen::VectorXd::Zero(n);
+    force_static_.assign(footprints.size(), 0.0);
+    force_last_.assign(footprints.size(), 0.0);
+    report(mesh_seconds, seconds_since(start));
+  }
+
+  void initialize(double /*t0*/, const double* static_force, double* static_u) override {
+    require_layout("initialize");
+    force_static_.assign(static_force, static_force + footprints_.size());
+    force_last_ = force_static_;
+    spread(force_static_.data(), f_);
+    u_static_ = statics_->solve(f_);
+    for (Eigen::Index k = 0; k < f_.size(); ++k) f_[k] = 0.0;
+    state_.w.setZero();
+    state_.v.setZero();
+    state_.a.setZero();
+    for (std::size_t j = 0; j < footprints_.size(); ++j) static_u[j] = average(j, u_static_);
+  }
+
+  void advance(double t, double H, const rumble::Waveform& force) override {
+    require_layout("advance");
+    const int sub_steps = std::max(1, static_cast<int>(std::ceil(H / max_step() - 1e-9)));
+    const double dt = H / sub_steps;
+    // The force may jump at the step's start (a held or extrapolated waveform): the acceleration
+    // at t follows it.
+    footprint_forces(force, 0.0, df_, force_last_.data());
+    op_->force_jump(state_, df_);
+    auto last_check = std::chrono::steady_clock::now();
+    for (int k = 1; k <= sub_steps; ++k) {
+      const double tau = static_cast<double>(k) / sub_steps;
+      footprint_forces(force, tau, f_, force_static_.data());
+      op_->step(state_, f_, dt);
+      record_probes(t + tau * H);
+      const auto now = std::chrono::steady_clock::now();
+      if (now - last_check > std::chrono::milliseconds(100)) {
+        host_.check_stop(tau);
+        last_check = now;
+      }
+    }
+    for (std::size_t j = 0; j < footprints_.size(); ++j) force_last_[j] = force.at(j, 1.0);
+    for (std::size_t j = 0; j < footprints_.size(); ++j)
+      if (!std::isfinite(average(j, state_.w)) || !std::isfinite(average(j, state_.v))) {
+        std::ostringstream m;
+        m << "fem: the motion of footprint " << j << " is not finite at t = " << t + H
+          << " s: the explicit step " << dt << " s is unstable (lower params/courant, now "
+          << settings_.courant << ") or the forces are not finite";
+        throw std::runtime_error(m.str());
+      }
+  }
+
+  void motion(double* u, double* v) const override {
+    for (std::size_t j = 0; j < footprints_.size(); ++j) {
+      u[j] = average(j, u_static_) + average(j, state_.w);
+      v[j] = average(j, state_.v);
+    }
+  }
+
+  void set_probes(const std::vector<rumble::Probe>& probes, double sample_interval) override {
+    require_layout("set_probes");
+    probes_.clear();
+    for (const rumble::Probe& p : probes)
+      probes_.push_back(rumble::fem::locate_probe(mesh_, p.x, p.y, p.depth, p.name));
+    row_.assign(probes.size() * RUMBLE_PROBE_VALUES, 0.0);
+    sample_interval_ = sample_interval;
+    next_sample_ = -1.0;
+  }
+
+  void write_fields(double t, const std::string& path) override {
+    require_layout("write_fields");
+    rumble::fem::write_vtu(path, t, mesh_, u_static_ + state_.w, state_.v);
+  }
+
+  void wave_speeds(double& c_s_min, double& c_r_min) const override {
+    const auto s = rumble::soils::slowest_wave_speeds(settings_.layers, settings_.half_space);
+    c_s_min = s.shear;
+    c_r_min = s.rayleigh;
+  }
+
+  void checkpoint_save(std::uint32_t slot) override {
+    require_layout("checkpoint_save");
+    Checkpoint& c = checkpoints_.at(slot);
+    c.state = state_;
+    c.force_last = force_last_;
+    c.next_sample = next_sample_;
+    c.valid = true;
+  }
+  void checkpoint_restore(std::uint32_t slot) override {
+    const Checkpoint& c = checkpoints_.at(slot);
+    if (!c.valid)
+      throw std::logic_error("fem: checkpoint slot " + std::to_string(slot) + " is empty");
+    state_ = c.state;
+    force_last_ = c.force_last;
+    next_sample_ = c.next_sample;
+  }
+  void checkpoint_free(std::uint32_t slot) override { checkpoints_.at(slot) = {}; }
+
+ private:
+  struct Checkpoint {
+    ExplicitState state;
+    std::vector<double> force_last;
+    double next_sample = -1.0;
+    bool valid = false;
+  };
+
+  static double seconds_since(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+
+  void require_layout(const char* call) const {
+    if (!op_) throw std::logic_error(std::string("fem: ") + call + "() before accept_layout()");
+  }
+
+  double max_step() const { return settings_.courant * op_->stable_step(); }
+
+  /// out = B (F(tau) - reference): consistent nodal forces of the footprint pressures [N].
+  void footprint_forces(const rumble::Waveform& force, double tau, Eigen::VectorXd& out,
+                        const double* reference) const {
+    for (const auto& footprint : weights_)
+      for (const rumble::fem::NodalWeight& w : footprint) out[3 * w.node + 2] = 0.0;
+    for (std::size_t j = 0; j < weights_.size(); ++j) {
+      const double F = force.at(j, tau) - reference[j];
+      for (const rumble::fem::NodalWeight& w : weights_[j]) out[3 * w.node + 2] += w.weight * F;
+    }
+  }
+
+  void spread(const double* force, Eigen::VectorXd& out) const {
+    out.setZero();
+    for (std::size_t j = 0; j < weights_.size(); ++j)
+      for (const rumble::fem::NodalWeight& w : weights_[j])
+        out[3 * w.node + 2] += w.weight * force[j];
+  }
+
+  /// Area average of the vertical component of x over footprint j.
+  double average(std::size_t j, const Eigen::VectorXd& x) const {
+    double s = 0.0;
+    for (const rumble::fem::NodalWeight& w : weights_[j]) s += w.weight * x[3 * w.node + 2];
+    return s;
+  }
+
+  void record_probes(double t) {
+    if (probes_.empty()) return;
+    if (sample_interval_ > 0.0) {
+      if (next_sample_ < 0.0) next_sample_ = t;
+      if (t < next_sample_ - 1e-9 * sample_interval_) return;
+      next_sample_ +=
+          sample_interval_ * std::max(1.0, std::floor((t - next_sample_) / sample_interval_) + 1.0);
+    }
+    for (std::size_t p = 0; p < probes_.size(); ++p) {
+      double* out = row_.data() + p * RUMBLE_PROBE_VALUES;
+      for (int c = 0; c < 6; ++c) out[c] = 0.0;
+      for (int a = 0; a < 4; ++a) {
+        const std::int64_t node = probes_[p].nodes[a];
+        const double w = probes_[p].weights[a];
+        for (int c = 0; c < 3; ++c) {
+          out[c] += w * state_.v[3 * node + c];
+          out[3 + c] += w * (u_static_[3 * node + c] + state_.w[3 * node + c]);
+        }
+      }
+    }
+    samples().push(t, row_.data());
+  }
+
+  void report(double mesh_seconds, double setup_seconds) const {
+    using rumble::fem::BoundaryKind;
+    double shortest_edge = 1e300;
+    for (const auto& t : mesh_.tets)
+      for (int a = 0; a < 4; ++a)
+        for (int b = a + 1; b < 4; ++b)
+          shortest_edge = std::min(shortest_edge, (mesh_.node(t[a]) - mesh_.node(t[b])).norm());
+    const double c_r =
+        rumble::soils::slowest_wave_speeds(settings_.layers, settings_.half_space).rayleigh;
+    std::ostringstream m;
+    m << "fem: " << mesh_.node_count() << " nodes, " << mesh_.tets.size() << " tetrahedra, "
+      << op_->dofs() << " DOFs, " << footprints_.size() << " footprints, " << op_->boundary().size()
+      << " boundary nodes; shortest edge " << format(shortest_edge) << " m; meshed in "
+      << format(mesh_seconds, 2) << " s, ready in " << format(setup_seconds, 2) << " s; "
+      << format(op_->bytes() / 1048576.0) << " MiB ("
+      << format(static_cast<double>(op_->bytes()) / op_->dofs(), 3) << " B per DOF); stable step "
+      << format(op_->stable_step()) << " s (" << op_->power_iterations()
+      << " power iterations), step used " << format(max_step()) << " s; f_max resolved at "
+      << settings_.mesh.elements_per_wavelength << " elements per Rayleigh wavelength:";
+    for (double d : {2.5, 5.0, 10.0, 20.0, 40.0})
+      if (d < plan_.radius)
+        m << ' ' << format(plan_.resolved_frequency(d, c_r, settings_.mesh.elements_per_wavelength))
+          << " Hz at " << d << " m;";
+    host_.info(m.str());
+    const double epw = c_r / (settings_.mesh.f_max * plan_.h_near);
+    if (epw < 8.0)
+      host_.warn("fem: params/mesh/h_near " + format(plan_.h_near) + " m gives " + format(epw, 2) +
+                 " elements per Rayleigh wavelength at f_max " + format(settings_.mesh.f_max) +
+                 " Hz (c_R " + format(c_r) + " m/s); 8-10 are needed: lower h_near or f_max");
+    if (settings_.boundary.kind == BoundaryKind::kDashpot)
+      host_.warn(
+          "fem: boundary.type dashpot has no static support: a change of the net "
+          "footprint force makes the whole soil drift");
+  }
+
+  rumble::fem::FemSettings settings_;
+  rumble::Host host_;
+  std::vector<rumble::Footprint> footprints_;
+  rumble::fem::MeshPlan plan_;
+  rumble::fem::TetMesh mesh_;
+  rumble::fem::FootprintWeights weights_;
+  std::optional<rumble::fem::ExplicitSolver> op_;
+  std::unique_ptr<rumble::fem::StaticSolver> statics_;
+  ExplicitState state_;
+  Eigen::VectorXd u_static_;                       // [m] under force_static_
+  Eigen::VectorXd f_, df_;                         // scratch: nodal forces [N]
+  std::vector<double> force_static_, force_last_;  // [N] per footprint
+  std::vector<rumble::fem::ProbePoint> probes_;
+  std::vector<double> row_;
+  double sample_interval_ = 0.0, next_sample_ = -1.0;  // s
+  std::array<Checkpoint, RUMBLE_CHECKPOINT_SLOTS> checkpoints_;
+};
+
+}  // namespace
+
+RUMBLE_PLUGIN("fem", "0.1.0", FemSoil)

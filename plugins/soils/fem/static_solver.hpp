@@ -1,0 +1,42 @@
+// The static state: (K + S) u = f with the truncation surface held by the boundary springs (or
+// fixed). A sparse Cholesky factor from CHOLMOD's 64-bit interface (cholmod_l, toolchain.md §4
+// and numerics.md §3.2: the int interface fails near 1e6 DOFs), computed once and reused by every
+// solve (the engine iterates the static state with the track); above kFactorLimit DOFs, where
+// the factor would take more memory than the soil itself by far, Jacobi-preconditioned
+// conjugate gradients instead.
+#pragma once
+
+#include <Eigen/Core>
+#include <memory>
+
+#include "explicit_solver.hpp"
+
+namespace rumble::fem {
+
+class StaticSolver {
+ public:
+  static constexpr Eigen::Index kFactorLimit = 400000;  // DOFs: a factor of about 5 GB
+
+  /// Uses the operator's K, boundary springs (always: they carry the static load) and fixed
+  /// nodes. Factors on first use.
+  explicit StaticSolver(const ExplicitSolver& op);
+  ~StaticSolver();
+  StaticSolver(const StaticSolver&) = delete;
+  StaticSolver& operator=(const StaticSolver&) = delete;
+
+  /// u with (K + S) u = f on the free DOFs, 0 on fixed ones. Throws std::runtime_error when the
+  /// matrix is not positive definite (a floating mesh) or CG does not converge.
+  Eigen::VectorXd solve(const Eigen::VectorXd& f);
+  bool factored() const { return factor_ != nullptr; }
+  int last_cg_iterations() const { return cg_iterations_; }
+
+ private:
+  struct Factor;
+  Eigen::VectorXd conjugate_gradients(const Eigen::VectorXd& f);
+
+  const ExplicitSolver& op_;
+  std::unique_ptr<Factor> factor_;
+  int cg_iterations_ = 0;
+};
+
+}  // namespace rumble::fem
