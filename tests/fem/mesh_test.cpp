@@ -1,0 +1,155 @@
+// Meshes from gmsh (mesh_generator.hpp): the plan's sizes and refusals, and what the operators
+// rely on: positive tetrahedra, footprints meshed exactly (weights summing to 1 over their
+// area), layer interfaces followed by element faces, the size field honoured (gmsh 4.8 ignores
+// misspelt field options silently, toolchain.md §8.11, so sizes are measured), the same mesh on
+// every run with the default algorithm.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "expect_message.hpp"
+#include "footprint_loads.hpp"
+#include "mesh_generator.hpp"
+
+namespace rumble::fem {
+namespace {
+
+FemSettings stiff_soil(double radius, double f_max) {
+  FemSettings s;
+  s.half_space = {750e6, 0.3, 1800.0};  // physics.md §4.1, stiff soil: c_R 371 m/s
+  s.mesh.radius = radius;
+  s.mesh.f_max = f_max;
+  s.mesh.near_distance = 2.0;
+  return s;
+}
+
+std::vector<Footprint> sleepers(int n, double spacing = 0.6) {
+  std::vector<Footprint> f;
+  for (int i = 0; i < n; ++i) f.push_back({i * spacing, 0.0, 2.6, 0.26});
+  return f;
+}
+
+/// Mean edge length [m] of the tetrahedra whose centroid lies at a distance in [d0, d1) from
+/// the footprints.
+double mean_edge(const TetMesh& m, const TrackRegion& region, double d0, double d1) {
+  double sum = 0.0;
+  int count = 0;
+  for (const Tetrahedron& t : m.tets) {
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();
+    for (auto v : t) c += m.node(v) / 4.0;
+    const double d = region.distance(c[0], c[1], c[2]);
+    if (d < d0 || d >= d1) continue;
+    for (int a = 0; a < 4; ++a)
+      for (int b = a + 1; b < 4; ++b) sum += (m.node(t[a]) - m.node(t[b])).norm();
+    count += 6;
+  }
+  return sum / count;
+}
+
+TEST(FemMesh, PlanTakesTheNearSizeFromTheRayleighWavelength) {
+  const MeshPlan p = plan_mesh(stiff_soil(10.0, 40.0), sleepers(5));
+  EXPECT_NEAR(p.h_near, 371.3 / (40.0 * 10.0), 0.01);  // c_R / (f_max x 10), physics.md §4.1
+  EXPECT_DOUBLE_EQ(p.h_max, 2.5);                      // radius / 4
+  EXPECT_DOUBLE_EQ(p.size_at(1.2, 0.0, 0.0), p.h_near);
+  EXPECT_NEAR(p.size_at(1.2, 1.3 + 4.0, 0.0), 2.0 * p.h_near, 1e-12);  // 4 m out: twice
+}
+
+TEST(FemMesh, PlanRefusesTooLargeAMeshWithTheEstimateAndTheFix) {
+  FemSettings s = stiff_soil(30.0, 200.0);
+  s.mesh.max_dofs = 1e5;
+  test::expect_invalid_argument_containing(
+      [&] { plan_mesh(s, sleepers(10)); },
+      {"fem: params/mesh: the mesh would have about", "more than mesh.max_dofs = 1e+05",
+       "lower mesh.f_max or mesh.radius"});
+}
+
+TEST(FemMesh, PlanRefusesFootprintsBeyondTheHemisphere) {
+  test::expect_invalid_argument_containing([&] { plan_mesh(stiff_soil(5.0, 40.0), sleepers(20)); },
+                                           {"fem: params/mesh/radius: the footprints span",
+                                            "give a radius of at least", "or mesh.shape \"box\""});
+}
+
+TEST(FemMesh, HemisphereWithFootprintsAndALayer) {
+  FemSettings s = stiff_soil(8.0, 40.0);
+  s.layers.push_back({1.5, {200e6, 0.3, 1800.0}});
+  const std::vector<Footprint> fp = sleepers(5);
+  const MeshPlan plan = plan_mesh(s, fp);
+  const TetMesh m = generate_mesh(s, fp, plan);
+  ASSERT_GT(m.tets.size(), 1000u);
+  double volume = 0.0;
+  for (const Tetrahedron& t : m.tets) {
+    ASSERT_GT(tet_volume(m, t), 0.0);
+    volume += tet_volume(m, t);
+  }
+  // The faceted hemisphere holds a little less than 2/3 pi R^3.
+  EXPECT_NEAR(volume / (2.0 / 3.0 * M_PI * 512.0), 0.99, 0.015);
+  // Element faces follow the interface at 1.5 m: no tetrahedron has nodes on both sides.
+  for (std::size_t e = 0; e < m.tets.size(); ++e) {
+    double lo = 1e9, hi = -1e9;
+    for (auto v : m.tets[e]) {
+      lo = std::min(lo, m.nodes(2, v));
+      hi = std::max(hi, m.nodes(2, v));
+    }
+    ASSERT_FALSE(lo < 1.5 - 1e-9 && hi > 1.5 + 1e-9) << "tet " << e << " straddles the interface";
+    EXPECT_EQ(m.layer[e], hi <= 1.5 + 1e-9 ? 0 : 1);
+  }
+  // Truncation nodes on the sphere (chords sag inward a little), ground nodes at depth 0.
+  for (const Triangle& f : m.truncation)
+    for (auto v : f) {
+      const Eigen::Vector3d x = m.node(v) - Eigen::Vector3d(plan.region.centre_x(), 0.0, 0.0);
+      EXPECT_NEAR(x.norm(), 8.0, 1e-6);
+    }
+  for (const Triangle& f : m.ground)
+    for (auto v : f) EXPECT_EQ(m.nodes(2, v), 0.0);
+  // Every footprint is meshed over its area; the weights of each sum to 1.
+  const FootprintWeights w = footprint_weights(m, fp);
+  for (const auto& footprint : w) {
+    double sum = 0.0;
+    for (const NodalWeight& nw : footprint) sum += nw.weight;
+    EXPECT_NEAR(sum, 1.0, 1e-12);
+  }
+}
+
+TEST(FemMesh, SizesFollowThePlan) {
+  const FemSettings s = stiff_soil(12.0, 40.0);
+  const std::vector<Footprint> fp = sleepers(3);
+  const MeshPlan plan = plan_mesh(s, fp);
+  const TetMesh m = generate_mesh(s, fp, plan);
+  // gmsh's edges come out near 1.0-1.3 times the requested size (toolchain.md §6): near the
+  // footprints h_near (0.93 m), at 6-8 m about 3.5 h_near (size grows as d / near_distance).
+  const double near = mean_edge(m, plan.region, 0.0, 2.0);
+  const double far = mean_edge(m, plan.region, 6.0, 8.0);
+  EXPECT_GT(near, 0.8 * plan.h_near);
+  EXPECT_LT(near, 1.4 * plan.h_near);
+  EXPECT_GT(far / near, 2.0);
+  EXPECT_LT(far, 1.4 * plan.size_at(7.0 + 0.13, 0.0, 0.0));
+}
+
+TEST(FemMesh, SameInputSameMesh) {
+  const FemSettings s = stiff_soil(8.0, 40.0);
+  const std::vector<Footprint> fp = sleepers(4);
+  const MeshPlan plan = plan_mesh(s, fp);
+  const TetMesh a = generate_mesh(s, fp, plan), b = generate_mesh(s, fp, plan);
+  ASSERT_EQ(a.node_count(), b.node_count());
+  ASSERT_EQ(a.tets.size(), b.tets.size());
+  EXPECT_TRUE(a.nodes == b.nodes);
+  EXPECT_TRUE(a.tets == b.tets);
+}
+
+TEST(FemMesh, BoxShape) {
+  FemSettings s = stiff_soil(4.0, 40.0);
+  s.mesh.shape = MeshShape::kBox;
+  const std::vector<Footprint> fp = sleepers(6);
+  const TetMesh m = generate_mesh(s, fp, plan_mesh(s, fp));
+  double volume = 0.0;
+  for (const Tetrahedron& t : m.tets) volume += tet_volume(m, t);
+  // (3 m of footprints + 0.26 + 2 x 4) x (2.6 + 8) x 4
+  EXPECT_NEAR(volume, (0.6 * 5 + 0.26 + 8.0) * (2.6 + 8.0) * 4.0, 1e-6 * volume);
+  EXPECT_NO_THROW(footprint_weights(m, fp));
+}
+
+}  // namespace
+}  // namespace rumble::fem
