@@ -94,7 +94,7 @@ const char* settings_schema() {
       "type": "object", "additionalProperties": false, "default": {},
       "description": "Rayleigh material damping C = a0 M + a1 K with the given ratio at f_low and f_high (below and above them the ratio grows, between them it dips: physics.md 4.4)",
       "properties": {
-        "ratio": {"type": "number", "minimum": 0, "maximum": 0.5, "default": 0, "description": "damping ratio at f_low and f_high [-]; 0: none"},
+        "ratio": {"type": "number", "minimum": 0, "maximum": 0.5, "default": 0.02, "description": "damping ratio at f_low and f_high [-] (soils: 0.02-0.05); it also removes the mesh's shortest waves, which do not travel to the absorbing boundary (their group velocity is near zero) and would ring on after an abrupt load; 0: none"},
         "f_low": {"type": "number", "exclusiveMinimum": 0, "default": 5, "description": "lower anchor frequency [Hz]"},
         "f_high": {"type": "number", "exclusiveMinimum": 0, "default": 100, "description": "upper anchor frequency [Hz], > f_low"}
       }
@@ -140,7 +140,7 @@ FemSettings read_settings(const std::string& params_json) {
   s.boundary.alpha_tangential = read(boundary, "alpha_tangential", s.boundary.alpha_tangential);
 
   const nlohmann::json damping = j.value("damping", nlohmann::json::object());
-  s.damping.ratio = read(damping, "ratio", 0.0);
+  s.damping.ratio = read(damping, "ratio", s.damping.ratio);
   s.damping.f_low = read(damping, "f_low", s.damping.f_low);
   s.damping.f_high = read(damping, "f_high", s.damping.f_high);
   if (s.damping.ratio > 0.0 && !(s.damping.f_high > s.damping.f_low))

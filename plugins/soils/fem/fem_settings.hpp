@@ -38,7 +38,7 @@ struct BoundaryRequest {
 
 /// Rayleigh damping C = a0 M + a1 K with the ratio `ratio` at f_low and f_high (physics.md §4.4).
 struct DampingRequest {
-  double ratio = 0.0;                    // [-]; 0: no material damping
+  double ratio = 0.02;                   // [-]; 0: no material damping
   double f_low = 5.0, f_high = 100.0;    // Hz
   double mass_coefficient() const;       // a0 [1/s]
   double stiffness_coefficient() const;  // a1 [s]

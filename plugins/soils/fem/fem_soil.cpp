@@ -82,7 +82,8 @@ class FemSoil final : public rumble::Soil {
     force_static_.assign(static_force, static_force + footprints_.size());
     force_last_ = force_static_;
     spread(force_static_.data(), f_);
-    u_static_ = statics_->solve(f_);
+    // No static load (a check, or a soil driven by forces alone): no factor needed.
+    u_static_ = f_.isZero(0.0) ? Eigen::VectorXd::Zero(f_.size()) : statics_->solve(f_);
     for (Eigen::Index k = 0; k < f_.size(); ++k) f_[k] = 0.0;
     state_.w.setZero();
     state_.v.setZero();
