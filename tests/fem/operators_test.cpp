@@ -43,7 +43,7 @@ ExplicitSolver free_solver(const TetMesh& m, const FemSettings& s) {
 }
 
 TEST(FemElasticity, RigidMotionsMakeNoForce) {
-  const TetMesh m = test::kuhn_box(3, 0.5);
+  const TetMesh m = kuhn_box(3, 0.5);
   CsrMatrix K = assemble_stiffness(m, medium_soil());
   Eigen::Matrix3d spin;  // small rotation: skew-symmetric gradient
   spin << 0.0, -0.3, 0.2, 0.3, 0.0, -0.1, -0.2, 0.1, 0.0;
@@ -58,7 +58,7 @@ TEST(FemElasticity, LinearFieldsAreInEquilibriumInside) {
   // Patch test: a uniform strain makes no force at interior nodes; the nodal forces over the
   // whole body sum to zero.
   const int n = 4;
-  const TetMesh m = test::kuhn_box(n, 0.5);
+  const TetMesh m = kuhn_box(n, 0.5);
   CsrMatrix K = assemble_stiffness(m, medium_soil());
   Eigen::Matrix3d G;
   G << 1e-3, 2e-4, -5e-4, 3e-4, -7e-4, 1e-4, 6e-4, -2e-4, 4e-4;
@@ -80,7 +80,7 @@ TEST(FemElasticity, LinearFieldsAreInEquilibriumInside) {
 }
 
 TEST(FemElasticity, StiffnessIsSymmetricAndMassIsTheBodysMass) {
-  const TetMesh m = test::kuhn_box(3, 0.4);
+  const TetMesh m = kuhn_box(3, 0.4);
   const FemSettings s = medium_soil();
   CsrMatrix K = assemble_stiffness(m, s);
   const std::int64_t n = K.rows();
@@ -104,7 +104,7 @@ TEST(FemExplicit, StableStepOfTheKuhnBoxIs0671HOverCp) {
   const FemSettings s = medium_soil();
   const double c_p = soils::wave_speeds(155e6, 0.3, 1800.0).pressure;
   for (int n : {4, 6}) {
-    const ExplicitSolver op = free_solver(test::kuhn_box(n, h), s);
+    const ExplicitSolver op = free_solver(kuhn_box(n, h), s);
     // The solver keeps a 2 % margin on omega_max^2 (1 % on the step); numerics.md gives three
     // digits for the box; the boundary nodes of a small box shift the top of the spectrum a
     // little: 3 %.
@@ -115,7 +115,7 @@ TEST(FemExplicit, StableStepOfTheKuhnBoxIs0671HOverCp) {
 /// Largest kinetic + strain energy over the last 100 of `steps` steps of dt = ratio x stable step
 /// from a random displacement, over the largest over the first 100.
 double energy_growth(double ratio, int steps) {
-  const TetMesh m = test::kuhn_box(4, 0.5);
+  const TetMesh m = kuhn_box(4, 0.5);
   const ExplicitSolver op = free_solver(m, medium_soil());
   ExplicitState s{Eigen::VectorXd::Random(m.dof_count()) * 1e-6,
                   Eigen::VectorXd::Zero(m.dof_count()), Eigen::VectorXd::Zero(m.dof_count())};
@@ -144,7 +144,7 @@ TEST(FemExplicit, ConservesItsShadowEnergyExactlyWithoutDamping) {
   //   1/2 v^T M v + 1/2 w^T K w - dt^2/8 a^T M a   (a = -M^-1 K w),
   // the energy of its modified equation: a check of the step's algebra that a wrong sign or a
   // lagged term breaks at the first step.
-  const TetMesh m = test::kuhn_box(4, 0.5);
+  const TetMesh m = kuhn_box(4, 0.5);
   const ExplicitSolver op = free_solver(m, medium_soil());
   ExplicitState s{Eigen::VectorXd::Random(m.dof_count()) * 1e-6,
                   Eigen::VectorXd::Zero(m.dof_count()), Eigen::VectorXd::Zero(m.dof_count())};
@@ -162,7 +162,7 @@ TEST(FemExplicit, ConservesItsShadowEnergyExactlyWithoutDamping) {
 }
 
 TEST(FemExplicit, BoundaryDashpotsTakeEnergyOut) {
-  const TetMesh m = test::kuhn_box(4, 0.5);
+  const TetMesh m = kuhn_box(4, 0.5);
   const FemSettings s = medium_soil();
   const TrackRegion centre{1.0, 1.0, 1.0, 1.0};
   const ExplicitSolver op(assemble_stiffness(m, s), lumped_mass(m, s),

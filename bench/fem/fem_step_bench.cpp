@@ -1,0 +1,93 @@
+// The FEM soil's explicit step against the machine's memory bandwidth (numerics.md §5): the step
+// streams K once (12 B per nonzero: value and column) plus its vectors, so its time is bounded
+// below by bytes / bandwidth. Each case measures a STREAM-like triad in the same process first
+// and reports the step's effective bandwidth as a fraction of it (roofline_fraction), with
+// million DOF-updates per second (MDOF/s), per thread count.
+//   build/release/bin/fem_bench --benchmark_counters_tabular=true
+#include <benchmark/benchmark.h>
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <chrono>
+#include <vector>
+
+#include "elasticity.hpp"
+#include "explicit_solver.hpp"
+#include "kuhn_box.hpp"
+
+namespace {
+
+using rumble::fem::ExplicitSolver;
+using rumble::fem::ExplicitState;
+
+/// Triad a = b + s c over n doubles with `threads` threads: best bandwidth [B/s] of 20 passes,
+/// counting 24 B per element (two reads, one write).
+double triad_bandwidth(std::int64_t n, int threads) {
+  std::vector<double> a(n, 0.0), b(n, 1.0), c(n, 2.0);
+  double best = 0.0;
+  for (int pass = 0; pass < 20; ++pass) {
+    const auto start = std::chrono::steady_clock::now();
+#pragma omp parallel for num_threads(threads) schedule(static)
+    for (std::int64_t i = 0; i < n; ++i) a[i] = b[i] + 0.5 * c[i];
+    const double s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    best = std::max(best, 24.0 * static_cast<double>(n) / s);
+  }
+  benchmark::DoNotOptimize(a.data());
+  return best;
+}
+
+/// Medium soil (physics.md §4.1) on a Kuhn box of n^3 cubes; LK dashpots and springs on five
+/// sides, 2 % Rayleigh damping: the step the plugin takes.
+void BM_ExplicitStep(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  const int threads = static_cast<int>(state.range(1));
+  rumble::fem::FemSettings s;
+  s.half_space = {155e6, 0.3, 1800.0};
+  const rumble::fem::TetMesh mesh = rumble::fem::kuhn_box(n, 0.164);
+  const rumble::fem::TrackRegion centre{0.082 * n, 0.082 * n, 0.082 * n, 0.082 * n};
+  const ExplicitSolver op(rumble::fem::assemble_stiffness(mesh, s),
+                          rumble::fem::lumped_mass(mesh, s),
+                          rumble::fem::absorbing_boundary(mesh, s, centre), true,
+                          std::vector<char>(mesh.node_count(), 0), s.damping.mass_coefficient(),
+                          s.damping.stiffness_coefficient(), static_cast<unsigned>(threads));
+  const Eigen::Index dofs = op.dofs();
+  ExplicitState st{Eigen::VectorXd::Random(dofs) * 1e-6, Eigen::VectorXd::Zero(dofs),
+                   Eigen::VectorXd::Zero(dofs)};
+  const Eigen::VectorXd f = Eigen::VectorXd::Zero(dofs);
+  const double dt = 0.8 * op.stable_step();
+  // K (values, columns, row starts) once, w v a y read and w v a y written: 8 vectors.
+  const double bytes = 12.0 * static_cast<double>(op.stiffness().nonzeros()) +
+                       8.0 * static_cast<double>(dofs) + 8.0 * 8.0 * static_cast<double>(dofs);
+  const double bandwidth = triad_bandwidth(std::max<std::int64_t>(dofs * 8, 1 << 24), threads);
+  const auto start = std::chrono::steady_clock::now();
+  for (auto _ : state) {
+    op.step(st, f, dt);
+    benchmark::ClobberMemory();
+  }
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double steps = static_cast<double>(state.iterations());
+  state.counters["DOFs"] = static_cast<double>(dofs);
+  state.counters["nnz_per_row"] = static_cast<double>(op.stiffness().nonzeros()) / dofs;
+  state.counters["MDOF/s"] =
+      benchmark::Counter(steps * static_cast<double>(dofs) * 1e-6, benchmark::Counter::kIsRate);
+  state.counters["step_GB/s"] =
+      benchmark::Counter(steps * bytes * 1e-9, benchmark::Counter::kIsRate);
+  state.counters["triad_GB/s"] = bandwidth * 1e-9;
+  state.counters["B_per_DOF"] = static_cast<double>(op.bytes()) / static_cast<double>(dofs);
+  state.counters["roofline_fraction"] = steps * bytes / seconds / bandwidth;
+}
+BENCHMARK(BM_ExplicitStep)
+    ->ArgNames({"n", "threads"})
+    ->Args({20, 1})
+    ->Args({20, 2})
+    ->Args({32, 1})
+    ->Args({32, 2})
+    ->Args({46, 2})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+}  // namespace
+
+BENCHMARK_MAIN();
