@@ -24,6 +24,8 @@ commands:
   validate FILE [--format text|json] check a scenario without running it (all errors at once)
   plugins [--format text|json]      list plugin libraries and the types they provide
   schema TYPE [--json]              the parameters of a type: units, defaults, ranges
+  mesh FILE [--output DIR]          build the scenario's soil on its footprints without running:
+                                    its report in the log, its mesh in DIR/mesh.vtu (FEM soil)
   soil-frf FILE [options]           receptance of the scenario's soil at its footprints (CSV)
   calibrate FILE [options]          fit a reduced soil's parameters to a target soil's receptance
   new-plugin KIND NAME [DIR]        start a plugin project (KIND soil, vehicle or coupler) in DIR
@@ -46,6 +48,7 @@ std::map<std::string, Command>& command_table() {
                                               {"validate", &validate_command},
                                               {"plugins", &plugins_command},
                                               {"schema", &schema_command},
+                                              {"mesh", &mesh_command},
                                               {"soil-frf", &soil_frf_command},
                                               {"calibrate", &calibrate_command},
                                               {"new-plugin", &new_plugin_command}};

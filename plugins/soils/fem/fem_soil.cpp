@@ -18,6 +18,7 @@
 #include "explicit_solver.hpp"
 #include "fem_settings.hpp"
 #include "footprint_loads.hpp"
+#include "mesh_cache.hpp"
 #include "mesh_generator.hpp"
 #include "probe_locator.hpp"
 #include "static_solver.hpp"
@@ -52,10 +53,10 @@ class FemSoil final : public rumble::Soil {
     const auto start = std::chrono::steady_clock::now();
     footprints_ = footprints;
     plan_ = plan_mesh(settings_, footprints);
-    host_.info("fem: meshing about " + format(3.0 * plan_.estimated_nodes) + " DOFs (h_near " +
+    host_.info("fem: a mesh of about " + format(3.0 * plan_.estimated_nodes) + " DOFs (h_near " +
                format(plan_.h_near) + " m, h_max " + format(plan_.h_max) + " m, radius " +
                format(plan_.radius) + " m)");
-    mesh_ = generate_mesh(settings_, footprints, plan_);
+    mesh_ = cached_or_new_mesh();
     const double mesh_seconds = seconds_since(start);
     weights_ = footprint_weights(mesh_, footprints);
     std::vector<BoundaryNode> boundary = absorbing_boundary(mesh_, settings_, plan_.region);
@@ -185,6 +186,22 @@ class FemSoil final : public rumble::Soil {
   }
 
   double max_step() const { return settings_.courant * op_->stable_step(); }
+
+  rumble::fem::TetMesh cached_or_new_mesh() const {
+    using namespace rumble::fem;
+    const auto dir = mesh_cache_directory();
+    if (!dir) return generate_mesh(settings_, footprints_, plan_);
+    const auto path = *dir / mesh_cache_name(settings_, footprints_, plan_);
+    if (auto cached = read_cached_mesh(path)) {
+      host_.info("fem: mesh from the cache " + path.string());
+      return std::move(*cached);
+    }
+    TetMesh mesh = generate_mesh(settings_, footprints_, plan_);
+    if (!write_cached_mesh(path, mesh))
+      host_.warn("fem: could not keep the mesh in " + path.string() +
+                 " (set RUMBLE_MESH_CACHE to a writable directory, or to off)");
+    return mesh;
+  }
 
   /// out = B (F(tau) - reference): consistent nodal forces of the footprint pressures [N].
   void footprint_forces(const rumble::Waveform& force, double tau, Eigen::VectorXd& out,

@@ -1,0 +1,60 @@
+// `rumble mesh`: the soil built on the scenario's footprints without a run, its mesh written for
+// ParaView, the second time from the mesh cache; a soil without field output says so.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+
+#include "cli_runner.hpp"
+
+namespace rumble::testing {
+namespace {
+
+using ::testing::HasSubstr;
+
+nlohmann::json fem_scenario() {
+  nlohmann::json s = small_scenario();
+  s["track"]["sleepers"]["count"] = 10;
+  s["soil"] = {{"type", "fem"},
+               {"params",
+                {{"E", 750e6},
+                 {"nu", 0.3},
+                 {"rho", 1800.0},
+                 {"mesh", {{"radius", 6.0}, {"f_max", 40.0}, {"near_distance", 1.5}}}}}};
+  return s;
+}
+
+TEST(CliMesh, WritesTheMeshAndReusesItFromTheCache) {
+  const auto dir = scratch_directory("mesh_fem");
+  ::setenv("RUMBLE_MESH_CACHE", (dir / "cache").c_str(), 1);
+  const auto path = write_scenario(dir, fem_scenario());
+  const CliResult first = run_rumble({"mesh", path.string()});
+  ASSERT_EQ(first.exit_code, 0) << first.output;
+  EXPECT_THAT(first.output, HasSubstr("tetrahedra"));
+  EXPECT_THAT(first.output, HasSubstr("stable step"));
+  EXPECT_THAT(first.output, HasSubstr("wrote " + (dir / "results" / "mesh.vtu").string()));
+  EXPECT_THAT(file_text(dir / "results" / "mesh.vtu"),
+              HasSubstr("<VTKFile type=\"UnstructuredGrid\""));
+  const CliResult second =
+      run_rumble({"mesh", path.string(), "--output", (dir / "again").string()});
+  ASSERT_EQ(second.exit_code, 0) << second.output;
+  EXPECT_THAT(second.output, HasSubstr("fem: mesh from the cache " + (dir / "cache").string()));
+  EXPECT_EQ(file_text(dir / "again" / "mesh.vtu"), file_text(dir / "results" / "mesh.vtu"));
+  ::unsetenv("RUMBLE_MESH_CACHE");
+}
+
+TEST(CliMesh, ASoilWithoutFieldsSaysSo) {
+  const auto dir = scratch_directory("mesh_winkler");
+  const CliResult r = run_rumble({"mesh", write_scenario(dir, small_scenario()).string()});
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("soil type 'winkler' offers no field output"));
+}
+
+TEST(CliMesh, NeedsOneScenario) {
+  const CliResult r = run_rumble({"mesh"});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.output, HasSubstr("usage: rumble mesh FILE [--output DIR]"));
+}
+
+}  // namespace
+}  // namespace rumble::testing
