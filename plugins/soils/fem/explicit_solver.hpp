@@ -48,6 +48,7 @@ class ExplicitSolver {
   const CsrMatrix& stiffness() const { return K_; }
   const std::vector<BoundaryNode>& boundary() const { return boundary_; }
   const std::vector<char>& fixed() const { return fixed_; }
+  bool springs_act() const { return springs_; }
   const Eigen::VectorXd& mass() const { return mass_; }
   std::size_t bytes() const;
   /// Energies of a state [J]: kinetic 1/2 v^T M v and strain 1/2 w^T (K + S) w.

@@ -21,6 +21,7 @@
 #include "mesh_cache.hpp"
 #include "mesh_generator.hpp"
 #include "probe_locator.hpp"
+#include "receptance.hpp"
 #include "static_solver.hpp"
 #include "vtu_writer.hpp"
 #include "wave_speeds.hpp"
@@ -51,6 +52,7 @@ class FemSoil final : public rumble::Soil {
   void accept_layout(const std::vector<rumble::Footprint>& footprints) override {
     using namespace rumble::fem;
     const auto start = std::chrono::steady_clock::now();
+    receptance_.reset();  // it refers to the operators of the previous layout
     footprints_ = footprints;
     plan_ = plan_mesh(settings_, footprints);
     host_.info("fem: a mesh of about " + format(3.0 * plan_.estimated_nodes) + " DOFs (h_near " +
@@ -143,6 +145,16 @@ class FemSoil final : public rumble::Soil {
   void write_fields(double t, const std::string& path) override {
     require_layout("write_fields");
     rumble::fem::write_vtu(path, t, mesh_, u_static_ + state_.w, state_.v);
+  }
+
+  bool frequency_response(double f_hz, std::complex<double>* receptance) override {
+    require_layout("frequency_response");
+    if (!receptance_)
+      receptance_ = std::make_unique<rumble::fem::Receptance>(
+          *op_, weights_, settings_.damping.mass_coefficient(),
+          settings_.damping.stiffness_coefficient());
+    receptance_->at(f_hz, receptance);
+    return true;
   }
 
   void wave_speeds(double& c_s_min, double& c_r_min) const override {
@@ -294,6 +306,7 @@ class FemSoil final : public rumble::Soil {
   rumble::fem::FootprintWeights weights_;
   std::optional<rumble::fem::ExplicitSolver> op_;
   std::unique_ptr<rumble::fem::StaticSolver> statics_;
+  std::unique_ptr<rumble::fem::Receptance> receptance_;
   ExplicitState state_;
   Eigen::VectorXd u_static_;                       // [m] under force_static_
   Eigen::VectorXd f_, df_;                         // scratch: nodal forces [N]
