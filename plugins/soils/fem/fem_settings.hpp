@@ -50,7 +50,9 @@ struct FemSettings {
   MeshRequest mesh;
   BoundaryRequest boundary;
   DampingRequest damping;
-  double courant = 0.8;  // explicit step = courant x the stable step from the mesh
+  double courant = 0.8;        // explicit step = courant x the stable step from the mesh
+  bool implicit = false;       // Newmark average acceleration instead of central differences
+  double implicit_step = 0.0;  // s, longest implicit sub-step; 0 = 1 / (20 f_max)
   unsigned mesh_threads = 1;
 
   /// The properties at depth z [m] (>= 0).

@@ -18,6 +18,7 @@
 #include "explicit_solver.hpp"
 #include "fem_settings.hpp"
 #include "footprint_loads.hpp"
+#include "implicit_solver.hpp"
 #include "mesh_cache.hpp"
 #include "mesh_generator.hpp"
 #include "probe_locator.hpp"
@@ -70,6 +71,10 @@ class FemSoil final : public rumble::Soil {
                 std::move(fixed), settings_.damping.mass_coefficient(),
                 settings_.damping.stiffness_coefficient(), host_.threads());
     statics_ = std::make_unique<StaticSolver>(*op_);
+    implicit_.reset();
+    if (settings_.implicit)
+      implicit_ = std::make_unique<ImplicitSolver>(*op_, settings_.damping.mass_coefficient(),
+                                                   settings_.damping.stiffness_coefficient());
     const Eigen::Index n = op_->dofs();
     state_ = {Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n)};
     u_static_ = Eigen::VectorXd::Zero(n);
@@ -106,7 +111,10 @@ class FemSoil final : public rumble::Soil {
     for (int k = 1; k <= sub_steps; ++k) {
       const double tau = static_cast<double>(k) / sub_steps;
       footprint_forces(force, tau, f_, force_static_.data());
-      op_->step(state_, f_, dt);
+      if (implicit_)
+        implicit_->step(state_, f_, dt);
+      else
+        op_->step(state_, f_, dt);
       record_probes(t + tau * H);
       const auto now = std::chrono::steady_clock::now();
       if (now - last_check > std::chrono::milliseconds(100)) {
@@ -118,9 +126,11 @@ class FemSoil final : public rumble::Soil {
     for (std::size_t j = 0; j < footprints_.size(); ++j)
       if (!std::isfinite(average(j, state_.w)) || !std::isfinite(average(j, state_.v))) {
         std::ostringstream m;
-        m << "fem: the motion of footprint " << j << " is not finite at t = " << t + H
-          << " s: the explicit step " << dt << " s is unstable (lower params/courant, now "
-          << settings_.courant << ") or the forces are not finite";
+        m << "fem: the motion of footprint " << j << " is not finite at t = " << t + H << " s: "
+          << (implicit_ ? "the forces are not finite"
+                        : "the explicit step " + format(dt) +
+                              " s is unstable (lower params/courant, now " +
+                              format(settings_.courant) + ") or the forces are not finite");
         throw std::runtime_error(m.str());
       }
   }
@@ -197,7 +207,9 @@ class FemSoil final : public rumble::Soil {
     if (!op_) throw std::logic_error(std::string("fem: ") + call + "() before accept_layout()");
   }
 
-  double max_step() const { return settings_.courant * op_->stable_step(); }
+  double max_step() const {
+    return implicit_ ? settings_.implicit_step : settings_.courant * op_->stable_step();
+  }
 
   rumble::fem::TetMesh cached_or_new_mesh() const {
     using namespace rumble::fem;
@@ -279,9 +291,10 @@ class FemSoil final : public rumble::Soil {
       << format(mesh_seconds, 2) << " s, ready in " << format(setup_seconds, 2) << " s; "
       << format(op_->bytes() / 1048576.0) << " MiB ("
       << format(static_cast<double>(op_->bytes()) / op_->dofs(), 3) << " B per DOF); stable step "
-      << format(op_->stable_step()) << " s (" << op_->power_iterations()
-      << " power iterations), step used " << format(max_step()) << " s; f_max resolved at "
-      << settings_.mesh.elements_per_wavelength << " elements per Rayleigh wavelength:";
+      << format(op_->stable_step()) << " s (" << op_->power_iterations() << " power iterations), "
+      << (implicit_ ? "implicit" : "explicit") << " step " << format(max_step())
+      << " s; f_max resolved at " << settings_.mesh.elements_per_wavelength
+      << " elements per Rayleigh wavelength:";
     for (double d : {2.5, 5.0, 10.0, 20.0, 40.0})
       if (d < plan_.radius)
         m << ' ' << format(plan_.resolved_frequency(d, c_r, settings_.mesh.elements_per_wavelength))
@@ -306,6 +319,7 @@ class FemSoil final : public rumble::Soil {
   rumble::fem::FootprintWeights weights_;
   std::optional<rumble::fem::ExplicitSolver> op_;
   std::unique_ptr<rumble::fem::StaticSolver> statics_;
+  std::unique_ptr<rumble::fem::ImplicitSolver> implicit_;
   std::unique_ptr<rumble::fem::Receptance> receptance_;
   ExplicitState state_;
   Eigen::VectorXd u_static_;                       // [m] under force_static_
