@@ -51,6 +51,9 @@ class ExplicitSolver {
   bool springs_act() const { return springs_; }
   const Eigen::VectorXd& mass() const { return mass_; }
   std::size_t bytes() const;
+  /// Threads for the step's loops (the host grants them per run, after the layout).
+  void set_threads(unsigned threads) { threads_ = threads < 1 ? 1 : threads; }
+  unsigned threads() const { return threads_; }
   /// Energies of a state [J]: kinetic 1/2 v^T M v and strain 1/2 w^T (K + S) w.
   double kinetic_energy(const ExplicitState& s) const;
   double strain_energy(const ExplicitState& s) const;

@@ -69,6 +69,7 @@ const char* settings_schema() {
       "type": "object", "additionalProperties": false, "default": {},
       "description": "the tetrahedral mesh, generated with gmsh when the track announces its footprints (docs/soils.md, FEM soil)",
       "properties": {
+        "file": {"type": "string", "minLength": 1, "description": "a gmsh mesh file (.msh) to use instead of meshing, relative to the scenario's folder: linear tetrahedra, z up with the ground at z = 0, the physical surfaces \"ground\" (the free surface; the footprints lie in it, its faces following their edges) and \"absorbing\" (the truncation surface), optionally physical volumes \"layer_<k>\" (k = 0 the top layer, layers.size() the half-space; by default by depth). The domain must be convex around the footprints. The other mesh keys are then ignored"},
         "shape": {"enum": ["hemisphere", "box"], "default": "hemisphere", "description": "truncation of the half-space: a hemisphere centred under the footprints (waves meet its surface near normal incidence, where the absorbing boundary works best), or a box around them"},
         "radius": {"type": "number", "exclusiveMinimum": 0, "default": 20, "description": "hemisphere radius, or the box's margin beyond the footprints on each side and below [m]; put it at least one Rayleigh wavelength of the lowest frequency of interest beyond the farthest receiver"},
         "f_max": {"type": "number", "exclusiveMinimum": 0, "maximum": 2000, "default": 80, "description": "highest frequency resolved near the track [Hz]"},
@@ -132,6 +133,7 @@ FemSettings read_settings(const std::string& params_json) {
   m.max_dofs = read(mesh, "max_dofs", m.max_dofs);
   s.mesh_threads = mesh.value("threads", 1u);
   m.fast_algorithm = mesh.value("algorithm", "delaunay") == "hxt";
+  m.file = mesh.value("file", "");
   if (!(m.radius > 0.0) || !std::isfinite(m.radius))
     refuse("mesh/radius", "must be > 0 m", m.radius);
   if (!(m.f_max > 0.0)) refuse("mesh/f_max", "must be > 0 Hz", m.f_max);

@@ -28,6 +28,7 @@ struct MeshRequest {
   double h_max = 0.0;                   // m: cap of the element size far away; 0 = radius / 4
   double max_dofs = 3e6;                // refused before meshing beyond this estimate
   bool fast_algorithm = false;          // gmsh HXT (fast, not reproducible) instead of Delaunay
+  std::string file;  // a user's .msh instead (as given: relative to the scenario)
 };
 
 struct BoundaryRequest {

@@ -7,6 +7,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -18,6 +19,7 @@
 #include "explicit_solver.hpp"
 #include "fem_settings.hpp"
 #include "footprint_loads.hpp"
+#include "gmsh_model.hpp"
 #include "implicit_solver.hpp"
 #include "mesh_cache.hpp"
 #include "mesh_generator.hpp"
@@ -55,11 +57,19 @@ class FemSoil final : public rumble::Soil {
     const auto start = std::chrono::steady_clock::now();
     receptance_.reset();  // it refers to the operators of the previous layout
     footprints_ = footprints;
-    plan_ = plan_mesh(settings_, footprints);
-    host_.info("fem: a mesh of about " + format(3.0 * plan_.estimated_nodes) + " DOFs (h_near " +
-               format(plan_.h_near) + " m, h_max " + format(plan_.h_max) + " m, radius " +
-               format(plan_.radius) + " m)");
-    mesh_ = cached_or_new_mesh();
+    if (settings_.mesh.file.empty()) {
+      plan_ = plan_mesh(settings_, footprints);
+      host_.info("fem: a mesh of about " + format(3.0 * plan_.estimated_nodes) + " DOFs (h_near " +
+                 format(plan_.h_near) + " m, h_max " + format(plan_.h_max) + " m, radius " +
+                 format(plan_.radius) + " m)");
+      mesh_ = cached_or_new_mesh();
+    } else {
+      const std::string file =
+          (std::filesystem::path(host_.scenario_dir()) / settings_.mesh.file).lexically_normal();
+      mesh_ = read_mesh_file(settings_, file);
+      plan_ = {.region = TrackRegion::of(footprints)};  // sizes unknown: radius 0
+      host_.info("fem: mesh read from " + file);
+    }
     const double mesh_seconds = seconds_since(start);
     weights_ = footprint_weights(mesh_, footprints);
     std::vector<BoundaryNode> boundary = absorbing_boundary(mesh_, settings_, plan_.region);
@@ -101,8 +111,16 @@ class FemSoil final : public rumble::Soil {
 
   void advance(double t, double H, const rumble::Waveform& force) override {
     require_layout("advance");
+    op_->set_threads(host_.threads());  // granted with the run context, after the layout
     const int sub_steps = std::max(1, static_cast<int>(std::ceil(H / max_step() - 1e-9)));
     const double dt = H / sub_steps;
+    if (H != reported_macro_step_) {  // once at info level, later changes (adaptive H) at debug
+      host_.log(reported_macro_step_ < 0.0 ? RUMBLE_LOG_INFO : RUMBLE_LOG_DEBUG,
+                "fem: " + std::to_string(sub_steps) + " " + (implicit_ ? "implicit" : "explicit") +
+                    " sub-step(s) of " + format(dt) + " s per macro step of " + format(H) + " s, " +
+                    std::to_string(op_->threads()) + " thread(s)");
+      reported_macro_step_ = H;
+    }
     // The force may jump at the step's start (a held or extrapolated waveform): the acceleration
     // at t follows it.
     footprint_forces(force, 0.0, df_, force_last_.data());
@@ -292,16 +310,17 @@ class FemSoil final : public rumble::Soil {
       << format(op_->bytes() / 1048576.0) << " MiB ("
       << format(static_cast<double>(op_->bytes()) / op_->dofs(), 3) << " B per DOF); stable step "
       << format(op_->stable_step()) << " s (" << op_->power_iterations() << " power iterations), "
-      << (implicit_ ? "implicit" : "explicit") << " step " << format(max_step())
-      << " s; f_max resolved at " << settings_.mesh.elements_per_wavelength
-      << " elements per Rayleigh wavelength:";
+      << (implicit_ ? "implicit" : "explicit") << " step " << format(max_step()) << " s";
+    if (plan_.radius > 0.0)  // (0: a user's mesh, whose sizes the soil did not choose)
+      m << "; f_max resolved at " << settings_.mesh.elements_per_wavelength
+        << " elements per Rayleigh wavelength:";
     for (double d : {2.5, 5.0, 10.0, 20.0, 40.0})
       if (d < plan_.radius)
         m << ' ' << format(plan_.resolved_frequency(d, c_r, settings_.mesh.elements_per_wavelength))
           << " Hz at " << d << " m;";
     host_.info(m.str());
     const double epw = c_r / (settings_.mesh.f_max * plan_.h_near);
-    if (epw < 8.0)
+    if (plan_.h_near > 0.0 && epw < 8.0)
       host_.warn("fem: params/mesh/h_near " + format(plan_.h_near) + " m gives " + format(epw, 2) +
                  " elements per Rayleigh wavelength at f_max " + format(settings_.mesh.f_max) +
                  " Hz (c_R " + format(c_r) + " m/s); 8-10 are needed: lower h_near or f_max");
@@ -328,6 +347,7 @@ class FemSoil final : public rumble::Soil {
   std::vector<rumble::fem::ProbePoint> probes_;
   std::vector<double> row_;
   double sample_interval_ = 0.0, next_sample_ = -1.0;  // s
+  double reported_macro_step_ = -1.0;                  // s: the stepping is logged per H
   std::array<Checkpoint, RUMBLE_CHECKPOINT_SLOTS> checkpoints_;
 };
 

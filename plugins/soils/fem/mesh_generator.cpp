@@ -7,8 +7,8 @@
 #include <numbers>
 #include <sstream>
 #include <stdexcept>
-#include <unordered_map>
 
+#include "gmsh_model.hpp"
 #include "wave_speeds.hpp"
 
 namespace rumble::fem {
@@ -16,35 +16,6 @@ namespace rumble::fem {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-
-/// The gmsh session of one meshing: gmsh keeps global state, so one at a time per process, and
-/// gmsh 4.8 throws std::string (toolchain.md §8.10), turned here into std::runtime_error.
-class GmshSession {
- public:
-  explicit GmshSession(unsigned threads) {
-    gmsh::initialize(0, nullptr, /*readConfigFiles=*/false);
-    gmsh::option::setNumber("General.Terminal", 0);
-    gmsh::option::setNumber("General.Verbosity", 1);
-    gmsh::option::setNumber("General.NumThreads", threads);
-    // Same input, same mesh: gmsh otherwise takes as many threads as OpenMP offers per stage.
-    for (const char* stage :
-         {"Mesh.MaxNumThreads1D", "Mesh.MaxNumThreads2D", "Mesh.MaxNumThreads3D"})
-      gmsh::option::setNumber(stage, threads);
-    gmsh::model::add("soil");
-  }
-  ~GmshSession() { gmsh::finalize(); }
-  GmshSession(const GmshSession&) = delete;
-  GmshSession& operator=(const GmshSession&) = delete;
-};
-
-template <class F>
-auto gmsh_call(const char* what, F&& f) {
-  try {
-    return f();
-  } catch (const std::string& message) {
-    throw std::runtime_error(std::string("fem: gmsh failed to ") + what + ": " + message);
-  }
-}
 
 bool inside_domain(const MeshPlan& p, double x, double y, double depth) {
   if (depth < 0.0 || depth > p.depth()) return false;
@@ -176,65 +147,7 @@ TetMesh generate_mesh(const FemSettings& s, const std::vector<Footprint>& footpr
     return 0;
   });
 
-  TetMesh mesh;
-  gmsh_call("read the mesh", [&] {
-    std::vector<std::size_t> node_tags, tet_tags, tet_nodes;
-    std::vector<double> xyz, parametric;
-    gmsh::model::mesh::getNodes(node_tags, xyz, parametric, -1, -1, false, false);
-    gmsh::model::mesh::getElementsByType(4, tet_tags, tet_nodes);
-    // Keep the nodes the tetrahedra use, numbered in gmsh's order.
-    std::unordered_map<std::size_t, std::size_t> position;
-    position.reserve(node_tags.size());
-    for (std::size_t i = 0; i < node_tags.size(); ++i) position.emplace(node_tags[i], i);
-    std::vector<std::int32_t> index(node_tags.size(), -1);
-    std::int32_t used = 0;
-    for (std::size_t tag : tet_nodes) {
-      std::int32_t& k = index[position.at(tag)];
-      if (k < 0) k = used++;
-    }
-    mesh.nodes.resize(3, used);
-    for (std::size_t i = 0; i < node_tags.size(); ++i)
-      if (index[i] >= 0) mesh.nodes.col(index[i]) << xyz[3 * i], xyz[3 * i + 1], -xyz[3 * i + 2];
-    const auto node = [&](std::size_t tag) { return index[position.at(tag)]; };
-    mesh.tets.resize(tet_tags.size());
-    mesh.layer.resize(tet_tags.size());
-    for (std::size_t e = 0; e < tet_tags.size(); ++e) {
-      Tetrahedron t{node(tet_nodes[4 * e]), node(tet_nodes[4 * e + 1]), node(tet_nodes[4 * e + 2]),
-                    node(tet_nodes[4 * e + 3])};
-      if (tet_volume(mesh, t) < 0.0) std::swap(t[2], t[3]);  // mirrored by z -> depth
-      mesh.tets[e] = t;
-      const double depth = 0.25 * (mesh.nodes(2, t[0]) + mesh.nodes(2, t[1]) + mesh.nodes(2, t[2]) +
-                                   mesh.nodes(2, t[3]));
-      double bottom = 0.0;
-      std::uint16_t layer = 0;
-      for (const soils::SoilLayer& l : s.layers) {
-        bottom += l.thickness;
-        if (depth < bottom) break;
-        ++layer;
-      }
-      mesh.layer[e] = layer;
-    }
-    // Faces of the surfaces that bound one volume only: the ground, or the truncation.
-    gmsh::vectorpair surfaces;
-    gmsh::model::getEntities(surfaces, 2);
-    const double ground_tolerance = 1e-9 * R;
-    for (const auto& [dim, tag] : surfaces) {
-      std::vector<int> up, down;
-      gmsh::model::getAdjacencies(dim, tag, up, down);
-      if (up.size() != 1) continue;
-      std::vector<std::size_t> tri_tags, tri_nodes;
-      gmsh::model::mesh::getElementsByType(2, tri_tags, tri_nodes, tag);
-      for (std::size_t e = 0; e < tri_tags.size(); ++e) {
-        const Triangle f{node(tri_nodes[3 * e]), node(tri_nodes[3 * e + 1]),
-                         node(tri_nodes[3 * e + 2])};
-        const bool on_ground = std::abs(mesh.nodes(2, f[0])) < ground_tolerance &&
-                               std::abs(mesh.nodes(2, f[1])) < ground_tolerance &&
-                               std::abs(mesh.nodes(2, f[2])) < ground_tolerance;
-        (on_ground ? mesh.ground : mesh.truncation).push_back(f);
-      }
-    }
-    return 0;
-  });
+  TetMesh mesh = read_model(s, /*by_physical_groups=*/false);
   if (mesh.tets.empty()) throw std::runtime_error("fem: gmsh made no tetrahedra");
   return mesh;
 }
