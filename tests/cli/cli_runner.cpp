@@ -1,17 +1,19 @@
 #include "cli_runner.hpp"
 
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <array>
+#include <csignal>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
 
 namespace rumble::testing {
 
-CliResult run_rumble(const std::vector<std::string>& args) {
+CliResult run_rumble(const std::vector<std::string>& args, const RunSetup& setup) {
   int fds[2];
   if (pipe(fds) != 0) throw std::runtime_error("pipe failed");
   const pid_t pid = fork();
@@ -20,6 +22,12 @@ CliResult run_rumble(const std::vector<std::string>& args) {
     dup2(fds[1], STDERR_FILENO);
     close(fds[0]);
     close(fds[1]);
+    if (setup.file_size_limit >= 0) {
+      const rlimit limit{static_cast<rlim_t>(setup.file_size_limit),
+                         static_cast<rlim_t>(setup.file_size_limit)};
+      setrlimit(RLIMIT_FSIZE, &limit);
+      std::signal(SIGXFSZ, SIG_IGN);  // stays ignored across exec
+    }
     std::vector<char*> argv;
     std::string exe = RUMBLE_TEST_EXE;
     argv.push_back(exe.data());

@@ -14,8 +14,15 @@ struct CliResult {
   std::string output;  // stdout and stderr together
 };
 
+/// How the child process starts, besides its arguments.
+struct RunSetup {
+  /// RLIMIT_FSIZE in bytes when >= 0, with SIGXFSZ ignored: a write past it fails with EFBIG, as
+  /// one on a full disk fails with ENOSPC.
+  long file_size_limit = -1;
+};
+
 /// Runs `rumble <args>` (arguments are passed as they are, no shell) and waits.
-CliResult run_rumble(const std::vector<std::string>& args);
+CliResult run_rumble(const std::vector<std::string>& args, const RunSetup& setup = {});
 
 /// A fresh, empty directory for one test (under the build tree).
 std::filesystem::path scratch_directory(const std::string& test_name);

@@ -1,10 +1,16 @@
 #include "run/field_writer.hpp"
 
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <cstdio>
-#include <fstream>
+#include <cstring>
+#include <sstream>
 
 #include "core/errors.hpp"
 #include "plugin/instance.hpp"
+#include "run/new_file.hpp"
 
 namespace rumble {
 
@@ -12,10 +18,13 @@ namespace fs = std::filesystem;
 
 FieldWriter::FieldWriter(const fs::path& results_dir, SoilInstance& soil, double interval)
     : dir_(results_dir), soil_(soil), interval_(interval) {
-  std::error_code ec;
-  fs::create_directories(dir_ / "fields", ec);
-  if (ec) {
-    throw RunError("cannot create " + (dir_ / "fields").string() + ": " + ec.message() +
+  // A real directory: a file or a link standing at its name is removed, never followed.
+  const fs::path fields = dir_ / "fields";
+  struct stat st {};
+  if (::lstat(fields.c_str(), &st) == 0 && S_ISDIR(st.st_mode)) return;
+  if ((::unlink(fields.c_str()) != 0 && errno != ENOENT) || ::mkdir(fields.c_str(), 0777) != 0) {
+    const int err = errno;
+    throw RunError("cannot create " + fields.string() + ": " + std::strerror(err) +
                    "; check that /outputs/directory is writable");
   }
 }
@@ -26,32 +35,31 @@ void FieldWriter::at(double t) {
   if (t < due - 1e-9 * interval_) return;
   char name[48];
   std::snprintf(name, sizeof name, "fields/soil_%06zu.vtu", times_.size());
-  soil_.write_fields(t, dir_ / name);
+  // The soil opens the file itself: what stands at the name (a link) is removed first.
+  const fs::path path = dir_ / name;
+  if (::unlink(path.c_str()) != 0 && errno != ENOENT) {
+    const int err = errno;
+    throw RunError(write_error(path, err));
+  }
+  soil_.write_fields(t, path);
   times_.push_back(t);
   files_.emplace_back(name);
   write_index();
 }
 
 void FieldWriter::write_index() const {
-  const fs::path tmp = dir_ / "soil.pvd.tmp";
-  {
-    std::ofstream out(tmp);
-    out << "<?xml version=\"1.0\"?>\n"
-        << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
-        << "  <Collection>\n";
-    char time[32];
-    for (std::size_t k = 0; k < times_.size(); ++k) {
-      std::snprintf(time, sizeof time, "%.9g", times_[k]);
-      out << "    <DataSet timestep=\"" << time << "\" group=\"\" part=\"0\" file=\"" << files_[k]
-          << "\"/>\n";
-    }
-    out << "  </Collection>\n</VTKFile>\n";
-    if (!out) {
-      throw RunError("cannot write " + tmp.string() +
-                     "; check free disk space and that outputs.directory is writable");
-    }
+  std::ostringstream out;
+  out << "<?xml version=\"1.0\"?>\n"
+      << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+      << "  <Collection>\n";
+  char time[32];
+  for (std::size_t k = 0; k < times_.size(); ++k) {
+    std::snprintf(time, sizeof time, "%.9g", times_[k]);
+    out << "    <DataSet timestep=\"" << time << "\" group=\"\" part=\"0\" file=\"" << files_[k]
+        << "\"/>\n";
   }
-  fs::rename(tmp, dir_ / "soil.pvd");
+  out << "  </Collection>\n</VTKFile>\n";
+  replace_file(dir_ / "soil.pvd", dir_ / "soil.pvd.tmp", out.str());
 }
 
 }  // namespace rumble

@@ -1,6 +1,8 @@
 // Soil field snapshots (ABI 1.1 write_fields) at the cadence of /outputs/fields: the soil writes
 // each fields/soil_<k>.vtu itself; the engine names the files and keeps the ParaView index
 // soil.pvd (time of each snapshot) valid after every one, so a run that stops early still opens.
+// No write goes through a symbolic link: fields/ is a real directory, whatever stands at a
+// snapshot's name is removed before the soil writes it, and soil.pvd is a new file each time.
 #pragma once
 
 #include <filesystem>

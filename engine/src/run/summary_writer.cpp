@@ -1,9 +1,7 @@
 #include "run/summary_writer.hpp"
 
-#include <fstream>
-
-#include "core/errors.hpp"
 #include "plugin/registry.hpp"
+#include "run/new_file.hpp"
 #include "run/run_components.hpp"
 
 namespace rumble {
@@ -67,16 +65,8 @@ void SummaryWriter::fail(const std::string& message) noexcept {
 }
 
 void SummaryWriter::write() const {
-  const fs::path tmp = directory_ / "summary.json.tmp";
-  {
-    std::ofstream out(tmp);
-    out << summary_.dump(2) << '\n';
-    if (!out) {
-      throw RunError("cannot write " + (directory_ / "summary.json").string() +
-                     "; check free disk space and that outputs.directory is writable");
-    }
-  }
-  fs::rename(tmp, directory_ / "summary.json");
+  replace_file(directory_ / "summary.json", directory_ / "summary.json.tmp",
+               summary_.dump(2) + '\n');
 }
 
 }  // namespace rumble

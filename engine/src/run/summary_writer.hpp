@@ -1,7 +1,7 @@
 // summary.json: written when the run starts (status "running", the scenario as validated,
 // versions, plugins) and rewritten when it ends (status, times, peaks, files), always atomically
-// (write + rename), so a reader never sees half a file. docs/scenario.md says what each status
-// means.
+// (a new file renamed over it, run/new_file.hpp), so a reader never sees half a file.
+// docs/scenario.md says what each status means.
 #pragma once
 
 #include <filesystem>
