@@ -24,8 +24,9 @@ long allocations_of_run(const std::string& name, nlohmann::json s, long steps) {
   auto doc = cli::prepare_scenario(path, registry, scenario::Format::kText);
   EXPECT_TRUE(doc.has_value());
   const scenario::RunSpec spec = scenario::make_run_spec(doc->json, path);
+  ResultsDirectory results(spec.outputs.directory);
   const AllocationCounter counter;
-  const RunOutcome outcome = run_scenario(spec, registry, RunOptions{});
+  const RunOutcome outcome = run_scenario(spec, registry, results, RunOptions{});
   EXPECT_EQ(outcome.status, RunStatus::kCompleted) << outcome.message;
   return counter.count();
 }

@@ -30,7 +30,8 @@ int run_command(const std::vector<std::string>& args) {
   RunOptions options;
   options.progress = !a.flag("no-progress") && isatty(STDERR_FILENO) != 0;
   const scenario::RunSpec spec = scenario::make_run_spec(doc->json, doc->path);
-  const RunOutcome outcome = run_scenario(spec, registry, options);
+  ResultsDirectory results(spec.outputs.directory);  // locked until the plots are done
+  const RunOutcome outcome = run_scenario(spec, registry, results, options);
   const auto log = logger("engine");
   if (outcome.status != RunStatus::kFailed && spec.outputs.plots) {
     run_plot_script("plot_results.py", outcome.results_dir);

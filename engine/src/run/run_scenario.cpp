@@ -87,20 +87,14 @@ int solve_statics(RunComponents& c) {
 }  // namespace
 
 RunOutcome run_scenario(const scenario::RunSpec& spec, const PluginRegistry& registry,
-                        const RunOptions& options) {
+                        ResultsDirectory& results, const RunOptions& options) {
   const auto log = logger("engine");
   const auto run_start = Clock::now();
   RunComponents c = build_components(spec, registry);
   TrackParticipant& track = *c.track;
 
   RunOutcome outcome;
-  outcome.results_dir = spec.outputs.directory;
-  std::error_code ec;
-  fs::create_directories(outcome.results_dir, ec);
-  if (ec) {
-    throw RunError("cannot create results directory " + outcome.results_dir.string() + ": " +
-                   ec.message() + "; set /outputs/directory to a writable place");
-  }
+  outcome.results_dir = results.path();
   SummaryWriter summary(outcome.results_dir, spec, c);
   give_run_context(c, outcome.results_dir);
 
