@@ -24,7 +24,7 @@ long allocations_of_run(const std::string& name, nlohmann::json s, long steps) {
   auto doc = cli::prepare_scenario(path, registry, scenario::Format::kText);
   EXPECT_TRUE(doc.has_value());
   const scenario::RunSpec spec = scenario::make_run_spec(doc->json, path);
-  ResultsDirectory results(spec.outputs.directory);
+  ResultsDirectory results(spec.outputs.directory, spec.path, false);
   const AllocationCounter counter;
   const RunOutcome outcome = run_scenario(spec, registry, results, RunOptions{});
   EXPECT_EQ(outcome.status, RunStatus::kCompleted) << outcome.message;

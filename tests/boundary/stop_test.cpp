@@ -31,7 +31,7 @@ TEST(Stop, RequestReachesAPluginInsideALongAdvance) {
     request_interrupt();
   });
   const scenario::RunSpec spec = scenario::make_run_spec(doc->json, path);
-  ResultsDirectory results(spec.outputs.directory);
+  ResultsDirectory results(spec.outputs.directory, spec.path, false);
   const RunOutcome outcome = run_scenario(spec, registry, results, RunOptions{});
   ctrl_c.join();
   clear_interrupt();

@@ -1,5 +1,6 @@
 // What a run does with its results directory (issue #8): one run at a time (a lock naming the
-// holder), and no write goes through a symbolic link.
+// holder), a rerun of the same scenario file replaces exactly what the last one listed (a
+// manifest) and anything else needs --overwrite, and no write goes through a symbolic link.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <signal.h>
@@ -84,6 +85,82 @@ TEST(CliResults, TheLockDiesWithItsProcess) {
   EXPECT_EQ(read_json(dir / "results" / "summary.json")["status"], "completed");
 }
 
+// ---- what a rerun replaces
+
+TEST(CliResults, ARunListsWhatItWroteInAManifest) {
+  const auto dir = scratch_directory("results_manifest");
+  const auto path = write_scenario(dir, small_scenario());
+  const CliResult r = run_rumble({"run", path.string(), "--no-progress"});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto manifest = read_json(dir / "results" / ".rumble-manifest.json");
+  EXPECT_EQ(manifest["scenario_file"], fs::canonical(path).string());
+  const auto files = manifest["files"].get<std::vector<std::string>>();
+  for (const char* f : {"summary.json", "contact.csv", "vehicles.csv", "footprint_force.csv",
+                        "footprint_displacement.csv", "footprint_velocity.csv", "interface.csv"})
+    EXPECT_THAT(files, ::testing::Contains(f));
+}
+
+TEST(CliResults, AnotherScenariosResultsAreReplacedOnlyWithOverwrite) {
+  const auto dir = scratch_directory("results_other_scenario");
+  const auto a = dir / "a.json", b = dir / "b.json";
+  nlohmann::json s = small_scenario();
+  write_text(a, s.dump());
+  s["name"] = "scenario b";
+  write_text(b, s.dump());
+  ASSERT_EQ(run_rumble({"run", a.string(), "--no-progress"}).exit_code, 0);
+  const CliResult refused = run_rumble({"run", b.string(), "--no-progress"});
+  EXPECT_EQ(refused.exit_code, 1) << refused.output;
+  EXPECT_THAT(refused.output,
+              HasSubstr("results directory " + (dir / "results").string() +
+                        " holds the results of another scenario (" + fs::canonical(a).string() +
+                        ", says " + (dir / "results" / ".rumble-manifest.json").string() + ")"));
+  EXPECT_THAT(refused.output, HasSubstr("Choose another directory (/outputs/directory, or "
+                                        "--output DIR), or pass --overwrite to write here"));
+  EXPECT_EQ(read_json(dir / "results" / "summary.json")["scenario_file"], a.string());
+  const CliResult overwritten = run_rumble({"run", b.string(), "--no-progress", "--overwrite"});
+  EXPECT_EQ(overwritten.exit_code, 0) << overwritten.output;
+  EXPECT_EQ(read_json(dir / "results" / "summary.json")["scenario"]["name"], "scenario b");
+  // b's results now: its own rerun needs no --overwrite.
+  EXPECT_EQ(run_rumble({"run", b.string(), "--no-progress"}).exit_code, 0);
+}
+
+TEST(CliResults, FilesNoManifestListsAreRefusedAndNeverDeleted) {
+  const auto dir = scratch_directory("results_unlisted");
+  const auto path = write_scenario(dir, small_scenario());
+  const auto results = dir / "results";
+  ASSERT_EQ(run_rumble({"run", path.string(), "--no-progress"}).exit_code, 0);
+  write_text(results / "notes.txt", "mine");
+  fs::create_directories(results / "plots_by_hand");
+  const CliResult refused = run_rumble({"run", path.string(), "--no-progress"});
+  EXPECT_EQ(refused.exit_code, 1) << refused.output;
+  EXPECT_THAT(refused.output, HasSubstr("holds 2 files that no rumble manifest lists (notes.txt, "
+                                        "plots_by_hand/)"));
+  EXPECT_THAT(refused.output, HasSubstr("pass --overwrite to write here anyway"));
+  // A manifest that names something outside the directory is not obeyed, even with --overwrite.
+  write_text(dir / "outside.txt", "not a result");
+  auto manifest = read_json(results / ".rumble-manifest.json");
+  manifest["files"].push_back("../outside.txt");
+  write_text(results / ".rumble-manifest.json", manifest.dump());
+  const CliResult overwritten = run_rumble({"run", path.string(), "--no-progress", "--overwrite"});
+  EXPECT_EQ(overwritten.exit_code, 0) << overwritten.output;
+  EXPECT_EQ(file_text(results / "notes.txt"), "mine");
+  EXPECT_TRUE(fs::is_directory(results / "plots_by_hand"));
+  EXPECT_EQ(file_text(dir / "outside.txt"), "not a result");
+  EXPECT_EQ(csv_rows(results / "contact.csv"), 51u);
+}
+
+// A directory that holds results of a rumble without manifests is refused, not emptied.
+TEST(CliResults, ResultsWithoutAManifestAreRefused) {
+  const auto dir = scratch_directory("results_no_manifest");
+  fs::create_directories(dir / "results");
+  write_text(dir / "results" / "contact.csv", "t [s]\n0\n");
+  const CliResult r = run_rumble({"run", write_scenario(dir, small_scenario()).string()});
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("holds 1 file that no rumble manifest lists (contact.csv), e.g. "
+                                  "the results of an older rumble"));
+  EXPECT_EQ(file_text(dir / "results" / "contact.csv"), "t [s]\n0\n");
+}
+
 // ---- never through a link
 
 // A link planted at a results file's name (contact.csv, the summary's temporary file) is
@@ -93,15 +170,23 @@ TEST(CliResults, LinksInTheResultsDirectoryAreReplacedNeverFollowed) {
   const auto path = write_scenario(dir, small_scenario());
   const auto results = dir / "results";
   fs::create_directories(results);
-  for (const char* f : {"precious_csv.txt", "precious_tmp.txt"}) write_text(dir / f, "keep me");
+  for (const char* f : {"precious_csv.txt", "precious_tmp.txt", "precious_vehicles.txt"})
+    write_text(dir / f, "keep me");
   fs::create_symlink(dir / "precious_csv.txt", results / "contact.csv");
   fs::create_symlink(dir / "precious_tmp.txt", results / "summary.json.tmp");
-  const CliResult r = run_rumble({"run", path.string(), "--no-progress"});
+  const CliResult r = run_rumble({"run", path.string(), "--no-progress", "--overwrite"});
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_EQ(file_text(dir / "precious_csv.txt"), "keep me");
   EXPECT_EQ(file_text(dir / "precious_tmp.txt"), "keep me");
   EXPECT_FALSE(fs::is_symlink(results / "contact.csv"));
   EXPECT_EQ(csv_rows(results / "contact.csv"), 51u);
+  // A link put in place of a listed file after the run: the rerun removes the link.
+  fs::remove(results / "vehicles.csv");
+  fs::create_symlink(dir / "precious_vehicles.txt", results / "vehicles.csv");
+  const CliResult again = run_rumble({"run", path.string(), "--no-progress"});
+  EXPECT_EQ(again.exit_code, 0) << again.output;
+  EXPECT_EQ(file_text(dir / "precious_vehicles.txt"), "keep me");
+  EXPECT_EQ(csv_rows(results / "vehicles.csv"), 51u);
 }
 
 }  // namespace

@@ -15,9 +15,10 @@
 namespace rumble::cli {
 
 int run_command(const std::vector<std::string>& args) {
-  const Arguments a(args, {"no-progress", "no-plots"}, {"output"});
+  const Arguments a(args, {"no-progress", "no-plots", "overwrite"}, {"output"});
   if (a.positional().size() != 1) {
-    throw UsageError("usage: rumble run FILE [--output DIR] [--no-progress] [--no-plots]");
+    throw UsageError(
+        "usage: rumble run FILE [--output DIR] [--overwrite] [--no-progress] [--no-plots]");
   }
   PluginRegistry registry;
   auto doc = prepare_scenario(a.positional()[0], registry, scenario::Format::kText);
@@ -30,7 +31,8 @@ int run_command(const std::vector<std::string>& args) {
   RunOptions options;
   options.progress = !a.flag("no-progress") && isatty(STDERR_FILENO) != 0;
   const scenario::RunSpec spec = scenario::make_run_spec(doc->json, doc->path);
-  ResultsDirectory results(spec.outputs.directory);  // locked until the plots are done
+  // Locked, and the previous run's listed files removed; until the plots are done.
+  ResultsDirectory results(spec.outputs.directory, spec.path, a.flag("overwrite"));
   const RunOutcome outcome = run_scenario(spec, registry, results, options);
   const auto log = logger("engine");
   if (outcome.status != RunStatus::kFailed && spec.outputs.plots) {

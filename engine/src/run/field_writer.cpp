@@ -1,32 +1,23 @@
 #include "run/field_writer.hpp"
 
-#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <cstdio>
-#include <cstring>
 #include <sstream>
 
 #include "core/errors.hpp"
 #include "plugin/instance.hpp"
 #include "run/new_file.hpp"
+#include "run/results_directory.hpp"
 
 namespace rumble {
 
 namespace fs = std::filesystem;
 
-FieldWriter::FieldWriter(const fs::path& results_dir, SoilInstance& soil, double interval)
-    : dir_(results_dir), soil_(soil), interval_(interval) {
-  // A real directory: a file or a link standing at its name is removed, never followed.
-  const fs::path fields = dir_ / "fields";
-  struct stat st {};
-  if (::lstat(fields.c_str(), &st) == 0 && S_ISDIR(st.st_mode)) return;
-  if ((::unlink(fields.c_str()) != 0 && errno != ENOENT) || ::mkdir(fields.c_str(), 0777) != 0) {
-    const int err = errno;
-    throw RunError("cannot create " + fields.string() + ": " + std::strerror(err) +
-                   "; check that /outputs/directory is writable");
-  }
+FieldWriter::FieldWriter(ResultsDirectory& results, SoilInstance& soil, double interval)
+    : results_(results), soil_(soil), interval_(interval) {
+  results_.subdirectory("fields");  // a real directory, never a link followed
 }
 
 void FieldWriter::at(double t) {
@@ -36,7 +27,7 @@ void FieldWriter::at(double t) {
   char name[48];
   std::snprintf(name, sizeof name, "fields/soil_%06zu.vtu", times_.size());
   // The soil opens the file itself: what stands at the name (a link) is removed first.
-  const fs::path path = dir_ / name;
+  const fs::path path = results_.file(name);
   if (::unlink(path.c_str()) != 0 && errno != ENOENT) {
     const int err = errno;
     throw RunError(write_error(path, err));
@@ -47,7 +38,7 @@ void FieldWriter::at(double t) {
   write_index();
 }
 
-void FieldWriter::write_index() const {
+void FieldWriter::write_index() {
   std::ostringstream out;
   out << "<?xml version=\"1.0\"?>\n"
       << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
@@ -59,7 +50,7 @@ void FieldWriter::write_index() const {
         << "\"/>\n";
   }
   out << "  </Collection>\n</VTKFile>\n";
-  replace_file(dir_ / "soil.pvd", dir_ / "soil.pvd.tmp", out.str());
+  replace_file(results_.file("soil.pvd"), results_.file("soil.pvd.tmp"), out.str());
 }
 
 }  // namespace rumble

@@ -95,7 +95,7 @@ RunOutcome run_scenario(const scenario::RunSpec& spec, const PluginRegistry& reg
 
   RunOutcome outcome;
   outcome.results_dir = results.path();
-  SummaryWriter summary(outcome.results_dir, spec, c);
+  SummaryWriter summary(results, spec, c);
   give_run_context(c, outcome.results_dir);
 
   // Anything failing from here on leaves summary.json saying so, then propagates.
@@ -114,19 +114,16 @@ RunOutcome run_scenario(const scenario::RunSpec& spec, const PluginRegistry& reg
               track.micro_steps(H));
 
     // ---- where the steps go
-    RunRecorder recorder(outcome.results_dir, track, *c.soil, c.receivers.distances,
-                         c.receivers.surface);
+    RunRecorder recorder(results, track, *c.soil, c.receivers.distances, c.receivers.surface);
     recorder.record(0.0, 0.0, 0.0);
     std::unique_ptr<ProbeRecorder> probes;
     if (c.receivers.probes) {
-      probes =
-          std::make_unique<ProbeRecorder>(outcome.results_dir, *c.soil, spec.outputs.receivers);
+      probes = std::make_unique<ProbeRecorder>(results, *c.soil, spec.outputs.receivers);
       probes->take();  // samples at t = 0, if the soil records one there
     }
     std::unique_ptr<FieldWriter> fields;
     if (spec.outputs.field_interval && c.soil->capabilities().has(RUMBLE_CAP_FIELD_OUTPUT)) {
-      fields =
-          std::make_unique<FieldWriter>(outcome.results_dir, *c.soil, *spec.outputs.field_interval);
+      fields = std::make_unique<FieldWriter>(results, *c.soil, *spec.outputs.field_interval);
       fields->at(0.0);
     }
 

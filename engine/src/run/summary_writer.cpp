@@ -2,6 +2,7 @@
 
 #include "plugin/registry.hpp"
 #include "run/new_file.hpp"
+#include "run/results_directory.hpp"
 #include "run/run_components.hpp"
 
 namespace rumble {
@@ -26,9 +27,9 @@ int exit_code(RunStatus status) {
   return status == RunStatus::kCompleted ? 0 : 3;
 }
 
-SummaryWriter::SummaryWriter(fs::path directory, const scenario::RunSpec& spec,
+SummaryWriter::SummaryWriter(ResultsDirectory& results, const scenario::RunSpec& spec,
                              const RunComponents& components)
-    : directory_(std::move(directory)) {
+    : path_(results.file("summary.json")), tmp_(results.file("summary.json.tmp")) {
   summary_["rumble_version"] = RUMBLE_VERSION;
   summary_["scenario_file"] = fs::absolute(spec.path).string();
   summary_["scenario"] = spec.document;
@@ -65,8 +66,7 @@ void SummaryWriter::fail(const std::string& message) noexcept {
 }
 
 void SummaryWriter::write() const {
-  replace_file(directory_ / "summary.json", directory_ / "summary.json.tmp",
-               summary_.dump(2) + '\n');
+  replace_file(path_, tmp_, summary_.dump(2) + '\n');
 }
 
 }  // namespace rumble

@@ -13,6 +13,7 @@
 namespace rumble {
 
 struct RunComponents;
+class ResultsDirectory;
 
 enum class RunStatus { kRunning, kCompleted, kInterrupted, kFailed };
 
@@ -24,7 +25,7 @@ int exit_code(RunStatus status);
 class SummaryWriter {
  public:
   /// Writes the first summary at once. Throws RunError when the directory refuses it.
-  SummaryWriter(std::filesystem::path directory, const scenario::RunSpec& spec,
+  SummaryWriter(ResultsDirectory& results, const scenario::RunSpec& spec,
                 const RunComponents& components);
   /// Sets a top-level entry of the next write.
   void set(const std::string& key, nlohmann::json value) { summary_[key] = std::move(value); }
@@ -36,7 +37,7 @@ class SummaryWriter {
 
  private:
   void write() const;
-  std::filesystem::path directory_;
+  std::filesystem::path path_, tmp_;
   nlohmann::json summary_;
 };
 
