@@ -1,6 +1,7 @@
 // What a run does with its results directory (issue #8): one run at a time (a lock naming the
 // holder), a rerun of the same scenario file replaces exactly what the last one listed (a
-// manifest) and anything else needs --overwrite, and no write goes through a symbolic link.
+// manifest) and anything else needs --overwrite, nothing is written outside the scenario's folder
+// unless the command line says so, and no write goes through a symbolic link.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <signal.h>
@@ -159,6 +160,67 @@ TEST(CliResults, ResultsWithoutAManifestAreRefused) {
   EXPECT_THAT(r.output, HasSubstr("holds 1 file that no rumble manifest lists (contact.csv), e.g. "
                                   "the results of an older rumble"));
   EXPECT_EQ(file_text(dir / "results" / "contact.csv"), "t [s]\n0\n");
+}
+
+// ---- where results may go
+
+TEST(CliResults, ADirectoryLeavingTheScenarioFolderNeedsConsent) {
+  const auto dir = scratch_directory("results_outside");
+  fs::create_directories(dir / "sub");
+  nlohmann::json s = small_scenario();
+  s["outputs"]["directory"] = "../escaped";
+  const auto path = write_scenario(dir / "sub", s);
+  const CliResult refused = run_rumble({"run", path.string(), "--no-progress"});
+  EXPECT_EQ(refused.exit_code, 1) << refused.output;
+  EXPECT_THAT(refused.output,
+              HasSubstr("error: /outputs/directory: \"../escaped\" leaves the scenario's folder " +
+                        (dir / "sub").string() + " (it is " + (dir / "escaped").string() + ")"));
+  EXPECT_THAT(refused.output,
+              HasSubstr("hint: results go inside the scenario's folder unless the command line "
+                        "says otherwise: choose the directory with --output DIR, or pass "
+                        "--allow-outside-results to write to " +
+                        (dir / "escaped").string()));
+  EXPECT_FALSE(fs::exists(dir / "escaped"));
+  const CliResult allowed =
+      run_rumble({"run", path.string(), "--no-progress", "--allow-outside-results"});
+  EXPECT_EQ(allowed.exit_code, 0) << allowed.output;
+  EXPECT_EQ(csv_rows(dir / "escaped" / "contact.csv"), 51u);
+}
+
+TEST(CliResults, AnAbsoluteDirectoryNeedsConsent) {
+  const auto dir = scratch_directory("results_absolute");
+  nlohmann::json s = small_scenario();
+  s["outputs"]["directory"] = (dir / "absolute").string();
+  const auto path = write_scenario(dir, s);
+  const CliResult refused = run_rumble({"run", path.string(), "--no-progress"});
+  EXPECT_EQ(refused.exit_code, 1) << refused.output;
+  EXPECT_THAT(refused.output, HasSubstr("/outputs/directory: \"" + (dir / "absolute").string() +
+                                        "\" is an absolute path"));
+  EXPECT_THAT(refused.output,
+              HasSubstr("--allow-outside-results to write to " + (dir / "absolute").string()));
+  EXPECT_FALSE(fs::exists(dir / "absolute"));
+  const CliResult chosen =
+      run_rumble({"run", path.string(), "--no-progress", "--output", (dir / "chosen").string()});
+  EXPECT_EQ(chosen.exit_code, 0) << chosen.output;
+  EXPECT_EQ(csv_rows(dir / "chosen" / "contact.csv"), 51u);
+  EXPECT_FALSE(fs::exists(dir / "absolute"));
+}
+
+// Read from /dev/stdin, "results" would land in /dev; the command line must say where.
+TEST(CliResults, AScenarioFromStdinNeedsADirectoryOnTheCommandLine) {
+  const auto dir = scratch_directory("results_stdin");
+  RunSetup setup;
+  setup.stdin_file = write_scenario(dir, small_scenario());
+  const CliResult refused = run_rumble({"run", "/dev/stdin", "--no-progress"}, setup);
+  EXPECT_EQ(refused.exit_code, 1) << refused.output;
+  EXPECT_THAT(refused.output,
+              HasSubstr("/outputs/directory: the scenario is read from /dev/stdin, not from a "
+                        "file in a folder, so \"results\" would be /dev/results"));
+  EXPECT_THAT(refused.output, HasSubstr("choose the directory with --output DIR"));
+  const CliResult chosen = run_rumble(
+      {"run", "/dev/stdin", "--no-progress", "--output", (dir / "from_stdin").string()}, setup);
+  EXPECT_EQ(chosen.exit_code, 0) << chosen.output;
+  EXPECT_EQ(csv_rows(dir / "from_stdin" / "contact.csv"), 51u);
 }
 
 // ---- never through a link

@@ -23,6 +23,11 @@ CliResult run_rumble(const std::vector<std::string>& args, const RunSetup& setup
     dup2(fds[1], STDERR_FILENO);
     close(fds[0]);
     close(fds[1]);
+    if (!setup.stdin_file.empty()) {
+      const int in = open(setup.stdin_file.c_str(), O_RDONLY);
+      dup2(in, STDIN_FILENO);
+      close(in);
+    }
     if (setup.file_size_limit >= 0) {
       const rlimit limit{static_cast<rlim_t>(setup.file_size_limit),
                          static_cast<rlim_t>(setup.file_size_limit)};

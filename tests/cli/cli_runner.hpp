@@ -18,6 +18,8 @@ struct CliResult {
 
 /// How the child process starts, besides its arguments.
 struct RunSetup {
+  /// Read as standard input when not empty.
+  std::filesystem::path stdin_file;
   /// RLIMIT_FSIZE in bytes when >= 0, with SIGXFSZ ignored: a write past it fails with EFBIG, as
   /// one on a full disk fails with ENOSPC.
   long file_size_limit = -1;
