@@ -1,13 +1,15 @@
 // What a run does with its results directory (issue #8): one run at a time (a lock naming the
 // holder), a rerun of the same scenario file replaces exactly what the last one listed (a
 // manifest) and anything else needs --overwrite, nothing is written outside the scenario's folder
-// unless the command line says so, and no write goes through a symbolic link.
+// unless the command line says so, no write goes through a symbolic link, and summary.json's
+// heartbeat tells a run that died from one that is alive.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <signal.h>
 
 #include <chrono>
 #include <fstream>
+#include <regex>
 #include <thread>
 
 #include "cli_runner.hpp"
@@ -35,6 +37,19 @@ bool wait_for(F ready) {
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
   return false;
+}
+
+/// summary.json as it stands, or null while there is none.
+nlohmann::json summary_now(const fs::path& results) {
+  try {
+    return read_json(results / "summary.json");
+  } catch (const std::exception&) {
+    return nullptr;
+  }
+}
+
+double unix_time_now() {
+  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
 }
 
 void write_text(const fs::path& file, const std::string& text) {
@@ -84,6 +99,47 @@ TEST(CliResults, TheLockDiesWithItsProcess) {
   const CliResult again = run_rumble({"run", path.string(), "--no-progress"});
   EXPECT_EQ(again.exit_code, 0) << again.output;
   EXPECT_EQ(read_json(dir / "results" / "summary.json")["status"], "completed");
+}
+
+// ---- the heartbeat
+
+// A killed run cannot say so: its summary stays "running", with a heartbeat that has stopped (the
+// last macro step it finished, and when) and the process that wrote it.
+TEST(CliResults, ARunThatDiedSaysRunningWithAHeartbeatThatStopped) {
+  const auto dir = scratch_directory("results_heartbeat");
+  const auto path = write_scenario(dir, long_scenario());
+  const auto results = dir / "results";
+  const double before = unix_time_now();
+  const pid_t run = start_rumble({"run", path.string(), "--no-progress"});
+  ASSERT_TRUE(wait_for([&] {
+    const auto s = summary_now(results);
+    return s.is_object() && s["heartbeat"]["macro_steps"].get<std::size_t>() > 0;
+  }));
+  kill(run, SIGKILL);
+  EXPECT_EQ(wait_rumble(run), 128 + SIGKILL);
+  const double after = unix_time_now();
+  const auto summary = read_json(results / "summary.json");
+  EXPECT_EQ(summary["status"], "running");
+  EXPECT_EQ(summary["process"]["pid"], run);
+  EXPECT_FALSE(summary["process"]["host"].get<std::string>().empty());
+  const auto& beat = summary["heartbeat"];
+  const auto steps = beat["macro_steps"].get<std::size_t>();
+  EXPECT_NEAR(beat["t_s"].get<double>(), 2e-5 * static_cast<double>(steps), 1e-9);
+  EXPECT_GE(beat["unix_time_s"].get<double>(), before - 1.0);
+  EXPECT_LE(beat["unix_time_s"].get<double>(), after + 1.0);
+  EXPECT_TRUE(std::regex_match(beat["utc"].get<std::string>(),
+                               std::regex(R"(\d{4}-\d\d-\d\dT\d\d:\d\d:\d\dZ)")))
+      << beat["utc"];
+  // A run that ended says so, with its last heartbeat.
+  nlohmann::json s = long_scenario();
+  s["time"]["end"] = 0.002;
+  write_scenario(dir, s);
+  const CliResult again = run_rumble({"run", path.string(), "--no-progress"});
+  EXPECT_EQ(again.exit_code, 0) << again.output;
+  const auto done = read_json(results / "summary.json");
+  EXPECT_EQ(done["status"], "completed");
+  EXPECT_EQ(done["heartbeat"]["macro_steps"], 100);
+  EXPECT_NEAR(done["heartbeat"]["t_s"].get<double>(), 0.002, 1e-12);
 }
 
 // ---- what a rerun replaces

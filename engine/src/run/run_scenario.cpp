@@ -95,7 +95,7 @@ RunOutcome run_scenario(const scenario::RunSpec& spec, const PluginRegistry& reg
 
   RunOutcome outcome;
   outcome.results_dir = results.path();
-  SummaryWriter summary(results, spec, c);
+  SummaryWriter summary(results, spec, c, options.heartbeat_seconds);
   give_run_context(c, outcome.results_dir);
 
   // Anything failing from here on leaves summary.json saying so, then propagates.
@@ -136,8 +136,8 @@ RunOutcome run_scenario(const scenario::RunSpec& spec, const PluginRegistry& reg
       extra_sides.push_back(std::make_unique<SoilSide>(name, *extra, track.interface_size()));
       participants.push_back(extra_sides.back().get());
     }
-    StepObserver observer(track, soil_side, {recorder, probes.get(), fields.get()}, spec.t_end,
-                          spec.outputs.every, outcome.results_dir, options.progress);
+    StepObserver observer(track, soil_side, {recorder, probes.get(), fields.get(), &summary},
+                          spec.t_end, spec.outputs.every, outcome.results_dir, options.progress);
     CosimHostImpl host(participants, c.coupler->type().abi_minor,
                        [&](const StepOutcome& step) { observer(step); });
     std::string coupler_message;

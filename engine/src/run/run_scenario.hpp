@@ -15,7 +15,8 @@
 namespace rumble {
 
 struct RunOptions {
-  bool progress = false;  // progress line with ETA on stderr
+  bool progress = false;           // progress line with ETA on stderr
+  double heartbeat_seconds = 1.0;  // at most one heartbeat write in summary.json per this time
 };
 
 struct RunOutcome {
