@@ -3,7 +3,9 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <stdexcept>
 
 #include "core/errors.hpp"
 #include "plugin/registry.hpp"
@@ -105,11 +107,13 @@ std::size_t SummaryWriter::format_heartbeat(char* buffer, std::size_t size) cons
   const auto day = floor<days>(now);
   const year_month_day date{day};
   const hh_mm_ss time{floor<seconds>(now - day)};
+  char t[32] = "null";  // JSON has no nan
+  if (std::isfinite(t_)) std::snprintf(t, sizeof t, "%.9g", t_);
   const int n = std::snprintf(
       buffer, size,
-      R"({"t_s": %.9g, "macro_steps": %zu, "utc": "%04d-%02u-%02uT%02d:%02d:%02dZ", )"
+      R"({"t_s": %s, "macro_steps": %zu, "utc": "%04d-%02u-%02uT%02d:%02d:%02dZ", )"
       R"("unix_time_s": %.3f})",
-      t_, steps_, static_cast<int>(date.year()), static_cast<unsigned>(date.month()),
+      t, steps_, static_cast<int>(date.year()), static_cast<unsigned>(date.month()),
       static_cast<unsigned>(date.day()), static_cast<int>(time.hours().count()),
       static_cast<int>(time.minutes().count()), static_cast<int>(time.seconds().count()),
       duration<double>(now.time_since_epoch()).count());
@@ -121,6 +125,8 @@ void SummaryWriter::write() {
   const std::string text = summary_.dump(2) + '\n';
   const std::string placeholder = std::string(kHeartbeatKey) + '"' + kPlaceholder + '"';
   const std::size_t at = text.find(placeholder);
+  if (at == std::string::npos)
+    throw std::logic_error("summary.json: the heartbeat's place is lost");
   prefix_ = text.substr(0, at + kHeartbeatKey.size());
   suffix_ = text.substr(at + placeholder.size());
   changed_ = false;
