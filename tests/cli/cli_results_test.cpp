@@ -206,6 +206,18 @@ TEST(CliResults, FilesNoManifestListsAreRefusedAndNeverDeleted) {
   EXPECT_EQ(csv_rows(results / "contact.csv"), 51u);
 }
 
+// `rumble soil-frf` writes beside a scenario's results by default: runs leave that alone.
+TEST(CliResults, SoilFrfOutputBesideTheResultsIsLeftAlone) {
+  const auto dir = scratch_directory("results_soil_frf");
+  const auto path = write_scenario(dir, small_scenario()).string();
+  const CliResult frf = run_rumble({"soil-frf", path, "--no-plot"});
+  ASSERT_EQ(frf.exit_code, 0) << frf.output;
+  const CliResult run = run_rumble({"run", path, "--no-progress"});
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_EQ(run_rumble({"run", path, "--no-progress"}).exit_code, 0);
+  EXPECT_TRUE(fs::exists(dir / "results" / "soil_frf" / "scenario_winkler.csv"));
+}
+
 // A directory that holds results of a rumble without manifests is refused, not emptied.
 TEST(CliResults, ResultsWithoutAManifestAreRefused) {
   const auto dir = scratch_directory("results_no_manifest");

@@ -25,10 +25,13 @@ using nlohmann::json;
 
 constexpr const char* kManifestTmp = ".rumble-manifest.json.tmp";
 constexpr int kManifestVersion = 1;
+// `rumble soil-frf`'s default output, beside a scenario's results: not a run's to list or remove.
+constexpr const char* kSoilFrfDirectory = "soil_frf";
 
+/// Names at the top of the directory that no run lists, refuses or removes.
 bool reserved(const std::string& relative) {
   return relative == ResultsDirectory::kLockFile || relative == ResultsDirectory::kManifestFile ||
-         relative == kManifestTmp;
+         relative == kManifestTmp || relative == kSoilFrfDirectory;
 }
 
 /// A name a run could have listed: relative, inside the directory (no "..", ".", empty part).
@@ -74,7 +77,10 @@ std::vector<Entry> scan(const fs::path& dir,
   for (; !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
     Entry e;
     e.relative = it->path().lexically_relative(dir).generic_string();
-    if (it.depth() == 0 && reserved(e.relative)) continue;
+    if (it.depth() == 0 && reserved(e.relative)) {
+      it.disable_recursion_pending();
+      continue;
+    }
     struct stat st {};
     if (::lstat(it->path().c_str(), &st) != 0) continue;  // gone meanwhile
     e.directory = S_ISDIR(st.st_mode);
@@ -123,7 +129,7 @@ ResultsDirectory::ResultsDirectory(fs::path directory, const fs::path& scenario_
     for (const Entry& e : scan(dir_, [](const std::string&) { return true; }))
       before_[e.relative] = {e.dev, e.ino};
   } catch (...) {
-    ::close(lock_fd_);
+    release();
     throw;
   }
 }
@@ -138,6 +144,10 @@ ResultsDirectory::~ResultsDirectory() {
       // Nothing left to tell it with.
     }
   }
+  release();
+}
+
+void ResultsDirectory::release() noexcept {
   // Empty between runs; the lock itself goes with the descriptor (and with the process).
   if (::ftruncate(lock_fd_, 0) != 0) {
     // Harmless: the process id of an ended run stays, and the lock is what counts.

@@ -8,7 +8,8 @@
 //                          what appeared meanwhile (plots, a plugin's own files).
 // A rerun of the same scenario file removes exactly what the manifest lists before it writes. A
 // directory that holds another scenario's results or files no manifest lists is refused unless
-// the user says --overwrite, and even then only listed files are deleted. docs/scenario.md.
+// the user says --overwrite, and even then only listed files are deleted. The directory soil_frf/
+// of `rumble soil-frf` is left alone. docs/scenario.md.
 #pragma once
 
 #include <sys/types.h>
@@ -52,6 +53,7 @@ class ResultsDirectory {
  private:
   struct Previous;
   void lock();
+  void release() noexcept;
   void clear_previous(bool overwrite);
   void remove_listed(const std::string& relative) const;
   void write_manifest() const;
