@@ -27,6 +27,18 @@ def read_csv(path):
     return header, data
 
 
+def save(fig, path):
+    """Writes the figure as a new file: whatever stands at the name (an old plot, a symbolic
+    link) is removed first and never followed, as rumble writes its results."""
+    try:
+        os.unlink(path)
+    except FileNotFoundError:
+        pass
+    fd = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_EXCL | os.O_NOFOLLOW | os.O_CLOEXEC, 0o666)
+    with os.fdopen(fd, "wb") as f:
+        fig.savefig(f, format="png", dpi=120)
+
+
 def main(directory):
     d = Path(directory)
     summary = json.loads((d / "summary.json").read_text())
@@ -42,7 +54,7 @@ def main(directory):
     if len(header) <= 9:
         ax.legend(fontsize=7)
     fig.tight_layout()
-    fig.savefig(d / "contact_force.png", dpi=120)
+    save(fig, d / "contact_force.png")
     written.append("contact_force.png")
 
     header, data = read_csv(d / "footprint_velocity.csv")
@@ -55,7 +67,7 @@ def main(directory):
     ax.grid(True)
     ax.legend(fontsize=7)
     fig.tight_layout()
-    fig.savefig(d / "footprint_velocity.png", dpi=120)
+    save(fig, d / "footprint_velocity.png")
     written.append("footprint_velocity.png")
 
     xs = [float(h.split("=")[1].split(" ")[0]) for h in header[1:]]
@@ -66,7 +78,7 @@ def main(directory):
            title=f"{title}: peak footprint velocity")
     ax.grid(True)
     fig.tight_layout()
-    fig.savefig(d / "peak_footprint_velocity.png", dpi=120)
+    save(fig, d / "peak_footprint_velocity.png")
     written.append("peak_footprint_velocity.png")
 
     if "ppv" in summary:
@@ -77,7 +89,7 @@ def main(directory):
         ax.set(xlabel="distance from the track [m]", ylabel="PPV [mm/s]", title=f"{title}: PPV")
         ax.grid(True, which="both")
         fig.tight_layout()
-        fig.savefig(d / "ppv_vs_distance.png", dpi=120)
+        save(fig, d / "ppv_vs_distance.png")
         written.append("ppv_vs_distance.png")
 
     # Shown normalised ("results/x", not "scenarios/paper/../../results/x"), as rumble does.

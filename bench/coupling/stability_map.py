@@ -33,7 +33,8 @@ def main(rumble, workdir):
             s = json.loads(json.dumps(base))
             s["soil"] = {"type": soil, "params": {**SOIL, **mass}}
             s["time"].update({"macro_step": h, "end": 0.3})
-            s["outputs"] = {"directory": str(workdir / f"{soil}_{len(mass)}_{h:g}")}
+            # Beside its scenario file: inside the scenario's folder, as rumble requires.
+            s["outputs"] = {"directory": f"{soil}_{len(mass)}_{h:g}"}
             path = workdir / f"{soil}_{len(mass)}_{h:g}.json"
             path.write_text(json.dumps(s, indent=2))
             r = subprocess.run([rumble, "run", str(path), "--no-progress", "--no-plots"],

@@ -25,7 +25,7 @@ def scenario(f_max, out_dir):
     s = json.loads((ROOT / "scenarios/examples/stiff_soil_fem.json").read_text())
     s["time"]["end"] = SIMULATED
     s["soil"]["params"]["mesh"]["f_max"] = f_max
-    s["outputs"] = {"directory": str(out_dir), "receivers": [2.5, 5.0, 10.0]}
+    s["outputs"] = {"directory": out_dir.name, "receivers": [2.5, 5.0, 10.0]}  # next to it
     return s
 
 

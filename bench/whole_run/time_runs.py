@@ -22,7 +22,7 @@ def time_one(rumble, scenario):
     for _ in range(REPEATS):
         subprocess.run(["taskset", "-c", core, rumble, "run", str(scenario), "--no-progress",
                         "--no-plots", "--log-level", "warn"], check=True)
-        doc = json.loads(next((ROOT / "results/bench").glob(scenario.stem + "/summary.json"))
+        doc = json.loads((scenario.parent / "results" / scenario.stem / "summary.json")
                          .read_text())
         if best is None or doc["wall_time_s"]["total"] < best["wall_time_s"]["total"]:
             best = doc

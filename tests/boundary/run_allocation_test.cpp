@@ -1,9 +1,9 @@
 // A whole coupled run allocates nothing per macro step: the coupler (gauss_seidel, jacobi), the
-// host and its step reports, both participants through their plugin tables, the recorder and the
-// receiver samples. Measured as the difference between a run of N and of 2N macro steps of the
-// same scenario (setup and summary cost the same in both): a per-step allocation would show as
-// at least N. The summary's numbers differ in length between the two runs, so a handful of
-// string growths may differ: the bound is 10 with N = 50.
+// host and its step reports, both participants through their plugin tables, the recorder, the
+// receiver samples and summary.json's heartbeat (here after every step). Measured as the difference
+// between a run of N and of 2N macro steps of the same scenario (setup and summary cost the same in
+// both): a per-step allocation would show as at least N. The summary's numbers differ in length
+// between the two runs, so a handful of string growths may differ: the bound is 10 with N = 50.
 #include <gtest/gtest.h>
 
 #include "allocation_counter.hpp"
@@ -24,8 +24,11 @@ long allocations_of_run(const std::string& name, nlohmann::json s, long steps) {
   auto doc = cli::prepare_scenario(path, registry, scenario::Format::kText);
   EXPECT_TRUE(doc.has_value());
   const scenario::RunSpec spec = scenario::make_run_spec(doc->json, path);
+  ResultsDirectory results(spec.outputs.directory, spec.path, false);
   const AllocationCounter counter;
-  const RunOutcome outcome = run_scenario(spec, registry, RunOptions{});
+  RunOptions options;
+  options.heartbeat_seconds = 0.0;  // a heartbeat write after every macro step
+  const RunOutcome outcome = run_scenario(spec, registry, results, options);
   EXPECT_EQ(outcome.status, RunStatus::kCompleted) << outcome.message;
   return counter.count();
 }

@@ -30,8 +30,9 @@ TEST(Stop, RequestReachesAPluginInsideALongAdvance) {
     std::this_thread::sleep_for(std::chrono::milliseconds(500));
     request_interrupt();
   });
-  const RunOutcome outcome =
-      run_scenario(scenario::make_run_spec(doc->json, path), registry, RunOptions{});
+  const scenario::RunSpec spec = scenario::make_run_spec(doc->json, path);
+  ResultsDirectory results(spec.outputs.directory, spec.path, false);
+  const RunOutcome outcome = run_scenario(spec, registry, results, RunOptions{});
   ctrl_c.join();
   clear_interrupt();
   const double seconds =

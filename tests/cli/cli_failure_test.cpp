@@ -26,14 +26,19 @@ TEST(CliFailure, MissingPluginLibraryNamedInScenario) {
   EXPECT_THAT(r.output, HasSubstr("nowhere.so': file not found"));
 }
 
-TEST(CliFailure, FullDiskStopsTheRunWithTheReason) {
-  const auto dir = scratch_directory("full_disk");
-  std::filesystem::create_directories(dir / "results");
-  // /dev/full accepts the open and fails every write with ENOSPC, like a full disk.
-  std::filesystem::create_symlink("/dev/full", dir / "results" / "contact.csv");
-  const CliResult r = run_rumble({"run", write_scenario(dir, small_scenario()).string()});
+// A write the system refuses (here past the file size limit; a full disk fails alike with
+// ENOSPC) stops the run with the file, the reason and a fix, and summary.json says so.
+TEST(CliFailure, RefusedWriteStopsTheRunWithTheReason) {
+  const auto dir = scratch_directory("write_refused");
+  nlohmann::json s = small_scenario();
+  s["time"]["end"] = 0.2;  // footprint histories of about 50 kB
+  RunSetup setup;
+  setup.file_size_limit = 16384;
+  const CliResult r = run_rumble({"run", write_scenario(dir, s).string(), "--no-progress"}, setup);
   EXPECT_EQ(r.exit_code, 3) << r.output;
-  EXPECT_THAT(r.output, HasSubstr("contact.csv: No space left on device; free disk space"));
+  EXPECT_THAT(r.output, HasSubstr("cannot write results file " + (dir / "results").string()));
+  EXPECT_THAT(r.output, HasSubstr(".csv: File too large; the process's file size limit (ulimit "
+                                  "-f) is reached; raise it"));
   EXPECT_EQ(read_json(dir / "results" / "summary.json")["status"], "failed");
 }
 
@@ -41,7 +46,8 @@ TEST(CliFailure, UnwritableResultsDirectory) {
   const auto dir = scratch_directory("unwritable");
   nlohmann::json s = small_scenario();
   s["outputs"]["directory"] = "/proc/rumble-cannot-write-here";
-  const CliResult r = run_rumble({"run", write_scenario(dir, s).string()});
+  const CliResult r =
+      run_rumble({"run", write_scenario(dir, s).string(), "--allow-outside-results"});
   EXPECT_EQ(r.exit_code, 3) << r.output;
   EXPECT_THAT(r.output,
               HasSubstr("cannot create results directory /proc/rumble-cannot-write-here"));

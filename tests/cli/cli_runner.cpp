@@ -1,17 +1,20 @@
 #include "cli_runner.hpp"
 
+#include <fcntl.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <array>
+#include <csignal>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
 
 namespace rumble::testing {
 
-CliResult run_rumble(const std::vector<std::string>& args) {
+CliResult run_rumble(const std::vector<std::string>& args, const RunSetup& setup) {
   int fds[2];
   if (pipe(fds) != 0) throw std::runtime_error("pipe failed");
   const pid_t pid = fork();
@@ -20,6 +23,17 @@ CliResult run_rumble(const std::vector<std::string>& args) {
     dup2(fds[1], STDERR_FILENO);
     close(fds[0]);
     close(fds[1]);
+    if (!setup.stdin_file.empty()) {
+      const int in = open(setup.stdin_file.c_str(), O_RDONLY);
+      dup2(in, STDIN_FILENO);
+      close(in);
+    }
+    if (setup.file_size_limit >= 0) {
+      const rlimit limit{static_cast<rlim_t>(setup.file_size_limit),
+                         static_cast<rlim_t>(setup.file_size_limit)};
+      setrlimit(RLIMIT_FSIZE, &limit);
+      std::signal(SIGXFSZ, SIG_IGN);  // stays ignored across exec
+    }
     std::vector<char*> argv;
     std::string exe = RUMBLE_TEST_EXE;
     argv.push_back(exe.data());
@@ -40,6 +54,29 @@ CliResult run_rumble(const std::vector<std::string>& args) {
   waitpid(pid, &status, 0);
   result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
   return result;
+}
+
+pid_t start_rumble(const std::vector<std::string>& args) {
+  const pid_t pid = fork();
+  if (pid == 0) {
+    const int null = open("/dev/null", O_WRONLY);
+    dup2(null, STDOUT_FILENO);
+    dup2(null, STDERR_FILENO);
+    std::string exe = RUMBLE_TEST_EXE;
+    std::vector<std::string> copy = args;
+    std::vector<char*> argv{exe.data()};
+    for (auto& a : copy) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    execv(exe.c_str(), argv.data());
+    _exit(127);
+  }
+  return pid;
+}
+
+int wait_rumble(pid_t pid) {
+  int status = 0;
+  waitpid(pid, &status, 0);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 
 std::filesystem::path scratch_directory(const std::string& test_name) {

@@ -2,6 +2,8 @@
 // it printed and wrote.
 #pragma once
 
+#include <sys/types.h>
+
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -14,8 +16,23 @@ struct CliResult {
   std::string output;  // stdout and stderr together
 };
 
+/// How the child process starts, besides its arguments.
+struct RunSetup {
+  /// Read as standard input when not empty.
+  std::filesystem::path stdin_file;
+  /// RLIMIT_FSIZE in bytes when >= 0, with SIGXFSZ ignored: a write past it fails with EFBIG, as
+  /// one on a full disk fails with ENOSPC.
+  long file_size_limit = -1;
+};
+
 /// Runs `rumble <args>` (arguments are passed as they are, no shell) and waits.
-CliResult run_rumble(const std::vector<std::string>& args);
+CliResult run_rumble(const std::vector<std::string>& args, const RunSetup& setup = {});
+
+/// Starts `rumble <args>` without waiting (its output discarded); returns its process id.
+pid_t start_rumble(const std::vector<std::string>& args);
+
+/// Waits for a process started by start_rumble: its exit code, or 128 + the signal that ended it.
+int wait_rumble(pid_t pid);
 
 /// A fresh, empty directory for one test (under the build tree).
 std::filesystem::path scratch_directory(const std::string& test_name);

@@ -19,8 +19,12 @@ constexpr const char* kUsage = R"(rumble: railway ground-vibration co-simulation
 usage: rumble [--log-level LEVEL] COMMAND [ARGS]   (--log-level may also follow the command)
 
 commands:
-  run FILE [--output DIR] [--no-progress] [--no-plots]
+  run FILE [--output DIR] [--overwrite] [--allow-outside-results] [--no-progress] [--no-plots]
                                     validate, then run a scenario; results go to outputs.directory
+                                    inside the scenario's folder (elsewhere: --output DIR, or
+                                    --allow-outside-results); a rerun replaces its own results
+                                    there; --overwrite: also another scenario's, keeping files
+                                    rumble did not write
   validate FILE [--format text|json] check a scenario without running it (all errors at once)
   plugins [--format text|json]      list plugin libraries and the types they provide
   schema TYPE [--json]              the parameters of a type: units, defaults, ranges

@@ -11,26 +11,37 @@
 #include "core/interrupt.hpp"
 #include "core/logging.hpp"
 #include "run/run_scenario.hpp"
+#include "scenario/report.hpp"
 
 namespace rumble::cli {
 
 int run_command(const std::vector<std::string>& args) {
-  const Arguments a(args, {"no-progress", "no-plots"}, {"output"});
+  const Arguments a(args, {"no-progress", "no-plots", "overwrite", "allow-outside-results"},
+                    {"output"});
   if (a.positional().size() != 1) {
-    throw UsageError("usage: rumble run FILE [--output DIR] [--no-progress] [--no-plots]");
+    throw UsageError(
+        "usage: rumble run FILE [--output DIR] [--overwrite] [--allow-outside-results] "
+        "[--no-progress] [--no-plots]");
   }
   PluginRegistry registry;
   auto doc = prepare_scenario(a.positional()[0], registry, scenario::Format::kText);
   if (!doc) return kExitConfig;
-  if (const auto dir = a.value("output")) {  // overrides outputs.directory
+  if (const auto dir = a.value("output")) {  // overrides outputs.directory: the user's choice
     doc->json["outputs"]["directory"] = std::filesystem::absolute(*dir).string();
+  } else if (!a.flag("allow-outside-results")) {
+    if (const auto outside = scenario::results_outside_scenario_folder(doc->json, doc->path)) {
+      scenario::print_diagnostics(std::cerr, &*doc, doc->path, {*outside}, scenario::Format::kText);
+      return kExitConfig;
+    }
   }
   if (a.flag("no-plots")) doc->json["outputs"]["plots"] = false;
   install_interrupt_handler();
   RunOptions options;
   options.progress = !a.flag("no-progress") && isatty(STDERR_FILENO) != 0;
   const scenario::RunSpec spec = scenario::make_run_spec(doc->json, doc->path);
-  const RunOutcome outcome = run_scenario(spec, registry, options);
+  // Locked, and the previous run's listed files removed; until the plots are done.
+  ResultsDirectory results(spec.outputs.directory, spec.path, a.flag("overwrite"));
+  const RunOutcome outcome = run_scenario(spec, registry, results, options);
   const auto log = logger("engine");
   if (outcome.status != RunStatus::kFailed && spec.outputs.plots) {
     run_plot_script("plot_results.py", outcome.results_dir);

@@ -1,15 +1,19 @@
 #include "run/csv_file.hpp"
 
+#include <unistd.h>
+
 #include <cerrno>
-#include <cstring>
 
 #include "core/errors.hpp"
+#include "run/new_file.hpp"
 
 namespace rumble {
 
 CsvFile::CsvFile(const std::filesystem::path& path, const std::vector<std::string>& columns)
     : path_(path), n_values_(columns.empty() ? 0 : columns.size() - 1) {
-  file_ = std::fopen(path.c_str(), "w");
+  const int fd = open_new_file(path);  // never through a link standing at the name
+  file_ = ::fdopen(fd, "w");
+  if (file_ == nullptr) ::close(fd);
   check(file_ != nullptr);
   for (std::size_t i = 0; i < columns.size(); ++i)
     check(std::fprintf(file_, "%s%s", i == 0 ? "" : ",", columns[i].c_str()) >= 0);
@@ -31,11 +35,7 @@ void CsvFile::row(double t, const double* values, std::size_t n) {
 }
 
 void CsvFile::check(bool ok) const {
-  if (ok) return;
-  const int err = errno;
-  throw RunError("cannot write results file " + path_.string() + ": " + std::strerror(err) +
-                 (err == ENOSPC ? "; free disk space or set outputs.directory to another disk"
-                                : "; check that outputs.directory is writable"));
+  if (!ok) throw RunError(write_error(path_, errno));
 }
 
 }  // namespace rumble

@@ -1,6 +1,7 @@
 // One CSV time history, written row by row and flushed, so that a crash or Ctrl-C keeps every
-// row already recorded. Write errors (full disk, removed directory) throw RunError naming the
-// file, the system's reason and a fix.
+// row already recorded. It is a new file (run/new_file.hpp): whatever had its name, a symbolic
+// link included, is removed, never followed. Write errors (full disk, removed directory) throw
+// RunError naming the file, the system's reason and a fix.
 #pragma once
 
 #include <cstdio>

@@ -1,23 +1,23 @@
 #include "run/field_writer.hpp"
 
+#include <unistd.h>
+
+#include <cerrno>
 #include <cstdio>
-#include <fstream>
+#include <sstream>
 
 #include "core/errors.hpp"
 #include "plugin/instance.hpp"
+#include "run/new_file.hpp"
+#include "run/results_directory.hpp"
 
 namespace rumble {
 
 namespace fs = std::filesystem;
 
-FieldWriter::FieldWriter(const fs::path& results_dir, SoilInstance& soil, double interval)
-    : dir_(results_dir), soil_(soil), interval_(interval) {
-  std::error_code ec;
-  fs::create_directories(dir_ / "fields", ec);
-  if (ec) {
-    throw RunError("cannot create " + (dir_ / "fields").string() + ": " + ec.message() +
-                   "; check that /outputs/directory is writable");
-  }
+FieldWriter::FieldWriter(ResultsDirectory& results, SoilInstance& soil, double interval)
+    : results_(results), soil_(soil), interval_(interval) {
+  results_.subdirectory("fields");  // a real directory, never a link followed
 }
 
 void FieldWriter::at(double t) {
@@ -26,32 +26,31 @@ void FieldWriter::at(double t) {
   if (t < due - 1e-9 * interval_) return;
   char name[48];
   std::snprintf(name, sizeof name, "fields/soil_%06zu.vtu", times_.size());
-  soil_.write_fields(t, dir_ / name);
+  // The soil opens the file itself: what stands at the name (a link) is removed first.
+  const fs::path path = results_.file(name);
+  if (::unlink(path.c_str()) != 0 && errno != ENOENT) {
+    const int err = errno;
+    throw RunError(write_error(path, err));
+  }
+  soil_.write_fields(t, path);
   times_.push_back(t);
   files_.emplace_back(name);
   write_index();
 }
 
-void FieldWriter::write_index() const {
-  const fs::path tmp = dir_ / "soil.pvd.tmp";
-  {
-    std::ofstream out(tmp);
-    out << "<?xml version=\"1.0\"?>\n"
-        << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
-        << "  <Collection>\n";
-    char time[32];
-    for (std::size_t k = 0; k < times_.size(); ++k) {
-      std::snprintf(time, sizeof time, "%.9g", times_[k]);
-      out << "    <DataSet timestep=\"" << time << "\" group=\"\" part=\"0\" file=\"" << files_[k]
-          << "\"/>\n";
-    }
-    out << "  </Collection>\n</VTKFile>\n";
-    if (!out) {
-      throw RunError("cannot write " + tmp.string() +
-                     "; check free disk space and that outputs.directory is writable");
-    }
+void FieldWriter::write_index() {
+  std::ostringstream out;
+  out << "<?xml version=\"1.0\"?>\n"
+      << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+      << "  <Collection>\n";
+  char time[32];
+  for (std::size_t k = 0; k < times_.size(); ++k) {
+    std::snprintf(time, sizeof time, "%.9g", times_[k]);
+    out << "    <DataSet timestep=\"" << time << "\" group=\"\" part=\"0\" file=\"" << files_[k]
+        << "\"/>\n";
   }
-  fs::rename(tmp, dir_ / "soil.pvd");
+  out << "  </Collection>\n</VTKFile>\n";
+  replace_file(results_.file("soil.pvd"), results_.file("soil.pvd.tmp"), out.str());
 }
 
 }  // namespace rumble

@@ -5,10 +5,11 @@
 #include <cstdio>
 
 #include "plugin/instance.hpp"
+#include "run/results_directory.hpp"
 
 namespace rumble {
 
-ProbeRecorder::ProbeRecorder(const std::filesystem::path& directory, SoilInstance& soil,
+ProbeRecorder::ProbeRecorder(ResultsDirectory& results, SoilInstance& soil,
                              const std::vector<scenario::ReceiverSpec>& points)
     : soil_(soil), points_(points), ppv_z_(points.size(), 0.0), ppv_3c_(points.size(), 0.0) {
   std::vector<std::string> cols{"t [s]"};
@@ -16,7 +17,7 @@ ProbeRecorder::ProbeRecorder(const std::filesystem::path& directory, SoilInstanc
     for (const char* c : {"vx [m/s]", "vy [m/s]", "vz [m/s]", "ux [m]", "uy [m]", "uz [m]"})
       cols.push_back(p.name + " " + c);
   }
-  csv_ = std::make_unique<CsvFile>(directory / "receivers.csv", cols);
+  csv_ = std::make_unique<CsvFile>(results.file("receivers.csv"), cols);
 }
 
 void ProbeRecorder::take() {

@@ -18,11 +18,12 @@
 
 namespace rumble {
 
+class ResultsDirectory;
 class SoilInstance;
 
 class ProbeRecorder {
  public:
-  ProbeRecorder(const std::filesystem::path& directory, SoilInstance& soil,
+  ProbeRecorder(ResultsDirectory& results, SoilInstance& soil,
                 const std::vector<scenario::ReceiverSpec>& points);
   /// Writes the samples the soil recorded since the last call.
   void take();

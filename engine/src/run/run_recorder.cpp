@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "plugin/instance.hpp"
+#include "run/results_directory.hpp"
 #include "track/track_participant.hpp"
 
 namespace rumble {
@@ -21,7 +22,7 @@ std::vector<std::string> footprint_columns(const TrackParticipant& track, const 
 
 }  // namespace
 
-RunRecorder::RunRecorder(const std::filesystem::path& dir, const TrackParticipant& track,
+RunRecorder::RunRecorder(ResultsDirectory& results, const TrackParticipant& track,
                          const SoilInstance& soil, const std::vector<double>& receiver_distances,
                          bool receivers_offered)
     : track_(track), soil_(soil) {
@@ -32,24 +33,26 @@ RunRecorder::RunRecorder(const std::filesystem::path& dir, const TrackParticipan
     const auto [vi, k] = vs.wheel_owner(w);
     cols.push_back(vs.vehicles()[vi].name + " wheel " + std::to_string(k) + " [N]");
   }
-  contact_ = std::make_unique<CsvFile>(dir / "contact.csv", cols);
+  contact_ = std::make_unique<CsvFile>(results.file("contact.csv"), cols);
   cols = {"t [s]"};
   for (const auto& v : vs.vehicles())
     for (std::size_t j = 0; j < v.instance->dof_count(); ++j)
       cols.push_back(v.name + " q" + std::to_string(j));
-  vehicles_ = std::make_unique<CsvFile>(dir / "vehicles.csv", cols);
-  fp_force_ = std::make_unique<CsvFile>(dir / "footprint_force.csv", footprint_columns(track, "N"));
-  fp_u_ =
-      std::make_unique<CsvFile>(dir / "footprint_displacement.csv", footprint_columns(track, "m"));
-  fp_v_ =
-      std::make_unique<CsvFile>(dir / "footprint_velocity.csv", footprint_columns(track, "m/s"));
+  vehicles_ = std::make_unique<CsvFile>(results.file("vehicles.csv"), cols);
+  fp_force_ =
+      std::make_unique<CsvFile>(results.file("footprint_force.csv"), footprint_columns(track, "N"));
+  fp_u_ = std::make_unique<CsvFile>(results.file("footprint_displacement.csv"),
+                                    footprint_columns(track, "m"));
+  fp_v_ = std::make_unique<CsvFile>(results.file("footprint_velocity.csv"),
+                                    footprint_columns(track, "m/s"));
   interface_ = std::make_unique<CsvFile>(
-      dir / "interface.csv", std::vector<std::string>{"t [s]", "relative residual [-]",
-                                                      "power at cut [W]", "energy exchanged [J]"});
+      results.file("interface.csv"),
+      std::vector<std::string>{"t [s]", "relative residual [-]", "power at cut [W]",
+                               "energy exchanged [J]"});
   if (receivers_offered && !receiver_distances.empty()) {
     cols = {"t [s]"};
     for (double d : receiver_distances) cols.push_back("d=" + std::to_string(d) + " m [m/s]");
-    receivers_ = std::make_unique<CsvFile>(dir / "receivers.csv", cols);
+    receivers_ = std::make_unique<CsvFile>(results.file("receivers.csv"), cols);
     rx_v_.assign(receiver_distances.size(), 0.0);
     peak_rx_v_.assign(receiver_distances.size(), 0.0);
   }

@@ -18,14 +18,14 @@
 
 namespace rumble {
 
+class ResultsDirectory;
 class TrackParticipant;
 class SoilInstance;
 
 class RunRecorder {
  public:
-  RunRecorder(const std::filesystem::path& directory, const TrackParticipant& track,
-              const SoilInstance& soil, const std::vector<double>& receiver_distances,
-              bool receivers_offered);
+  RunRecorder(ResultsDirectory& results, const TrackParticipant& track, const SoilInstance& soil,
+              const std::vector<double>& receiver_distances, bool receivers_offered);
   /// Record the state at time t, dt after the previous record (0 for the initial state);
   /// residual: the coupler's relative interface residual of the last macro step.
   void record(double t, double dt, double residual);

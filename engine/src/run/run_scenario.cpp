@@ -87,21 +87,15 @@ int solve_statics(RunComponents& c) {
 }  // namespace
 
 RunOutcome run_scenario(const scenario::RunSpec& spec, const PluginRegistry& registry,
-                        const RunOptions& options) {
+                        ResultsDirectory& results, const RunOptions& options) {
   const auto log = logger("engine");
   const auto run_start = Clock::now();
   RunComponents c = build_components(spec, registry);
   TrackParticipant& track = *c.track;
 
   RunOutcome outcome;
-  outcome.results_dir = spec.outputs.directory;
-  std::error_code ec;
-  fs::create_directories(outcome.results_dir, ec);
-  if (ec) {
-    throw RunError("cannot create results directory " + outcome.results_dir.string() + ": " +
-                   ec.message() + "; set /outputs/directory to a writable place");
-  }
-  SummaryWriter summary(outcome.results_dir, spec, c);
+  outcome.results_dir = results.path();
+  SummaryWriter summary(results, spec, c, options.heartbeat_seconds);
   give_run_context(c, outcome.results_dir);
 
   // Anything failing from here on leaves summary.json saying so, then propagates.
@@ -120,19 +114,16 @@ RunOutcome run_scenario(const scenario::RunSpec& spec, const PluginRegistry& reg
               track.micro_steps(H));
 
     // ---- where the steps go
-    RunRecorder recorder(outcome.results_dir, track, *c.soil, c.receivers.distances,
-                         c.receivers.surface);
+    RunRecorder recorder(results, track, *c.soil, c.receivers.distances, c.receivers.surface);
     recorder.record(0.0, 0.0, 0.0);
     std::unique_ptr<ProbeRecorder> probes;
     if (c.receivers.probes) {
-      probes =
-          std::make_unique<ProbeRecorder>(outcome.results_dir, *c.soil, spec.outputs.receivers);
+      probes = std::make_unique<ProbeRecorder>(results, *c.soil, spec.outputs.receivers);
       probes->take();  // samples at t = 0, if the soil records one there
     }
     std::unique_ptr<FieldWriter> fields;
     if (spec.outputs.field_interval && c.soil->capabilities().has(RUMBLE_CAP_FIELD_OUTPUT)) {
-      fields =
-          std::make_unique<FieldWriter>(outcome.results_dir, *c.soil, *spec.outputs.field_interval);
+      fields = std::make_unique<FieldWriter>(results, *c.soil, *spec.outputs.field_interval);
       fields->at(0.0);
     }
 
@@ -145,8 +136,8 @@ RunOutcome run_scenario(const scenario::RunSpec& spec, const PluginRegistry& reg
       extra_sides.push_back(std::make_unique<SoilSide>(name, *extra, track.interface_size()));
       participants.push_back(extra_sides.back().get());
     }
-    StepObserver observer(track, soil_side, {recorder, probes.get(), fields.get()}, spec.t_end,
-                          spec.outputs.every, outcome.results_dir, options.progress);
+    StepObserver observer(track, soil_side, {recorder, probes.get(), fields.get(), &summary},
+                          spec.t_end, spec.outputs.every, outcome.results_dir, options.progress);
     CosimHostImpl host(participants, c.coupler->type().abi_minor,
                        [&](const StepOutcome& step) { observer(step); });
     std::string coupler_message;

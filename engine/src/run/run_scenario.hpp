@@ -8,13 +8,15 @@
 #include <string>
 
 #include "plugin/registry.hpp"
+#include "run/results_directory.hpp"
 #include "run/summary_writer.hpp"
 #include "scenario/run_spec.hpp"
 
 namespace rumble {
 
 struct RunOptions {
-  bool progress = false;  // progress line with ETA on stderr
+  bool progress = false;           // progress line with ETA on stderr
+  double heartbeat_seconds = 1.0;  // at most one heartbeat write in summary.json per this time
 };
 
 struct RunOutcome {
@@ -24,9 +26,10 @@ struct RunOutcome {
   int exit_code = 3;
 };
 
-/// Throws ConfigError for problems found while building (exit 1); run failures are reported in
-/// the outcome (exit 3) after summary.json is written.
+/// Runs into `results` (spec.outputs.directory, held by the caller for as long as it writes
+/// there, plots included). Throws ConfigError for problems found while building (exit 1); run
+/// failures are reported in the outcome (exit 3) after summary.json is written.
 RunOutcome run_scenario(const scenario::RunSpec& spec, const PluginRegistry& registry,
-                        const RunOptions& options);
+                        ResultsDirectory& results, const RunOptions& options);
 
 }  // namespace rumble

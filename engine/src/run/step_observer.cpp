@@ -11,6 +11,7 @@
 #include "run/participant.hpp"
 #include "run/probe_recorder.hpp"
 #include "run/run_recorder.hpp"
+#include "run/summary_writer.hpp"
 #include "track/track_participant.hpp"
 
 namespace rumble {
@@ -57,6 +58,7 @@ void StepObserver::operator()(const StepOutcome& step) {
     t_recorded_ = t_reached_;
   }
   check_finite(t_reached_);
+  if (sinks_.summary != nullptr) sinks_.summary->heartbeat(t_reached_, steps_);
   if (interrupt_requested()) {
     std::ostringstream m;
     m << "interrupted at t = " << t_reached_ << " s (Ctrl-C); results up to that time are in "

@@ -1,7 +1,7 @@
 // What the engine does after every final macro step a coupler reports: record it (CSV rows,
-// receiver samples, field snapshots), check that the coupled solution has not blown up, honour
-// Ctrl-C between steps, and move the progress line. It throws to stop the run (the host keeps
-// the exception and the coupler returns).
+// receiver samples, field snapshots), check that the coupled solution has not blown up, beat
+// summary.json's heartbeat, honour Ctrl-C between steps, and move the progress line. It throws to
+// stop the run (the host keeps the exception and the coupler returns).
 #pragma once
 
 #include <cstddef>
@@ -20,15 +20,18 @@ class FieldWriter;
 class ProbeRecorder;
 class RunRecorder;
 class SoilSide;
+class SummaryWriter;
 class TrackParticipant;
 
 class StepObserver {
  public:
-  /// Where a final step goes; probes and fields may be null (not asked for, or not offered).
+  /// Where a final step goes; probes and fields may be null (not asked for, or not offered),
+  /// summary too (no heartbeat).
   struct Sinks {
     RunRecorder& recorder;
     ProbeRecorder* probes = nullptr;
     FieldWriter* fields = nullptr;
+    SummaryWriter* summary = nullptr;
   };
   StepObserver(const TrackParticipant& track, const SoilSide& soil, Sinks sinks, double t_end,
                std::size_t every, std::filesystem::path results_dir, bool progress);

@@ -1,14 +1,30 @@
 #include "run/summary_writer.hpp"
 
-#include <fstream>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
 
 #include "core/errors.hpp"
 #include "plugin/registry.hpp"
+#include "run/new_file.hpp"
+#include "run/results_directory.hpp"
 #include "run/run_components.hpp"
 
 namespace rumble {
 
 namespace fs = std::filesystem;
+
+namespace {
+
+// Stands for the heartbeat's value in the dumped summary; only a top-level key sits at the start
+// of a line indented by two, so this text occurs once.
+constexpr std::string_view kHeartbeatKey = "\n  \"heartbeat\": ";
+constexpr const char* kPlaceholder = "@heartbeat@";
+
+}  // namespace
 
 const char* status_name(RunStatus status) {
   switch (status) {
@@ -28,13 +44,19 @@ int exit_code(RunStatus status) {
   return status == RunStatus::kCompleted ? 0 : 3;
 }
 
-SummaryWriter::SummaryWriter(fs::path directory, const scenario::RunSpec& spec,
-                             const RunComponents& components)
-    : directory_(std::move(directory)) {
+SummaryWriter::SummaryWriter(ResultsDirectory& results, const scenario::RunSpec& spec,
+                             const RunComponents& components, double heartbeat_seconds)
+    : path_(results.file("summary.json")),
+      tmp_(results.file("summary.json.tmp")),
+      heartbeat_interval_(std::chrono::duration_cast<Clock::duration>(
+          std::chrono::duration<double>(heartbeat_seconds))) {
   summary_["rumble_version"] = RUMBLE_VERSION;
   summary_["scenario_file"] = fs::absolute(spec.path).string();
   summary_["scenario"] = spec.document;
   summary_["status"] = status_name(RunStatus::kRunning);
+  char host[256] = {};
+  if (::gethostname(host, sizeof host - 1) != 0) host[0] = '\0';
+  summary_["process"] = {{"pid", ::getpid()}, {"host", host}};
   nlohmann::json plugins = nlohmann::json::array();
   for (const Instance* inst : components.instances()) {
     const auto* d = inst->type().library->descriptor;
@@ -48,6 +70,18 @@ SummaryWriter::SummaryWriter(fs::path directory, const scenario::RunSpec& spec,
   }
   summary_["plugins"] = plugins;
   write();
+}
+
+void SummaryWriter::heartbeat(double t, std::size_t steps) {
+  t_ = t;
+  steps_ = steps;
+  if (Clock::now() < next_heartbeat_) return;
+  if (changed_) {
+    write();
+    return;
+  }
+  char beat[192];
+  write_pieces(beat, format_heartbeat(beat, sizeof beat));
 }
 
 void SummaryWriter::finish(RunStatus status, const std::string& message) {
@@ -66,17 +100,45 @@ void SummaryWriter::fail(const std::string& message) noexcept {
   }
 }
 
-void SummaryWriter::write() const {
-  const fs::path tmp = directory_ / "summary.json.tmp";
-  {
-    std::ofstream out(tmp);
-    out << summary_.dump(2) << '\n';
-    if (!out) {
-      throw RunError("cannot write " + (directory_ / "summary.json").string() +
-                     "; check free disk space and that outputs.directory is writable");
-    }
-  }
-  fs::rename(tmp, directory_ / "summary.json");
+std::size_t SummaryWriter::format_heartbeat(char* buffer, std::size_t size) const {
+  // Calendar arithmetic, not gmtime: the first call of that loads time zone data (allocating).
+  using namespace std::chrono;
+  const auto now = system_clock::now();
+  const auto day = floor<days>(now);
+  const year_month_day date{day};
+  const hh_mm_ss time{floor<seconds>(now - day)};
+  char t[32] = "null";  // JSON has no nan
+  if (std::isfinite(t_)) std::snprintf(t, sizeof t, "%.9g", t_);
+  const int n = std::snprintf(
+      buffer, size,
+      R"({"t_s": %s, "macro_steps": %zu, "utc": "%04d-%02u-%02uT%02d:%02d:%02dZ", )"
+      R"("unix_time_s": %.3f})",
+      t, steps_, static_cast<int>(date.year()), static_cast<unsigned>(date.month()),
+      static_cast<unsigned>(date.day()), static_cast<int>(time.hours().count()),
+      static_cast<int>(time.minutes().count()), static_cast<int>(time.seconds().count()),
+      duration<double>(now.time_since_epoch()).count());
+  return n < 0 ? 0 : std::min(static_cast<std::size_t>(n), size - 1);
+}
+
+void SummaryWriter::write() {
+  summary_["heartbeat"] = kPlaceholder;
+  const std::string text = summary_.dump(2) + '\n';
+  const std::string placeholder = std::string(kHeartbeatKey) + '"' + kPlaceholder + '"';
+  const std::size_t at = text.find(placeholder);
+  if (at == std::string::npos)
+    throw std::logic_error("summary.json: the heartbeat's place is lost");
+  prefix_ = text.substr(0, at + kHeartbeatKey.size());
+  suffix_ = text.substr(at + placeholder.size());
+  changed_ = false;
+  char beat[192];
+  write_pieces(beat, format_heartbeat(beat, sizeof beat));
+}
+
+void SummaryWriter::write_pieces(const char* heartbeat, std::size_t length) {
+  const int err = replace_file_noexcept(path_.c_str(), tmp_.c_str(),
+                                        {prefix_, std::string_view(heartbeat, length), suffix_});
+  if (err != 0) throw RunError(write_error(path_, err));
+  next_heartbeat_ = Clock::now() + heartbeat_interval_;
 }
 
 }  // namespace rumble

@@ -1,9 +1,12 @@
 // summary.json: written when the run starts (status "running", the scenario as validated,
-// versions, plugins) and rewritten when it ends (status, times, peaks, files), always atomically
-// (write + rename), so a reader never sees half a file. docs/scenario.md says what each status
-// means.
+// versions, plugins, the process) and rewritten when it ends (status, times, peaks, files), always
+// atomically (a new file renamed over it, run/new_file.hpp), so a reader never sees half a file.
+// While the run goes, a heartbeat in it (the end of the last macro step, the wall clock) is
+// refreshed about once a second, so a reader can tell a live run from one that died still saying
+// "running". docs/scenario.md says what each status means.
 #pragma once
 
+#include <chrono>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -13,6 +16,7 @@
 namespace rumble {
 
 struct RunComponents;
+class ResultsDirectory;
 
 enum class RunStatus { kRunning, kCompleted, kInterrupted, kFailed };
 
@@ -23,11 +27,19 @@ int exit_code(RunStatus status);
 
 class SummaryWriter {
  public:
-  /// Writes the first summary at once. Throws RunError when the directory refuses it.
-  SummaryWriter(std::filesystem::path directory, const scenario::RunSpec& spec,
-                const RunComponents& components);
+  /// Writes the first summary at once; later heartbeats at most every heartbeat_seconds. Throws
+  /// RunError when the directory refuses it.
+  SummaryWriter(ResultsDirectory& results, const scenario::RunSpec& spec,
+                const RunComponents& components, double heartbeat_seconds);
   /// Sets a top-level entry of the next write.
-  void set(const std::string& key, nlohmann::json value) { summary_[key] = std::move(value); }
+  void set(const std::string& key, nlohmann::json value) {
+    summary_[key] = std::move(value);
+    changed_ = true;
+  }
+  /// After every final macro step, ending at t [s], the steps-th: rewrites summary.json with a
+  /// new heartbeat when heartbeat_seconds have passed since the last write. Allocates nothing
+  /// (the text around the heartbeat is kept); throws RunError when the write fails.
+  void heartbeat(double t, std::size_t steps);
   /// Writes the final summary with the run's status (and why, when not completed).
   void finish(RunStatus status, const std::string& message);
   /// After an exception: status "failed" with the message, as far as the disk allows; never
@@ -35,9 +47,20 @@ class SummaryWriter {
   void fail(const std::string& message) noexcept;
 
  private:
-  void write() const;
-  std::filesystem::path directory_;
+  using Clock = std::chrono::steady_clock;
+  /// {"t_s", "macro_steps", "utc", "unix_time_s"} of now into buffer; returns its length.
+  std::size_t format_heartbeat(char* buffer, std::size_t size) const;
+  void write();
+  void write_pieces(const char* heartbeat, std::size_t length);
+
+  std::filesystem::path path_, tmp_;
   nlohmann::json summary_;
+  bool changed_ = true;          // summary_ differs from what prefix_ + suffix_ hold
+  std::string prefix_, suffix_;  // summary.json before and after the heartbeat's value
+  double t_ = 0.0;               // s, end of the last final macro step
+  std::size_t steps_ = 0;
+  Clock::duration heartbeat_interval_;
+  Clock::time_point next_heartbeat_;
 };
 
 }  // namespace rumble

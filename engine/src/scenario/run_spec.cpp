@@ -1,6 +1,7 @@
 #include "scenario/run_spec.hpp"
 
 #include <cstdio>
+#include <iterator>
 
 namespace rumble::scenario {
 namespace {
@@ -42,6 +43,36 @@ double RunSpec::track_middle() const {
 fs::path results_directory(const json& document, const fs::path& path) {
   const fs::path dir = document.at("outputs").at("directory").get<std::string>();
   return dir.is_absolute() ? dir : path.parent_path() / dir;
+}
+
+std::optional<Diagnostic> results_outside_scenario_folder(const json& document,
+                                                          const fs::path& path) {
+  const std::string given = document.at("outputs").at("directory").get<std::string>();
+  const fs::path file = fs::absolute(path).lexically_normal();
+  const fs::path folder = file.parent_path();
+  const fs::path target = (folder / given).lexically_normal();  // `given` when absolute
+  const std::string quoted = json(given).dump();
+  const auto refused = [&](const std::string& why) {
+    return finding("/outputs/directory", why,
+                   "results go inside the scenario's folder unless the command line says "
+                   "otherwise: choose the directory with --output DIR, or pass "
+                   "--allow-outside-results to write to " +
+                       target.string());
+  };
+  // /dev/stdin, /proc/self/fd/N, a pipe: no folder of the scenario's own to stay in.
+  std::error_code ec;
+  const auto top = std::next(file.begin());
+  if (!fs::is_regular_file(path, ec) || (top != file.end() && (*top == "dev" || *top == "proc"))) {
+    return refused("the scenario is read from " + path.string() +
+                   ", not from a file in a folder, so " + quoted + " would be " + target.string());
+  }
+  if (fs::path(given).is_absolute()) return refused(quoted + " is an absolute path");
+  const fs::path relative = fs::path(given).lexically_normal();
+  if (!relative.empty() && *relative.begin() == "..") {
+    return refused(quoted + " leaves the scenario's folder " + folder.string() + " (it is " +
+                   target.string() + ")");
+  }
+  return std::nullopt;
 }
 
 RunSpec make_run_spec(const json& document, const fs::path& path) {

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "scenario/diagnostic.hpp"
 #include "track/track_config.hpp"
 
 namespace rumble::scenario {
@@ -64,5 +65,11 @@ RunSpec make_run_spec(const nlohmann::json& document, const std::filesystem::pat
 /// Results directory of a scenario: outputs.directory relative to the scenario file.
 std::filesystem::path results_directory(const nlohmann::json& document,
                                         const std::filesystem::path& path);
+
+/// Results go inside the scenario's folder unless the command line says otherwise (issue #8):
+/// the finding at /outputs/directory when it is absolute, leaves that folder ("../x"), or the
+/// scenario is not a file in a folder (/dev/stdin, a pipe); nullopt when it stays inside.
+std::optional<Diagnostic> results_outside_scenario_folder(const nlohmann::json& document,
+                                                          const std::filesystem::path& path);
 
 }  // namespace rumble::scenario
