@@ -9,9 +9,7 @@
 #include "cli/exit_codes.hpp"
 #include "cli/scenario_prepare.hpp"
 #include "core/errors.hpp"
-#include "plugin/instance.hpp"
 #include "run/run_scenario.hpp"
-#include "track/footprint_layout.hpp"
 
 namespace rumble::cli {
 
@@ -21,19 +19,14 @@ int mesh_command(const std::vector<std::string>& args) {
   PluginRegistry registry;
   const auto doc = prepare_scenario(a.positional().front(), registry, scenario::Format::kText);
   if (!doc) return kExitConfig;
-  const auto layout = footprint_layout(TrackConfig::from_json(doc->json.at("track")));
-  const auto& sj = doc->json.at("soil");
-  const ComponentType* type = registry.find(RUMBLE_KIND_SOIL, sj.at("type").get<std::string>());
-  SoilInstance soil(*type, "/soil", sj.value("params", nlohmann::json::object()),
-                    doc->path.parent_path());
-  soil.accept_layout(layout);
+  const ScenarioSoil s = soil_on_footprints(*doc, registry);
   const std::filesystem::path out_dir = a.value("output")
                                             ? std::filesystem::path(*a.value("output"))
                                             : scenario::results_directory(doc->json, doc->path);
   std::filesystem::create_directories(out_dir);
   const auto path = out_dir / "mesh.vtu";
-  if (!soil.write_fields(0.0, path)) {
-    std::cout << "soil type '" << type->type_name
+  if (!s.soil->write_fields(0.0, path)) {
+    std::cout << "soil type '" << s.type->type_name
               << "' offers no field output: its report above is all there is to see\n";
     return kExitOk;
   }

@@ -5,6 +5,7 @@
 
 #include "scenario/component_check.hpp"
 #include "scenario/relation_checks.hpp"
+#include "track/footprint_layout.hpp"
 
 namespace rumble::cli {
 
@@ -46,6 +47,17 @@ std::optional<scenario::Document> prepare_scenario(const std::filesystem::path& 
   }
   if (!ok) return std::nullopt;
   return doc;
+}
+
+ScenarioSoil soil_on_footprints(const scenario::Document& doc, const PluginRegistry& registry) {
+  ScenarioSoil s;
+  s.layout = footprint_layout(TrackConfig::from_json(doc.json.at("track")));
+  const auto& soil = doc.json.at("soil");
+  s.type = registry.find(RUMBLE_KIND_SOIL, soil.at("type").get<std::string>());
+  s.soil = std::make_unique<SoilInstance>(
+      *s.type, "/soil", soil.value("params", nlohmann::json::object()), doc.path.parent_path());
+  s.soil->accept_layout(s.layout);
+  return s;
 }
 
 }  // namespace rumble::cli

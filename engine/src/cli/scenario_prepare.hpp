@@ -3,8 +3,11 @@
 #pragma once
 
 #include <filesystem>
+#include <memory>
 #include <optional>
+#include <vector>
 
+#include "plugin/instance.hpp"
 #include "plugin/registry.hpp"
 #include "scenario/scenario.hpp"
 
@@ -15,5 +18,14 @@ namespace rumble::cli {
 std::optional<scenario::Document> prepare_scenario(const std::filesystem::path& path,
                                                    PluginRegistry& registry,
                                                    scenario::Format format);
+
+/// The scenario's soil (/soil), built and laid on the track's footprints as a run lays it: what
+/// `rumble mesh` and `rumble soil-frf` look at.
+struct ScenarioSoil {
+  std::vector<rumble_footprint> layout;
+  const ComponentType* type = nullptr;
+  std::unique_ptr<SoilInstance> soil;
+};
+ScenarioSoil soil_on_footprints(const scenario::Document& doc, const PluginRegistry& registry);
 
 }  // namespace rumble::cli

@@ -11,7 +11,6 @@
 #include "core/errors.hpp"
 #include "plugin/instance.hpp"
 #include "run/run_scenario.hpp"
-#include "track/footprint_layout.hpp"
 
 namespace rumble::cli {
 
@@ -39,19 +38,14 @@ int soil_frf_command(const std::vector<std::string>& args) {
                                   : scenario::results_directory(doc->json, doc->path) / "soil_frf";
       std::filesystem::create_directories(out_dir);
     }
-    const auto layout = footprint_layout(TrackConfig::from_json(doc->json.at("track")));
-    const auto& sj = doc->json.at("soil");
-    const ComponentType* type = registry.find(RUMBLE_KIND_SOIL, sj.at("type").get<std::string>());
-    SoilInstance soil(*type, "/soil", sj.value("params", nlohmann::json::object()),
-                      doc->path.parent_path());
-    soil.accept_layout(layout);
+    const ScenarioSoil s = soil_on_footprints(*doc, registry);
     SoilFrf frf;
-    frf.label = type->type_name + " (" + doc->path.stem().string() + ")";
-    if (!soil_frf(soil, layout.size(), frequency, static_cast<std::size_t>(terms), frf)) {
-      throw ConfigError(file + ": /soil/type: soil type '" + type->type_name +
-                        "' offers no frequency response; use a soil that does (winkler, clm)");
+    frf.label = s.type->type_name + " (" + doc->path.stem().string() + ")";
+    if (!soil_frf(*s.soil, s.layout.size(), frequency, static_cast<std::size_t>(terms), frf)) {
+      throw ConfigError(file + ": /soil/type: soil type '" + s.type->type_name +
+                        "' offers no frequency response; use a soil that does (fem, winkler, clm)");
     }
-    const auto csv = out_dir / (doc->path.stem().string() + "_" + type->type_name + ".csv");
+    const auto csv = out_dir / (doc->path.stem().string() + "_" + s.type->type_name + ".csv");
     write_frf_csv(csv, frf);
     std::cout << "wrote " << csv.string() << '\n';
   }

@@ -17,15 +17,18 @@
 
 namespace rumble::soils {
 
-/// Schema properties shared by the soils that derive their parameters from soil properties
-/// (a fragment: the text between the braces of "properties", without the closing brace).
-inline constexpr const char* kSoilPropertiesSchema = R"schema(
+/// Schema properties E, nu, rho and layers of a soil given by its properties (a fragment: the
+/// text between the braces of "properties", without the closing brace); layers_description
+/// says what the soil makes of the layers.
+inline std::string soil_properties_schema(const std::string& layers_description) {
+  return R"schema(
     "E": {"type": "number", "exclusiveMinimum": 0, "description": "Young's modulus of the half-space, below any layers [Pa]; with nu and rho it gives G = E / (2 (1 + nu)) [Pa] and c_s = sqrt(G / rho) [m/s], from which every parameter is derived"},
     "nu": {"type": "number", "minimum": 0, "exclusiveMaximum": 0.5, "description": "Poisson ratio of the half-space [-], in [0, 0.5)"},
     "rho": {"type": "number", "exclusiveMinimum": 0, "description": "density of the half-space [kg/m^3]"},
     "layers": {
       "type": "array",
-      "description": "layers over the half-space, top first; replaced per footprint by one equivalent soil: 1/E_eq = sum w_j / E_j, nu and rho averaged with w_j, w_j the share of the layer in the integral over depth of the Boussinesq vertical stress under the footprint centre (layer-summation settlement; docs/soils.md)",
+      "description": ")schema" +
+         layers_description + R"schema(",
       "items": {
         "type": "object",
         "additionalProperties": false,
@@ -38,6 +41,14 @@ inline constexpr const char* kSoilPropertiesSchema = R"schema(
         }
       }
     })schema";
+}
+
+/// The reduced soils' fragment: layers become one equivalent soil per footprint.
+inline const std::string kSoilPropertiesSchema = soil_properties_schema(
+    "layers over the half-space, top first; replaced per footprint by one equivalent soil: "
+    "1/E_eq = sum w_j / E_j, nu and rho averaged with w_j, w_j the share of the layer in the "
+    "integral over depth of the Boussinesq vertical stress under the footprint centre "
+    "(layer-summation settlement; docs/soils.md)");
 
 /// Schema property of the internal time step, shared by the reduced soils.
 inline constexpr const char* kMaxStepSchema = R"schema(

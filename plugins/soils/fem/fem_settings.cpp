@@ -43,31 +43,21 @@ const soils::SoilProperties& FemSettings::properties_at(double depth) const {
 }
 
 const char* settings_schema() {
-  static const std::string schema = R"schema({
+  static const std::string schema =
+      R"schema({
   "$schema": "http://json-schema.org/draft-07/schema#",
   "type": "object",
   "additionalProperties": false,
   "required": ["E", "nu", "rho"],
   "properties": {
-    "E": {"type": "number", "exclusiveMinimum": 0, "description": "Young's modulus of the half-space, below any layers [Pa]"},
-    "nu": {"type": "number", "minimum": 0, "exclusiveMaximum": 0.5, "description": "Poisson ratio of the half-space [-], in [0, 0.5)"},
-    "rho": {"type": "number", "exclusiveMinimum": 0, "description": "density of the half-space [kg/m^3]"},
-    "layers": {
-      "type": "array",
-      "description": "horizontal layers over the half-space, top first, meshed as they are: element faces follow each interface",
-      "items": {
-        "type": "object", "additionalProperties": false, "required": ["thickness", "E", "nu", "rho"],
-        "properties": {
-          "thickness": {"type": "number", "exclusiveMinimum": 0, "description": "layer thickness [m]"},
-          "E": {"type": "number", "exclusiveMinimum": 0, "description": "Young's modulus of the layer [Pa]"},
-          "nu": {"type": "number", "minimum": 0, "exclusiveMaximum": 0.5, "description": "Poisson ratio of the layer [-], in [0, 0.5)"},
-          "rho": {"type": "number", "exclusiveMinimum": 0, "description": "density of the layer [kg/m^3]"}
-        }
-      }
-    },
+)schema" +
+      soils::soil_properties_schema(
+          "horizontal layers over the half-space, top first, meshed as "
+          "they are: element faces follow each interface") +
+      R"schema(,
     "mesh": {
       "type": "object", "additionalProperties": false, "default": {},
-      "description": "the tetrahedral mesh, generated with gmsh when the track announces its footprints (docs/soils.md, FEM soil)",
+      "description": "the tetrahedral mesh, generated with gmsh when the track announces its footprints (docs/fem-soil.md)",
       "properties": {
         "file": {"type": "string", "minLength": 1, "description": "a gmsh mesh file (.msh) to use instead of meshing, relative to the scenario's folder: linear tetrahedra, z up with the ground at z = 0, the physical surfaces \"ground\" (the free surface; the footprints lie in it, its faces following their edges) and \"absorbing\" (the truncation surface), optionally physical volumes \"layer_<k>\" (k = 0 the top layer, layers.size() the half-space; by default by depth). The domain must be convex around the footprints. The other mesh keys are then ignored"},
         "shape": {"enum": ["hemisphere", "box"], "default": "hemisphere", "description": "truncation of the half-space: a hemisphere centred under the footprints (waves meet its surface near normal incidence, where the absorbing boundary works best), or a box around them"},
