@@ -44,8 +44,9 @@ RunRecorder::RunRecorder(const std::filesystem::path& dir, const TrackParticipan
   fp_v_ =
       std::make_unique<CsvFile>(dir / "footprint_velocity.csv", footprint_columns(track, "m/s"));
   interface_ = std::make_unique<CsvFile>(
-      dir / "interface.csv", std::vector<std::string>{"t [s]", "relative residual [-]",
-                                                      "power at cut [W]", "energy exchanged [J]"});
+      dir / "interface.csv",
+      std::vector<std::string>{"t [s]", "relative residual [-]", "power at cut [W]",
+                               "energy exchanged [J]", "iterations [-]"});
   if (receivers_offered && !receiver_distances.empty()) {
     cols = {"t [s]"};
     for (double d : receiver_distances) cols.push_back("d=" + std::to_string(d) + " m [m/s]");
@@ -60,7 +61,7 @@ RunRecorder::RunRecorder(const std::filesystem::path& dir, const TrackParticipan
   wheels_.assign(vs.wheel_count(), 0.0);
 }
 
-void RunRecorder::record(double t, double dt, double residual) {
+void RunRecorder::record(double t, double dt, double residual, std::uint32_t iterations) {
   const std::size_t n = force_.size();
   track_.footprint_forces(force_.data());
   soil_.motion(u_.data(), v_.data(), n);
@@ -79,8 +80,8 @@ void RunRecorder::record(double t, double dt, double residual) {
   fp_force_->row(t, force_.data(), n);
   fp_u_->row(t, u_.data(), n);
   fp_v_->row(t, v_.data(), n);
-  const double iface[3] = {residual, power, energy_};
-  interface_->row(t, iface, 3);
+  const double iface[4] = {residual, power, energy_, static_cast<double>(iterations)};
+  interface_->row(t, iface, 4);
   if (receivers_) {
     soil_.receiver_velocity(rx_v_.data(), rx_v_.size());
     for (std::size_t r = 0; r < rx_v_.size(); ++r)
