@@ -77,6 +77,7 @@ class MinimalCoupler final : public rumble::Coupler {
       if (host.advance(CosimHost::kTrack, t, h) == RUMBLE_DISCARD)
         coupling::refused_step(host, t, h, CosimHost::kTrack, "instantiation check");
       soil.sample(t + h);
+      residuals.measure_trial(wave, order, soil.latest(), report.residuals.data());
       residuals.measure(wave, order, soil.latest(), report.residuals.data());
       host.step_report(report);
     }

@@ -37,6 +37,19 @@ TEST(Capabilities, ASoilThatCannotSaveIsRefusedForACouplerThatNeedsIt) {
   EXPECT_NE(r.output.find("choose a soil that can ("), std::string::npos) << r.output;
 }
 
+TEST(Capabilities, TheImplicitCouplerRefusesASoilThatCannotSave) {
+  // It takes every macro step several times from checkpoints (declared kSoilNeeds).
+  const CliResult r =
+      validate("caps_implicit", fixture_scenario(kForgetful, {{"type", "implicit"}}));
+  expect_error(r, "/soil/type",
+               "soil type \"forgetful_soil\" cannot save and restore its state, which coupler "
+               "\"implicit\" needs of every soil it drives");
+  EXPECT_NE(r.output.find("choose a soil that can ("), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("picky_soil"), std::string::npos) << r.output;
+  EXPECT_EQ(
+      validate("caps_implicit_ok", fixture_scenario(kPicky, {{"type", "implicit"}})).exit_code, 0);
+}
+
 TEST(Capabilities, TheNeedAppliesToExtraParticipantsToo) {
   const CliResult r =
       validate("caps_extra", fixture_scenario(kPicky, needy({{"reduced_soil", kForgetful}})));

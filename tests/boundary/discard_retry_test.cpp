@@ -61,6 +61,51 @@ TEST(DiscardRetry, JacobiRestoresTheTrackAndHalves) {
   expect_same_as_small_steps({{"type", "jacobi"}}, "discard_jacobi");
 }
 
+TEST(DiscardRetry, ImplicitHalvesARefusedStep) {
+  // Iterated to convergence: the soil advances several times per accepted step, so the plugin's
+  // advance count is not 4 per macro step; the refused attempts fail on the soil's first advance
+  // and leave nothing behind (no accelerator update, no reused column), so the run is the
+  // small-step run byte for byte, with every acceleration.
+  for (const char* method : {"iqn_ils", "aitken", "constant"}) {
+    const nlohmann::json coupling = {{"type", "implicit"}, {"params", {{"acceleration", method}}}};
+    nlohmann::json refused = fixture_scenario(picky(kQuarter), coupling);
+    refused["time"] = {{"end", kMacroSteps * kMacro}, {"macro_step", kMacro}};
+    nlohmann::json reference = fixture_scenario(picky(1.0), coupling);
+    reference["time"] = {{"end", kMacroSteps * kMacro}, {"macro_step", kQuarter}};
+    CliResult a, b;
+    const std::string name = std::string("discard_implicit_") + method;
+    const auto dir_a = run_in(name + "_refused", refused, a);
+    const auto dir_b = run_in(name + "_reference", reference, b);
+    ASSERT_EQ(a.exit_code, 0) << a.output;
+    ASSERT_EQ(b.exit_code, 0) << b.output;
+    for (const char* file : {"contact.csv", "footprint_force.csv", "footprint_displacement.csv",
+                             "footprint_velocity.csv", "interface.csv"})
+      EXPECT_TRUE(same_bytes(dir_a / file, dir_b / file)) << method << ": " << file << " differs";
+    const auto summary = read_json(dir_a / "summary.json");
+    EXPECT_EQ(summary["coupling"]["discarded_steps"], 3 * kMacroSteps) << method;
+    EXPECT_EQ(summary["time"]["macro_steps"], 4 * kMacroSteps) << method;
+    EXPECT_EQ(summary["coupling"]["iterations"],
+              read_json(dir_b / "summary.json")["coupling"]["iterations"])
+        << method;
+    EXPECT_EQ(nlohmann::json::parse(file_text(dir_a / "finalized.json"))["refusals"],
+              3 * kMacroSteps);
+  }
+}
+
+TEST(DiscardRetry, ImplicitStopsWhenNoHalvingIsLeft) {
+  CliResult r;
+  const auto dir =
+      run_in("discard_implicit_no_halvings",
+             fixture_scenario(picky(kQuarter),
+                              {{"type", "implicit"}, {"params", {{"max_step_halvings", 1}}}}),
+             r);
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_NE(r.output.find("participant 'soil' refused the step starting at t = 0.000000 s"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("max_step_halvings (1) reached"), std::string::npos) << r.output;
+}
+
 TEST(DiscardRetry, APluginThatKeepsItsOwnCheckpointsIsNeverCopied) {
   // jacobi checkpoints both participants at every step start; picky_soil declares its own
   // checkpoints, so its state never crosses the boundary (a large FEM state is not copied).

@@ -1,9 +1,10 @@
-// A whole coupled run allocates nothing per macro step: the coupler (gauss_seidel, jacobi), the
-// host and its step reports, both participants through their plugin tables, the recorder, the
-// receiver samples and summary.json's heartbeat (here after every step). Measured as the difference
-// between a run of N and of 2N macro steps of the same scenario (setup and summary cost the same in
-// both): a per-step allocation would show as at least N. The summary's numbers differ in length
-// between the two runs, so a handful of string growths may differ: the bound is 10 with N = 50.
+// A whole coupled run allocates nothing per macro step: the coupler (gauss_seidel, jacobi,
+// implicit), the host and its step reports, both participants through their plugin tables, the
+// recorder, the receiver samples and summary.json's heartbeat (here after every step). Measured as
+// the difference between a run of N and of 2N macro steps of the same scenario (setup and summary
+// cost the same in both): a per-step allocation would show as at least N. The summary's numbers
+// differ in length between the two runs, so a handful of string growths may differ: the bound is
+// 10 with N = 50.
 #include <gtest/gtest.h>
 
 #include "allocation_counter.hpp"
@@ -53,6 +54,14 @@ TEST(RunAllocation, JacobiOnOneThreadWithCheckpoints) {
   s["coupling"] = {{"type", "jacobi"}, {"params", {{"threads", 1}}}};
   s["vehicles"][0]["start"] = 1.0;
   expect_no_allocation_per_step("run_allocation_jacobi", s);
+}
+
+TEST(RunAllocation, ImplicitIqnIls) {
+  // Iterated every step, with columns reused from past steps; the soil checkpoints every step.
+  nlohmann::json s = small_scenario();
+  s["coupling"] = {{"type", "implicit"}, {"params", {{"acceleration", "iqn_ils"}}}};
+  s["vehicles"][0]["start"] = 1.0;
+  expect_no_allocation_per_step("run_allocation_implicit", s);
 }
 
 }  // namespace

@@ -56,8 +56,8 @@ TEST(Cli, LogLevelAfterTheCommand) {
 TEST(Cli, PluginsListsInTreeTypes) {
   const CliResult r = run_rumble({"plugins"});
   EXPECT_EQ(r.exit_code, 0);
-  for (const char* type :
-       {"vehicle single_wheel", "soil winkler", "coupler gauss_seidel", "coupler jacobi"})
+  for (const char* type : {"vehicle single_wheel", "soil winkler", "coupler gauss_seidel",
+                           "coupler jacobi", "coupler implicit"})
     EXPECT_THAT(r.output, HasSubstr(type));
   const CliResult j = run_rumble({"plugins", "--format", "json"});
   EXPECT_EQ(j.exit_code, 0);

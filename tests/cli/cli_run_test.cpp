@@ -25,6 +25,10 @@ TEST(CliRun, GaussSeidelRunWritesResultsAndSummary) {
   EXPECT_NEAR(summary["static"]["wheel_loads_N"][0].get<double>(), 50000.0 + 750.0 * 9.81, 1e-3);
   EXPECT_EQ(summary["scenario"]["name"], "cli test: single wheel on winkler");
   EXPECT_TRUE(summary["wall_time_s"].contains("vehicle/track"));
+  // An explicit scheme: one iteration per step, every step converged.
+  EXPECT_EQ(summary["coupling"]["iterations"]["total"], 50);
+  EXPECT_EQ(summary["coupling"]["iterations"]["max_per_step"], 1);
+  EXPECT_EQ(summary["coupling"]["unconverged_steps"], 0);
   for (const char* f : {"contact.csv", "vehicles.csv", "footprint_force.csv",
                         "footprint_displacement.csv", "footprint_velocity.csv", "interface.csv"})
     EXPECT_EQ(csv_rows(results / f), 51u) << f;  // t = 0 and 50 macro steps

@@ -48,7 +48,7 @@ RunRecorder::RunRecorder(ResultsDirectory& results, const TrackParticipant& trac
   interface_ = std::make_unique<CsvFile>(
       results.file("interface.csv"),
       std::vector<std::string>{"t [s]", "relative residual [-]", "power at cut [W]",
-                               "energy exchanged [J]"});
+                               "energy exchanged [J]", "iterations [-]"});
   if (receivers_offered && !receiver_distances.empty()) {
     cols = {"t [s]"};
     for (double d : receiver_distances) cols.push_back("d=" + std::to_string(d) + " m [m/s]");
@@ -63,7 +63,7 @@ RunRecorder::RunRecorder(ResultsDirectory& results, const TrackParticipant& trac
   wheels_.assign(vs.wheel_count(), 0.0);
 }
 
-void RunRecorder::record(double t, double dt, double residual) {
+void RunRecorder::record(double t, double dt, double residual, std::uint32_t iterations) {
   const std::size_t n = force_.size();
   track_.footprint_forces(force_.data());
   soil_.motion(u_.data(), v_.data(), n);
@@ -82,8 +82,8 @@ void RunRecorder::record(double t, double dt, double residual) {
   fp_force_->row(t, force_.data(), n);
   fp_u_->row(t, u_.data(), n);
   fp_v_->row(t, v_.data(), n);
-  const double iface[3] = {residual, power, energy_};
-  interface_->row(t, iface, 3);
+  const double iface[4] = {residual, power, energy_, static_cast<double>(iterations)};
+  interface_->row(t, iface, 4);
   if (receivers_) {
     soil_.receiver_velocity(rx_v_.data(), rx_v_.size());
     for (std::size_t r = 0; r < rx_v_.size(); ++r)

@@ -4,12 +4,13 @@
 //   footprint_force.csv   force on the soil at every footprint [N] (down +)
 //   footprint_displacement.csv, footprint_velocity.csv   footprint u [m], v [m/s] (down +)
 //   interface.csv         coupler's relative interface residual (the largest of its channel
-//                         groups'), power [W] and energy [J]
-//                         exchanged at the cut
+//                         groups'), power [W] and energy [J] exchanged at the cut, and the
+//                         coupler's iterations in the macro step (1 for explicit schemes)
 //   receivers.csv         vertical velocity of surface receivers [m/s] (soils that offer them)
 // and keeps the peaks (PPV) for the summary.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <vector>
@@ -27,8 +28,9 @@ class RunRecorder {
   RunRecorder(ResultsDirectory& results, const TrackParticipant& track, const SoilInstance& soil,
               const std::vector<double>& receiver_distances, bool receivers_offered);
   /// Record the state at time t, dt after the previous record (0 for the initial state);
-  /// residual: the coupler's relative interface residual of the last macro step.
-  void record(double t, double dt, double residual);
+  /// residual: the coupler's relative interface residual of the last macro step, iterations:
+  /// its iterations in that step (0 for the initial state).
+  void record(double t, double dt, double residual, std::uint32_t iterations);
 
   const std::vector<double>& peak_footprint_velocity() const { return peak_fp_v_; }
   const std::vector<double>& peak_receiver_velocity() const { return peak_rx_v_; }

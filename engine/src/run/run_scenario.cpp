@@ -115,7 +115,7 @@ RunOutcome run_scenario(const scenario::RunSpec& spec, const PluginRegistry& reg
 
     // ---- where the steps go
     RunRecorder recorder(results, track, *c.soil, c.receivers.distances, c.receivers.surface);
-    recorder.record(0.0, 0.0, 0.0);
+    recorder.record(0.0, 0.0, 0.0, 0);
     std::unique_ptr<ProbeRecorder> probes;
     if (c.receivers.probes) {
       probes = std::make_unique<ProbeRecorder>(results, *c.soil, spec.outputs.receivers);
@@ -169,8 +169,17 @@ RunOutcome run_scenario(const scenario::RunSpec& spec, const PluginRegistry& reg
                               {"max_relative_residual_by_group", observer.max_residuals()},
                               {"energy_exchanged_J", recorder.energy_exchanged()}});
     summary.set("peak_footprint_velocity_m_s", recorder.peak_footprint_velocity());
+    const double mean_iterations =
+        observer.steps() > 0
+            ? static_cast<double>(observer.iterations()) / static_cast<double>(observer.steps())
+            : 0.0;
     summary.set("coupling", {{"discarded_steps", host.discards()},
-                             {"partial_step_reports", observer.partial_reports()}});
+                             {"partial_step_reports", observer.partial_reports()},
+                             {"iterations",
+                              {{"total", observer.iterations()},
+                               {"mean_per_step", mean_iterations},
+                               {"max_per_step", observer.max_iterations()}}},
+                             {"unconverged_steps", observer.unconverged_steps()}});
     nlohmann::json files = recorder.files();
     if (probes) {
       summary.set("ppv", probes->peaks());

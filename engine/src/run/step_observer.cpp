@@ -45,6 +45,9 @@ void StepObserver::operator()(const StepOutcome& step) {
   }
   t_reached_ = step.t + step.H;
   ++steps_;
+  iterations_ += step.iterations;
+  max_iterations_ = std::max(max_iterations_, step.iterations);
+  if (!step.converged) ++unconverged_;
   for (const rumble_group_residual& g : step.residuals) {
     const std::string_view name = g.group != nullptr ? g.group : "";
     auto it = max_residuals_.find(name);  // heterogeneous: no string built once the key exists
@@ -54,7 +57,8 @@ void StepObserver::operator()(const StepOutcome& step) {
   if (sinks_.probes != nullptr) sinks_.probes->take();
   if (sinks_.fields != nullptr) sinks_.fields->at(t_reached_);
   if (steps_ % every_ == 0 || t_reached_ >= t_end_ * (1.0 - 1e-12)) {
-    sinks_.recorder.record(t_reached_, t_reached_ - t_recorded_, step.max_relative_residual());
+    sinks_.recorder.record(t_reached_, t_reached_ - t_recorded_, step.max_relative_residual(),
+                           step.iterations);
     t_recorded_ = t_reached_;
   }
   check_finite(t_reached_);

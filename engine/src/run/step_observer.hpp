@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <map>
@@ -44,6 +45,11 @@ class StepObserver {
   double t_reached() const { return t_reached_; }  // s, end of the last recorded step
   std::size_t steps() const { return steps_; }     // final steps, for track and soil
   std::size_t partial_reports() const { return partial_; }
+  /// Coupler iterations over the final steps (1 per step for explicit schemes), the most in one
+  /// step, and the steps the coupler reported as not converged.
+  std::uint64_t iterations() const { return iterations_; }
+  std::uint32_t max_iterations() const { return max_iterations_; }
+  std::size_t unconverged_steps() const { return unconverged_; }
 
  private:
   void check_finite(double t);
@@ -56,7 +62,9 @@ class StepObserver {
   std::filesystem::path results_dir_;
   ProgressLine progress_;
   double t_reached_ = 0.0, t_recorded_ = 0.0;  // s
-  std::size_t steps_ = 0, partial_ = 0;
+  std::size_t steps_ = 0, partial_ = 0, unconverged_ = 0;
+  std::uint64_t iterations_ = 0;
+  std::uint32_t max_iterations_ = 0;
   std::vector<double> scratch_;                               // soil outputs, sized once
   std::map<std::string, double, std::less<>> max_residuals_;  // by group; keys made once
 };

@@ -11,7 +11,8 @@
 //                    another, by channel group name ("footprint_force", ...), so a scheme never
 //                    assumes a layout
 //   GroupResiduals   the interface residual per output group: absolute, and relative to the
-//                    largest magnitude the group has had in the run so far (not at this instant)
+//                    largest magnitude the group has had in the run so far (not at this instant);
+//                    measure_trial() for an iterate that may not be final
 #ifndef RUMBLE_COUPLING_HPP
 #define RUMBLE_COUPLING_HPP
 
@@ -217,6 +218,25 @@ class GroupResiduals {
       out[g].group = groups_[g].name;
       out[g].absolute = worst;
       out[g].relative = scale_[g] > 0.0 ? worst / scale_[g] : worst;
+    }
+  }
+  /// As measure(), for outputs that may not be final (an iterate of an iterating scheme): the
+  /// scale is the run's so far grown by `produced` for this call only, so measure() on the same
+  /// values once they are final gives the same numbers; nothing is observed. (SDK 1.1, appended.)
+  void measure_trial(const std::vector<double>& used_coeff, std::uint32_t order,
+                     const std::vector<double>& produced, GroupResidual* out) const {
+    const std::size_t n = produced.size();
+    for (std::size_t g = 0; g < groups_.size(); ++g) {
+      double worst = 0.0, scale = scale_[g];
+      for (std::size_t i = groups_[g].offset; i < groups_[g].offset + groups_[g].count; ++i) {
+        double used = 0.0;
+        for (std::uint32_t k = 0; k <= order; ++k) used += used_coeff[k * n + i];
+        worst = std::max(worst, std::abs(used - produced[i]));
+        scale = std::max(scale, std::abs(produced[i]));
+      }
+      out[g].group = groups_[g].name;
+      out[g].absolute = worst;
+      out[g].relative = scale > 0.0 ? worst / scale : worst;
     }
   }
 
