@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <filesystem>
 
 #include "cli_runner.hpp"
 
@@ -40,6 +41,22 @@ TEST(CliMesh, WritesTheMeshAndReusesItFromTheCache) {
   ASSERT_EQ(second.exit_code, 0) << second.output;
   EXPECT_THAT(second.output, HasSubstr("fem: mesh from the cache " + (dir / "cache").string()));
   EXPECT_EQ(file_text(dir / "again" / "mesh.vtu"), file_text(dir / "results" / "mesh.vtu"));
+  ::unsetenv("RUMBLE_MESH_CACHE");
+}
+
+// `rumble mesh` writes beside a scenario's results by default: a run then leaves it alone (the
+// results directory's manifest refuses unknown files, docs/scenario.md).
+TEST(CliMesh, ARunLeavesTheMeshBesideItsResults) {
+  const auto dir = scratch_directory("mesh_then_run");
+  ::setenv("RUMBLE_MESH_CACHE", (dir / "cache").c_str(), 1);
+  nlohmann::json s = fem_scenario();
+  s["time"]["end"] = 0.01;
+  const auto path = write_scenario(dir, s).string();
+  ASSERT_EQ(run_rumble({"mesh", path}).exit_code, 0);
+  const CliResult run = run_rumble({"run", path, "--no-progress", "--no-plots"});
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_EQ(run_rumble({"run", path, "--no-progress", "--no-plots"}).exit_code, 0);
+  EXPECT_TRUE(std::filesystem::exists(dir / "results" / "mesh.vtu"));
   ::unsetenv("RUMBLE_MESH_CACHE");
 }
 

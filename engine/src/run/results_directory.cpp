@@ -25,13 +25,15 @@ using nlohmann::json;
 
 constexpr const char* kManifestTmp = ".rumble-manifest.json.tmp";
 constexpr int kManifestVersion = 1;
-// `rumble soil-frf`'s default output, beside a scenario's results: not a run's to list or remove.
+// `rumble soil-frf`'s and `rumble mesh`'s default outputs, beside a scenario's results: not a
+// run's to list or remove.
 constexpr const char* kSoilFrfDirectory = "soil_frf";
+constexpr const char* kMeshFile = "mesh.vtu";
 
 /// Names at the top of the directory that no run lists, refuses or removes.
 bool reserved(const std::string& relative) {
   return relative == ResultsDirectory::kLockFile || relative == ResultsDirectory::kManifestFile ||
-         relative == kManifestTmp || relative == kSoilFrfDirectory;
+         relative == kManifestTmp || relative == kSoilFrfDirectory || relative == kMeshFile;
 }
 
 /// A name a run could have listed: relative, inside the directory (no "..", ".", empty part).
