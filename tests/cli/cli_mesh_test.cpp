@@ -2,6 +2,7 @@
 // ParaView, the second time from the mesh cache; a soil without field output says so.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <sched.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -58,6 +59,30 @@ TEST(CliMesh, ARunLeavesTheMeshBesideItsResults) {
   EXPECT_EQ(run_rumble({"run", path, "--no-progress", "--no-plots"}).exit_code, 0);
   EXPECT_TRUE(std::filesystem::exists(dir / "results" / "mesh.vtu"));
   ::unsetenv("RUMBLE_MESH_CACHE");
+}
+
+// The soil gets the cores the process may use (its CPU affinity, as taskset sets it), not the
+// machine's: more threads than cores make the FEM step's barriers wait on a descheduled thread.
+TEST(CliMesh, TheSoilGetsTheCoresTheProcessMayUse) {
+  const auto dir = scratch_directory("mesh_affinity");
+  ::setenv("RUMBLE_MESH_CACHE", (dir / "cache").c_str(), 1);
+  nlohmann::json s = fem_scenario();
+  s["time"]["end"] = 0.002;
+  const auto path = write_scenario(dir, s).string();
+  cpu_set_t saved, one;
+  ASSERT_EQ(sched_getaffinity(0, sizeof saved, &saved), 0);
+  CPU_ZERO(&one);
+  for (int cpu = 0; cpu < CPU_SETSIZE; ++cpu)
+    if (CPU_ISSET(cpu, &saved)) {
+      CPU_SET(cpu, &one);
+      break;
+    }
+  ASSERT_EQ(sched_setaffinity(0, sizeof one, &one), 0);  // inherited by the rumble it starts
+  const CliResult r = run_rumble({"run", path, "--no-progress", "--no-plots"});
+  sched_setaffinity(0, sizeof saved, &saved);
+  ::unsetenv("RUMBLE_MESH_CACHE");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("per macro step of 0.001 s, 1 thread(s)"));
 }
 
 TEST(CliMesh, ASoilWithoutFieldsSaysSo) {
