@@ -54,8 +54,7 @@ double MeshPlan::size_at(double x, double y, double depth) const {
 }
 
 double MeshPlan::resolved_frequency(double d, double c_r, double elements_per_wavelength) const {
-  const double centre_depth = 0.0;
-  const double h = size_at(region.x1 + d, region.centre_y(), centre_depth);
+  const double h = size_at(region.x1 + d, region.centre_y(), 0.0);  // on the ground
   return c_r / (h * elements_per_wavelength);
 }
 
