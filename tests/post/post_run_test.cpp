@@ -1,0 +1,299 @@
+// post_process on small results directories written by the test, in both receivers.csv forms:
+// the files appear with the expected numbers (closed forms of the synthetic signals), and a
+// missing file or column gives a message with what, where and the fix.
+#include "post/post_run.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <numbers>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "post/din4150.hpp"
+#include "post/time_series.hpp"
+
+namespace rumble::post {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+constexpr double kPi = std::numbers::pi;
+constexpr double kDt = 1e-3;      // s
+constexpr std::size_t kN = 2000;  // 2 s
+constexpr double kA = 2e-3;       // m/s
+
+fs::path fresh_dir() {
+  const fs::path dir = fs::temp_directory_path() / "rumble_post_run_test" /
+                       ::testing::UnitTest::GetInstance()->current_test_info()->name();
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::string message_of(auto&& call) {
+  try {
+    call();
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "(no exception)";
+}
+
+void expect_contains(const std::string& text, const std::string& part) {
+  EXPECT_NE(text.find(part), std::string::npos) << "'" << part << "' not in: " << text;
+}
+
+// A receivers.csv as the engine writes it: header, then %.9g numbers.
+void write_csv(const fs::path& file, const std::vector<std::string>& names,
+               const std::vector<std::vector<double>>& columns) {
+  std::ofstream out(file);
+  out << "t [s]";
+  for (const std::string& n : names) out << "," << n;
+  out << "\n";
+  for (std::size_t k = 0; k < columns.front().size(); ++k) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.9g", static_cast<double>(k) * kDt);
+    out << buf;
+    for (const auto& c : columns) {
+      std::snprintf(buf, sizeof buf, "%.9g", c[k]);
+      out << "," << buf;
+    }
+    out << "\n";
+  }
+}
+
+std::vector<double> sine(double a, double f) {
+  std::vector<double> v(kN);
+  for (std::size_t k = 0; k < kN; ++k)
+    v[k] = a * std::sin(2.0 * kPi * f * static_cast<double>(k) * kDt);
+  return v;
+}
+
+// A CSV file as rows of name -> field.
+std::vector<std::map<std::string, std::string>> read_rows(const fs::path& file) {
+  std::ifstream in(file);
+  std::string line;
+  std::getline(in, line);
+  const std::vector<std::string> header = split_csv_line(line);
+  std::vector<std::map<std::string, std::string>> rows;
+  while (std::getline(in, line)) {
+    const std::vector<std::string> f = split_csv_line(line);
+    std::map<std::string, std::string> row;
+    for (std::size_t i = 0; i < header.size() && i < f.size(); ++i) row[header[i]] = f[i];
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+double number(const std::map<std::string, std::string>& row, const std::string& key) {
+  const auto it = row.find(key);
+  if (it == row.end()) throw std::out_of_range("no column '" + key + "'");
+  return std::stod(it->second);
+}
+
+// Probe receivers: "d=2.5 m" moves along a fixed direction (vx = 0.6 s(t), vz = 0.8 s(t),
+// s = A sin(2 pi 25 t): the 25 Hz crests fall on samples), "d=5 m" vertically at 10 Hz with A/4,
+// "deep" (distance from summary.json only) at 2.5 m and 1 m depth.
+fs::path probe_run() {
+  const fs::path dir = fresh_dir();
+  const std::vector<double> s25 = sine(kA, 25.0), s10 = sine(kA / 4, 10.0), zero(kN, 0.0);
+  std::vector<double> vx(kN), vz(kN);
+  for (std::size_t k = 0; k < kN; ++k) vx[k] = 0.6 * s25[k], vz[k] = 0.8 * s25[k];
+  std::vector<std::string> names;
+  std::vector<std::vector<double>> cols;
+  auto add = [&](const std::string& n, const std::vector<double>& x, const std::vector<double>& y,
+                 const std::vector<double>& z) {
+    for (const char* c : {"vx [m/s]", "vy [m/s]", "vz [m/s]", "ux [m]", "uy [m]", "uz [m]"})
+      names.push_back(n + " " + c);
+    for (const auto* v : {&x, &y, &z, &zero, &zero, &zero}) cols.push_back(*v);
+  };
+  add("d=2.5 m", vx, zero, vz);
+  add("d=5 m", zero, zero, s10);
+  add("deep", zero, zero, s10);
+  write_csv(dir / "receivers.csv", names, cols);
+  const json summary = {
+      {"ppv",
+       {{{"name", "d=2.5 m"}, {"x_m", 24.0}, {"distance_m", 2.5}, {"depth_m", 0.0}},
+        {{"name", "d=5 m"}, {"x_m", 24.0}, {"distance_m", 5.0}, {"depth_m", 0.0}},
+        {{"name", "deep"}, {"x_m", 24.0}, {"distance_m", 2.5}, {"depth_m", 1.0}}}}};
+  std::ofstream(dir / "summary.json") << summary.dump(2);
+  return dir;
+}
+
+// The numbers come from %.9g CSV values of exactly sampled sines: PPV and spectra to 1e-8
+// relative; KB_F,max is the steady-sine closed form (din4150.hpp) to 0.1 % (after 2 s the Fast
+// average has settled to exp(-16): the remaining error is the filter's, <= 1e-4, see
+// din4150_test); the band level of a bin-centred sine is exact (1e-6 dB for the CSV rounding);
+// the CWT at a grid frequency equal to the tone's gives A to 0.1 % at the record's middle.
+TEST(PostRun, ProbeReceiversGiveTheClosedFormNumbers) {
+  const fs::path dir = probe_run();
+  PostOptions options;
+  options.cwt_f_min = 6.25, options.cwt_f_max = 100.0, options.cwt_n_freq = 5;  // 25 Hz is one
+  options.cwt_max_times = 500;
+  const PostResult r = post_process(dir, options);
+  for (const char* f : {"ppv.csv", "spectra.csv", "third_octave.csv", "cwt_d=2.5_m.csv",
+                        "cwt_d=5_m.csv", "post.json"})
+    EXPECT_TRUE(fs::exists(dir / "post" / f)) << f;
+  EXPECT_FALSE(fs::exists(dir / "post" / "cwt_deep.csv"));  // the surface one at 2.5 m wins
+  EXPECT_TRUE(r.warnings.empty()) << r.warnings.front();
+
+  const auto ppv = read_rows(dir / "post" / "ppv.csv");
+  ASSERT_EQ(ppv.size(), 3u);
+  EXPECT_EQ(ppv[0].at("receiver"), "d=2.5 m");  // by distance, then depth
+  EXPECT_EQ(ppv[1].at("receiver"), "deep");
+  EXPECT_EQ(ppv[2].at("receiver"), "d=5 m");
+  const auto& near = ppv[0];
+  EXPECT_NEAR(number(near, "distance [m]"), 2.5, 1e-12);
+  EXPECT_NEAR(number(near, "x [m]"), 24.0, 1e-12);
+  EXPECT_NEAR(number(near, "PPV_z [m/s]"), 0.8 * kA, 1e-8 * kA);
+  EXPECT_NEAR(number(near, "PPV_3c [m/s]"), kA, 1e-8 * kA);
+  EXPECT_NEAR(number(near, "t(PPV_z) [s]"), 0.01, 1e-12);  // first crest
+  EXPECT_EQ(near.at("component"), "vz");
+  EXPECT_NEAR(number(near, "f_dom [Hz]"), 25.0, 1e-9);
+  const double ripple = std::sqrt(1.0 + 1.0 / std::hypot(1.0, 4.0 * kPi * 25.0 * kFastTau));
+  EXPECT_NEAR(number(near, "KB_F,max [m/s]"), 0.8 * kA / std::sqrt(2.0) * kb_gain(25.0) * ripple,
+              1e-3 * kA);
+  EXPECT_NEAR(number(near, "v_eff,F,max [m/s]"), 0.8 * kA / std::sqrt(2.0) * ripple, 1e-3 * kA);
+  EXPECT_NEAR(number(near, "v_rms_z [m/s]"), 0.8 * kA / std::sqrt(2.0), 1e-8 * kA);
+  // DIN 4150-3 line 2 at 25 Hz: 5 + 10 (25 - 10) / 40 = 8.75 mm/s; BS 7385-2 line 2: 20 + 1.2 * 10.
+  EXPECT_NEAR(number(near, "DIN 4150-3 line 2 [m/s]"), 8.75e-3, 1e-12);
+  EXPECT_NEAR(number(near, "PPV / DIN 4150-3 line 2 [-]"), 0.8 * kA / 8.75e-3, 1e-8);
+  EXPECT_NEAR(number(near, "BS 7385-2 line 2 [m/s]"), 32e-3, 1e-12);
+  EXPECT_NEAR(number(near, "PPV / BS 7385-2 line 1 [-]"), 0.8 * kA / 50e-3, 1e-8);
+  EXPECT_NEAR(number(ppv[2], "PPV_z [m/s]"), kA / 4, 1e-8 * kA);
+  EXPECT_NEAR(number(ppv[2], "f_dom [Hz]"), 10.0, 1e-9);
+
+  // spectra.csv: the Hann amplitude at 25 Hz (bin 50 of 2 s) is the component's amplitude.
+  const auto spectra = read_rows(dir / "post" / "spectra.csv");
+  ASSERT_GT(spectra.size(), 50u);
+  EXPECT_NEAR(number(spectra[50], "f [Hz]"), 25.0, 1e-12);
+  EXPECT_NEAR(number(spectra[50], "d=2.5 m vz [m/s]"), 0.8 * kA, 1e-8 * kA);
+  EXPECT_NEAR(number(spectra[50], "d=2.5 m vx [m/s]"), 0.6 * kA, 1e-8 * kA);
+  EXPECT_NEAR(number(spectra.back(), "f [Hz]"), 500.0, 1e-12);  // up to Nyquist, <= 500 Hz
+
+  // third_octave.csv: the 25 Hz band holds the tone.
+  const auto bands = read_rows(dir / "post" / "third_octave.csv");
+  const std::string col = "d=2.5 m vz L_v [dB re 1e-09 m/s]";
+  bool found = false;
+  for (const auto& b : bands)
+    if (b.at("band [Hz]") == "25") {
+      found = true;
+      EXPECT_NEAR(number(b, col), 20.0 * std::log10(0.8 * kA / std::sqrt(2.0) / 1e-9), 1e-6);
+    }
+  EXPECT_TRUE(found);
+
+  // cwt_d=2.5_m.csv: every 4th sample (2000 / 500), |W| at 25 Hz in the middle is 0.8 A.
+  const auto cwt = read_rows(dir / "post" / "cwt_d=2.5_m.csv");
+  ASSERT_EQ(cwt.size(), 500u);
+  EXPECT_NEAR(number(cwt[250], "t [s]"), 1.0, 1e-12);
+  EXPECT_NEAR(number(cwt[250], "|W| 25 Hz [m/s]"), 0.8 * kA, 1e-3 * kA);
+  EXPECT_LT(number(cwt[250], "f_coi [Hz]"), 6.25);
+
+  // post.json carries the same numbers.
+  const json report = json::parse(std::ifstream(dir / "post" / "post.json"));
+  EXPECT_EQ(report["source"]["form"], "probes");
+  EXPECT_DOUBLE_EQ(report["sampling"]["dt_s"].get<double>(), kDt);
+  EXPECT_EQ(report["sampling"]["samples"], kN);
+  const json& rx = report["receivers"][0];
+  EXPECT_EQ(rx["name"], "d=2.5 m");
+  EXPECT_NEAR(rx["ppv_z_m_s"].get<double>(), number(near, "PPV_z [m/s]"), 1e-9 * kA);
+  EXPECT_NEAR(rx["ppv_3c_m_s"].get<double>(), kA, 1e-8 * kA);
+  EXPECT_NEAR(rx["din4150_3"][1]["guide_m_s"].get<double>(), 8.75e-3, 1e-12);
+  EXPECT_NEAR(rx["components"]["vx"]["ppv_m_s"].get<double>(), 0.6 * kA, 1e-8 * kA);
+  EXPECT_EQ(report["cwt"].size(), 2u);
+  EXPECT_EQ(report["cwt"][0]["receiver"], "d=2.5 m");
+  EXPECT_EQ(report["cwt"][1]["receiver"], "d=5 m");
+}
+
+// The older surface receivers: one vertical column "d=<distance> m [m/s]" each, no summary.json
+// needed (the distance is in the name); PPV_3c is not available (nan, null in post.json).
+TEST(PostRun, DistanceColumnsGiveVerticalOnlyResults) {
+  const fs::path dir = fresh_dir();
+  write_csv(dir / "receivers.csv", {"d=2.500000 m [m/s]", "d=7.500000 m [m/s]"},
+            {sine(kA, 25.0), sine(kA / 3, 20.0)});
+  PostOptions options;
+  options.velocity_reference = kVelocityRefVdb;
+  const PostResult r = post_process(dir, options);
+  const auto ppv = read_rows(dir / "post" / "ppv.csv");
+  ASSERT_EQ(ppv.size(), 2u);
+  EXPECT_EQ(ppv[0].at("receiver"), "d=2.5 m");
+  EXPECT_EQ(ppv[1].at("receiver"), "d=7.5 m");
+  EXPECT_NEAR(number(ppv[0], "PPV_z [m/s]"), kA, 1e-8 * kA);
+  EXPECT_TRUE(std::isnan(number(ppv[0], "PPV_3c [m/s]")));
+  EXPECT_NEAR(number(ppv[1], "distance [m]"), 7.5, 1e-12);
+  // CWT at the receivers nearest 2.5 m and 5 m: both of them.
+  EXPECT_TRUE(fs::exists(dir / "post" / "cwt_d=2.5_m.csv"));
+  EXPECT_TRUE(fs::exists(dir / "post" / "cwt_d=7.5_m.csv"));
+  const json report = json::parse(std::ifstream(dir / "post" / "post.json"));
+  EXPECT_EQ(report["source"]["form"], "distances");
+  EXPECT_TRUE(report["receivers"][0]["ppv_3c_m_s"].is_null());
+  // Band levels in VdB: the 25 Hz band of d=2.5 m.
+  const auto bands = read_rows(dir / "post" / "third_octave.csv");
+  for (const auto& b : bands) {
+    if (b.at("band [Hz]") != "25") continue;
+    EXPECT_NEAR(number(b, "d=2.5 m vz L_v [dB re 2.54e-08 m/s]"),
+                20.0 * std::log10(kA / std::sqrt(2.0) / 2.54e-8), 1e-6);
+  }
+  EXPECT_EQ(r.files.size(), 6u);  // ppv, spectra, third_octave, two CWTs, post.json
+}
+
+// A run that diverged: the rows from the first non-finite value on are left out, with a warning.
+TEST(PostRun, DivergedRecordIsCutWithAWarning) {
+  const fs::path dir = fresh_dir();
+  std::vector<double> v = sine(kA, 25.0);
+  for (std::size_t k = 1500; k < kN; ++k) v[k] = k == 1500 ? 1e30 * 1e300 : std::nan("");
+  write_csv(dir / "receivers.csv", {"d=2.500000 m [m/s]"}, {v});
+  const PostResult r = post_process(dir);
+  ASSERT_FALSE(r.warnings.empty());
+  expect_contains(r.warnings.front(), "not finite from t = 1.5 s (the run diverged)");
+  EXPECT_EQ(r.report["sampling"]["samples"], 1500u);
+  EXPECT_NEAR(r.report["receivers"][0]["ppv_z_m_s"].get<double>(), kA, 1e-8 * kA);
+}
+
+TEST(PostRun, MissingFileOrColumnSaysWhatWhereAndTheFix) {
+  const fs::path dir = fresh_dir();
+  std::string m = message_of([&] { post_process(dir); });
+  expect_contains(m, "no receivers.csv in '" + dir.string() + "'");
+  expect_contains(m, "outputs.receivers");
+
+  m = message_of([&] { post_process(dir / "nowhere"); });
+  expect_contains(m, "does not exist");
+
+  // A probe receiver without its vy column.
+  write_csv(dir / "receivers.csv", {"x vx [m/s]", "x vz [m/s]"}, {sine(kA, 25.0), sine(kA, 25.0)});
+  m = message_of([&] { post_process(dir); });
+  expect_contains(m, "receivers.csv in '" + dir.string() + "' has no column 'x vy [m/s]'");
+  expect_contains(m, "Rerun the scenario");
+
+  // Columns that are no receivers at all.
+  write_csv(dir / "receivers.csv", {"something [N]"}, {sine(kA, 25.0)});
+  m = message_of([&] { post_process(dir); });
+  expect_contains(m, "has no receiver velocity column");
+  expect_contains(m, "'something [N]'");
+
+  // A named probe whose distance nothing gives (no summary.json).
+  write_csv(dir / "receivers.csv", {"x vx [m/s]", "x vy [m/s]", "x vz [m/s]"},
+            {sine(kA, 25.0), sine(kA, 25.0), sine(kA, 25.0)});
+  m = message_of([&] { post_process(dir); });
+  expect_contains(m, "summary.json is missing in '" + dir.string() + "'");
+  expect_contains(m, "distance of receiver 'x'");
+
+  // An unknown CWT receiver.
+  write_csv(dir / "receivers.csv", {"d=2.500000 m [m/s]"}, {sine(kA, 25.0)});
+  PostOptions options;
+  options.cwt_receivers = {"d=3 m"};
+  m = message_of([&] { post_process(dir, options); });
+  expect_contains(m, "CWT receiver 'd=3 m' is not in receivers.csv");
+  expect_contains(m, "'d=2.5 m'");
+}
+
+}  // namespace
+}  // namespace rumble::post
