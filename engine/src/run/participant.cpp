@@ -99,6 +99,16 @@ void SoilSide::set_input(const rumble_waveform& u) {
   }
   std::copy(u.coeff, u.coeff + (u.order + 1) * n_, coeff_.begin());
   input_.order = u.order;
+  has_input_ = true;
+}
+bool SoilSide::applied_force(double* f) const {
+  if (!has_input_) return false;
+  for (std::size_t i = 0; i < n_; ++i) {
+    double sum = 0.0;
+    for (std::uint32_t k = 0; k <= input_.order; ++k) sum += coeff_[k * n_ + i];
+    f[i] = sum;
+  }
+  return true;
 }
 void SoilSide::advance(double t, double H) {
   soil_.advance(t, H, input_);

@@ -92,6 +92,9 @@ class SoilSide final : public Participant {
   void rollback(std::uint32_t slot) override;
   void free_checkpoint(std::uint32_t slot) override;
   SoilInstance& soil() const { return soil_; }
+  /// The footprint forces [N] the soil took at the end of its last step (its last input
+  /// waveform at tau = 1), n values; false (f untouched) before its first input.
+  bool applied_force(double* f) const;
 
  private:
   std::size_t state_size() const override;
@@ -101,6 +104,7 @@ class SoilSide final : public Participant {
   std::size_t n_;
   std::vector<double> coeff_;  // the force waveform until the next advance
   rumble_waveform input_{0, 0, nullptr};
+  bool has_input_ = false;
 };
 
 }  // namespace rumble

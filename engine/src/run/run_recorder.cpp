@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "plugin/instance.hpp"
+#include "run/participant.hpp"
 #include "run/results_directory.hpp"
 #include "track/track_participant.hpp"
 
@@ -23,8 +24,8 @@ std::vector<std::string> footprint_columns(const TrackParticipant& track, const 
 }  // namespace
 
 RunRecorder::RunRecorder(ResultsDirectory& results, const TrackParticipant& track,
-                         const SoilInstance& soil, const std::vector<double>& receiver_distances,
-                         bool receivers_offered)
+                         const SoilSide& soil, const std::vector<const SoilSide*>& extras,
+                         const std::vector<double>& receiver_distances, bool receivers_offered)
     : track_(track), soil_(soil) {
   const std::size_t n = track.interface_size();
   const VehicleSet& vs = track.vehicles();
@@ -49,6 +50,14 @@ RunRecorder::RunRecorder(ResultsDirectory& results, const TrackParticipant& trac
       results.file("interface.csv"),
       std::vector<std::string>{"t [s]", "relative residual [-]", "power at cut [W]",
                                "energy exchanged [J]", "iterations [-]"});
+  for (const SoilSide* e : extras) {
+    extras_.push_back(
+        {e,
+         std::make_unique<CsvFile>(results.file(e->name() + "_footprint_displacement.csv"),
+                                   footprint_columns(track, "m")),
+         std::make_unique<CsvFile>(results.file(e->name() + "_footprint_velocity.csv"),
+                                   footprint_columns(track, "m/s"))});
+  }
   if (receivers_offered && !receiver_distances.empty()) {
     cols = {"t [s]"};
     for (double d : receiver_distances) cols.push_back("d=" + std::to_string(d) + " m [m/s]");
@@ -63,33 +72,54 @@ RunRecorder::RunRecorder(ResultsDirectory& results, const TrackParticipant& trac
   wheels_.assign(vs.wheel_count(), 0.0);
 }
 
-void RunRecorder::record(double t, double dt, double residual, std::uint32_t iterations) {
-  const std::size_t n = force_.size();
+void RunRecorder::record_initial() {
+  record_track(0.0);
+  record_soil(0.0, 0.0, 0);
+  for (std::size_t e = 0; e < extras_.size(); ++e) record_extra(e, 0.0);
+}
+
+void RunRecorder::record_track(double t) {
+  for (std::size_t w = 0; w < wheels_.size(); ++w) wheels_[w] = track_.contact_force(w);
+  contact_->row(t, wheels_.data(), wheels_.size());
+  vehicles_->row(t, track_.vehicle_q().data(), static_cast<std::size_t>(track_.vehicle_q().size()));
   track_.footprint_forces(force_.data());
-  soil_.motion(u_.data(), v_.data(), n);
-  double power = 0.0;  // W: work done by the track on the soil per second
+  fp_force_->row(t, force_.data(), force_.size());
+}
+
+void RunRecorder::record_soil(double t, double residual, std::uint32_t iterations) {
+  const std::size_t n = force_.size();
+  // The force the soil really took (an explicit scheme may give it an extrapolated one, not the
+  // track's current one); before its first step, the track's static forces.
+  if (!soil_.applied_force(force_.data())) track_.footprint_forces(force_.data());
+  soil_.soil().motion(u_.data(), v_.data(), n);
+  double power = 0.0;  // W: work done on the soil per second
   for (std::size_t i = 0; i < n; ++i) {
     power += force_[i] * v_[i];
     peak_fp_v_[i] = std::max(peak_fp_v_[i], std::abs(v_[i]));
   }
-  if (!first_) energy_ += 0.5 * (power_ + power) * dt;  // trapezoidal rule since the last record
+  // Trapezoidal rule since the last record.
+  if (!first_soil_) energy_ += 0.5 * (power_ + power) * (t - t_soil_);
   power_ = power;
-  first_ = false;
+  t_soil_ = t;
+  first_soil_ = false;
   max_residual_ = std::max(max_residual_, residual);
-  for (std::size_t w = 0; w < wheels_.size(); ++w) wheels_[w] = track_.contact_force(w);
-  contact_->row(t, wheels_.data(), wheels_.size());
-  vehicles_->row(t, track_.vehicle_q().data(), static_cast<std::size_t>(track_.vehicle_q().size()));
-  fp_force_->row(t, force_.data(), n);
   fp_u_->row(t, u_.data(), n);
   fp_v_->row(t, v_.data(), n);
   const double iface[4] = {residual, power, energy_, static_cast<double>(iterations)};
   interface_->row(t, iface, 4);
   if (receivers_) {
-    soil_.receiver_velocity(rx_v_.data(), rx_v_.size());
+    soil_.soil().receiver_velocity(rx_v_.data(), rx_v_.size());
     for (std::size_t r = 0; r < rx_v_.size(); ++r)
       peak_rx_v_[r] = std::max(peak_rx_v_[r], std::abs(rx_v_[r]));
     receivers_->row(t, rx_v_.data(), rx_v_.size());
   }
+}
+
+void RunRecorder::record_extra(std::size_t e, double t) {
+  ExtraFiles& x = extras_[e];
+  x.side->soil().motion(u_.data(), v_.data(), u_.size());
+  x.u->row(t, u_.data(), u_.size());
+  x.v->row(t, v_.data(), v_.size());
 }
 
 std::vector<std::string> RunRecorder::files() const {
@@ -97,6 +127,10 @@ std::vector<std::string> RunRecorder::files() const {
   for (const auto* f :
        {&contact_, &vehicles_, &fp_force_, &fp_u_, &fp_v_, &interface_, &receivers_})
     if (*f) out.push_back((*f)->path().filename().string());
+  for (const ExtraFiles& x : extras_) {
+    out.push_back(x.u->path().filename().string());
+    out.push_back(x.v->path().filename().string());
+  }
   return out;
 }
 

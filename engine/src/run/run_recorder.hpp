@@ -1,12 +1,18 @@
-// Records the run after every macro step into CSV time histories in the results directory:
-//   contact.csv           wheel/rail contact force of every wheel [N]
-//   vehicles.csv          vehicle DOFs [m or rad]
-//   footprint_force.csv   force on the soil at every footprint [N] (down +)
-//   footprint_displacement.csv, footprint_velocity.csv   footprint u [m], v [m/s] (down +)
-//   interface.csv         coupler's relative interface residual (the largest of its channel
-//                         groups'), power [W] and energy [J] exchanged at the cut, and the
-//                         coupler's iterations in the macro step (1 for explicit schemes)
-//   receivers.csv         vertical velocity of surface receivers [m/s] (soils that offer them)
+// Records the run into CSV time histories in the results directory, each participant when a
+// coupler reports its step final (most schemes finish all of them together; two_step finishes
+// the track on its reduced soil first, then the soil):
+//   track:  contact.csv           wheel/rail contact force of every wheel [N]
+//           vehicles.csv          vehicle DOFs [m or rad]
+//           footprint_force.csv   force the track puts on the soil at every footprint [N] (down +)
+//   soil:   footprint_displacement.csv, footprint_velocity.csv   footprint u [m], v [m/s] (down +)
+//           interface.csv         coupler's relative interface residual (the largest of its
+//                                 channel groups'), power [W] and energy [J] that the footprint
+//                                 forces the soil took did on it, and the coupler's iterations
+//                                 in the macro step (1 for explicit schemes)
+//           receivers.csv         vertical velocity of surface receivers [m/s] (soils that offer
+//                                 them)
+//   extra soils of the coupler (e.g. two_step's reduced_soil):
+//           <name>_footprint_displacement.csv, <name>_footprint_velocity.csv
 // and keeps the peaks (PPV) for the summary.
 #pragma once
 
@@ -20,17 +26,23 @@
 namespace rumble {
 
 class ResultsDirectory;
+class SoilSide;
 class TrackParticipant;
-class SoilInstance;
 
 class RunRecorder {
  public:
-  RunRecorder(ResultsDirectory& results, const TrackParticipant& track, const SoilInstance& soil,
+  RunRecorder(ResultsDirectory& results, const TrackParticipant& track, const SoilSide& soil,
+              const std::vector<const SoilSide*>& extras,
               const std::vector<double>& receiver_distances, bool receivers_offered);
-  /// Record the state at time t, dt after the previous record (0 for the initial state);
-  /// residual: the coupler's relative interface residual of the last macro step, iterations:
-  /// its iterations in that step (0 for the initial state).
-  void record(double t, double dt, double residual, std::uint32_t iterations);
+  /// The track's state at time t [s].
+  void record_track(double t);
+  /// The soil's state at time t [s]; residual: the coupler's relative interface residual of
+  /// the last macro step, iterations: its iterations in that step (0 for the initial state).
+  void record_soil(double t, double residual, std::uint32_t iterations);
+  /// Extra soil e's footprint motion at time t [s].
+  void record_extra(std::size_t e, double t);
+  /// Everything at t = 0 (the static state).
+  void record_initial();
 
   const std::vector<double>& peak_footprint_velocity() const { return peak_fp_v_; }
   const std::vector<double>& peak_receiver_velocity() const { return peak_rx_v_; }
@@ -39,12 +51,18 @@ class RunRecorder {
   std::vector<std::string> files() const;
 
  private:
+  struct ExtraFiles {
+    const SoilSide* side;
+    std::unique_ptr<CsvFile> u, v;
+  };
   const TrackParticipant& track_;
-  const SoilInstance& soil_;
+  const SoilSide& soil_;
   std::unique_ptr<CsvFile> contact_, vehicles_, fp_force_, fp_u_, fp_v_, interface_, receivers_;
+  std::vector<ExtraFiles> extras_;
   std::vector<double> force_, u_, v_, wheels_, rx_v_, peak_fp_v_, peak_rx_v_;
-  double power_ = 0.0, energy_ = 0.0, max_residual_ = 0.0;
-  bool first_ = true;
+  double power_ = 0.0, energy_ = 0.0, max_residual_ = 0.0;  // W, J, -
+  double t_soil_ = 0.0;                                     // s, the soil's last record
+  bool first_soil_ = true;
 };
 
 }  // namespace rumble

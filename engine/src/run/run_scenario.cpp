@@ -69,18 +69,32 @@ Ending judge(const CosimHostImpl& host, rumble_status status, const std::string&
   }
 }
 
-/// Static equilibrium of the track and the soil; the extra soils start from the same static
-/// footprint forces. Returns the track/soil iterations.
+/// The soil the track's static state is found on: the scenario's, or the coupler's extra soil
+/// declared with "track_statics" (abi.h, rumble_capabilities::participants_json).
+SoilInstance& static_partner(RunComponents& c) {
+  const auto declared =
+      nlohmann::json::parse(c.coupler->type().capabilities.participants_json, nullptr, false);
+  for (auto& [name, extra] : c.extras) {
+    if (declared.is_object() && declared.contains(name) && declared[name].is_object() &&
+        declared[name].value("track_statics", false))
+      return *extra;
+  }
+  return *c.soil;
+}
+
+/// Static equilibrium of the track and its static partner (static_partner); the other soils
+/// start from the same static footprint forces. Returns the track/soil iterations.
 int solve_statics(RunComponents& c) {
+  SoilInstance& partner = static_partner(c);
   const int iterations =
       c.track->solve_static([&](const std::vector<double>& force, std::vector<double>& u) {
-        c.soil->initialize(0.0, force, u);
+        partner.initialize(0.0, force, u);
       });
-  if (!c.extras.empty()) {
-    std::vector<double> force(c.track->interface_size()), u;
-    c.track->footprint_forces(force.data());
-    for (auto& [name, extra] : c.extras) extra->initialize(0.0, force, u);
-  }
+  std::vector<double> force(c.track->interface_size()), u;
+  c.track->footprint_forces(force.data());
+  if (&partner != c.soil.get()) c.soil->initialize(0.0, force, u);
+  for (auto& [name, extra] : c.extras)
+    if (extra.get() != &partner) extra->initialize(0.0, force, u);
   return iterations;
 }
 
@@ -113,9 +127,22 @@ RunOutcome run_scenario(const scenario::RunSpec& spec, const PluginRegistry& reg
     log->info("macro step {:.3g} s, track micro-step {:.3g} s ({} per macro step)", H, h,
               track.micro_steps(H));
 
+    // ---- the participants
+    TrackSide track_side(track);
+    SoilSide soil_side("soil", *c.soil, track.interface_size());
+    std::vector<std::unique_ptr<SoilSide>> extra_sides;
+    std::vector<Participant*> participants{&track_side, &soil_side};
+    std::vector<const SoilSide*> extras;
+    for (auto& [name, extra] : c.extras) {
+      extra_sides.push_back(std::make_unique<SoilSide>(name, *extra, track.interface_size()));
+      participants.push_back(extra_sides.back().get());
+      extras.push_back(extra_sides.back().get());
+    }
+
     // ---- where the steps go
-    RunRecorder recorder(results, track, *c.soil, c.receivers.distances, c.receivers.surface);
-    recorder.record(0.0, 0.0, 0.0, 0);
+    RunRecorder recorder(results, track, soil_side, extras, c.receivers.distances,
+                         c.receivers.surface);
+    recorder.record_initial();
     std::unique_ptr<ProbeRecorder> probes;
     if (c.receivers.probes) {
       probes = std::make_unique<ProbeRecorder>(results, *c.soil, spec.outputs.receivers);
@@ -127,17 +154,10 @@ RunOutcome run_scenario(const scenario::RunSpec& spec, const PluginRegistry& reg
       fields->at(0.0);
     }
 
-    // ---- the participants, the host, the coupler
-    TrackSide track_side(track);
-    SoilSide soil_side("soil", *c.soil, track.interface_size());
-    std::vector<std::unique_ptr<SoilSide>> extra_sides;
-    std::vector<Participant*> participants{&track_side, &soil_side};
-    for (auto& [name, extra] : c.extras) {
-      extra_sides.push_back(std::make_unique<SoilSide>(name, *extra, track.interface_size()));
-      participants.push_back(extra_sides.back().get());
-    }
-    StepObserver observer(track, soil_side, {recorder, probes.get(), fields.get(), &summary},
-                          spec.t_end, spec.outputs.every, outcome.results_dir, options.progress);
+    // ---- the host and the coupler
+    StepObserver observer(track, soil_side, extras,
+                          {recorder, probes.get(), fields.get(), &summary}, spec.t_end,
+                          spec.outputs.every, outcome.results_dir, options.progress);
     CosimHostImpl host(participants, c.coupler->type().abi_minor,
                        [&](const StepOutcome& step) { observer(step); });
     std::string coupler_message;

@@ -4,6 +4,7 @@
 // stop the run (the host keeps the exception and the coupler returns).
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -34,35 +35,52 @@ class StepObserver {
     FieldWriter* fields = nullptr;
     SummaryWriter* summary = nullptr;
   };
-  StepObserver(const TrackParticipant& track, const SoilSide& soil, Sinks sinks, double t_end,
-               std::size_t every, std::filesystem::path results_dir, bool progress);
+  /// extras: the coupler's extra soils (participants 2, 3, ...), in order.
+  StepObserver(const TrackParticipant& track, const SoilSide& soil,
+               std::vector<const SoilSide*> extras, Sinks sinks, double t_end, std::size_t every,
+               std::filesystem::path results_dir, bool progress);
 
   /// The host's step callback. Throws RunError when the run diverged, Interrupted on Ctrl-C.
   void operator()(const StepOutcome& step);
 
+  /// Each participant's steps are recorded when the coupler reports them final: most schemes
+  /// finish the track and the soil together, two_step the track (on its reduced soil) first.
   /// The largest relative residual of each channel group the coupler reported, over the run.
   const std::map<std::string, double, std::less<>>& max_residuals() const { return max_residuals_; }
-  double t_reached() const { return t_reached_; }  // s, end of the last recorded step
-  std::size_t steps() const { return steps_; }     // final steps, for track and soil
+  /// s: the time up to which both the track and the soil are final
+  double t_reached() const { return std::min(track_.reached, soil_.reached); }
+  std::size_t steps() const { return soil_.steps; }  // final steps of the soil
+  /// Reports final for some participants only (two_step's are all partial).
   std::size_t partial_reports() const { return partial_; }
-  /// Coupler iterations over the final steps (1 per step for explicit schemes), the most in one
-  /// step, and the steps the coupler reported as not converged.
+  /// Coupler iterations over the soil's final steps (1 per step for explicit schemes), the most in
+  /// one step, and the steps the coupler reported as not converged.
   std::uint64_t iterations() const { return iterations_; }
   std::uint32_t max_iterations() const { return max_iterations_; }
   std::size_t unconverged_steps() const { return unconverged_; }
 
  private:
-  void check_finite(double t);
+  /// Where one participant's final steps have got to.
+  struct Reach {
+    double reached = 0.0;   // s, end of its last final step
+    std::size_t steps = 0;  // final steps so far
+    /// Counts a final step ending at t; true when it is to be recorded (every n-th, the last).
+    bool advance(double t, std::size_t every, double t_end);
+  };
+  void on_track(double t);
+  void on_soil(const StepOutcome& step, double t);
+  void check_soil(const SoilSide& soil, double t);
 
-  const TrackParticipant& track_;
-  const SoilSide& soil_;
+  const TrackParticipant& track_participant_;
+  const SoilSide& soil_side_;
+  std::vector<const SoilSide*> extras_;
   Sinks sinks_;
   double t_end_;       // s
   std::size_t every_;  // record every n-th step
   std::filesystem::path results_dir_;
   ProgressLine progress_;
-  double t_reached_ = 0.0, t_recorded_ = 0.0;  // s
-  std::size_t steps_ = 0, partial_ = 0, unconverged_ = 0;
+  Reach track_, soil_;
+  std::vector<Reach> extra_reach_;
+  std::size_t partial_ = 0, unconverged_ = 0;
   std::uint64_t iterations_ = 0;
   std::uint32_t max_iterations_ = 0;
   std::vector<double> scratch_;                               // soil outputs, sized once

@@ -184,7 +184,10 @@ typedef struct rumble_capabilities {
   double max_macro_step;
   /** Coupler: JSON text of the extra participants it drives besides "track" and "soil", e.g.
    *  {"reduced_soil": {"kind": "soil", "required": true, "description": "..."}}, which a
-   *  scenario gives under /coupling/participants/<name> as {type, params}. NULL or "{}": none. */
+   *  scenario gives under /coupling/participants/<name> as {type, params}. NULL or "{}": none.
+   *  "track_statics": true on (at most) one soil: the track's static equilibrium is found on it
+   *  instead of on the scenario's soil, which with the other soils starts from the static
+   *  footprint forces found (two_step: the track rests on its reduced soil). */
   const char* participants_json;
 } rumble_capabilities;
 
