@@ -14,22 +14,10 @@ namespace {
 
 using ::testing::HasSubstr;
 
-nlohmann::json fem_scenario() {
-  nlohmann::json s = small_scenario();
-  s["track"]["sleepers"]["count"] = 10;
-  s["soil"] = {{"type", "fem"},
-               {"params",
-                {{"E", 750e6},
-                 {"nu", 0.3},
-                 {"rho", 1800.0},
-                 {"mesh", {{"radius", 6.0}, {"f_max", 40.0}, {"near_distance", 1.5}}}}}};
-  return s;
-}
-
 TEST(CliMesh, WritesTheMeshAndReusesItFromTheCache) {
   const auto dir = scratch_directory("mesh_fem");
   ::setenv("RUMBLE_MESH_CACHE", (dir / "cache").c_str(), 1);
-  const auto path = write_scenario(dir, fem_scenario());
+  const auto path = write_scenario(dir, small_fem_scenario());
   const CliResult first = run_rumble({"mesh", path.string()});
   ASSERT_EQ(first.exit_code, 0) << first.output;
   EXPECT_THAT(first.output, HasSubstr("tetrahedra"));
@@ -50,7 +38,7 @@ TEST(CliMesh, WritesTheMeshAndReusesItFromTheCache) {
 TEST(CliMesh, ARunLeavesTheMeshBesideItsResults) {
   const auto dir = scratch_directory("mesh_then_run");
   ::setenv("RUMBLE_MESH_CACHE", (dir / "cache").c_str(), 1);
-  nlohmann::json s = fem_scenario();
+  nlohmann::json s = small_fem_scenario();
   s["time"]["end"] = 0.01;
   const auto path = write_scenario(dir, s).string();
   ASSERT_EQ(run_rumble({"mesh", path}).exit_code, 0);
@@ -66,7 +54,7 @@ TEST(CliMesh, ARunLeavesTheMeshBesideItsResults) {
 TEST(CliMesh, TheSoilGetsTheCoresTheProcessMayUse) {
   const auto dir = scratch_directory("mesh_affinity");
   ::setenv("RUMBLE_MESH_CACHE", (dir / "cache").c_str(), 1);
-  nlohmann::json s = fem_scenario();
+  nlohmann::json s = small_fem_scenario();
   s["time"]["end"] = 0.002;
   const auto path = write_scenario(dir, s).string();
   cpu_set_t saved, one;

@@ -109,6 +109,18 @@ nlohmann::json small_scenario() {
           {"outputs", {{"directory", "results"}, {"plots", false}}}};
 }
 
+nlohmann::json small_fem_scenario() {
+  nlohmann::json s = small_scenario();
+  s["track"]["sleepers"]["count"] = 10;
+  s["soil"] = {{"type", "fem"},
+               {"params",
+                {{"E", 750e6},
+                 {"nu", 0.3},
+                 {"rho", 1800.0},
+                 {"mesh", {{"radius", 6.0}, {"f_max", 40.0}, {"near_distance", 1.5}}}}}};
+  return s;
+}
+
 std::filesystem::path write_scenario(const std::filesystem::path& dir, const nlohmann::json& s) {
   const auto path = dir / "scenario.json";
   std::ofstream(path) << s.dump(2) << '\n';

@@ -40,6 +40,10 @@ std::filesystem::path scratch_directory(const std::string& test_name);
 /// A small, fast, valid scenario: single wheel on a Winkler soil, Gauss-Seidel, 0.05 s.
 nlohmann::json small_scenario();
 
+/// small_scenario() on 10 sleepers over a small FEM soil (stiff, 6 m hemisphere resolving 40 Hz
+/// within 1.5 m of the track): a few thousand DOFs, seconds to mesh and run.
+nlohmann::json small_fem_scenario();
+
 /// Writes the scenario as <dir>/scenario.json and returns its path.
 std::filesystem::path write_scenario(const std::filesystem::path& dir, const nlohmann::json& s);
 

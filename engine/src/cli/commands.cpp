@@ -32,6 +32,9 @@ commands:
                                     its report in the log, its mesh in DIR/mesh.vtu (FEM soil)
   soil-frf FILE [options]           receptance of the scenario's soil at its footprints (CSV)
   calibrate FILE [options]          fit a reduced soil's parameters to a target soil's receptance
+  post RESULTS_DIR [options]        recompute a run's vibration indicators (PPV, spectra, KB,
+                                    third-octave levels, guide values, wavelets) into
+                                    RESULTS_DIR/post; `run` does it after every run with receivers
   new-plugin KIND NAME [DIR]        start a plugin project (KIND soil, vehicle or coupler) in DIR
                                     (default ./NAME) from the SDK's template, with its own test
 
@@ -55,7 +58,8 @@ std::map<std::string, Command>& command_table() {
                                               {"mesh", &mesh_command},
                                               {"soil-frf", &soil_frf_command},
                                               {"calibrate", &calibrate_command},
-                                              {"new-plugin", &new_plugin_command}};
+                                              {"new-plugin", &new_plugin_command},
+                                              {"post", &post_command}};
   return table;
 }
 

@@ -1,8 +1,13 @@
 // The rumble command-line interface: one function per sub-command, dispatched by main().
 #pragma once
 
+#include <filesystem>
 #include <string>
 #include <vector>
+
+namespace rumble::post {
+struct PostOptions;
+}
 
 namespace rumble::cli {
 
@@ -17,5 +22,10 @@ int soil_frf_command(const std::vector<std::string>& args);
 int mesh_command(const std::vector<std::string>& args);
 int calibrate_command(const std::vector<std::string>& args);
 int new_plugin_command(const std::vector<std::string>& args);
+int post_command(const std::vector<std::string>& args);
+
+/// The vibration indicators of the run in results_dir into results_dir/post (warnings logged).
+/// Throws what post::post_process throws.
+void post_process_run(const std::filesystem::path& results_dir, const post::PostOptions& options);
 
 }  // namespace rumble::cli

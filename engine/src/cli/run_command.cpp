@@ -10,6 +10,7 @@
 #include "cli/scenario_prepare.hpp"
 #include "core/interrupt.hpp"
 #include "core/logging.hpp"
+#include "post/post_run.hpp"
 #include "run/run_scenario.hpp"
 #include "scenario/report.hpp"
 
@@ -43,6 +44,17 @@ int run_command(const std::vector<std::string>& args) {
   ResultsDirectory results(spec.outputs.directory, spec.path, a.flag("overwrite"));
   const RunOutcome outcome = run_scenario(spec, registry, results, options);
   const auto log = logger("engine");
+  if (outcome.status == RunStatus::kCompleted &&
+      std::filesystem::exists(outcome.results_dir / "receivers.csv")) {
+    try {
+      post_process_run(outcome.results_dir, post::PostOptions{});
+    } catch (const std::exception& e) {  // the run's own results are complete: say, go on
+      log->warn(
+          "post-processing failed: {}; the run's results are complete (rumble post {} "
+          "retries)",
+          e.what(), outcome.results_dir.lexically_normal().string());
+    }
+  }
   if (outcome.status != RunStatus::kFailed && spec.outputs.plots) {
     run_plot_script("plot_results.py", outcome.results_dir);
   }

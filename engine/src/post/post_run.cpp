@@ -1,9 +1,14 @@
 #include "post/post_run.hpp"
 
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <limits>
 #include <map>
@@ -18,6 +23,7 @@
 #include "post/ppv.hpp"
 #include "post/spectrum.hpp"
 #include "post/time_series.hpp"
+#include "run/new_file.hpp"
 
 namespace rumble::post {
 namespace {
@@ -287,6 +293,23 @@ std::string file_name_for(const std::string& receiver) {
 // ---------------------------------------------------------------------------------------------
 // Writing
 
+/// Writes `text` as the new file `path` (through path + ".tmp"); throws naming the file.
+void write_whole(const fs::path& path, const std::string& text) {
+  replace_file(path, fs::path(path.string() + ".tmp"), text);
+}
+
+/// The directory `path`, created when missing; a file or link standing at its name is replaced,
+/// never followed.
+void make_directory(const fs::path& path) {
+  struct stat st {};
+  if (::lstat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode)) return;
+  if ((::unlink(path.c_str()) != 0 && errno != ENOENT) || ::mkdir(path.c_str(), 0777) != 0) {
+    const int err = errno;
+    throw std::runtime_error("cannot create " + quoted(path) + ": " + std::strerror(err) +
+                             "; check that the results directory is writable");
+  }
+}
+
 std::string csv_field(const std::string& s) {
   if (s.find_first_of(",\"\n") == std::string::npos) return s;
   std::string out = "\"";
@@ -294,35 +317,29 @@ std::string csv_field(const std::string& s) {
   return out + "\"";
 }
 
+/// One CSV file, built in memory and written whole as a new file (run/new_file.hpp: a link
+/// planted at its name is replaced, never followed; a reader never sees half of it).
 class CsvOut {
  public:
-  CsvOut(const fs::path& path, const std::vector<std::string>& header) : path_(path), out_(path) {
-    if (!out_)
-      throw std::runtime_error("cannot write " + quoted(path) +
-                               "; check that the results directory is writable");
-    for (std::size_t i = 0; i < header.size(); ++i) out_ << (i ? "," : "") << csv_field(header[i]);
-    out_ << '\n';
+  CsvOut(const fs::path& path, const std::vector<std::string>& header) : path_(path) {
+    for (std::size_t i = 0; i < header.size(); ++i) text_ += (i ? "," : "") + csv_field(header[i]);
+    text_ += '\n';
   }
   CsvOut& operator<<(const std::string& field) {
-    out_ << (first_ ? "" : ",") << csv_field(field);
+    text_ += (first_ ? "" : ",") + csv_field(field);
     first_ = false;
     return *this;
   }
   CsvOut& operator<<(double v) { return *this << num(v); }
   void end_row() {
-    out_ << '\n';
+    text_ += '\n';
     first_ = true;
   }
-  void close() {
-    out_.close();
-    if (!out_)
-      throw std::runtime_error("writing " + quoted(path_) +
-                               " failed (disk full?); free space and run rumble post again");
-  }
+  void close() { write_whole(path_, text_); }
 
  private:
   fs::path path_;
-  std::ofstream out_;
+  std::string text_;
   bool first_ = true;
 };
 
@@ -449,11 +466,7 @@ PostResult post_process(const fs::path& results_dir, const PostOptions& options)
 
   // --- write
   result.directory = results_dir / "post";
-  std::error_code ec;
-  fs::create_directories(result.directory, ec);
-  if (ec)
-    throw std::runtime_error("cannot create " + quoted(result.directory) + ": " + ec.message() +
-                             "; check that the results directory is writable");
+  make_directory(result.directory);
   const std::string ref_label = "dB re " + num(options.velocity_reference) + " m/s";
 
   {  // ppv.csv
@@ -628,12 +641,7 @@ PostResult post_process(const fs::path& results_dir, const PostOptions& options)
   report["files"] = files;
   {
     const fs::path path = result.directory / "post.json";
-    std::ofstream out(path);
-    out << report.dump(2) << '\n';
-    out.close();
-    if (!out)
-      throw std::runtime_error("writing " + quoted(path) +
-                               " failed (disk full?); free space and run rumble post again");
+    write_whole(path, report.dump(2) + "\n");
     result.files.push_back(path);
   }
   return result;

@@ -136,6 +136,36 @@ ResultsDirectory::ResultsDirectory(fs::path directory, const fs::path& scenario_
   }
 }
 
+ResultsDirectory::ResultsDirectory(fs::path directory, Reopen) : dir_(std::move(directory)) {
+  struct stat st {};
+  if (::lstat(dir_.c_str(), &st) != 0 || !S_ISDIR(st.st_mode)) {
+    throw ConfigError(shown(dir_) +
+                      " is not a directory; give the results directory of a run (the "
+                      "scenario's /outputs/directory, or the --output DIR it ran with)");
+  }
+  lock();
+  try {
+    const Previous prev = read_manifest();
+    if (!prev.present || !prev.unreadable.empty() || !prev.outside.empty()) {
+      throw ConfigError(shown(dir_) + " holds no results of a rumble run that rumble can add to (" +
+                        (!prev.present
+                             ? "no " + std::string(kManifestFile)
+                             : shown(dir_ / kManifestFile) + " cannot be used: " +
+                                   (prev.unreadable.empty() ? "it lists files outside the directory"
+                                                            : prev.unreadable)) +
+                        "); run the scenario into it first, or give the directory a run wrote");
+    }
+    scenario_ = prev.scenario;
+    files_.insert(prev.files.begin(), prev.files.end());
+    directories_.insert(prev.directories.begin(), prev.directories.end());
+    for (const Entry& e : scan(dir_, [](const std::string&) { return true; }))
+      before_[e.relative] = {e.dev, e.ino};
+  } catch (...) {
+    release();
+    throw;
+  }
+}
+
 ResultsDirectory::~ResultsDirectory() {
   try {
     list_new_files();
@@ -198,7 +228,7 @@ void ResultsDirectory::lock() {
                  "--output DIR)");
 }
 
-void ResultsDirectory::clear_previous(bool overwrite) {
+ResultsDirectory::Previous ResultsDirectory::read_manifest() const {
   const fs::path manifest_path = dir_ / kManifestFile;
   Previous prev;
   struct stat st {};
@@ -228,6 +258,12 @@ void ResultsDirectory::clear_previous(bool overwrite) {
       prev.unreadable = e.what();
     }
   }
+  return prev;
+}
+
+void ResultsDirectory::clear_previous(bool overwrite) {
+  const fs::path manifest_path = dir_ / kManifestFile;
+  const Previous prev = read_manifest();
 
   // What stands there that no manifest lists (the contents of an unlisted directory count once).
   const std::set<std::string> listed_files(prev.files.begin(), prev.files.end());

@@ -34,6 +34,11 @@ class ResultsDirectory {
   /// or locked (another run holds it), ConfigError when it holds what may not be replaced.
   ResultsDirectory(std::filesystem::path directory, const std::filesystem::path& scenario_file,
                    bool overwrite);
+  /// Locks the results of a finished run to add derived files to them (`rumble post`): nothing
+  /// is removed, and what appears is listed at the end, so a rerun removes it with the rest.
+  /// Throws ConfigError when `directory` holds no usable manifest, RunError when it is locked.
+  struct Reopen {};
+  ResultsDirectory(std::filesystem::path directory, Reopen);
   /// Lists what appeared during the run (list_new_files), then releases the lock.
   ~ResultsDirectory();
   ResultsDirectory(const ResultsDirectory&) = delete;
@@ -54,6 +59,7 @@ class ResultsDirectory {
   struct Previous;
   void lock();
   void release() noexcept;
+  Previous read_manifest() const;
   void clear_previous(bool overwrite);
   void remove_listed(const std::string& relative) const;
   void write_manifest() const;

@@ -1,0 +1,85 @@
+// `rumble post` and the post-processing `rumble run` does after a run with receivers: the
+// indicators land in RESULTS_DIR/post and in the results manifest (so a rerun replaces them), the
+// command's options reach them, and a directory without a run, or a bad option, is refused with
+// what, where and the fix. The numbers themselves are checked in tests/post.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+
+#include "cli_runner.hpp"
+
+namespace rumble::testing {
+namespace {
+
+using ::testing::HasSubstr;
+using ::testing::Not;
+
+/// A small FEM run with receivers at 2.5 m and 5 m, into dir/results; returns that directory.
+std::filesystem::path run_with_receivers(const std::filesystem::path& dir) {
+  ::setenv("RUMBLE_MESH_CACHE", (dir / "cache").c_str(), 1);
+  nlohmann::json s = small_fem_scenario();
+  s["time"]["end"] = 0.03;
+  s["outputs"]["receivers"] = {2.5, 5.0};
+  const CliResult r = run_rumble({"run", write_scenario(dir, s).string(), "--no-progress"});
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  ::unsetenv("RUMBLE_MESH_CACHE");
+  return dir / "results";
+}
+
+TEST(CliPost, ARunWritesTheIndicatorsAndPostRewritesThemWithItsOptions) {
+  const auto dir = scratch_directory("post_after_run");
+  const auto results = run_with_receivers(dir);
+  for (const char* f : {"ppv.csv", "spectra.csv", "third_octave.csv", "post.json"})
+    EXPECT_TRUE(std::filesystem::exists(results / "post" / f)) << f;
+  EXPECT_THAT(file_text(results / ".rumble-manifest.json"), HasSubstr("post/ppv.csv"));
+  EXPECT_THAT(file_text(results / "post" / "third_octave.csv"), HasSubstr("dB re 1e-09 m/s"));
+
+  const CliResult post = run_rumble({"post", results.string(), "--reference", "vdb"});
+  ASSERT_EQ(post.exit_code, 0) << post.output;
+  EXPECT_THAT(post.output, HasSubstr("vibration indicators in"));
+  EXPECT_THAT(file_text(results / "post" / "third_octave.csv"), HasSubstr("dB re 2.54e-08 m/s"));
+
+  // The scenario's rerun replaces its results, post/ included, without --overwrite.
+  const CliResult rerun =
+      run_rumble({"run", (dir / "scenario.json").string(), "--no-progress", "--no-plots"});
+  EXPECT_EQ(rerun.exit_code, 0) << rerun.output;
+  EXPECT_THAT(file_text(results / "post" / "third_octave.csv"), HasSubstr("dB re 1e-09 m/s"));
+}
+
+TEST(CliPost, RefusesADirectoryNoRunWrote) {
+  const auto dir = scratch_directory("post_no_run");
+  const CliResult r = run_rumble({"post", dir.string()});
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("holds no results of a rumble run"));
+  EXPECT_THAT(r.output, HasSubstr("run the scenario into it first"));
+  const CliResult missing = run_rumble({"post", (dir / "nothere").string()});
+  EXPECT_EQ(missing.exit_code, 1) << missing.output;
+  EXPECT_THAT(missing.output, HasSubstr("is not a directory"));
+}
+
+TEST(CliPost, ARunWithoutReceiversSaysSo) {
+  const auto dir = scratch_directory("post_no_receivers");
+  const CliResult run =
+      run_rumble({"run", write_scenario(dir, small_scenario()).string(), "--no-progress"});
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "results" / "post"));
+  const CliResult r = run_rumble({"post", (dir / "results").string()});
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("receivers.csv"));
+}
+
+TEST(CliPost, BadOptionsNameTheOptionAndTheFix) {
+  const auto dir = scratch_directory("post_bad_options");
+  const CliResult r = run_rumble({"post", dir.string(), "--cwt-distances", "2.5,far"});
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("'far' is not a distance in metres"));
+  const CliResult ref = run_rumble({"post", dir.string(), "--reference", "dbv"});
+  EXPECT_EQ(ref.exit_code, 1) << ref.output;
+  EXPECT_THAT(ref.output, HasSubstr("vdb"));
+}
+
+}  // namespace
+}  // namespace rumble::testing
