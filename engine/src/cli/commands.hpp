@@ -17,5 +17,6 @@ int soil_frf_command(const std::vector<std::string>& args);
 int mesh_command(const std::vector<std::string>& args);
 int calibrate_command(const std::vector<std::string>& args);
 int new_plugin_command(const std::vector<std::string>& args);
+int study_command(const std::vector<std::string>& args);
 
 }  // namespace rumble::cli
