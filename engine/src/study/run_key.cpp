@@ -1,8 +1,8 @@
 #include "study/run_key.hpp"
 
 #include <fstream>
-#include <sstream>
 #include <set>
+#include <sstream>
 
 #include "plugin/registry.hpp"
 #include "study/sha256.hpp"
