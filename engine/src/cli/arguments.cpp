@@ -5,7 +5,7 @@
 namespace rumble::cli {
 
 Arguments::Arguments(const std::vector<std::string>& args, const std::set<std::string>& flags,
-                     const std::set<std::string>& valued) {
+                     const std::set<std::string>& valued, const std::set<std::string>& repeated) {
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     if (a.rfind("--", 0) != 0 || a == "--") {
@@ -21,15 +21,19 @@ Arguments::Arguments(const std::vector<std::string>& args, const std::set<std::s
     }
     if (flags.count(name) != 0 && !has_value) {
       flags_.insert(name);
-    } else if (valued.count(name) != 0) {
+    } else if (valued.count(name) != 0 || repeated.count(name) != 0) {
       if (!has_value) {
         if (i + 1 >= args.size()) throw UsageError("option --" + name + " needs a value");
         value = args[++i];
       }
-      values_[name] = value;
+      if (repeated.count(name) != 0) {
+        repeated_[name].push_back(value);
+      } else {
+        values_[name] = value;
+      }
     } else {
       std::string known;
-      for (const auto* set : {&flags, &valued})
+      for (const auto* set : {&flags, &valued, &repeated})
         for (const auto& k : *set) known += (known.empty() ? "--" : ", --") + k;
       throw UsageError("unknown option '" + a + "'" +
                        (known.empty() ? std::string() : "; options here: " + known));
@@ -53,6 +57,11 @@ std::string Arguments::choice(const std::string& name, const std::vector<std::st
     list += (list.empty() ? "" : ", ") + c;
   }
   throw UsageError("--" + name + "=" + *v + " is not valid; choose one of: " + list);
+}
+
+std::vector<std::string> Arguments::values(const std::string& name) const {
+  const auto it = repeated_.find(name);
+  return it == repeated_.end() ? std::vector<std::string>{} : it->second;
 }
 
 double Arguments::number(const std::string& name, double fallback) const {

@@ -18,9 +18,10 @@ class UsageError : public std::runtime_error {
 
 class Arguments {
  public:
-  /// flags: options without a value; valued: options that take one.
+  /// flags: options without a value; valued: options that take one (the last one given
+  /// counts); repeated: options that take one and may be given any number of times.
   Arguments(const std::vector<std::string>& args, const std::set<std::string>& flags,
-            const std::set<std::string>& valued);
+            const std::set<std::string>& valued, const std::set<std::string>& repeated = {});
   const std::vector<std::string>& positional() const { return positional_; }
   bool flag(const std::string& name) const { return flags_.count(name) != 0; }
   std::optional<std::string> value(const std::string& name) const;
@@ -28,11 +29,14 @@ class Arguments {
   std::string choice(const std::string& name, const std::vector<std::string>& choices,
                      const std::string& fallback) const;
   double number(const std::string& name, double fallback) const;
+  /// Every value of a repeated option, in command-line order.
+  std::vector<std::string> values(const std::string& name) const;
 
  private:
   std::vector<std::string> positional_;
   std::set<std::string> flags_;
   std::map<std::string, std::string> values_;
+  std::map<std::string, std::vector<std::string>> repeated_;
 };
 
 }  // namespace rumble::cli

@@ -20,12 +20,19 @@ usage: rumble [--log-level LEVEL] COMMAND [ARGS]   (--log-level may also follow 
 
 commands:
   run FILE [--output DIR] [--overwrite] [--allow-outside-results] [--no-progress] [--no-plots]
+           [--set POINTER=VALUE ...]
                                     validate, then run a scenario; results go to outputs.directory
                                     inside the scenario's folder (elsewhere: --output DIR, or
                                     --allow-outside-results); a rerun replaces its own results
                                     there; --overwrite: also another scenario's, keeping files
-                                    rumble did not write
-  validate FILE [--format text|json] check a scenario without running it (all errors at once)
+                                    rumble did not write; --set: replace the value at a JSON
+                                    pointer first (repeatable), e.g. --set /soil/params/E=1e7
+  validate FILE [--format text|json] [--set POINTER=VALUE ...]
+                                    check a scenario without running it (all errors at once)
+  study FILE [--jobs N] [--force] [--dry-run] [--no-report]
+                                    run a study: the product of scenario variations and/or a list,
+                                    N runs at once as processes, skipping runs that are up to
+                                    date (--force: rerun all; --dry-run: list them); docs/study.md
   plugins [--format text|json]      list plugin libraries and the types they provide
   schema TYPE [--json]              the parameters of a type: units, defaults, ranges
   mesh FILE [--output DIR]          build the scenario's soil on its footprints without running:
@@ -59,7 +66,8 @@ std::map<std::string, Command>& command_table() {
                                               {"soil-frf", &soil_frf_command},
                                               {"calibrate", &calibrate_command},
                                               {"new-plugin", &new_plugin_command},
-                                              {"post", &post_command}};
+                                              {"post", &post_command},
+                                              {"study", &study_command}};
   return table;
 }
 

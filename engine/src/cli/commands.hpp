@@ -23,6 +23,7 @@ int mesh_command(const std::vector<std::string>& args);
 int calibrate_command(const std::vector<std::string>& args);
 int new_plugin_command(const std::vector<std::string>& args);
 int post_command(const std::vector<std::string>& args);
+int study_command(const std::vector<std::string>& args);
 
 /// The vibration indicators of the run in results_dir into results_dir/post (warnings logged).
 /// Throws what post::post_process throws.

@@ -18,14 +18,17 @@ namespace rumble::cli {
 
 int run_command(const std::vector<std::string>& args) {
   const Arguments a(args, {"no-progress", "no-plots", "overwrite", "allow-outside-results"},
-                    {"output"});
+                    {"output"}, {"set"});
   if (a.positional().size() != 1) {
     throw UsageError(
         "usage: rumble run FILE [--output DIR] [--overwrite] [--allow-outside-results] "
-        "[--no-progress] [--no-plots]");
+        "[--no-progress] [--no-plots] [--set POINTER=VALUE ...]");
   }
+  std::vector<scenario::Override> overrides;
+  for (const std::string& set : a.values("set"))
+    overrides.push_back(scenario::parse_set_option(set));
   PluginRegistry registry;
-  auto doc = prepare_scenario(a.positional()[0], registry, scenario::Format::kText);
+  auto doc = prepare_scenario(a.positional()[0], registry, scenario::Format::kText, overrides);
   if (!doc) return kExitConfig;
   if (const auto dir = a.value("output")) {  // overrides outputs.directory: the user's choice
     doc->json["outputs"]["directory"] = std::filesystem::absolute(*dir).string();
@@ -39,9 +42,14 @@ int run_command(const std::vector<std::string>& args) {
   install_interrupt_handler();
   RunOptions options;
   options.progress = !a.flag("no-progress") && isatty(STDERR_FILENO) != 0;
-  const scenario::RunSpec spec = scenario::make_run_spec(doc->json, doc->path);
+  scenario::RunSpec spec = scenario::make_run_spec(doc->json, doc->path);
+  std::vector<std::string> identity;  // the same file with other --set values is another run
+  for (const scenario::Override& o : overrides) {
+    spec.overrides.push_back({{"pointer", o.pointer}, {"value", o.value}});
+    identity.push_back(scenario::override_text(o));
+  }
   // Locked, and the previous run's listed files removed; until the plots are done.
-  ResultsDirectory results(spec.outputs.directory, spec.path, a.flag("overwrite"));
+  ResultsDirectory results(spec.outputs.directory, spec.path, a.flag("overwrite"), identity);
   const RunOutcome outcome = run_scenario(spec, registry, results, options);
   const auto log = logger("engine");
   if (outcome.status == RunStatus::kCompleted &&

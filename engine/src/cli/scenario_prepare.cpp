@@ -1,52 +1,27 @@
 #include "cli/scenario_prepare.hpp"
 
-#include <algorithm>
 #include <iostream>
 
-#include "scenario/component_check.hpp"
-#include "scenario/relation_checks.hpp"
+#include "scenario/check_file.hpp"
 #include "track/footprint_layout.hpp"
 
 namespace rumble::cli {
 
 std::optional<scenario::Document> prepare_scenario(const std::filesystem::path& path,
                                                    PluginRegistry& registry,
-                                                   scenario::Format format) {
+                                                   scenario::Format format,
+                                                   std::vector<scenario::Override> overrides) {
   registry.load_default_directories();
-  std::vector<scenario::Diagnostic> diagnostics;
-  std::optional<scenario::Document> doc = scenario::load_document(path, diagnostics);
-  if (doc) {
-    scenario::load_scenario_plugins(*doc, registry);
-    diagnostics = scenario::validate(*doc, registry);
-    const bool schema_ok = std::none_of(diagnostics.begin(), diagnostics.end(), [](const auto& d) {
-      return d.severity == scenario::Diagnostic::Severity::kError;
-    });
-    const auto no_errors = [&] {
-      return std::none_of(diagnostics.begin(), diagnostics.end(), [](const auto& d) {
-        return d.severity == scenario::Diagnostic::Severity::kError;
-      });
-    };
-    if (schema_ok) {
-      for (scenario::Diagnostic& d : check_scenario_relations(doc->json))
-        diagnostics.push_back(
-            scenario::make_diagnostic(*doc, d.pointer, d.message, d.hint, d.severity));
-    }
-    if (schema_ok && no_errors()) {  // the components are built from a scenario that is right
-      for (scenario::Diagnostic& d :
-           scenario::check_components(doc->json, doc->path.parent_path(), registry))
-        diagnostics.push_back(
-            scenario::make_diagnostic(*doc, d.pointer, d.message, d.hint, d.severity));
-    }
-  }
-  const bool ok = doc && std::none_of(diagnostics.begin(), diagnostics.end(), [](const auto& d) {
-                    return d.severity == scenario::Diagnostic::Severity::kError;
-                  });
+  scenario::CheckedScenario checked = scenario::check_scenario_file(path, overrides, registry);
+  std::optional<scenario::Document>& doc = checked.doc;
+  const std::vector<scenario::Diagnostic>& diagnostics = checked.diagnostics;
+  const bool ok = checked.ok();
   if (!diagnostics.empty() || format == scenario::Format::kJson) {
     scenario::print_diagnostics(format == scenario::Format::kJson ? std::cout : std::cerr,
                                 doc ? &*doc : nullptr, path, diagnostics, format);
   }
   if (!ok) return std::nullopt;
-  return doc;
+  return std::move(doc);
 }
 
 ScenarioSoil soil_on_footprints(const scenario::Document& doc, const PluginRegistry& registry) {

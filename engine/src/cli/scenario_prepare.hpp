@@ -9,15 +9,19 @@
 
 #include "plugin/instance.hpp"
 #include "plugin/registry.hpp"
+#include "scenario/overrides.hpp"
 #include "scenario/scenario.hpp"
 
 namespace rumble::cli {
 
 /// Returns the validated document (defaults filled), or nullopt when anything is wrong (the
-/// diagnostics have been printed). Throws PluginLoadError when a plugin cannot be loaded.
+/// diagnostics have been printed). `overrides` (--set) are applied in order before validation.
+/// Throws PluginLoadError when a plugin cannot be loaded, ConfigError when an override cannot be
+/// applied.
 std::optional<scenario::Document> prepare_scenario(const std::filesystem::path& path,
                                                    PluginRegistry& registry,
-                                                   scenario::Format format);
+                                                   scenario::Format format,
+                                                   std::vector<scenario::Override> overrides = {});
 
 /// The scenario's soil (/soil), built and laid on the track's footprints as a run lays it: what
 /// `rumble mesh` and `rumble soil-frf` look at.

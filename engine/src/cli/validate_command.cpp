@@ -9,13 +9,17 @@
 namespace rumble::cli {
 
 int validate_command(const std::vector<std::string>& args) {
-  const Arguments a(args, {}, {"format"});
+  const Arguments a(args, {}, {"format"}, {"set"});
   if (a.positional().size() != 1)
-    throw UsageError("usage: rumble validate FILE [--format text|json]");
+    throw UsageError("usage: rumble validate FILE [--format text|json] [--set POINTER=VALUE ...]");
   const bool json = a.choice("format", {"text", "json"}, "text") == "json";
+  std::vector<scenario::Override> overrides;
+  for (const std::string& set : a.values("set"))
+    overrides.push_back(scenario::parse_set_option(set));
   PluginRegistry registry;
-  const auto doc = prepare_scenario(a.positional()[0], registry,
-                                    json ? scenario::Format::kJson : scenario::Format::kText);
+  const auto doc =
+      prepare_scenario(a.positional()[0], registry,
+                       json ? scenario::Format::kJson : scenario::Format::kText, overrides);
   if (!doc) return kExitConfig;
   if (!json) std::cout << a.positional()[0] << ": valid\n";
   return kExitOk;

@@ -111,13 +111,16 @@ struct ResultsDirectory::Previous {
   bool present = false;
   std::string unreadable;  // why it cannot be used; "" when it can
   std::string scenario;
+  std::vector<std::string> overrides;  // absent in the manifest: none
   std::vector<std::string> files, directories;
   std::vector<std::string> outside;  // entries that are no path inside the directory
 };
 
 ResultsDirectory::ResultsDirectory(fs::path directory, const fs::path& scenario_file,
-                                   bool overwrite)
-    : dir_(std::move(directory)), scenario_(scenario_identity(scenario_file)) {
+                                   bool overwrite, std::vector<std::string> overrides)
+    : dir_(std::move(directory)),
+      scenario_(scenario_identity(scenario_file)),
+      overrides_(std::move(overrides)) {
   std::error_code ec;
   fs::create_directories(dir_, ec);
   if (ec) {
@@ -242,6 +245,8 @@ ResultsDirectory::Previous ResultsDirectory::read_manifest() const {
         throw std::runtime_error("version " + m.at("version").dump() + " is not known here");
       prev.scenario =
           m.at("scenario_file").is_null() ? "" : m.at("scenario_file").get<std::string>();
+      if (m.contains("overrides"))
+        prev.overrides = m.at("overrides").get<std::vector<std::string>>();
       for (const char* key : {"files", "directories"}) {
         for (const json& entry : m.at(key)) {
           const auto name = entry.get<std::string>();
@@ -289,6 +294,12 @@ void ResultsDirectory::clear_previous(bool overwrite) {
         "holds the results of another scenario (" +
         (prev.scenario.empty() ? std::string("one not read from a file") : prev.scenario) +
         ", says " + shown(manifest_path) + ")");
+  } else if (prev.present && prev.overrides != overrides_) {
+    std::vector<std::string> set;
+    for (const std::string& o : prev.overrides) set.push_back("--set " + o);
+    problems.push_back("holds the results of another run of " + prev.scenario + " (" +
+                       (set.empty() ? std::string("without --set") : join(set, " ")) + ", says " +
+                       shown(manifest_path) + ")");
   }
   if (!unlisted.empty()) {
     constexpr std::size_t kShown = 5;
@@ -381,6 +392,7 @@ void ResultsDirectory::write_manifest() const {
       "exactly these before it writes (docs/scenario.md)";
   m["version"] = kManifestVersion;
   m["scenario_file"] = scenario_.empty() ? json(nullptr) : json(scenario_);
+  if (!overrides_.empty()) m["overrides"] = overrides_;
   m["files"] = files_;
   m["directories"] = directories_;
   replace_file(dir_ / kManifestFile, dir_ / kManifestTmp, m.dump(2) + "\n");

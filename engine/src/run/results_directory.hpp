@@ -19,6 +19,7 @@
 #include <set>
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace rumble {
 
@@ -29,11 +30,13 @@ class ResultsDirectory {
 
   /// Creates `directory` when missing, locks it, checks what it holds and removes the files the
   /// previous run listed. `scenario_file`: the run's scenario (a rerun of the same file replaces
-  /// its own results). overwrite: also replace another scenario's results, and write beside files
-  /// that no manifest lists (they are kept). Throws RunError when the directory cannot be created
-  /// or locked (another run holds it), ConfigError when it holds what may not be replaced.
+  /// its own results); `overrides`: its --set values as "POINTER=VALUE" (part of what makes a
+  /// rerun "the same": the same file with other values is another run). overwrite: also replace
+  /// another scenario's results, and write beside files that no manifest lists (they are kept).
+  /// Throws RunError when the directory cannot be created or locked (another run holds it),
+  /// ConfigError when it holds what may not be replaced.
   ResultsDirectory(std::filesystem::path directory, const std::filesystem::path& scenario_file,
-                   bool overwrite);
+                   bool overwrite, std::vector<std::string> overrides = {});
   /// Locks the results of a finished run to add derived files to them (`rumble post`): nothing
   /// is removed, and what appears is listed at the end, so a rerun removes it with the rest.
   /// Throws ConfigError when `directory` holds no usable manifest, RunError when it is locked.
@@ -66,6 +69,7 @@ class ResultsDirectory {
 
   std::filesystem::path dir_;
   std::string scenario_;  // canonical path of the scenario; "" when it is not a regular file
+  std::vector<std::string> overrides_;  // its --set values, "POINTER=VALUE"
   int lock_fd_ = -1;
   std::set<std::string> files_, directories_;              // listed, relative to dir_
   std::map<std::string, std::pair<dev_t, ino_t>> before_;  // what stood there when the run began

@@ -53,6 +53,7 @@ SummaryWriter::SummaryWriter(ResultsDirectory& results, const scenario::RunSpec&
   summary_["rumble_version"] = RUMBLE_VERSION;
   summary_["scenario_file"] = fs::absolute(spec.path).string();
   summary_["scenario"] = spec.document;
+  summary_["overrides"] = spec.overrides;
   summary_["status"] = status_name(RunStatus::kRunning);
   char host[256] = {};
   if (::gethostname(host, sizeof host - 1) != 0) host[0] = '\0';

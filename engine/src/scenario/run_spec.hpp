@@ -54,6 +54,9 @@ struct RunSpec {
   ComponentSpec soil, coupling;
   std::vector<std::pair<std::string, ComponentSpec>> participants;  // the coupler's extras
   OutputSpec outputs;
+  /// Values set from outside the file (`rumble run --set`), [{"pointer", "value"}] in the order
+  /// applied (already applied to `document`): summary.json's "overrides".
+  nlohmann::json overrides = nlohmann::json::array();
 
   /// x [m] of the middle of the sleepers: where distance receivers stand.
   double track_middle() const;

@@ -49,18 +49,23 @@ class Positions {
     }
   }
 
-  /// The value as the user wrote it ("-2.5e7", not -25000000.0) when it is a scalar in the text.
+  /// The value as the user wrote it ("-2.5e7", not -25000000.0) when it is a scalar in the text
+  /// and still the value there (one set by --set replaced what the text says).
   std::string written(const std::string& pointer) const {
+    const json* current = nullptr;
+    try {
+      const json::json_pointer p(pointer);
+      if (doc_.json.contains(p)) current = &doc_.json.at(p);
+    } catch (const std::exception&) {
+    }
     if (const auto span = index_.value(pointer)) {
       const std::string_view token =
           std::string_view(doc_.text).substr(span->begin, span->end - span->begin);
-      if (!token.empty() && token[0] != '{' && token[0] != '[') return truncate_text(token, 40);
+      if (!token.empty() && token[0] != '{' && token[0] != '[' &&
+          (current == nullptr || json::parse(token, nullptr, false) == *current))
+        return truncate_text(token, 40);
     }
-    try {
-      const json::json_pointer p(pointer);
-      if (doc_.json.contains(p)) return short_json(doc_.json.at(p));
-    } catch (const std::exception&) {
-    }
+    if (current != nullptr) return short_json(*current);
     return "?";
   }
 

@@ -1,0 +1,36 @@
+// Everything `rumble validate` checks, without printing: read the file, apply the values set from
+// outside it (--set, a study's patches), load the plugins it lists, validate it against the
+// schemas, check the engine's relations and build the components. Used by `rumble validate`,
+// `rumble run` (cli/scenario_prepare) and `rumble study` (every run before any runs).
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <vector>
+
+#include "scenario/diagnostic.hpp"
+#include "scenario/document.hpp"
+#include "scenario/overrides.hpp"
+
+namespace rumble {
+class PluginRegistry;
+}
+
+namespace rumble::scenario {
+
+struct CheckedScenario {
+  std::optional<Document> doc;  // nullopt when the file could not be read or parsed
+  std::vector<Diagnostic> diagnostics;
+  /// Read, and no error among the diagnostics (warnings allowed).
+  bool ok() const;
+};
+
+/// Reads and checks `path` with `overrides` applied in order (their applied_at is set), defaults
+/// filled into doc.json; diagnostics about a value an override set end with its note
+/// ("(set by --set)"). Throws ConfigError when an override cannot be applied, PluginLoadError
+/// when a plugin library the scenario lists cannot be loaded. The registry should hold the
+/// default plugin directories already.
+CheckedScenario check_scenario_file(const std::filesystem::path& path,
+                                    std::vector<Override>& overrides, PluginRegistry& registry);
+
+}  // namespace rumble::scenario

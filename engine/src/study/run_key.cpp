@@ -1,0 +1,75 @@
+#include "study/run_key.hpp"
+
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "plugin/registry.hpp"
+#include "study/sha256.hpp"
+
+namespace rumble::study {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+/// A piece with its length first, so that no two sequences of pieces hash alike.
+void piece(Sha256& h, std::string_view label, std::string_view bytes) {
+  h.update(label);
+  h.update(std::string_view("\0", 1));
+  h.update(std::to_string(bytes.size()));
+  h.update(std::string_view("\0", 1));
+  h.update(bytes);
+}
+
+/// Every "type" string of an object and every "file" string of a "params" object, below `v`.
+void collect(const json& v, bool in_params, std::set<std::string>& types,
+             std::set<std::string>& files) {
+  if (v.is_object()) {
+    for (const auto& [key, child] : v.items()) {
+      if (key == "type" && child.is_string()) types.insert(child.get<std::string>());
+      if (in_params && key == "file" && child.is_string()) files.insert(child.get<std::string>());
+      collect(child, key == "params", types, files);
+    }
+  } else if (v.is_array()) {
+    for (const json& child : v) collect(child, false, types, files);
+  }
+}
+
+std::string file_bytes(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  if (!in) return "(unreadable)";
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  return bytes.str();
+}
+
+}  // namespace
+
+std::string run_key(const PlannedRun& run, const scenario::Document& resolved,
+                    const PluginRegistry& registry) {
+  Sha256 h;
+  piece(h, "rumble", RUMBLE_VERSION);
+  piece(h, "scenario", resolved.json.dump(-1, ' ', false, json::error_handler_t::replace));
+  piece(h, "scenario file", resolved.text);
+  piece(h, "study entry", run.entry.dump(-1, ' ', false, json::error_handler_t::replace));
+  std::set<std::string> types, files;
+  collect(resolved.json, false, types, files);
+  for (const std::string& f : files) {
+    const fs::path p = fs::path(f).is_absolute() ? fs::path(f) : resolved.path.parent_path() / f;
+    std::error_code ec;
+    piece(h, "file " + f, fs::is_regular_file(p, ec) ? file_bytes(p) : "(not a file)");
+  }
+  for (const std::string& t : types) {
+    for (const rumble_kind kind : {RUMBLE_KIND_VEHICLE, RUMBLE_KIND_SOIL, RUMBLE_KIND_COUPLER}) {
+      const ComponentType* type = registry.find(kind, t);
+      if (type == nullptr) continue;
+      const auto* d = type->library->descriptor;
+      piece(h, std::string("plugin ") + kind_name(kind) + " " + t,
+            std::string(d->plugin_name) + " " + d->plugin_version);
+    }
+  }
+  return h.hex();
+}
+
+}  // namespace rumble::study

@@ -1,0 +1,64 @@
+// A study file (`rumble study FILE`, docs/study.md): a base scenario and the variations of it to
+// run, as a Cartesian product of named axes and/or a list of explicit runs. Read and checked here;
+// expanded into runs by expansion.hpp.
+#pragma once
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "scenario/diagnostic.hpp"
+#include "scenario/document.hpp"
+
+namespace rumble::study {
+
+inline constexpr int kStudyVersion = 1;
+
+/// One value replaced in a run's scenario.
+struct Patch {
+  std::string pointer;   // into the scenario: "/soil/params/E"
+  nlohmann::json value;  // what replaces the value there
+  std::string source;    // JSON pointer of this entry in the study file
+};
+
+struct AxisValue {
+  std::string name;  // part of the run names
+  std::vector<Patch> patches;
+};
+
+struct Axis {
+  std::string name;
+  std::vector<AxisValue> values;  // in the file's order
+};
+
+struct ExplicitRun {
+  std::string name;
+  std::filesystem::path scenario;  // resolved; the study's scenario when the entry names none
+  std::vector<Patch> set;
+  nlohmann::ordered_json entry;  // the entry as written
+  std::string source;            // "/runs/<i>"
+};
+
+struct StudyFile {
+  std::filesystem::path path;
+  std::string name, description;
+  std::filesystem::path scenario;  // resolved against the study file's folder; "" when none
+  std::filesystem::path output;    // resolved against the study file's folder
+  std::vector<Axis> axes;
+  std::vector<ExplicitRun> runs;
+  std::optional<int> jobs;
+};
+
+/// A name that can be a directory: 1 to 100 of [A-Za-z0-9._-], starting with a letter or digit.
+bool filesystem_safe(const std::string& name);
+
+/// Checks the study in `doc` (parsed already) and returns it, or nullopt with every problem
+/// found appended to `diagnostics` (JSON pointers into the study file, the value, the fix):
+/// unknown keys, wrong types, empty axes, unsafe or duplicate names, malformed pointers, scenario
+/// files that do not exist. Duplicate run names are checked by expand().
+std::optional<StudyFile> read_study(const scenario::Document& doc,
+                                    std::vector<scenario::Diagnostic>& diagnostics);
+
+}  // namespace rumble::study

@@ -1,0 +1,251 @@
+// `rumble study` end to end on small Winkler scenarios (0.05 s each): parallel runs, study.json,
+// up-to-date runs skipped, changed runs rerun, failing runs reported while the others complete,
+// Ctrl-C, and the command's messages.
+#include <fcntl.h>
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <sys/file.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <csignal>
+#include <fstream>
+#include <thread>
+
+#include "cli_runner.hpp"
+
+namespace rumble::testing {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using ::testing::HasSubstr;
+using ::testing::Not;
+
+fs::path write_study(const fs::path& dir, const json& study) {
+  const auto path = dir / "study.json";
+  std::ofstream(path) << study.dump(2) << '\n';
+  return path;
+}
+
+json two_by_two(double stiff_k) {
+  return json::parse(R"({"study_version": 1, "name": "two by two", "description": "a test",
+    "scenario": "scenario.json", "output": "out", "jobs": 2,
+    "axes": [{"name": "soil", "values": {"soft": {"/soil/params/k": 5e7},
+                                         "stiff": {"/soil/params/k": )" +
+                     std::to_string(stiff_k) + R"(}}},
+             {"name": "coupling", "values": {"gs": {"/coupling/type": "gauss_seidel"},
+                                             "jacobi": {"/coupling/type": "jacobi"}}}]})");
+}
+
+std::map<std::string, json> runs_by_name(const json& state) {
+  std::map<std::string, json> out;
+  for (const json& r : state["runs"]) out[r["name"].get<std::string>()] = r;
+  return out;
+}
+
+TEST(Study, RunsTheProductSkipsWhatIsUpToDateAndRerunsWhatChanged) {
+  const auto dir = scratch_directory("study_2x2");
+  write_scenario(dir, small_scenario());
+  const auto study = write_study(dir, two_by_two(2e8));
+  const CliResult first = run_rumble({"study", study.string()});
+  ASSERT_EQ(first.exit_code, 0) << first.output;
+  EXPECT_THAT(first.output, HasSubstr("study: two by two: 4 runs: 4 to run, 0 up to date "
+                                      "(skipped), 0 not valid; 2 at a time"));
+  EXPECT_THAT(first.output, HasSubstr("study: started soft-gs (1 of 4)"));
+  EXPECT_THAT(first.output, HasSubstr("study: completed stiff-jacobi in "));
+  EXPECT_THAT(first.output, HasSubstr("4 of 4 done"));
+  EXPECT_THAT(first.output, HasSubstr("1 of 4 done, ETA "));
+  EXPECT_THAT(first.output, HasSubstr("study: 4 completed, 0 up to date (skipped), 0 failed"));
+
+  const json state = read_json(dir / "out" / "study.json");
+  EXPECT_EQ(state["name"], "two by two");
+  EXPECT_EQ(state["description"], "a test");
+  EXPECT_EQ(state["status"], "completed");
+  EXPECT_EQ(state["jobs"], 2);
+  EXPECT_EQ(state["axes"], json::parse(R"([{"name": "soil", "values": ["soft", "stiff"]},
+                                          {"name": "coupling", "values": ["gs", "jacobi"]}])"));
+  ASSERT_EQ(state["runs"].size(), 4u);
+  std::vector<std::string> order;
+  for (const json& r : state["runs"]) order.push_back(r["name"]);
+  EXPECT_EQ(order,
+            (std::vector<std::string>{"soft-gs", "soft-jacobi", "stiff-gs", "stiff-jacobi"}));
+  for (const json& r : state["runs"]) {
+    const std::string name = r["name"];
+    EXPECT_EQ(r["status"], "completed") << name;
+    EXPECT_EQ(r["exit_code"], 0) << name;
+    EXPECT_EQ(r["key"].get<std::string>().size(), 64u) << name;
+    EXPECT_GT(r["wall_time_s"].get<double>(), 0.0) << name;
+    EXPECT_EQ(fs::path(r["results"].get<std::string>()), fs::absolute(dir / "out" / name));
+    const json summary = read_json(dir / "out" / name / "summary.json");
+    EXPECT_EQ(summary["status"], "completed") << name;
+    EXPECT_TRUE(fs::is_regular_file(dir / "out" / name / "run.log")) << name;
+  }
+  const auto first_runs = runs_by_name(state);
+  EXPECT_EQ(first_runs.at("stiff-jacobi")["axis_values"],
+            json::parse(R"({"soil": "stiff", "coupling": "jacobi"})"));
+  EXPECT_EQ(first_runs.at("stiff-jacobi")["patches"],
+            json::parse(R"([{"pointer": "/soil/params/k", "value": 2e8},
+                            {"pointer": "/coupling/type", "value": "jacobi"}])"));
+  const json soft_jacobi = read_json(dir / "out" / "soft-jacobi" / "summary.json");
+  EXPECT_EQ(soft_jacobi["scenario"]["soil"]["params"]["k"], 5e7);
+  EXPECT_EQ(soft_jacobi["scenario"]["coupling"]["type"], "jacobi");
+  EXPECT_NE(first_runs.at("soft-gs")["key"], first_runs.at("soft-jacobi")["key"]);
+
+  // Again: all up to date.
+  const CliResult second = run_rumble({"study", study.string()});
+  ASSERT_EQ(second.exit_code, 0) << second.output;
+  EXPECT_THAT(second.output, HasSubstr("4 runs: 0 to run, 4 up to date (skipped)"));
+  EXPECT_THAT(second.output, Not(HasSubstr("started")));
+  for (const json& r : read_json(dir / "out" / "study.json")["runs"]) {
+    EXPECT_EQ(r["status"], "skipped") << r["name"];
+    EXPECT_EQ(r["key"], first_runs.at(r["name"].get<std::string>())["key"]);
+  }
+
+  // One value changed: only the runs it touches run again.
+  write_study(dir, two_by_two(3e8));
+  const CliResult dry = run_rumble({"study", study.string(), "--dry-run"});
+  EXPECT_EQ(dry.exit_code, 0) << dry.output;
+  EXPECT_THAT(dry.output, HasSubstr("soft-gs: up to date (skipped)\n"));
+  EXPECT_THAT(dry.output, HasSubstr("stiff-gs: would run\n"));
+  const CliResult third = run_rumble({"study", study.string(), "--jobs", "1"});
+  ASSERT_EQ(third.exit_code, 0) << third.output;
+  EXPECT_THAT(third.output, HasSubstr("4 runs: 2 to run, 2 up to date (skipped), 0 not valid; 1 "
+                                      "at a time"));
+  const auto after = runs_by_name(read_json(dir / "out" / "study.json"));
+  EXPECT_EQ(after.at("soft-gs")["status"], "skipped");
+  EXPECT_EQ(after.at("soft-jacobi")["status"], "skipped");
+  EXPECT_EQ(after.at("stiff-gs")["status"], "completed");
+  EXPECT_EQ(after.at("stiff-jacobi")["status"], "completed");
+  EXPECT_EQ(read_json(dir / "out" / "stiff-gs" / "summary.json")["scenario"]["soil"]["params"]["k"],
+            3e8);
+
+  // The base scenario changed: every run is out of date; --force reruns all.
+  json s = small_scenario();
+  s["time"]["end"] = 0.04;
+  write_scenario(dir, s);
+  EXPECT_THAT(run_rumble({"study", study.string(), "--dry-run"}).output,
+              HasSubstr("4 runs: 4 to run, 0 up to date"));
+  write_scenario(dir, small_scenario());
+  EXPECT_THAT(run_rumble({"study", study.string(), "--dry-run"}).output,
+              HasSubstr("4 runs: 0 to run, 4 up to date"));
+  EXPECT_THAT(run_rumble({"study", study.string(), "--dry-run", "--force"}).output,
+              HasSubstr("4 runs: 4 to run, 0 up to date"));
+}
+
+TEST(Study, FailingRunsAreReportedAndTheOthersComplete) {
+  const auto dir = scratch_directory("study_failing");
+  write_scenario(dir, small_scenario());
+  // "diverges": a soft massless soil under Gauss-Seidel (tests/cli DivergingCouplingStops...).
+  const auto study = write_study(dir, json::parse(R"({"study_version": 1,
+    "scenario": "scenario.json", "output": "out",
+    "runs": [{"name": "good"},
+             {"name": "diverges", "set": {"/soil": {"type": "clm",
+                                                     "params": {"E": 1e7, "nu": 0.3, "rho": 1800}},
+                                            "/time/end": 0.2}},
+             {"name": "invalid", "set": {"/soil/params/k": -1}},
+             {"name": "no-vehicle", "set": {"/vehicles/3/speed": 10}}]})"));
+  const CliResult r = run_rumble({"study", study.string(), "--jobs=2"});
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("study: run invalid is not valid:\n"));
+  EXPECT_THAT(r.output, HasSubstr("error: /soil/params/k: must be"));
+  EXPECT_THAT(r.output, HasSubstr("got -1 (set by the study, /runs/2/set/~1soil~1params~1k)"));
+  EXPECT_THAT(r.output, HasSubstr("study: run no-vehicle is not valid:\n" + study.string() +
+                                  ": /runs/3/set/~1vehicles~13~1speed: /vehicles/3/speed = 10: "
+                                  "/vehicles is an array (it has 1 element, index 0)"));
+  EXPECT_THAT(r.output, HasSubstr("4 runs: 2 to run, 0 up to date (skipped), 2 not valid"));
+  EXPECT_THAT(r.output, HasSubstr("study: FAILED diverges in "));
+  EXPECT_THAT(r.output, HasSubstr("(exit code 3): simulation diverged at t = "));
+  EXPECT_THAT(r.output, HasSubstr("study: 1 completed, 0 up to date (skipped), 3 failed"));
+  const auto runs = runs_by_name(read_json(dir / "out" / "study.json"));
+  EXPECT_EQ(runs.at("good")["status"], "completed");
+  EXPECT_EQ(runs.at("diverges")["status"], "failed");
+  EXPECT_EQ(runs.at("diverges")["exit_code"], 3);
+  EXPECT_THAT(runs.at("diverges")["message"].get<std::string>(),
+              HasSubstr("simulation diverged at t = "));
+  EXPECT_EQ(runs.at("invalid")["status"], "failed");
+  EXPECT_TRUE(runs.at("invalid")["key"].is_null());
+  EXPECT_TRUE(runs.at("invalid")["exit_code"].is_null());
+  EXPECT_THAT(runs.at("invalid")["message"].get<std::string>(),
+              HasSubstr("not valid: /soil/params/k: must be"));
+  EXPECT_EQ(read_json(dir / "out" / "study.json")["status"], "failed");
+  EXPECT_EQ(read_json(dir / "out" / "good" / "summary.json")["status"], "completed");
+  EXPECT_FALSE(fs::exists(dir / "out" / "invalid"));
+  // The failed run runs again next time; the good one is up to date.
+  EXPECT_THAT(run_rumble({"study", study.string(), "--dry-run"}).output,
+              HasSubstr("4 runs: 1 to run, 1 up to date (skipped), 2 not valid"));
+}
+
+TEST(Study, InterruptStopsTheRunsAndRecordsTheState) {
+  const auto dir = scratch_directory("study_interrupt");
+  json s = small_scenario();
+  s["time"]["end"] = 0.6;
+  s["time"]["macro_step"] = 1e-4;
+  s["track"]["sleepers"]["count"] = 40;
+  write_scenario(dir, s);
+  const auto study = write_study(dir, json::parse(R"({"study_version": 1,
+    "scenario": "scenario.json", "output": "out", "jobs": 1,
+    "runs": [{"name": "first"}, {"name": "second"}]})"));
+  const pid_t pid = start_rumble({"study", study.string()});
+  const auto contact = dir / "out" / "first" / "contact.csv";
+  for (int i = 0; i < 600 && csv_rows(contact) < 20; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  kill(pid, SIGINT);
+  EXPECT_EQ(wait_rumble(pid), 3);
+  const json state = read_json(dir / "out" / "study.json");
+  EXPECT_EQ(state["status"], "interrupted");
+  const auto runs = runs_by_name(state);
+  EXPECT_EQ(runs.at("first")["status"], "interrupted");
+  EXPECT_EQ(runs.at("second")["status"], "interrupted");
+  EXPECT_EQ(runs.at("second")["message"], "not started: the study was interrupted");
+  EXPECT_EQ(read_json(dir / "out" / "first" / "summary.json")["status"], "interrupted");
+  EXPECT_FALSE(fs::exists(dir / "out" / "second" / "summary.json"));
+}
+
+TEST(Study, Messages) {
+  const auto dir = scratch_directory("study_messages");
+  write_scenario(dir, small_scenario());
+  const auto study = write_study(dir, json::parse(R"({"study_version": 1,
+    "scenario": "scenario.json", "output": "out", "runs": [{"name": "a"}]})"));
+
+  CliResult r = run_rumble({"study"});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(
+      r.output,
+      HasSubstr("rumble: error: usage: rumble study FILE [--jobs N] [--force] [--dry-run]"));
+  r = run_rumble({"study", study.string(), "--jobs", "0"});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.output, HasSubstr("rumble: error: --jobs=0 is not a number of runs at once; give "
+                                  "an integer from 1 to 1024"));
+  r = run_rumble({"study", (dir / "nope.json").string()});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.output, HasSubstr("nope.json: error: file not found"));
+
+  // Problems in the study file: compiler-style, with line:col, and nothing runs.
+  std::ofstream(dir / "bad.json")
+      << "{\n  \"study_version\": 1,\n  \"scenario\": \"scenario.json\",\n"
+         "  \"axis\": [],\n  \"runs\": [{\"name\": \"a b\"}]\n}\n";
+  r = run_rumble({"study", (dir / "bad.json").string()});
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("bad.json:4:11: error: /axis: unknown key 'axis' in a study"));
+  EXPECT_THAT(r.output, HasSubstr("    hint: did you mean \"axes\"?"));
+  EXPECT_THAT(r.output, HasSubstr("bad.json:5:21: error: /runs/0/name: run name 'a b' cannot "
+                                  "name a directory"));
+  EXPECT_THAT(r.output, HasSubstr("2 errors"));
+  EXPECT_FALSE(fs::exists(dir / "results"));
+
+  // Another study holds the output folder.
+  fs::create_directories(dir / "out");
+  const int fd = open((dir / "out" / ".rumble-study.lock").c_str(), O_RDWR | O_CREAT, 0666);
+  ASSERT_GE(fd, 0);
+  ASSERT_EQ(write(fd, "4242\n", 5), 5);
+  ASSERT_EQ(flock(fd, LOCK_EX), 0);
+  r = run_rumble({"study", study.string()});
+  close(fd);
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("is in use by another rumble study (process id 4242); wait for "
+                                  "it to end, or set another \"output\" in the study file"));
+}
+
+}  // namespace
+}  // namespace rumble::testing
