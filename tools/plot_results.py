@@ -18,6 +18,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+from results_files import open_new  # noqa: E402
 
 
 def read_csv(path):
@@ -28,14 +29,7 @@ def read_csv(path):
 
 
 def save(fig, path):
-    """Writes the figure as a new file: whatever stands at the name (an old plot, a symbolic
-    link) is removed first and never followed, as rumble writes its results."""
-    try:
-        os.unlink(path)
-    except FileNotFoundError:
-        pass
-    fd = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_EXCL | os.O_NOFOLLOW | os.O_CLOEXEC, 0o666)
-    with os.fdopen(fd, "wb") as f:
+    with open_new(path) as f:
         fig.savefig(f, format="png", dpi=120)
 
 

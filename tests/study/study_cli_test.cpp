@@ -48,7 +48,7 @@ TEST(Study, RunsTheProductSkipsWhatIsUpToDateAndRerunsWhatChanged) {
   const auto dir = scratch_directory("study_2x2");
   write_scenario(dir, small_scenario());
   const auto study = write_study(dir, two_by_two(2e8));
-  const CliResult first = run_rumble({"study", study.string()});
+  const CliResult first = run_rumble({"study", study.string(), "--no-report"});
   ASSERT_EQ(first.exit_code, 0) << first.output;
   EXPECT_THAT(first.output, HasSubstr("study: two by two: 4 runs: 4 to run, 0 up to date "
                                       "(skipped), 0 not valid; 2 at a time"));
@@ -93,7 +93,7 @@ TEST(Study, RunsTheProductSkipsWhatIsUpToDateAndRerunsWhatChanged) {
   EXPECT_NE(first_runs.at("soft-gs")["key"], first_runs.at("soft-jacobi")["key"]);
 
   // Again: all up to date.
-  const CliResult second = run_rumble({"study", study.string()});
+  const CliResult second = run_rumble({"study", study.string(), "--no-report"});
   ASSERT_EQ(second.exit_code, 0) << second.output;
   EXPECT_THAT(second.output, HasSubstr("4 runs: 0 to run, 4 up to date (skipped)"));
   EXPECT_THAT(second.output, Not(HasSubstr("started")));
@@ -108,7 +108,7 @@ TEST(Study, RunsTheProductSkipsWhatIsUpToDateAndRerunsWhatChanged) {
   EXPECT_EQ(dry.exit_code, 0) << dry.output;
   EXPECT_THAT(dry.output, HasSubstr("soft-gs: up to date (skipped)\n"));
   EXPECT_THAT(dry.output, HasSubstr("stiff-gs: would run\n"));
-  const CliResult third = run_rumble({"study", study.string(), "--jobs", "1"});
+  const CliResult third = run_rumble({"study", study.string(), "--jobs", "1", "--no-report"});
   ASSERT_EQ(third.exit_code, 0) << third.output;
   EXPECT_THAT(third.output, HasSubstr("4 runs: 2 to run, 2 up to date (skipped), 0 not valid; 1 "
                                       "at a time"));
@@ -145,7 +145,7 @@ TEST(Study, FailingRunsAreReportedAndTheOthersComplete) {
                                             "/time/end": 0.2}},
              {"name": "invalid", "set": {"/soil/params/k": -1}},
              {"name": "no-vehicle", "set": {"/vehicles/3/speed": 10}}]})"));
-  const CliResult r = run_rumble({"study", study.string(), "--jobs=2"});
+  const CliResult r = run_rumble({"study", study.string(), "--jobs=2", "--no-report"});
   EXPECT_EQ(r.exit_code, 3) << r.output;
   EXPECT_THAT(r.output, HasSubstr("study: run invalid is not valid:\n"));
   EXPECT_THAT(r.output, HasSubstr("error: /soil/params/k: must be"));
@@ -240,7 +240,7 @@ TEST(Study, Messages) {
   ASSERT_GE(fd, 0);
   ASSERT_EQ(write(fd, "4242\n", 5), 5);
   ASSERT_EQ(flock(fd, LOCK_EX), 0);
-  r = run_rumble({"study", study.string()});
+  r = run_rumble({"study", study.string(), "--no-report"});
   close(fd);
   EXPECT_EQ(r.exit_code, 3) << r.output;
   EXPECT_THAT(r.output, HasSubstr("is in use by another rumble study (process id 4242); wait for "

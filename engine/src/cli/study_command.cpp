@@ -8,6 +8,7 @@
 #include "cli/arguments.hpp"
 #include "cli/commands.hpp"
 #include "cli/exit_codes.hpp"
+#include "cli/plot_script.hpp"
 #include "core/interrupt.hpp"
 #include "plugin/registry.hpp"
 #include "scenario/report.hpp"
@@ -25,7 +26,8 @@ namespace fs = std::filesystem;
 using study::RunRecord;
 using study::RunState;
 
-constexpr const char* kStudyUsage = "usage: rumble study FILE [--jobs N] [--force] [--dry-run]";
+constexpr const char* kStudyUsage =
+    "usage: rumble study FILE [--jobs N] [--force] [--dry-run] [--no-report]";
 
 int parse_jobs(const std::string& text) {
   std::size_t used = 0;
@@ -54,7 +56,7 @@ std::string shown(const fs::path& p) {
 }  // namespace
 
 int study_command(const std::vector<std::string>& args) {
-  const Arguments a(args, {"force", "dry-run"}, {"jobs"});
+  const Arguments a(args, {"force", "dry-run", "no-report"}, {"jobs"});
   if (a.positional().size() != 1) throw UsageError(kStudyUsage);
   const int cli_jobs = a.value("jobs") ? parse_jobs(*a.value("jobs")) : 0;  // 0: not given
   const fs::path file = a.positional()[0];
@@ -119,6 +121,8 @@ int study_command(const std::vector<std::string>& args) {
             << " failed"
             << (interrupted > 0 ? ", " + std::to_string(interrupted) + " interrupted" : "")
             << "; state in " << shown(state_file) << '\n';
+  // The page a person opens first: every run that has results, failed ones flagged.
+  if (whole && !a.flag("no-report")) run_plot_script("study_report.py", s->output);
   if (!whole) {
     std::cerr << "rumble: error: the study was interrupted; run it again to run what is left "
                  "(completed runs are up to date)\n";

@@ -1,0 +1,102 @@
+// The study report: a small FEM study (two-step against Gauss-Seidel, receivers at 2.5 m and
+// 5 m) ends with report.html, which a headless browser (chromium-headless-shell, installed by
+// tools/install_dependencies.sh) renders with every image decoded, and which lists every run in
+// its PPV and diagnostics tables with the figures also written as PNG and SVG. The shipped
+// quick study of the seed paper is valid (every run checked by --dry-run).
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <string>
+
+#include "cli_runner.hpp"
+
+namespace rumble::testing {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+using ::testing::Not;
+
+constexpr const char* kBrowser = "/usr/bin/chromium-headless-shell";
+
+/// The page's DOM after load, as the browser serializes it.
+std::string rendered_dom(const fs::path& page) {
+  const fs::path out = page.parent_path() / "dom.html";
+  const std::string command = std::string(kBrowser) +
+                              " --no-sandbox --disable-gpu --allow-file-access-from-files "
+                              "--virtual-time-budget=5000 --dump-dom 'file://" +
+                              page.string() + "' > '" + out.string() + "' 2>/dev/null";
+  EXPECT_EQ(std::system(command.c_str()), 0) << command;
+  return file_text(out);
+}
+
+TEST(StudyReport, RendersInABrowserWithEveryImageAndEveryRun) {
+  ASSERT_EQ(::access(kBrowser, X_OK), 0)
+      << kBrowser << " is missing: tools/install_dependencies.sh installs chromium-headless-shell";
+  const auto dir = scratch_directory("study_report");
+  ::setenv("RUMBLE_MESH_CACHE", (dir / "cache").c_str(), 1);
+  nlohmann::json base = small_fem_scenario();
+  base["time"]["end"] = 0.05;
+  base["outputs"]["receivers"] = {2.5, 5.0};
+  write_scenario(dir, base);
+  const nlohmann::json clm = {{"type", "clm"},
+                              {"params", {{"E", 750e6}, {"nu", 0.3}, {"rho", 1800.0}}}};
+  const nlohmann::json study = {
+      {"study_version", 1},
+      {"name", "report test"},
+      {"scenario", "scenario.json"},
+      {"output", "out"},
+      {"runs",
+       {{{"name", "two_step"},
+         {"set",
+          {{"/coupling",
+            {{"type", "two_step"},
+             {"params", nlohmann::json::object()},
+             {"participants", {{"reduced_soil", clm}}}}}}}},
+        {{"name", "gs"}, {"set", {{"/coupling/type", "gauss_seidel"}}}}}}};
+  std::ofstream(dir / "report.study.json") << study.dump(2);
+  const CliResult r = run_rumble({"study", (dir / "report.study.json").string(), "--jobs", "1"});
+  ::unsetenv("RUMBLE_MESH_CACHE");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("study report: " + (dir / "out" / "report.html").string()));
+
+  const fs::path page = dir / "out" / "report.html";
+  const std::string dom = rendered_dom(page);
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(dom, m, std::regex("data-images-loaded=\"(\\d+)/(\\d+)\"")))
+      << "the page did not finish loading in the browser";
+  EXPECT_EQ(m[1], m[2]) << "images that did not decode";
+  // PPV against distance, two scalograms, contact force, the cut.
+  EXPECT_GE(std::stoi(m[2]), 5);
+  for (const char* run : {">two_step<", ">gs<"}) EXPECT_THAT(dom, HasSubstr(run));
+  EXPECT_THAT(dom, HasSubstr("All 2 runs completed."));
+  EXPECT_THAT(dom, HasSubstr("Vertical PPV [mm/s] by distance from the track [m]"));
+  EXPECT_THAT(dom, HasSubstr("footprint_displacement mismatch"));
+  for (const char* f : {"ppv_vs_distance", "contact_force", "interface"}) {
+    EXPECT_TRUE(fs::exists(dir / "out" / "figures" / (std::string(f) + ".png"))) << f;
+    EXPECT_TRUE(fs::exists(dir / "out" / "figures" / (std::string(f) + ".svg"))) << f;
+  }
+}
+
+// The quick study (the README's main job) here; the full paper study meshes a soft soil of
+// 3.7e5 DOFs to validate, so its check is in the validation label (tests/scenarios).
+TEST(StudyReport, TheQuickPaperStudyIsValid) {
+  const fs::path file = fs::path(RUMBLE_TEST_SOURCE_DIR) / "scenarios/paper/study/quick.study.json";
+  const auto dir = scratch_directory("paper_quick_study");
+  ::setenv("RUMBLE_MESH_CACHE", (dir / "cache").c_str(), 1);
+  const CliResult r = run_rumble({"study", file.string(), "--dry-run"});
+  ::unsetenv("RUMBLE_MESH_CACHE");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("medium-two_step: would run"));
+  EXPECT_THAT(r.output, Not(HasSubstr("not valid:")));
+}
+
+}  // namespace
+}  // namespace rumble::testing
