@@ -97,7 +97,9 @@ TEST(Study, RunsTheProductSkipsWhatIsUpToDateAndRerunsWhatChanged) {
   ASSERT_EQ(second.exit_code, 0) << second.output;
   EXPECT_THAT(second.output, HasSubstr("4 runs: 0 to run, 4 up to date (skipped)"));
   EXPECT_THAT(second.output, Not(HasSubstr("started")));
-  for (const json& r : read_json(dir / "out" / "study.json")["runs"]) {
+  // Kept in a variable: a range-for over a member of a temporary reads freed memory.
+  const json second_state = read_json(dir / "out" / "study.json");
+  for (const json& r : second_state["runs"]) {
     EXPECT_EQ(r["status"], "skipped") << r["name"];
     EXPECT_EQ(r["key"], first_runs.at(r["name"].get<std::string>())["key"]);
   }
