@@ -15,7 +15,8 @@ or archived alone) and STUDY_OUTPUT_DIR/figures/*.png and *.svg:
   contact_force      the first wheel's wheel/rail force of every run
   interface          the energy passed through the track/soil cut and the coupler's residual
                      over time: a diverging run shows here first
-and the tables: PPV per distance per run, and each run's co-simulation diagnostics. Needs
+and the tables: PPV per distance per run, each run's co-simulation diagnostics, and per receiver
+the indicators of post/ppv.csv (PPV, dominant frequency, KB_F,max, DIN 4150-3 / BS 7385-2 ratios). Needs
 python3-matplotlib and numpy (Debian packages).
 """
 import base64
@@ -295,6 +296,32 @@ def ppv_table(runs):
             f"<tr><th>distance [m]</th>{head}</tr>{''.join(body)}</table>")
 
 
+def indicators_table(runs):
+    """What a practitioner checks at each receiver (docs/post-processing.md): PPV, its dominant
+    frequency, DIN 4150-2 KB_F,max, and PPV against the most demanding DIN 4150-3 line
+    (sensitive buildings) and BS 7385-2 line (unreinforced or light framed)."""
+    rows = []
+    for r in runs:
+        for row in r.ppv:
+            def cell(key, scale=1.0, fmt="{:.3g}"):
+                v = number(row.get(key))
+                return "<td>-</td>" if math.isnan(v) else f"<td>{fmt.format(v * scale)}</td>"
+            ratio = number(row.get("PPV / DIN 4150-3 line 3 [-]"))
+            css = " class='bad'" if not math.isnan(ratio) and ratio >= 1.0 else ""
+            rows.append(
+                f"<tr{css}><th>{html.escape(r.name)}</th><td>{html.escape(row.get('receiver', ''))}</td>"
+                + cell("PPV_z [m/s]", 1e3) + cell("PPV_3c [m/s]", 1e3) + cell("f_dom [Hz]")
+                + cell("KB_F,max [m/s]", 1e3) + cell("PPV / DIN 4150-3 line 3 [-]")
+                + cell("PPV / BS 7385-2 line 2 [-]") + "</tr>")
+    if not rows:
+        return ""
+    return ("<table><caption>Indicators per receiver (rows at or above the DIN 4150-3 line 3 guide "
+            "value in red)</caption><tr><th>run</th><th>receiver</th><th>PPV_z [mm/s]</th>"
+            "<th>PPV 3 components [mm/s]</th><th>dominant frequency [Hz]</th>"
+            "<th>KB_F,max (DIN 4150-2) [mm/s]</th><th>PPV / DIN 4150-3 line 3</th>"
+            "<th>PPV / BS 7385-2 line 2</th></tr>" + "".join(rows) + "</table>")
+
+
 def diagnostics_table(runs):
     rows = []
     for r in runs:
@@ -380,7 +407,7 @@ def main(directory):
     page = (f"<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'><title>{name}</title>"
             f"<style>{STYLE}</style><script>{IMAGE_CHECK}</script></head>"
             f"<body><h1>{name}</h1><p>{description}</p>{verdict}"
-            f"{ppv_table(runs)}{diagnostics_table(runs)}{''.join(sections)}"
+            f"{ppv_table(runs)}{diagnostics_table(runs)}{''.join(sections)}{indicators_table(runs)}"
             f"<p>Figures also in {html.escape(str(figures_dir))} (PNG and SVG). Numbers per "
             f"receiver: each run's post/ppv.csv and post/post.json.</p></body></html>\n")
     path = study_dir / "report.html"
