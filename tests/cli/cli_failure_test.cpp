@@ -96,9 +96,10 @@ TEST(CliFailure, AbsurdMicroStepCountIsRefused) {
   EXPECT_EQ(read_json(dir / "results" / "summary.json")["status"], "failed");
 }
 
-// Ctrl-C: the run stops at the end of the current macro step, says so, keeps every row.
-TEST(CliFailure, InterruptKeepsResults) {
-  const auto dir = scratch_directory("interrupt");
+// Ctrl-C (SIGINT) or SIGTERM: the run stops at the end of the current macro step, says which
+// signal stopped it, keeps every row.
+void expect_interrupted_run(const std::string& name, int signal, const std::string& cause) {
+  const auto dir = scratch_directory(name);
   nlohmann::json s = small_scenario();
   s["time"]["end"] = 0.6;
   s["time"]["macro_step"] = 1e-4;
@@ -113,7 +114,7 @@ TEST(CliFailure, InterruptKeepsResults) {
   const auto contact = dir / "results" / "contact.csv";
   for (int i = 0; i < 600 && csv_rows(contact) < 20; ++i)
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
-  kill(pid, SIGINT);
+  kill(pid, signal);
   int status = 0;
   waitpid(pid, &status, 0);
   ASSERT_TRUE(WIFEXITED(status));
@@ -121,10 +122,19 @@ TEST(CliFailure, InterruptKeepsResults) {
   const auto summary = read_json(dir / "results" / "summary.json");
   EXPECT_EQ(summary["status"], "interrupted");
   EXPECT_THAT(summary["message"].get<std::string>(), HasSubstr("interrupted at t = "));
+  EXPECT_THAT(summary["message"].get<std::string>(), HasSubstr("(" + cause + ")"));
   const std::size_t rows = csv_rows(contact);
   EXPECT_GE(rows, 20u);
   EXPECT_LT(rows, 6001u);  // stopped before the end
   EXPECT_EQ(summary["time"]["macro_steps"].get<std::size_t>() + 1, rows);
+}
+
+TEST(CliFailure, InterruptKeepsResults) {
+  expect_interrupted_run("interrupt", SIGINT, "Ctrl-C");
+}
+
+TEST(CliFailure, SigtermKeepsResultsAndSaysSigterm) {
+  expect_interrupted_run("interrupt_sigterm", SIGTERM, "SIGTERM");
 }
 
 }  // namespace

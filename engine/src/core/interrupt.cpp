@@ -8,8 +8,11 @@ namespace rumble {
 namespace {
 
 std::atomic<int> g_interrupts{0};
+std::atomic<int> g_first_signal{0};  // the signal that asked first (0: a request in code)
 
-extern "C" void on_signal(int /*signal*/) {
+extern "C" void on_signal(int signal) {
+  int none = 0;
+  g_first_signal.compare_exchange_strong(none, signal);
   if (g_interrupts.fetch_add(1) >= 1) std::_Exit(130);  // second Ctrl-C: stop now
 }
 
@@ -27,6 +30,10 @@ void request_interrupt() {
 }
 void clear_interrupt() {
   g_interrupts.store(0);
+  g_first_signal.store(0);
+}
+const char* interrupt_cause() {
+  return g_first_signal.load() == SIGTERM ? "SIGTERM" : "Ctrl-C";
 }
 
 }  // namespace rumble

@@ -8,5 +8,8 @@ void install_interrupt_handler();
 bool interrupt_requested();
 void request_interrupt();  // what the handler does; also for tests
 void clear_interrupt();
+/// What asked to stop, for messages: "SIGTERM" (a kill, a job scheduler's time limit) or "Ctrl-C"
+/// (SIGINT, or a request in code).
+const char* interrupt_cause();
 
 }  // namespace rumble

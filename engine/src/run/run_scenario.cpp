@@ -40,7 +40,8 @@ Ending judge(const CosimHostImpl& host, rumble_status status, const std::string&
   // not a failure (the observer's own Interrupted, raised between steps, passes as it is).
   const auto interrupted_inside_step = [&] {
     std::ostringstream m;
-    m << "interrupted (Ctrl-C) inside the step after t = " << observer.t_reached()
+    m << "interrupted (" << interrupt_cause()
+      << ") inside the step after t = " << observer.t_reached()
       << " s; results up to that time are in " << results_dir.string();
     return Interrupted(m.str());
   };

@@ -66,8 +66,8 @@ void StepObserver::operator()(const StepOutcome& step) {
   if (sinks_.summary != nullptr) sinks_.summary->heartbeat(t_reached(), soil_.steps);
   if (interrupt_requested()) {
     std::ostringstream m;
-    m << "interrupted at t = " << t << " s (Ctrl-C); results up to that time are in "
-      << results_dir_.string();
+    m << "interrupted at t = " << t << " s (" << interrupt_cause()
+      << "); results up to that time are in " << results_dir_.string();
     throw Interrupted(m.str());
   }
   // A scheme that finishes the participants one after the other is halfway at the track's end.
