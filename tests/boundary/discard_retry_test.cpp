@@ -134,6 +134,33 @@ TEST(DiscardRetry, NoHalvingsAllowedStopsWithTheReason) {
   EXPECT_EQ(read_json(dir / "summary.json")["status"], "failed");
 }
 
+// two_step takes no step twice: a refusal in either step stops the run naming the participant,
+// the step of the model and the fix.
+TEST(DiscardRetry, TwoStepStopsAtARefusalInEitherStep) {
+  const nlohmann::json winkler = {{"type", "winkler"}, {"params", {{"k", 1e8}, {"c", 2e5}}}};
+  const auto two_step = [](const nlohmann::json& reduced) {
+    return nlohmann::json{{"type", "two_step"},
+                          {"params", nlohmann::json::object()},
+                          {"participants", {{"reduced_soil", reduced}}}};
+  };
+  CliResult first, second;
+  run_in("discard_two_step_1", fixture_scenario(winkler, two_step(picky(kQuarter))), first);
+  EXPECT_EQ(first.exit_code, 3) << first.output;
+  EXPECT_NE(first.output.find("participant 'reduced_soil' refused the step starting at t = "
+                              "0.000000 s"),
+            std::string::npos)
+      << first.output;
+  EXPECT_NE(first.output.find("two_step does not retry steps (step 1 of 2)"), std::string::npos)
+      << first.output;
+  EXPECT_NE(first.output.find("reduce time.macro_step"), std::string::npos) << first.output;
+  run_in("discard_two_step_2", fixture_scenario(picky(kQuarter), two_step(winkler)), second);
+  EXPECT_EQ(second.exit_code, 3) << second.output;
+  EXPECT_NE(second.output.find("participant 'soil' refused the step starting at t = 0.000000 s"),
+            std::string::npos)
+      << second.output;
+  EXPECT_NE(second.output.find("(step 2 of 2)"), std::string::npos) << second.output;
+}
+
 TEST(DiscardRetry, AnAbi10CouplerStillSeesARefusalAsAnError) {
   // 1.0 promised that a refused step stops the run; a 1.0 coupler never learns of DISCARD.
   CliResult r;

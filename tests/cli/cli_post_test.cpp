@@ -55,6 +55,10 @@ TEST(CliPost, RefusesADirectoryNoRunWrote) {
   EXPECT_EQ(r.exit_code, 1) << r.output;
   EXPECT_THAT(r.output, HasSubstr("holds no results of a rumble run"));
   EXPECT_THAT(r.output, HasSubstr("run the scenario into it first"));
+  std::ofstream(dir / ".rumble-manifest.json") << "{not json";
+  const CliResult broken = run_rumble({"post", dir.string()});
+  EXPECT_EQ(broken.exit_code, 1) << broken.output;
+  EXPECT_THAT(broken.output, HasSubstr(".rumble-manifest.json cannot be used"));
   const CliResult missing = run_rumble({"post", (dir / "nothere").string()});
   EXPECT_EQ(missing.exit_code, 1) << missing.output;
   EXPECT_THAT(missing.output, HasSubstr("is not a directory"));
