@@ -1,5 +1,5 @@
 // A whole coupled run allocates nothing per macro step: the coupler (gauss_seidel, jacobi,
-// implicit), the host and its step reports, both participants through their plugin tables, the
+// implicit, monolithic), the host and its step reports, both participants through their plugin tables, the
 // recorder, the receiver samples and summary.json's heartbeat (here after every step). Measured as
 // the difference between a run of N and of 2N macro steps of the same scenario (setup and summary
 // cost the same in both): a per-step allocation would show as at least N. The summary's numbers
@@ -62,6 +62,14 @@ TEST(RunAllocation, ImplicitIqnIls) {
   s["coupling"] = {{"type", "implicit"}, {"params", {{"acceleration", "iqn_ils"}}}};
   s["vehicles"][0]["start"] = 1.0;
   expect_no_allocation_per_step("run_allocation_implicit", s);
+}
+
+TEST(RunAllocation, Monolithic) {
+  // The soil condensed onto the sleepers in every micro-step (work space sized once).
+  nlohmann::json s = small_scenario();
+  s["coupling"] = {{"type", "monolithic"}, {"params", nlohmann::json::object()}};
+  s["vehicles"][0]["start"] = 1.0;
+  expect_no_allocation_per_step("run_allocation_monolithic", s);
 }
 
 }  // namespace

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "cli_runner.hpp"
+#include "coupler_runs.hpp"
 
 namespace rumble::testing {
 namespace {
@@ -39,32 +40,6 @@ nlohmann::json two_step(const nlohmann::json& reduced_soil) {
   return {{"type", "two_step"},
           {"params", nlohmann::json::object()},
           {"participants", {{"reduced_soil", reduced_soil}}}};
-}
-
-struct Histories {
-  std::vector<double> times, values;
-};
-
-Histories csv(const std::filesystem::path& file) {
-  Histories h;
-  read_csv(file, h.times, h.values);
-  return h;
-}
-
-std::filesystem::path run(const std::string& name, const nlohmann::json& scenario) {
-  const auto dir = scratch_directory(name);
-  const CliResult r = run_rumble({"run", write_scenario(dir, scenario).string(), "--no-progress"});
-  EXPECT_EQ(r.exit_code, 0) << r.output;
-  return dir / "results";
-}
-
-double largest_difference(const Histories& a, const Histories& b) {
-  EXPECT_EQ(a.times, b.times);
-  EXPECT_EQ(a.values.size(), b.values.size());
-  double d = 0.0;
-  for (std::size_t k = 0; k < std::min(a.values.size(), b.values.size()); ++k)
-    d = std::max(d, std::abs(a.values[k] - b.values[k]));
-  return d;
 }
 
 TEST(TwoStep, SameSoilInBothStepsEqualsGaussSeidel) {

@@ -163,6 +163,12 @@ TEST(PluginLoadErrors, MalformedCapabilities) {
                 ": factory 0 ('loader_test_forged') is malformed: capabilities max_macro_step is "
                 "negative or NaN" +
                 tail);
+  // ABI 1.2: only a coupler can ask for the soil to be integrated with the track.
+  EXPECT_EQ(load_error(registry, fixture::monolithic_soil),
+            "plugin " + quoted(fixture::monolithic_soil) +
+                ": factory 0 ('loader_test_forged') is malformed: capability MONOLITHIC is for "
+                "couplers only" +
+                tail);
   EXPECT_TRUE(registry.types().empty());
 }
 

@@ -69,6 +69,11 @@ std::string capabilities_defect(const rumble_factory* f) {
            std::to_string(kCapabilitiesV1_1);
   }
   if (!(c.max_macro_step >= 0.0)) return "capabilities max_macro_step is negative or NaN";
+  if ((c.offers & RUMBLE_CAP_MONOLITHIC) != 0) {
+    if (f->kind != RUMBLE_KIND_COUPLER) return "capability MONOLITHIC is for couplers only";
+    if ((c.soil_needs & RUMBLE_CAP_LINEAR_MATRICES) == 0)
+      return "a MONOLITHIC coupler must need LINEAR_MATRICES of its soil (soil_needs)";
+  }
   if (c.participants_json != nullptr) {
     const auto j = nlohmann::json::parse(c.participants_json, nullptr, false);
     if (!j.is_object()) return "capabilities participants_json is not a JSON object";

@@ -80,8 +80,13 @@ void TrackSide::restore_state(const std::vector<double>& b) {
 
 // ---------------------------------------------------------------- soil
 
-SoilSide::SoilSide(std::string name, SoilInstance& soil, std::size_t n_footprints)
-    : Participant(std::move(name)), soil_(soil), n_(n_footprints), coeff_(3 * n_footprints, 0.0) {
+SoilSide::SoilSide(std::string name, SoilInstance& soil, std::size_t n_footprints,
+                   const TrackParticipant* integrated_in)
+    : Participant(std::move(name)),
+      soil_(soil),
+      n_(n_footprints),
+      integrated_in_(integrated_in),
+      coeff_(3 * n_footprints, 0.0) {
   input_ = rumble_waveform{0, n_, coeff_.data()};
   set_groups(motion_groups(n_), force_group(n_));
 }
@@ -89,7 +94,14 @@ std::string SoilSide::description() const {
   return "soil/" + soil_.type_name();
 }
 void SoilSide::get_output(double* y) const {
-  soil_.motion(y, y + n_, n_);
+  motion(y, y + n_);
+}
+void SoilSide::motion(double* u, double* v) const {
+  if (integrated_in_ == nullptr) return soil_.motion(u, v, n_);
+  for (std::size_t i = 0; i < n_; ++i) {
+    u[i] = integrated_in_->footprint_u(i);
+    v[i] = integrated_in_->footprint_v(i);
+  }
 }
 void SoilSide::set_input(const rumble_waveform& u) {
   if (u.n != n_ || u.order > 2) {
@@ -111,9 +123,15 @@ bool SoilSide::applied_force(double* f) const {
   return true;
 }
 void SoilSide::advance(double t, double H) {
+  if (integrated_in_ != nullptr) {
+    throw RunError("soil '" + soil_.type_name() +
+                   "' is integrated in the vehicle/track (a monolithic coupler): advance the "
+                   "track only");
+  }
   soil_.advance(t, H, input_);
 }
 bool SoilSide::can_checkpoint() const {
+  if (integrated_in_ != nullptr) return false;  // its state is the track's
   return soil_.owns_checkpoints() || state_size() > 0;
 }
 void SoilSide::checkpoint(std::uint32_t slot) {

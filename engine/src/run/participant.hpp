@@ -78,10 +78,13 @@ class TrackSide final : public Participant {
 };
 
 /// A soil: output footprint_displacement then footprint_velocity (2n), input footprint_force
-/// (n).
+/// (n). A soil integrated in the vehicle/track (`integrated_in`: a monolithic coupler, decision
+/// 0008) is stepped by the track: its outputs are the track's footprint motion, advancing it is
+/// an error, and its state is checkpointed with the track's.
 class SoilSide final : public Participant {
  public:
-  SoilSide(std::string name, SoilInstance& soil, std::size_t n_footprints);
+  SoilSide(std::string name, SoilInstance& soil, std::size_t n_footprints,
+           const TrackParticipant* integrated_in = nullptr);
   std::string description() const override;
   std::size_t output_size() const override { return 2 * n_; }
   void get_output(double* y) const override;
@@ -92,6 +95,8 @@ class SoilSide final : public Participant {
   void rollback(std::uint32_t slot) override;
   void free_checkpoint(std::uint32_t slot) override;
   SoilInstance& soil() const { return soil_; }
+  /// Footprint displacements u [m] and velocities v [m/s] now (n values each).
+  void motion(double* u, double* v) const;
   /// The footprint forces [N] the soil took at the end of its last step (its last input
   /// waveform at tau = 1), n values; false (f untouched) before its first input.
   bool applied_force(double* f) const;
@@ -102,6 +107,7 @@ class SoilSide final : public Participant {
   void restore_state(const std::vector<double>& buffer) override;
   SoilInstance& soil_;
   std::size_t n_;
+  const TrackParticipant* integrated_in_;
   std::vector<double> coeff_;  // the force waveform until the next advance
   rumble_waveform input_{0, 0, nullptr};
   bool has_input_ = false;

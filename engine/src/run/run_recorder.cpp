@@ -91,7 +91,7 @@ void RunRecorder::record_soil(double t, double residual, std::uint32_t iteration
   // The force the soil really took (an explicit scheme may give it an extrapolated one, not the
   // track's current one); before its first step, the track's static forces.
   if (!soil_.applied_force(force_.data())) track_.footprint_forces(force_.data());
-  soil_.soil().motion(u_.data(), v_.data(), n);
+  soil_.motion(u_.data(), v_.data());
   double power = 0.0;  // W: work done on the soil per second
   for (std::size_t i = 0; i < n; ++i) {
     power += force_[i] * v_[i];
@@ -117,7 +117,7 @@ void RunRecorder::record_soil(double t, double residual, std::uint32_t iteration
 
 void RunRecorder::record_extra(std::size_t e, double t) {
   ExtraFiles& x = extras_[e];
-  x.side->soil().motion(u_.data(), v_.data(), u_.size());
+  x.side->motion(u_.data(), v_.data());
   x.u->row(t, u_.data(), u_.size());
   x.v->row(t, v_.data(), v_.size());
 }

@@ -1,6 +1,8 @@
 #include "run/run_scenario.hpp"
 
+#include <array>
 #include <chrono>
+#include <cmath>
 #include <memory>
 #include <sstream>
 #include <vector>
@@ -15,6 +17,7 @@
 #include "run/run_components.hpp"
 #include "run/run_recorder.hpp"
 #include "run/step_observer.hpp"
+#include "track/integrated_soil.hpp"
 
 namespace rumble {
 namespace {
@@ -83,6 +86,25 @@ SoilInstance& static_partner(RunComponents& c) {
   return *c.soil;
 }
 
+/// A coupler declaring RUMBLE_CAP_MONOLITHIC: the scenario's soil, from its linear matrices, is
+/// integrated inside the track (decision 0008). Returns whether it was.
+bool integrate_soil_if_asked(RunComponents& c) {
+  if (!c.coupler->type().capabilities.has(RUMBLE_CAP_MONOLITHIC)) return false;
+  std::array<Eigen::SparseMatrix<double>, 4> m;  // M, C, K, B (rumble_matrix order)
+  for (int which = 0; which < 4; ++which) {
+    if (!c.soil->linear_matrix(static_cast<rumble_matrix>(which),
+                               m[static_cast<std::size_t>(which)])) {
+      throw RunError("soil '" + c.soil->type_name() +
+                     "' gives no linear matrices, which coupler '" + c.coupler->type_name() +
+                     "' needs to integrate it with the track; choose a soil that offers them "
+                     "(rumble plugins)");
+    }
+  }
+  c.track->integrate_soil(
+      std::make_unique<IntegratedSoil>(c.soil->type_name(), m[0], m[1], m[2], m[3]));
+  return true;
+}
+
 /// Static equilibrium of the track and its static partner (static_partner); the other soils
 /// start from the same static footprint forces. Returns the track/soil iterations.
 int solve_statics(RunComponents& c) {
@@ -91,9 +113,29 @@ int solve_statics(RunComponents& c) {
       c.track->solve_static([&](const std::vector<double>& force, std::vector<double>& u) {
         partner.initialize(0.0, force, u);
       });
-  std::vector<double> force(c.track->interface_size()), u;
+  const std::size_t n = c.track->interface_size();
+  std::vector<double> force(n), u;
   c.track->footprint_forces(force.data());
-  if (&partner != c.soil.get()) c.soil->initialize(0.0, force, u);
+  if (&partner != c.soil.get() || c.track->has_integrated_soil()) {
+    c.soil->initialize(0.0, force, u);
+  }
+  if (c.track->has_integrated_soil()) {
+    // The plugin's own statics against its matrices' (K^-1 B F): a soil whose matrices do not
+    // describe it is caught here, not by wrong dynamics. Both are direct solves; 1e-6 of the
+    // largest settlement leaves room for the static iteration's 1e-9 and any solver.
+    double worst = 0.0, scale = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      worst = std::max(worst, std::abs(u[i] - c.track->footprint_u(i)));
+      scale = std::max(scale, std::abs(u[i]));
+    }
+    if (worst > 1e-6 * scale) {
+      std::ostringstream m;
+      m << "soil '" << c.soil->type_name() << "': its linear matrices give static footprint "
+        << "displacements up to " << worst << " m away from its own statics (largest " << scale
+        << " m); its linear_matrix does not describe it, so it cannot be integrated with the track";
+      throw RunError(m.str());
+    }
+  }
   for (auto& [name, extra] : c.extras)
     if (extra.get() != &partner) extra->initialize(0.0, force, u);
   return iterations;
@@ -115,6 +157,7 @@ RunOutcome run_scenario(const scenario::RunSpec& spec, const PluginRegistry& reg
 
   // Anything failing from here on leaves summary.json saying so, then propagates.
   try {
+    const bool integrated = integrate_soil_if_asked(c);
     const auto statics_start = Clock::now();
     const int static_iterations = solve_statics(c);
     const double statics_seconds = seconds_since(statics_start);
@@ -130,7 +173,7 @@ RunOutcome run_scenario(const scenario::RunSpec& spec, const PluginRegistry& reg
 
     // ---- the participants
     TrackSide track_side(track);
-    SoilSide soil_side("soil", *c.soil, track.interface_size());
+    SoilSide soil_side("soil", *c.soil, track.interface_size(), integrated ? &track : nullptr);
     std::vector<std::unique_ptr<SoilSide>> extra_sides;
     std::vector<Participant*> participants{&track_side, &soil_side};
     std::vector<const SoilSide*> extras;
@@ -145,12 +188,18 @@ RunOutcome run_scenario(const scenario::RunSpec& spec, const PluginRegistry& reg
                          c.receivers.surface);
     recorder.record_initial();
     std::unique_ptr<ProbeRecorder> probes;
-    if (c.receivers.probes) {
+    if (integrated && (c.receivers.probes || spec.outputs.field_interval)) {
+      log->warn(
+          "the soil is integrated with the track (monolithic): it records no receivers "
+          "and writes no fields; its footprint motion is recorded");
+    }
+    if (c.receivers.probes && !integrated) {
       probes = std::make_unique<ProbeRecorder>(results, *c.soil, spec.outputs.receivers);
       probes->take();  // samples at t = 0, if the soil records one there
     }
     std::unique_ptr<FieldWriter> fields;
-    if (spec.outputs.field_interval && c.soil->capabilities().has(RUMBLE_CAP_FIELD_OUTPUT)) {
+    if (spec.outputs.field_interval && c.soil->capabilities().has(RUMBLE_CAP_FIELD_OUTPUT) &&
+        !integrated) {
       fields = std::make_unique<FieldWriter>(results, *c.soil, *spec.outputs.field_interval);
       fields->at(0.0);
     }

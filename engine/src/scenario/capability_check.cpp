@@ -112,6 +112,25 @@ void check_once_per_process(const std::vector<Used>& used, std::vector<Diagnosti
   }
 }
 
+/// A monolithic coupler steps the soil inside the track, never the soil plugin itself.
+void check_monolithic(const json& scenario, const ComponentType& coupler,
+                      std::vector<Diagnostic>& out) {
+  if (!coupler.capabilities.has(RUMBLE_CAP_MONOLITHIC)) return;
+  const json& outputs = scenario.at("outputs");
+  for (const char* what : {"receivers", "fields"}) {
+    if (!outputs.contains(what) || (outputs[what].is_array() && outputs[what].empty())) continue;
+    Diagnostic d = finding(std::string("/outputs/") + what,
+                           "coupler \"" + coupler.type_name +
+                               "\" integrates the soil with the track from its matrices; the soil "
+                               "records no " +
+                               what + " in such a run",
+                           "remove /outputs/" + std::string(what) +
+                               ", or compare footprint motions (they are recorded)");
+    d.severity = Diagnostic::Severity::kWarning;
+    out.push_back(std::move(d));
+  }
+}
+
 void check_fields(const json& scenario, const Used& soil, std::vector<Diagnostic>& out) {
   const Capabilities& c = soil.type->capabilities;
   if (!scenario.at("outputs").contains("fields") || c.has(RUMBLE_CAP_FIELD_OUTPUT)) return;
@@ -159,6 +178,7 @@ std::vector<Diagnostic> check_capabilities(const json& scenario, const PluginReg
     used.push_back({"/coupling", coupler});
     check_needs(*coupler, soils, registry, out);
     check_participants(scenario, *coupler, out);
+    check_monolithic(scenario, *coupler, out);
   }
   const json vehicles = scenario.value("vehicles", json::array());
   for (std::size_t i = 0; i < vehicles.size(); ++i) {

@@ -19,12 +19,16 @@ void InverseColumns::clear() {
   std::fill(last_use_.begin(), last_use_.end(), 0);
 }
 
-const double* InverseColumns::column(std::size_t dof, const BandedSymmetric& a) {
+const double* InverseColumns::find(std::size_t dof) {
   ++clock_;
   if (const std::ptrdiff_t s = slot_of_[dof]; s >= 0) {
     last_use_[static_cast<std::size_t>(s)] = clock_;
     return &storage_[static_cast<std::size_t>(s) * n_];
   }
+  return nullptr;
+}
+
+double* InverseColumns::claim(std::size_t dof) {
   // A miss (a wheel entered a new element): take an empty slot, else the least recently used.
   const auto slot = static_cast<std::size_t>(std::min_element(last_use_.begin(), last_use_.end()) -
                                              last_use_.begin());
@@ -35,8 +39,6 @@ const double* InverseColumns::column(std::size_t dof, const BandedSymmetric& a) 
   double* col = &storage_[slot * n_];
   std::fill(col, col + n_, 0.0);
   col[dof] = 1.0;
-  a.solve(col);
-  ++solves_;
   return col;
 }
 

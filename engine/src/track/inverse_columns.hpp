@@ -22,11 +22,25 @@ class InverseColumns {
   void clear();
   /// A^-1 e_dof (n values), solved with the factorized `a` when not cached. Valid until the
   /// next call.
-  const double* column(std::size_t dof, const BandedSymmetric& a);
+  const double* column(std::size_t dof, const BandedSymmetric& a) {
+    return column_by(dof, [&a](double* x) { a.solve(x); });
+  }
+  /// The same for any A: `solve(x)` overwrites x (n values) with A^-1 x.
+  template <class Solve>
+  const double* column_by(std::size_t dof, Solve&& solve) {
+    if (const double* cached = find(dof)) return cached;
+    double* col = claim(dof);
+    solve(col);
+    ++solves_;
+    return col;
+  }
 
   std::uint64_t solves() const { return solves_; }  // columns computed so far
 
  private:
+  const double* find(std::size_t dof);  // the cached column, or null
+  double* claim(std::size_t dof);       // a slot for dof, holding e_dof
+
   std::size_t n_ = 0, capacity_ = 0;
   std::vector<double> storage_;          // capacity_ columns of n_ values
   std::vector<std::ptrdiff_t> slot_of_;  // per DOF: its slot, or -1

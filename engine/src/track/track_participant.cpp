@@ -125,9 +125,24 @@ void TrackParticipant::set_input(const rumble_waveform& motion) {
   input_.order = motion.order;
 }
 
+void TrackParticipant::integrate_soil(std::unique_ptr<IntegratedSoil> soil) {
+  soil_ = std::make_unique<SoilCondensation>(std::move(soil), structure_);
+  h_factored_ = -1.0;  // the dynamic matrix now includes the soil
+}
+
+void TrackParticipant::solve_linear(double* y) const {
+  a_track_.solve(y);
+  if (soil_) soil_->correct_solve(y);
+}
+
 // --------------------------------------------------------------------------- statics
 
-int TrackParticipant::solve_static(const SoilStatics& soil) {
+int TrackParticipant::solve_static(const SoilStatics& given_soil) {
+  const SoilStatics integrated = [this](const std::vector<double>& force, std::vector<double>& u) {
+    u.resize(force.size());
+    soil_->soil().static_displacement(force.data(), u.data());
+  };
+  const SoilStatics& soil = soil_ ? integrated : given_soil;
   const TrackConfig& c = structure_.config();
   const std::size_t n = structure_.sleeper_count();
   const std::size_t nw = vehicles_.wheel_count();
@@ -282,6 +297,10 @@ int TrackParticipant::solve_static(const SoilStatics& soil) {
   qd_.setZero();
   qdd_.setZero();
   u_now_ = u;
+  if (soil_) {  // the soil at rest under the final footprint forces (u to the iteration's 1e-9)
+    soil_->soil().start_static(fb.data());
+    for (std::size_t i = 0; i < n; ++i) u_now_[i] = soil_->soil().footprint_u(i);
+  }
   std::fill(v_now_.begin(), v_now_.end(), 0.0);
   std::fill(input_coeff_.begin(), input_coeff_.end(), 0.0);
   std::copy(u.begin(), u.end(), input_coeff_.begin());  // hold the static footprint position
@@ -317,6 +336,7 @@ void TrackParticipant::factorize_dynamic(double h) {
                                     structure_.damping(), newmark_.c_a(h), structure_.mass());
   a_track_ = a_track_operator_;
   if (!a_track_.factorize()) throw RunError("track: dynamic matrix is not positive definite");
+  if (soil_) soil_->factorize(newmark_, h, a_track_);
   inverse_columns_.clear();
   h_factored_ = h;
 }
@@ -378,8 +398,9 @@ void TrackParticipant::micro_step(double t1, double h, double tau) {
   const std::size_t n = structure_.sleeper_count();
   const std::size_t nw = vehicles_.wheel_count();
   const auto nv = static_cast<Eigen::Index>(vehicles_.dof_count());
-  // Footprint motion at t1 from the input waveform (Horner in tau).
-  for (std::size_t i = 0; i < n; ++i) {
+  // Footprint motion at t1 from the input waveform (Horner in tau); an integrated soil's comes
+  // from the joint solve instead.
+  for (std::size_t i = 0; i < n && !soil_; ++i) {
     double u = 0.0, v = 0.0;
     for (int k = static_cast<int>(input_.order); k >= 0; --k) {
       const std::size_t base = static_cast<std::size_t>(k) * 2 * n;
@@ -394,7 +415,10 @@ void TrackParticipant::micro_step(double t1, double h, double tau) {
   newmark_.predictors(h, q_, qd_, qdd_, pa_v_, pv_v_);
   structure_.mass().multiply(pa_t_.data(), rhs_t_.data());
   structure_.damping().multiply_add(1.0, pv_t_.data(), rhs_t_.data());
-  ballast_load(rhs_t_.data());
+  if (soil_)
+    soil_->predict(newmark_, h, pv_t_, rhs_t_.data());
+  else
+    ballast_load(rhs_t_.data());
   x_old_ = x_;
   q_old_ = q_;
   // Start from the constant-acceleration predictor.
@@ -410,7 +434,8 @@ void TrackParticipant::micro_step(double t1, double h, double tau) {
     const auto wi = static_cast<Eigen::Index>(w);
     z_t_.col(wi).setZero();
     for (std::size_t k = 0; k < 4; ++k) {
-      const double* column = inverse_columns_.column(contact_point_[w].dof[k], a_track_);
+      const double* column = inverse_columns_.column_by(contact_point_[w].dof[k],
+                                                        [this](double* y) { solve_linear(y); });
       z_t_.col(wi) += contact_point_[w].shape[k] * Eigen::Map<const Eigen::VectorXd>(column, nt);
     }
   }
@@ -428,6 +453,7 @@ void TrackParticipant::micro_step(double t1, double h, double tau) {
     // Residuals: r_t = A x - rhs - N F ; r_v = M(q) a - f + J^T F.
     if (it == 0) {
       a_track_operator_.multiply(x_.data(), r_t_.data());
+      if (soil_) soil_->subtract_coupling(x_.data(), r_t_.data());
       r_t_ -= rhs_t_;
       for (std::size_t w = 0; w < nw; ++w)
         for (std::size_t k = 0; k < 4; ++k)
@@ -465,7 +491,7 @@ void TrackParticipant::micro_step(double t1, double h, double tau) {
     // Woodbury: y = D^-1 r, Z = D^-1 B, S = I + K B^T Z, dx = y - Z S^-1 K B^T y.
     if (it == 0) {
       y_t_ = r_t_;
-      a_track_.solve(y_t_.data());
+      solve_linear(y_t_.data());
     } else {
       y_t_.noalias() = z_t_ * force_error_;  // A^-1 N (F_lin - F'), no solve
     }
@@ -508,6 +534,13 @@ void TrackParticipant::micro_step(double t1, double h, double tau) {
   last_iterations_ = it;
   newmark_.correct(h, x_old_, x_, v_, a_);
   newmark_.correct(h, q_old_, q_, qd_, qdd_);
+  if (soil_) {
+    soil_->correct(newmark_, h, x_);
+    for (std::size_t i = 0; i < n; ++i) {
+      u_now_[i] = soil_->soil().footprint_u(i);
+      v_now_[i] = soil_->soil().footprint_v(i);
+    }
+  }
   evaluate_contacts(t1, x_, q_);  // forces consistent with the converged state, for outputs
 }
 
@@ -536,7 +569,8 @@ double TrackParticipant::contact_energy() const {
 // --------------------------------------------------------------------------- checkpoints
 
 std::size_t TrackParticipant::state_size() const {
-  return 1 + 3 * static_cast<std::size_t>(x_.size() + q_.size()) + 2 * u_now_.size();
+  return 1 + 3 * static_cast<std::size_t>(x_.size() + q_.size()) + 2 * u_now_.size() +
+         (soil_ ? soil_->soil().state_size() : 0);
 }
 
 void TrackParticipant::save_state(double* b) const {
@@ -544,7 +578,8 @@ void TrackParticipant::save_state(double* b) const {
   for (const Eigen::VectorXd* v : {&x_, &v_, &a_, &q_, &qd_, &qdd_})
     b = std::copy(v->data(), v->data() + v->size(), b);
   b = std::copy(u_now_.begin(), u_now_.end(), b);
-  std::copy(v_now_.begin(), v_now_.end(), b);
+  b = std::copy(v_now_.begin(), v_now_.end(), b);
+  if (soil_) soil_->soil().save_state(b);
 }
 
 void TrackParticipant::restore_state(const double* b) {
@@ -556,6 +591,8 @@ void TrackParticipant::restore_state(const double* b) {
   std::copy(b, b + u_now_.size(), u_now_.begin());
   b += u_now_.size();
   std::copy(b, b + v_now_.size(), v_now_.begin());
+  b += v_now_.size();
+  if (soil_) soil_->soil().restore_state(b);
   evaluate_contacts(t_, x_, q_);
 }
 

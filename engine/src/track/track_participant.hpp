@@ -19,7 +19,9 @@
 #include <rumble/newmark.hpp>
 #include <vector>
 
+#include "track/integrated_soil.hpp"
 #include "track/inverse_columns.hpp"
+#include "track/soil_condensation.hpp"
 #include "track/track_structure.hpp"
 #include "track/unevenness.hpp"
 #include "track/vehicle_set.hpp"
@@ -48,8 +50,15 @@ class TrackParticipant {
   std::int64_t micro_steps(double H) const;
   static constexpr double kMaxMicroStepsPerMacroStep = 1e7;
 
+  /// Integrates a linear soil with the track as one system (the monolithic reference, decision
+  /// 0008): from then on the footprint motion is the integrated soil's, set_input is not used,
+  /// and solve_static finds the statics on it. Before solve_static.
+  void integrate_soil(std::unique_ptr<IntegratedSoil> soil);
+  bool has_integrated_soil() const { return soil_ != nullptr; }
+
   /// Static equilibrium under the vehicles' weight, iterated with the soil to consistency;
-  /// with no soil (empty function) the footprints are fixed. Returns the iterations used.
+  /// with no soil (empty function) the footprints are fixed; with an integrated soil, on it
+  /// (the function is not called). Returns the iterations used.
   int solve_static(const SoilStatics& soil);
 
   /// Footprint motion over the next macro step: 2n channels (u_0..u_{n-1}, v_0..v_{n-1}).
@@ -88,6 +97,8 @@ class TrackParticipant {
   /// Contact forces and stiffnesses for the rail state x and wheel positions z.
   void evaluate_contacts(double t, const Eigen::VectorXd& x, const Eigen::VectorXd& q);
   void ballast_load(double* f) const;  // k_b u + c_b v on the sleeper DOFs
+  /// y = A^-1 y with the factored dynamic matrix (and the integrated soil condensed on it).
+  void solve_linear(double* y) const;
 
   TrackStructure structure_;
   VehicleSet vehicles_;
@@ -113,6 +124,7 @@ class TrackParticipant {
   InverseColumns inverse_columns_;    // columns of A^-1 under the wheels
   Eigen::MatrixXd a_vehicle_;
   Eigen::PartialPivLU<Eigen::MatrixXd> lu_vehicle_;
+  std::unique_ptr<SoilCondensation> soil_;  // the integrated soil, if any (monolithic)
 
   // Per-step work space.
   Eigen::VectorXd pa_t_, pv_t_, rhs_t_, r_t_, y_t_, pa_v_, pv_v_, r_v_, y_v_, f_v_, z_w_, vel_v_,

@@ -39,6 +39,9 @@
  *       channel groups, step reports with per-group residuals, DISCARD passed to couplers;
  *       probes (3-component velocity and displacement at depth, sampled within a step), field
  *       output, soil wave speeds and linear matrices (CSC); array lengths on every call.
+ *   1.2 (2026-12-02) one capability bit, no struct changed (docs/decisions/0008-monolithic.md):
+ *       RUMBLE_CAP_MONOLITHIC, a coupler asking the host to integrate the soil inside the
+ *       vehicle/track. A 1.2 coupler is refused by a 1.1 host, which would ignore the bit.
  */
 #ifndef RUMBLE_ABI_H
 #define RUMBLE_ABI_H
@@ -51,7 +54,7 @@ extern "C" {
 #endif
 
 #define RUMBLE_ABI_MAJOR 1
-#define RUMBLE_ABI_MINOR 1
+#define RUMBLE_ABI_MINOR 2
 
 /** Name of the one symbol every plugin library exports (see rumble_plugin_entry_fn). */
 #define RUMBLE_PLUGIN_ENTRY_SYMBOL "rumble_plugin_entry"
@@ -166,6 +169,11 @@ typedef struct rumble_lifecycle_api {
 #define RUMBLE_CAP_ONCE_PER_PROCESS (UINT64_C(1) << 8)   /**< at most one live instance */
 #define RUMBLE_CAP_WAVE_SPEEDS (UINT64_C(1) << 9)        /**< soil: wave_speeds */
 #define RUMBLE_CAP_SURFACE_RECEIVERS (UINT64_C(1) << 10) /**< soil: 1.0 set_receivers pair */
+/** 1.2, coupler: the host integrates the scenario's soil, from its linear matrices, inside the
+ *  vehicle/track as one system (a monolithic reference). The coupler then advances the track
+ *  only (the soil's outputs follow it; advancing the soil is an error) and must also need
+ *  RUMBLE_CAP_LINEAR_MATRICES in soil_needs. */
+#define RUMBLE_CAP_MONOLITHIC (UINT64_C(1) << 11)
 
 /**
  * 1.1: what a component type offers and, for a coupler, what it needs, declared on its factory

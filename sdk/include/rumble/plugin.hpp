@@ -60,6 +60,7 @@ inline constexpr std::uint64_t kCapThreads = RUMBLE_CAP_THREADS;
 inline constexpr std::uint64_t kCapOncePerProcess = RUMBLE_CAP_ONCE_PER_PROCESS;
 inline constexpr std::uint64_t kCapSaveRestore = RUMBLE_CAP_SAVE_RESTORE;
 inline constexpr std::uint64_t kCapLinearMatrices = RUMBLE_CAP_LINEAR_MATRICES;
+inline constexpr std::uint64_t kCapMonolithic = RUMBLE_CAP_MONOLITHIC;
 
 /// Host services (logging, directories, thread budget, stop requests). Cheap to copy; valid for
 /// the instance's life.

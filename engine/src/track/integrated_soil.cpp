@@ -1,0 +1,179 @@
+#include "track/integrated_soil.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "core/errors.hpp"
+
+namespace rumble {
+namespace {
+
+using Sparse = Eigen::SparseMatrix<double>;
+
+std::size_t half_bandwidth_of(const Sparse& a) {
+  std::size_t b = 0;
+  for (Eigen::Index j = 0; j < a.outerSize(); ++j)
+    for (Sparse::InnerIterator it(a, j); it; ++it)
+      b = std::max(b, static_cast<std::size_t>(std::abs(it.row() - it.col())));
+  return b;
+}
+
+/// Largest |A - A^T| relative to the largest |A|; 0 for an empty matrix.
+double asymmetry(const Sparse& a) {
+  const Sparse transposed = a.transpose();
+  const double scale = a.coeffs().size() == 0 ? 0.0 : a.coeffs().cwiseAbs().maxCoeff();
+  if (scale == 0.0) return 0.0;
+  const Sparse difference = a - transposed;
+  return difference.coeffs().size() == 0 ? 0.0 : difference.coeffs().cwiseAbs().maxCoeff() / scale;
+}
+
+BandedSymmetric banded(const Sparse& a, std::size_t band) {
+  BandedSymmetric out(static_cast<std::size_t>(a.rows()), band);
+  for (Eigen::Index j = 0; j < a.outerSize(); ++j)
+    for (Sparse::InnerIterator it(a, j); it; ++it)
+      if (it.row() >= it.col())  // the lower triangle; add() mirrors it
+        out.add(static_cast<std::size_t>(it.row()), static_cast<std::size_t>(it.col()), it.value());
+  return out;
+}
+
+}  // namespace
+
+IntegratedSoil::IntegratedSoil(const std::string& name, const Sparse& M, const Sparse& C,
+                               const Sparse& K, const Sparse& B)
+    : n_x_(static_cast<std::size_t>(K.rows())), n_f_(static_cast<std::size_t>(B.cols())) {
+  const auto refuse = [&](const std::string& what) {
+    return RunError("soil '" + name +
+                    "' cannot be integrated with the track (monolithic): " + what);
+  };
+  for (const auto& [m, label] : {std::pair{&M, "M"}, std::pair{&C, "C"}, std::pair{&K, "K"}}) {
+    if (static_cast<std::size_t>(m->rows()) != n_x_ || static_cast<std::size_t>(m->cols()) != n_x_)
+      throw refuse(std::string(label) + " is " + std::to_string(m->rows()) + " x " +
+                   std::to_string(m->cols()) + ", K is " + std::to_string(n_x_) + " x " +
+                   std::to_string(n_x_));
+    // Round-off of an assembled matrix is ~1e-16 relative; 1e-10 leaves room for any sum order.
+    if (const double d = asymmetry(*m); d > 1e-10) {
+      std::ostringstream text;
+      text << label << " is not symmetric (largest |" << label << " - " << label << "^T| is " << d
+           << " of its largest entry)";
+      throw refuse(text.str());
+    }
+  }
+  if (static_cast<std::size_t>(B.rows()) != n_x_)
+    throw refuse("B has " + std::to_string(B.rows()) + " rows, K has " + std::to_string(n_x_));
+  band_ = std::max({half_bandwidth_of(M), half_bandwidth_of(C), half_bandwidth_of(K)});
+  if (static_cast<double>(band_ + 1) * static_cast<double>(n_x_) > kMaxBandStorage) {
+    std::ostringstream text;
+    text << n_x_ << " DOFs with a half bandwidth of " << band_ << " need "
+         << static_cast<double>(band_ + 1) * static_cast<double>(n_x_)
+         << " doubles per banded matrix, more than " << kMaxBandStorage
+         << "; use a smaller soil (or a co-simulation scheme: gauss_seidel, implicit)";
+    throw refuse(text.str());
+  }
+  mass_ = banded(M, band_);
+  damping_ = banded(C, band_);
+  stiffness_ = banded(K, band_);
+  input_ = B;
+  input_.makeCompressed();
+  static_factor_ = stiffness_;
+  if (!static_factor_.factorize())
+    throw refuse("its stiffness K is not positive definite (a soil with no static stiffness)");
+  dynamic_ = BandedSymmetric(n_x_, band_);
+  G_.setZero(static_cast<Eigen::Index>(n_f_), static_cast<Eigen::Index>(n_f_));
+  for (Eigen::VectorXd* v : {&x_, &v_, &a_, &pa_, &pv_, &rhs_, &free_, &x_old_})
+    v->setZero(static_cast<Eigen::Index>(n_x_));
+}
+
+double IntegratedSoil::footprint_dot(std::size_t i, const Eigen::VectorXd& x) const {
+  double s = 0.0;
+  for (Sparse::InnerIterator it(input_, static_cast<Eigen::Index>(i)); it; ++it)
+    s += it.value() * x[it.row()];
+  return s;
+}
+
+void IntegratedSoil::add_input(const double* force, Eigen::VectorXd& y) const {
+  for (std::size_t i = 0; i < n_f_; ++i)
+    for (Sparse::InnerIterator it(input_, static_cast<Eigen::Index>(i)); it; ++it)
+      y[it.row()] += it.value() * force[i];
+}
+
+void IntegratedSoil::static_displacement(const double* force, double* u) {
+  rhs_.setZero();
+  add_input(force, rhs_);
+  static_factor_.solve(rhs_.data());
+  for (std::size_t i = 0; i < n_f_; ++i) u[i] = footprint_dot(i, rhs_);
+}
+
+void IntegratedSoil::start_static(const double* force) {
+  x_.setZero();
+  add_input(force, x_);
+  static_factor_.solve(x_.data());
+  v_.setZero();
+  a_.setZero();
+}
+
+void IntegratedSoil::factorize(const Newmark& newmark, double h) {
+  if (h == h_factored_) return;
+  dynamic_.set_combination(1.0, stiffness_, newmark.c_v(h), damping_, newmark.c_a(h), mass_);
+  if (!dynamic_.factorize()) {
+    throw RunError(
+        "integrated soil: K + c_v C + c_a M is not positive definite at the micro-step " +
+        std::to_string(h) + " s");
+  }
+  Eigen::VectorXd column(static_cast<Eigen::Index>(n_x_));
+  for (std::size_t j = 0; j < n_f_; ++j) {
+    column.setZero();
+    for (Sparse::InnerIterator it(input_, static_cast<Eigen::Index>(j)); it; ++it)
+      column[it.row()] = it.value();
+    dynamic_.solve(column.data());
+    for (std::size_t i = 0; i < n_f_; ++i)
+      G_(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = footprint_dot(i, column);
+  }
+  G_ = 0.5 * (G_ + G_.transpose()).eval();  // symmetric to round-off; made exactly so
+  h_factored_ = h;
+}
+
+void IntegratedSoil::predict(const Newmark& newmark, double h, Eigen::VectorXd& u0,
+                             Eigen::VectorXd& p) {
+  newmark.predictors(h, x_, v_, a_, pa_, pv_);
+  mass_.multiply(pa_.data(), rhs_.data());
+  damping_.multiply_add(1.0, pv_.data(), rhs_.data());
+  free_ = rhs_;
+  dynamic_.solve(free_.data());
+  for (std::size_t i = 0; i < n_f_; ++i) {
+    u0[static_cast<Eigen::Index>(i)] = footprint_dot(i, free_);
+    p[static_cast<Eigen::Index>(i)] = footprint_dot(i, pv_);
+  }
+}
+
+void IntegratedSoil::correct(const Newmark& newmark, double h, const Eigen::VectorXd& force) {
+  x_old_ = x_;
+  x_ = rhs_;
+  add_input(force.data(), x_);
+  dynamic_.solve(x_.data());
+  newmark.correct(h, x_old_, x_, v_, a_);
+}
+
+double IntegratedSoil::footprint_u(std::size_t i) const {
+  return footprint_dot(i, x_);
+}
+
+double IntegratedSoil::footprint_v(std::size_t i) const {
+  return footprint_dot(i, v_);
+}
+
+double* IntegratedSoil::save_state(double* b) const {
+  for (const Eigen::VectorXd* v : {&x_, &v_, &a_})
+    b = std::copy(v->data(), v->data() + v->size(), b);
+  return b;
+}
+
+const double* IntegratedSoil::restore_state(const double* b) {
+  for (Eigen::VectorXd* v : {&x_, &v_, &a_}) {
+    std::copy(b, b + v->size(), v->data());
+    b += v->size();
+  }
+  return b;
+}
+
+}  // namespace rumble

@@ -1,0 +1,79 @@
+// A linear soil integrated with the vehicle/track as one system: the monolithic reference
+// (decision 0008). The soil's own equations, from its linear matrices (abi.h rumble_matrix),
+//   M x'' + C x' + K x = B F,   u = B^T x,  v = B^T x'   (F: whole-sleeper footprint forces [N])
+// are stepped with the track's Newmark at the track's micro-step, solved together with the track
+// in each micro-step. For one step size the soil is linear, so its footprint motion at the step's
+// end is affine in the footprint forces at the step's end:
+//   u = u0 + G F,   v = c_v u - p,   G = B^T A^-1 B,  A = K + c_v C + c_a M,
+// u0 the motion under no new force (from the soil's state) and p = B^T pv its velocity predictor.
+// The track condenses the soil onto its sleepers with G (TrackParticipant, "integrated soil").
+//
+// Storage is banded in the soil's own DOF order (tridiagonal for the lumped soils): a soil whose
+// band would not fit is refused with a message, not solved slowly.
+#pragma once
+
+#include <Eigen/Dense>
+#include <Eigen/SparseCore>
+#include <cstddef>
+#include <rumble/newmark.hpp>
+#include <string>
+
+#include "track/banded_matrix.hpp"
+
+namespace rumble {
+
+class IntegratedSoil {
+ public:
+  /// M, C, K: n_x x n_x (symmetric), B: n_x x n_footprints. `name` for messages. Throws
+  /// RunError for matrices of the wrong shape, not symmetric, too wide a band, or a singular K.
+  IntegratedSoil(const std::string& name, const Eigen::SparseMatrix<double>& M,
+                 const Eigen::SparseMatrix<double>& C, const Eigen::SparseMatrix<double>& K,
+                 const Eigen::SparseMatrix<double>& B);
+
+  std::size_t dof_count() const { return n_x_; }
+  std::size_t footprint_count() const { return n_f_; }
+  std::size_t half_bandwidth() const { return band_; }
+  /// Band storage above which a soil is refused [doubles]: 4e7 (320 MB for each of the three
+  /// matrices and the factor).
+  static constexpr double kMaxBandStorage = 4e7;
+
+  /// Static footprint displacements u = B^T K^-1 B F [m] under footprint forces F [N].
+  void static_displacement(const double* force, double* u);
+  /// Rest under static footprint forces F [N]: x = K^-1 B F, x' = x'' = 0.
+  void start_static(const double* force);
+
+  /// For step size h: factors A and forms G [m/N] (n_footprints x n_footprints, symmetric).
+  void factorize(const Newmark& newmark, double h);
+  const Eigen::MatrixXd& step_receptance() const { return G_; }
+
+  /// Start of a micro-step: the predictors and the motion under no new force; u0 [m], p [m/s].
+  void predict(const Newmark& newmark, double h, Eigen::VectorXd& u0, Eigen::VectorXd& p);
+  /// End of the micro-step under footprint forces F [N]: the soil's new state.
+  void correct(const Newmark& newmark, double h, const Eigen::VectorXd& force);
+  /// Footprint motion at the current state [m, m/s].
+  double footprint_u(std::size_t i) const;
+  double footprint_v(std::size_t i) const;
+
+  /// Checkpointing: x, x', x'' (3 n_x values).
+  std::size_t state_size() const { return 3 * n_x_; }
+  double* save_state(double* buffer) const;
+  const double* restore_state(const double* buffer);
+
+ private:
+  /// y = B^T x (n_footprints values) for a soil vector x.
+  double footprint_dot(std::size_t i, const Eigen::VectorXd& x) const;
+  void add_input(const double* force, Eigen::VectorXd& y) const;  // y += B F
+
+  std::size_t n_x_ = 0, n_f_ = 0, band_ = 0;
+  BandedSymmetric mass_, damping_, stiffness_;
+  BandedSymmetric static_factor_;      // K, factored
+  BandedSymmetric dynamic_;            // A = K + c_v C + c_a M, factored
+  Eigen::SparseMatrix<double> input_;  // B (column i: footprint i)
+  double h_factored_ = -1.0;
+  Eigen::MatrixXd G_;
+
+  Eigen::VectorXd x_, v_, a_;                     // state
+  Eigen::VectorXd pa_, pv_, rhs_, free_, x_old_;  // per-step work space
+};
+
+}  // namespace rumble
