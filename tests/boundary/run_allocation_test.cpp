@@ -1,10 +1,10 @@
 // A whole coupled run allocates nothing per macro step: the coupler (gauss_seidel, jacobi,
-// implicit, monolithic), the host and its step reports, both participants through their plugin tables, the
-// recorder, the receiver samples and summary.json's heartbeat (here after every step). Measured as
-// the difference between a run of N and of 2N macro steps of the same scenario (setup and summary
-// cost the same in both): a per-step allocation would show as at least N. The summary's numbers
-// differ in length between the two runs, so a handful of string growths may differ: the bound is
-// 10 with N = 50.
+// implicit, monolithic), the host and its step reports, both participants through their plugin
+// tables, the recorder, the receiver samples and summary.json's heartbeat (here after every step).
+// Measured as the difference between a run of N and of 2N macro steps of the same scenario (setup
+// and summary cost the same in both): a per-step allocation would show as at least N. The summary's
+// numbers differ in length between the two runs, so a handful of string growths may differ: the
+// bound is 10 with N = 50.
 #include <gtest/gtest.h>
 
 #include "allocation_counter.hpp"

@@ -80,6 +80,45 @@ TEST(CliFailure, DivergingCouplingStopsWithAdvice) {
   const auto summary = read_json(dir / "results" / "summary.json");
   EXPECT_EQ(summary["status"], "failed");
   EXPECT_GT(csv_rows(dir / "results" / "contact.csv"), 1u);  // the steps before are kept
+  // Stopped by the bound (20 x the static settlement), long before 1 m, saying how to go on.
+  EXPECT_THAT(r.output, HasSubstr("more than 20 x its largest static displacement"));
+  EXPECT_THAT(r.output, HasSubstr("it first passed 2 x at t = "));
+  EXPECT_THAT(r.output, HasSubstr("set /coupling/divergence/action to \"continue\""));
+  EXPECT_EQ(summary["divergence"]["action"], "stop");
+  EXPECT_EQ(summary["divergence"]["detected"], true);
+  EXPECT_LE(summary["divergence"]["t_first_beyond_twice_static_s"].get<double>(),
+            summary["divergence"]["t_detected_s"].get<double>());
+}
+
+// The same run told to go on: one warning with the time, the run continues until the
+// displacement is beyond any meaning (1 m), and summary.json says when the divergence was seen.
+TEST(CliFailure, DivergingRunToldToContinueGoesOnAndSaysWhen) {
+  const auto dir = scratch_directory("diverging_continue");
+  nlohmann::json s = small_scenario();
+  s["soil"] = {{"type", "clm"}, {"params", {{"E", 1e7}, {"nu", 0.3}, {"rho", 1800.0}}}};
+  s["time"]["end"] = 0.2;
+  s["coupling"]["divergence"] = {{"action", "continue"}};
+  const CliResult r = run_rumble({"run", write_scenario(dir, s).string(), "--no-progress"});
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("The run goes on (/coupling/divergence/action is \"continue\")"));
+  EXPECT_THAT(r.output, HasSubstr("(limit 1 m)"));
+  const auto summary = read_json(dir / "results" / "summary.json");
+  EXPECT_EQ(summary["divergence"]["action"], "continue");
+  EXPECT_EQ(summary["divergence"]["detected"], true);
+  EXPECT_LT(summary["divergence"]["t_detected_s"].get<double>(),
+            summary["time"]["reached"].get<double>());
+}
+
+// A stable run: nothing detected, and summary.json says so.
+TEST(CliFailure, AStableRunRecordsNoDivergence) {
+  const auto dir = scratch_directory("not_diverging");
+  const CliResult r =
+      run_rumble({"run", write_scenario(dir, small_scenario()).string(), "--no-progress"});
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  const auto summary = read_json(dir / "results" / "summary.json");
+  EXPECT_EQ(summary["divergence"]["detected"], false);
+  EXPECT_TRUE(summary["divergence"]["t_detected_s"].is_null());
+  EXPECT_EQ(summary["divergence"]["displacement_factor"], 20.0);
 }
 
 // A micro-step far too small for the macro step (issue #8: 1e-15 s at 1 ms overflowed an int

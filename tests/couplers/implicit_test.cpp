@@ -116,12 +116,15 @@ TEST(Implicit, RecordsIterationsPerStep) {
   EXPECT_NEAR(c["iterations"]["total"].get<double>(),
               c["iterations"]["mean_per_step"].get<double>() * 10, 1e-9);
   EXPECT_GE(c["iterations"]["max_per_step"], 2);
-  std::vector<double> times, values;  // interface.csv: residual, power, energy, iterations
+  // interface.csv: residual, power, energy, iterations, track energy, energy residual
+  constexpr std::size_t kColumns = 6;
+  std::vector<double> times, values;
   read_csv(r.dir / "interface.csv", times, values);
   ASSERT_EQ(times.size(), 11u);
+  ASSERT_EQ(values.size(), kColumns * times.size());
   EXPECT_EQ(values[3], 0.0);  // t = 0: no step yet
   double total = 0.0;
-  for (std::size_t k = 1; k < times.size(); ++k) total += values[4 * k + 3];
+  for (std::size_t k = 1; k < times.size(); ++k) total += values[kColumns * k + 3];
   EXPECT_EQ(total, c["iterations"]["total"].get<double>());
 }
 

@@ -49,7 +49,8 @@ RunRecorder::RunRecorder(ResultsDirectory& results, const TrackParticipant& trac
   interface_ = std::make_unique<CsvFile>(
       results.file("interface.csv"),
       std::vector<std::string>{"t [s]", "relative residual [-]", "power at cut [W]",
-                               "energy exchanged [J]", "iterations [-]"});
+                               "energy exchanged [J]", "iterations [-]", "track energy at cut [J]",
+                               "energy residual [J]"});
   for (const SoilSide* e : extras) {
     extras_.push_back(
         {e,
@@ -67,6 +68,9 @@ RunRecorder::RunRecorder(ResultsDirectory& results, const TrackParticipant& trac
   }
   force_.assign(n, 0.0);
   u_.assign(n, 0.0);
+  track_u_.assign(n, 0.0);
+  soil_work_.resize(n);
+  track_work_.resize(n);
   v_.assign(n, 0.0);
   peak_fp_v_.assign(n, 0.0);
   wheels_.assign(vs.wheel_count(), 0.0);
@@ -78,12 +82,34 @@ void RunRecorder::record_initial() {
   for (std::size_t e = 0; e < extras_.size(); ++e) record_extra(e, 0.0);
 }
 
+void RunRecorder::CutWork::resize(std::size_t n) {
+  force_.assign(n, 0.0);
+  u_.assign(n, 0.0);
+}
+
+double RunRecorder::CutWork::add(const double* force, const double* u) {
+  for (std::size_t i = 0; i < force_.size(); ++i) {
+    if (!first_) total_ += 0.5 * (force_[i] + force[i]) * (u[i] - u_[i]);
+    force_[i] = force[i];
+    u_[i] = u[i];
+  }
+  first_ = false;
+  return total_;
+}
+
+void RunRecorder::reserve(std::size_t records) {
+  track_energy_.reserve(records);
+}
+
 void RunRecorder::record_track(double t) {
   for (std::size_t w = 0; w < wheels_.size(); ++w) wheels_[w] = track_.contact_force(w);
   contact_->row(t, wheels_.data(), wheels_.size());
   vehicles_->row(t, track_.vehicle_q().data(), static_cast<std::size_t>(track_.vehicle_q().size()));
   track_.footprint_forces(force_.data());
   fp_force_->row(t, force_.data(), force_.size());
+  // The track's forces on the footprint motion it used.
+  for (std::size_t i = 0; i < force_.size(); ++i) track_u_[i] = track_.footprint_u(i);
+  track_energy_.push_back(track_work_.add(force_.data(), track_u_.data()));
 }
 
 void RunRecorder::record_soil(double t, double residual, std::uint32_t iterations) {
@@ -92,21 +118,23 @@ void RunRecorder::record_soil(double t, double residual, std::uint32_t iteration
   // track's current one); before its first step, the track's static forces.
   if (!soil_.applied_force(force_.data())) track_.footprint_forces(force_.data());
   soil_.motion(u_.data(), v_.data());
-  double power = 0.0;  // W: work done on the soil per second
+  double power = 0.0;  // W: work done on the soil per second, now
   for (std::size_t i = 0; i < n; ++i) {
     power += force_[i] * v_[i];
     peak_fp_v_[i] = std::max(peak_fp_v_[i], std::abs(v_[i]));
   }
-  // Trapezoidal rule since the last record.
-  if (!first_soil_) energy_ += 0.5 * (power_ + power) * (t - t_soil_);
-  power_ = power;
-  t_soil_ = t;
-  first_soil_ = false;
+  energy_ = soil_work_.add(force_.data(), u_.data());
   max_residual_ = std::max(max_residual_, residual);
   fp_u_->row(t, u_.data(), n);
   fp_v_->row(t, v_.data(), n);
-  const double iface[4] = {residual, power, energy_, static_cast<double>(iterations)};
-  interface_->row(t, iface, 4);
+  const double track_energy = soil_records_ < track_energy_.size() ? track_energy_[soil_records_]
+                              : track_energy_.empty()              ? 0.0
+                                                                   : track_energy_.back();
+  ++soil_records_;
+  energy_residual_ = track_energy - energy_;
+  const double iface[6] = {residual,     power,           energy_, static_cast<double>(iterations),
+                           track_energy, energy_residual_};
+  interface_->row(t, iface, 6);
   if (receivers_) {
     soil_.soil().receiver_velocity(rx_v_.data(), rx_v_.size());
     for (std::size_t r = 0; r < rx_v_.size(); ++r)

@@ -7,8 +7,14 @@
 //   soil:   footprint_displacement.csv, footprint_velocity.csv   footprint u [m], v [m/s] (down +)
 //           interface.csv         coupler's relative interface residual (the largest of its
 //                                 channel groups'), power [W] and energy [J] that the footprint
-//                                 forces the soil took did on it, and the coupler's iterations
-//                                 in the macro step (1 for explicit schemes)
+//                                 forces the soil took did on it, the coupler's iterations in
+//                                 the macro step (1 for explicit schemes), the energy the track
+//                                 put through the cut (its forces on the footprint motion it
+//                                 used) [J], and the energy residual: track's minus soil's [J],
+//                                 the energy the coupling created (0 for monolithic). Energies
+//                                 are sums of 1/2 (F_k + F_k+1) (u_k+1 - u_k) over the records:
+//                                 displacement increments are right at any step, end-of-step
+//                                 velocities of an explicit scheme are not (issue #10)
 //           receivers.csv         vertical velocity of surface receivers [m/s] (soils that offer
 //                                 them)
 //   extra soils of the coupler (e.g. two_step's reduced_soil):
@@ -43,14 +49,31 @@ class RunRecorder {
   void record_extra(std::size_t e, double t);
   /// Everything at t = 0 (the static state).
   void record_initial();
+  /// Room for this many records of each participant (no allocation while recording).
+  void reserve(std::size_t records);
 
   const std::vector<double>& peak_footprint_velocity() const { return peak_fp_v_; }
   const std::vector<double>& peak_receiver_velocity() const { return peak_rx_v_; }
   double max_residual() const { return max_residual_; }
   double energy_exchanged() const { return energy_; }
+  /// [J]: the energy the track put through the cut; the last recorded energy residual.
+  double track_energy() const { return track_energy_.empty() ? 0.0 : track_energy_.back(); }
+  double energy_residual() const { return energy_residual_; }
   std::vector<std::string> files() const;
 
  private:
+  /// Work [J] of footprint forces F on footprint displacements u sampled at the records.
+  class CutWork {
+   public:
+    void resize(std::size_t n);
+    /// Adds the work since the last sample (none at the first); returns the total.
+    double add(const double* force, const double* u);
+
+   private:
+    std::vector<double> force_, u_;
+    double total_ = 0.0;
+    bool first_ = true;
+  };
   struct ExtraFiles {
     const SoilSide* side;
     std::unique_ptr<CsvFile> u, v;
@@ -60,9 +83,13 @@ class RunRecorder {
   std::unique_ptr<CsvFile> contact_, vehicles_, fp_force_, fp_u_, fp_v_, interface_, receivers_;
   std::vector<ExtraFiles> extras_;
   std::vector<double> force_, u_, v_, wheels_, rx_v_, peak_fp_v_, peak_rx_v_;
-  double power_ = 0.0, energy_ = 0.0, max_residual_ = 0.0;  // W, J, -
-  double t_soil_ = 0.0;                                     // s, the soil's last record
-  bool first_soil_ = true;
+  double energy_ = 0.0, max_residual_ = 0.0;  // J, -
+  CutWork soil_work_, track_work_;
+  // The track's energy [J] at each of its records (the soil's k-th record compares with the
+  // track's k-th: the same time).
+  std::vector<double> track_energy_, track_u_;
+  std::size_t soil_records_ = 0;
+  double energy_residual_ = 0.0;  // J
 };
 
 }  // namespace rumble

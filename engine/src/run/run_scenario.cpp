@@ -186,6 +186,8 @@ RunOutcome run_scenario(const scenario::RunSpec& spec, const PluginRegistry& reg
     // ---- where the steps go
     RunRecorder recorder(results, track, soil_side, extras, c.receivers.distances,
                          c.receivers.surface);
+    // Records of each participant: the initial state, every n-th step, and the last.
+    recorder.reserve(static_cast<std::size_t>(std::ceil(spec.t_end / H)) / spec.outputs.every + 2);
     recorder.record_initial();
     std::unique_ptr<ProbeRecorder> probes;
     if (integrated && (c.receivers.probes || spec.outputs.field_interval)) {
@@ -205,9 +207,9 @@ RunOutcome run_scenario(const scenario::RunSpec& spec, const PluginRegistry& reg
     }
 
     // ---- the host and the coupler
-    StepObserver observer(track, soil_side, extras,
-                          {recorder, probes.get(), fields.get(), &summary}, spec.t_end,
-                          spec.outputs.every, outcome.results_dir, options.progress);
+    StepObserver observer(
+        track, soil_side, extras, {recorder, probes.get(), fields.get(), &summary}, spec.t_end,
+        spec.outputs.every, outcome.results_dir, options.progress, spec.divergence);
     CosimHostImpl host(participants, c.coupler->type().abi_minor,
                        [&](const StepOutcome& step) { observer(step); });
     std::string coupler_message;
@@ -237,8 +239,11 @@ RunOutcome run_scenario(const scenario::RunSpec& spec, const PluginRegistry& reg
     // produced one by O(1) at a change of sign, which a single maximum would hide everything in.
     summary.set("interface", {{"max_relative_residual", recorder.max_residual()},
                               {"max_relative_residual_by_group", observer.max_residuals()},
-                              {"energy_exchanged_J", recorder.energy_exchanged()}});
+                              {"energy_exchanged_J", recorder.energy_exchanged()},
+                              {"track_energy_J", recorder.track_energy()},
+                              {"energy_residual_J", recorder.energy_residual()}});
     summary.set("peak_footprint_velocity_m_s", recorder.peak_footprint_velocity());
+    summary.set("divergence", observer.divergence().summary());
     const double mean_iterations =
         observer.steps() > 0
             ? static_cast<double>(observer.iterations()) / static_cast<double>(observer.steps())

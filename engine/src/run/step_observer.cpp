@@ -15,17 +15,11 @@
 #include "track/track_participant.hpp"
 
 namespace rumble {
-namespace {
-
-// A footprint displacement beyond this [m] is not ground vibration: the coupled solution
-// has blown up (typically an unstable explicit coupling with too large a macro step).
-constexpr double kDivergedDisplacement = 1.0;
-
-}  // namespace
 
 StepObserver::StepObserver(const TrackParticipant& track, const SoilSide& soil,
                            std::vector<const SoilSide*> extras, Sinks sinks, double t_end,
-                           std::size_t every, std::filesystem::path results_dir, bool progress)
+                           std::size_t every, std::filesystem::path results_dir, bool progress,
+                           scenario::DivergenceSpec divergence)
     : track_participant_(track),
       soil_side_(soil),
       extras_(std::move(extras)),
@@ -35,7 +29,16 @@ StepObserver::StepObserver(const TrackParticipant& track, const SoilSide& soil,
       results_dir_(std::move(results_dir)),
       progress_(progress, t_end),
       extra_reach_(extras_.size()),
-      scratch_(soil.output_size()) {}
+      divergence_(divergence),
+      scratch_(soil.output_size()) {
+  const std::size_t n = track.interface_size();
+  soil.get_output(scratch_.data());
+  divergence_.watch(soil.name(), scratch_.data(), n);
+  for (const SoilSide* e : extras_) {
+    e->get_output(scratch_.data());
+    divergence_.watch(e->name(), scratch_.data(), n);
+  }
+}
 
 bool StepObserver::Reach::advance(double t, std::size_t every, double t_end) {
   reached = t;
@@ -60,7 +63,7 @@ void StepObserver::operator()(const StepOutcome& step) {
       continue;
     }
     if (extra_reach_[e].advance(t, every_, t_end_)) sinks_.recorder.record_extra(e, t);
-    check_soil(*extras_[e], t);
+    check_soil(*extras_[e], e + 1, t);
   }
   if (!all) ++partial_;
   if (sinks_.summary != nullptr) sinks_.summary->heartbeat(t_reached(), soil_.steps);
@@ -94,25 +97,12 @@ void StepObserver::on_soil(const StepOutcome& step, double t) {
   if (sinks_.probes != nullptr) sinks_.probes->take();
   if (sinks_.fields != nullptr) sinks_.fields->at(t);
   if (record) sinks_.recorder.record_soil(t, step.max_relative_residual(), step.iterations);
-  check_soil(soil_side_, t);
+  check_soil(soil_side_, 0, t);
 }
 
-void StepObserver::check_soil(const SoilSide& soil, double t) {
-  const std::size_t n = track_participant_.interface_size();
+void StepObserver::check_soil(const SoilSide& soil, std::size_t participant, double t) {
   soil.get_output(scratch_.data());
-  for (std::size_t i = 0; i < n; ++i) {
-    const double u = scratch_[i];
-    if (!std::isfinite(u) || std::abs(u) > kDivergedDisplacement) {
-      std::ostringstream m;
-      m << "simulation diverged at t = " << t << " s: " << soil.name() << " footprint " << i
-        << " displacement is " << u << " m (limit " << kDivergedDisplacement
-        << " m). If the soil has no participating mass (winkler `m`, clm `m_f`), give it one: "
-           "a massless soil and the ballast dashpots close a loop that explicit coupling does not "
-           "survive at any time.macro_step (docs/decisions/0004); otherwise reduce "
-           "time.macro_step";
-      throw RunError(m.str());
-    }
-  }
+  divergence_.check(participant, scratch_.data(), track_participant_.interface_size(), t);
 }
 
 }  // namespace rumble

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "run/cosim_host.hpp"
+#include "run/divergence_monitor.hpp"
 #include "run/progress_line.hpp"
 
 namespace rumble {
@@ -36,9 +37,11 @@ class StepObserver {
     SummaryWriter* summary = nullptr;
   };
   /// extras: the coupler's extra soils (participants 2, 3, ...), in order.
+  /// After the statics: each soil's outputs are its static state (the divergence reference).
   StepObserver(const TrackParticipant& track, const SoilSide& soil,
                std::vector<const SoilSide*> extras, Sinks sinks, double t_end, std::size_t every,
-               std::filesystem::path results_dir, bool progress);
+               std::filesystem::path results_dir, bool progress,
+               scenario::DivergenceSpec divergence);
 
   /// The host's step callback. Throws RunError when the run diverged, Interrupted on Ctrl-C.
   void operator()(const StepOutcome& step);
@@ -57,6 +60,7 @@ class StepObserver {
   std::uint64_t iterations() const { return iterations_; }
   std::uint32_t max_iterations() const { return max_iterations_; }
   std::size_t unconverged_steps() const { return unconverged_; }
+  const DivergenceMonitor& divergence() const { return divergence_; }
 
  private:
   /// Where one participant's final steps have got to.
@@ -68,7 +72,8 @@ class StepObserver {
   };
   void on_track(double t);
   void on_soil(const StepOutcome& step, double t);
-  void check_soil(const SoilSide& soil, double t);
+  /// participant: the soil's index in divergence_ (0: the soil, 1 + e: extra e).
+  void check_soil(const SoilSide& soil, std::size_t participant, double t);
 
   const TrackParticipant& track_participant_;
   const SoilSide& soil_side_;
@@ -83,6 +88,7 @@ class StepObserver {
   std::size_t partial_ = 0, unconverged_ = 0;
   std::uint64_t iterations_ = 0;
   std::uint32_t max_iterations_ = 0;
+  DivergenceMonitor divergence_;
   std::vector<double> scratch_;                               // soil outputs, sized once
   std::map<std::string, double, std::less<>> max_residuals_;  // by group; keys made once
 };

@@ -92,6 +92,9 @@ RunSpec make_run_spec(const json& document, const fs::path& path) {
   s.soil = component(document.at("soil"), "/soil");
   const json& coupling = document.at("coupling");
   s.coupling = component(coupling, "/coupling");
+  const json divergence = coupling.value("divergence", json::object());
+  s.divergence.displacement_factor = divergence.value("displacement_factor", 20.0);
+  s.divergence.stop = divergence.value("action", std::string("stop")) == "stop";
   const json participants = coupling.value("participants", json::object());
   for (const auto& [name, c] : participants.items())
     s.participants.emplace_back(name, component(c, "/coupling/participants/" + name));

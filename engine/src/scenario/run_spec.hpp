@@ -44,6 +44,12 @@ struct OutputSpec {
   bool plots = true;
 };
 
+/// /coupling/divergence: when a run counts as diverging and what it then does.
+struct DivergenceSpec {
+  double displacement_factor = 20.0;  // [-] of a soil's largest static footprint displacement
+  bool stop = true;                   // false: warn once and go on
+};
+
 struct RunSpec {
   std::filesystem::path path;  // the scenario file
   nlohmann::json document;     // as validated, defaults filled
@@ -52,6 +58,7 @@ struct RunSpec {
   std::vector<VehicleSpec> vehicles;
   TrackConfig track;
   ComponentSpec soil, coupling;
+  DivergenceSpec divergence;
   std::vector<std::pair<std::string, ComponentSpec>> participants;  // the coupler's extras
   OutputSpec outputs;
   /// Values set from outside the file (`rumble run --set`), [{"pointer", "value"}] in the order

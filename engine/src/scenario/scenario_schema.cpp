@@ -159,6 +159,16 @@ constexpr std::string_view kSchema = R"json({
           "description": "extra soil participants the coupler drives besides the track and /soil, by the names the coupler declares (e.g. two_step's reduced_soil)",
           "patternProperties": {"^[a-z][a-z0-9_]*$": {"$ref": "#/definitions/component"}},
           "additionalProperties": false
+        },
+        "divergence": {
+          "type": "object",
+          "additionalProperties": false,
+          "default": {},
+          "description": "what a diverging run does: a soil footprint displacement beyond displacement_factor x that soil's largest static one counts as diverging (docs/couplers.md)",
+          "properties": {
+            "action": {"enum": ["stop", "continue"], "default": "stop", "description": "stop: the run ends failed, with the time and the fix; continue: warn once, record it in summary.json and go on (a displacement beyond 1 m or not finite still stops it)"},
+            "displacement_factor": {"type": "number", "exclusiveMinimum": 2, "maximum": 1e6, "default": 20, "description": "bound on |footprint displacement| as a multiple of the largest static one [-]; a passing train amplifies the static settlement a few times at most"}
+          }
         }
       }
     },

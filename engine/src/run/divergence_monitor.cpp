@@ -1,0 +1,81 @@
+#include "run/divergence_monitor.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "core/errors.hpp"
+#include "core/logging.hpp"
+
+namespace rumble {
+namespace {
+
+// A footprint displacement beyond this [m] is not ground vibration, whatever the policy: the
+// coupled solution has blown up (typically an unstable explicit coupling with too large a step).
+constexpr double kDivergedDisplacement = 1.0;
+// The onset: a footprint at twice its static settlement (a train alone rarely gets there).
+constexpr double kOnsetFactor = 2.0;
+
+const char* const kFix =
+    "If the soil has no participating mass (winkler `m`, clm `m_f`), give it one: a massless soil "
+    "and the ballast dashpots close a loop that explicit coupling does not survive at any "
+    "time.macro_step (docs/decisions/0004); otherwise reduce time.macro_step, or use the "
+    "implicit coupler";
+
+}  // namespace
+
+std::size_t DivergenceMonitor::watch(const std::string& name, const double* u, std::size_t n) {
+  double settlement = 0.0;
+  for (std::size_t i = 0; i < n; ++i) settlement = std::max(settlement, std::abs(u[i]));
+  watched_.push_back({name, settlement});
+  return watched_.size() - 1;
+}
+
+void DivergenceMonitor::check(std::size_t participant, const double* u, std::size_t n, double t) {
+  const Watched& w = watched_[participant];
+  std::size_t worst = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!std::isfinite(u[i])) {
+      worst = i;
+      break;
+    }
+    if (std::abs(u[i]) > std::abs(u[worst])) worst = i;
+  }
+  const double u_worst = u[worst];
+  const double bound = policy_.displacement_factor * w.settlement;
+  if (std::isfinite(u_worst) && std::abs(u_worst) > kOnsetFactor * w.settlement)
+    t_onset_ = std::min(t_onset_, t);
+  const bool hard = !std::isfinite(u_worst) || std::abs(u_worst) > kDivergedDisplacement;
+  if (!hard && (std::abs(u_worst) <= bound || detected())) return;
+
+  std::ostringstream m;
+  m << "simulation diverged at t = " << t << " s: " << w.name << " footprint " << worst
+    << " displacement is " << u_worst << " m";
+  if (hard)
+    m << " (limit " << kDivergedDisplacement << " m)";
+  else
+    m << ", more than " << policy_.displacement_factor << " x its largest static displacement ("
+      << w.settlement << " m)";
+  if (t_onset_ < kNever)
+    m << "; it first passed " << kOnsetFactor << " x at t = " << t_onset_ << " s";
+  m << ". " << kFix;
+  t_detected_ = std::min(t_detected_, t);
+  if (hard || policy_.stop) {
+    if (!hard)
+      m << ". To record such a run to its end, set /coupling/divergence/action to \"continue\"";
+    throw RunError(m.str());
+  }
+  logger("engine")->warn("{}. The run goes on (/coupling/divergence/action is \"continue\")",
+                         m.str());
+}
+
+nlohmann::json DivergenceMonitor::summary() const {
+  const auto time = [](double t) { return t < kNever ? nlohmann::json(t) : nlohmann::json(); };
+  return {{"action", policy_.stop ? "stop" : "continue"},
+          {"displacement_factor", policy_.displacement_factor},
+          {"detected", detected()},
+          {"t_detected_s", time(t_detected_)},
+          {"t_first_beyond_twice_static_s", time(t_onset_)}};
+}
+
+}  // namespace rumble
