@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # The test job (also what CI runs): install what is missing, check formatting, build with
 # warnings as errors and run the test suite, then build and run it again under ASan + UBSan.
-#   tools/run_tests.sh            everything (35-40 minutes on 2 cores from a clean checkout: two
-#                                 full builds; later runs rebuild only what changed)
+#   tools/run_tests.sh            everything (from a clean checkout two full unity builds: dev about
+#                                 15 CPU-minutes, 30 without unity; asan more; later runs rebuild
+#                                 only what changed)
 #   tools/run_tests.sh --quick    skip the sanitizer build
 # Tests labelled "validation" (long physics runs) are left out: ctest --preset dev -L validation.
 set -euo pipefail

@@ -16,13 +16,13 @@
 namespace rumble::post {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 const double kOmega0 = 6.0;
 const double kEtaF = 0.5 * (kOmega0 + std::sqrt(2.0 + kOmega0 * kOmega0));  // 6.0822
 
 TimeSeries tone(double a, double f, double dt, std::size_t n, double phase = 0.4) {
   TimeSeries x{0.0, dt, std::vector<double>(n)};
-  for (std::size_t k = 0; k < n; ++k) x.values[k] = a * std::cos(2.0 * kPi * f * x.time(k) + phase);
+  for (std::size_t k = 0; k < n; ++k)
+    x.values[k] = a * std::cos(2.0 * std::numbers::pi * f * x.time(k) + phase);
   return x;
 }
 
@@ -86,7 +86,7 @@ TEST(Cwt, ChirpRidgeFollowsItsInstantaneousFrequency) {
   TimeSeries x{0.0, dt, std::vector<double>(4000)};
   for (std::size_t k = 0; k < x.size(); ++k) {
     const double t = x.time(k);
-    x.values[k] = a * std::sin(2.0 * kPi * (f0 * t + 0.5 * rate * t * t));
+    x.values[k] = a * std::sin(2.0 * std::numbers::pi * (f0 * t + 0.5 * rate * t * t));
   }
   CwtOptions o;
   o.f_min = 5.0, o.f_max = 100.0, o.n_freq = 400;
@@ -115,16 +115,18 @@ TEST(Cwt, EqualsTheTimeDomainIntegralAlsoAtTheEdges) {
   TimeSeries x{0.5, dt, std::vector<double>(600)};
   for (std::size_t k = 0; k < x.size(); ++k) {
     const double t = x.time(k);
-    x.values[k] = std::exp(-std::pow((t - 1.55) / 0.03, 2)) * std::sin(2.0 * kPi * 15.0 * t) +
-                  0.3 * std::exp(-std::pow((t - 0.6) / 0.05, 2));
+    x.values[k] =
+        std::exp(-std::pow((t - 1.55) / 0.03, 2)) * std::sin(2.0 * std::numbers::pi * 15.0 * t) +
+        0.3 * std::exp(-std::pow((t - 0.6) / 0.05, 2));
   }
   CwtOptions o;
   o.f_min = 2.0, o.f_max = 60.0, o.n_freq = 12;
   const Scalogram s = cwt_morlet(x, o);
   double w_max = 0.0;
   for (double w : s.magnitude) w_max = std::max(w_max, w);
-  const double k_norm = 2.0 * std::pow(kPi, 0.25) * std::exp(0.5 * std::pow(kEtaF - kOmega0, 2)) /
-                        std::sqrt(2.0 * kPi);
+  const double k_norm = 2.0 * std::pow(std::numbers::pi, 0.25) *
+                        std::exp(0.5 * std::pow(kEtaF - kOmega0, 2)) /
+                        std::sqrt(2.0 * std::numbers::pi);
   for (std::size_t i : {0u, 4u, 11u}) {
     const double sc = s.scale[i];
     for (std::size_t j : {0u, 1u, 150u, 300u, 598u, 599u}) {
@@ -132,7 +134,8 @@ TEST(Cwt, EqualsTheTimeDomainIntegralAlsoAtTheEdges) {
       for (std::size_t n = 0; n < x.size(); ++n) {
         const double eta = (x.time(n) - x.time(j)) / sc;
         const std::complex<double> psi0 =
-            std::pow(kPi, -0.25) * std::exp(std::complex<double>(-0.5 * eta * eta, kOmega0 * eta));
+            std::pow(std::numbers::pi, -0.25) *
+            std::exp(std::complex<double>(-0.5 * eta * eta, kOmega0 * eta));
         w += x.values[n] * std::conj(psi0);
       }
       w *= k_norm / sc * dt;
@@ -151,7 +154,8 @@ TEST(Cwt, ConeOfInfluenceAndTimeStride) {
   EXPECT_DOUBLE_EQ(full.coi_frequency.front(), 500.0);  // Nyquist at the edges
   EXPECT_DOUBLE_EQ(full.coi_frequency.back(), 500.0);
   // At the middle, d = 0.5 s: f_coi = eta_F / (2 pi 0.5 / sqrt 2).
-  EXPECT_NEAR(full.coi_frequency[500], kEtaF / (2.0 * kPi * 0.5 / std::sqrt(2.0)), 1e-12);
+  EXPECT_NEAR(full.coi_frequency[500], kEtaF / (2.0 * std::numbers::pi * 0.5 / std::sqrt(2.0)),
+              1e-12);
   EXPECT_DOUBLE_EQ(full.coi_frequency[100], full.coi_frequency[900]);  // symmetric
   o.time_stride = 7;
   const Scalogram some = cwt_morlet(x, o);

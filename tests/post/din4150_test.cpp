@@ -13,12 +13,11 @@
 namespace rumble::post {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
-TimeSeries sine(double a, double f, double dt, double duration) {
+TimeSeries sine_record(double a, double f, double dt, double duration) {
   const auto n = static_cast<std::size_t>(std::llround(duration / dt));
   TimeSeries x{0.0, dt, std::vector<double>(n)};
-  for (std::size_t k = 0; k < n; ++k) x.values[k] = a * std::sin(2.0 * kPi * f * x.time(k));
+  for (std::size_t k = 0; k < n; ++k)
+    x.values[k] = a * std::sin(2.0 * std::numbers::pi * f * x.time(k));
   return x;
 }
 
@@ -48,7 +47,7 @@ TEST(KbWeighting, GainIsTheFirstOrderHighPass) {
 TEST(KbWeighting, DiscreteFilterHasTheAnalogueGain) {
   const double a = 1e-3, dt = 1e-3;
   for (double f : {2.0, 5.6, 16.0, 31.5}) {
-    const TimeSeries y = kb_weight(sine(a, f, dt, 4.0));
+    const TimeSeries y = kb_weight(sine_record(a, f, dt, 4.0));
     // 2 s in: the transient exp(-2 pi f0 t) has decayed below 1e-30.
     EXPECT_NEAR(max_after(y, 2.0), a * kb_gain(f), 5e-4 * a * kb_gain(f)) << f;
   }
@@ -62,16 +61,17 @@ TEST(KbWeighting, DiscreteFilterHasTheAnalogueGain) {
 TEST(KbF, SteadySineAgreesWithTheClosedForm) {
   const double a = 1e-3, dt = 1e-3, tau = kFastTau;
   for (double f : {4.0, 8.0, 16.0, 31.5}) {
-    const KbResult kb = kb_f(sine(a, f, dt, 10.0));
+    const KbResult kb = kb_f(sine_record(a, f, dt, 10.0));
     const double plain = a / std::sqrt(2.0) * kb_gain(f);
-    const double ripple = std::sqrt(1.0 + 1.0 / std::hypot(1.0, 4.0 * kPi * f * tau));
+    const double ripple = std::sqrt(1.0 + 1.0 / std::hypot(1.0, 4.0 * std::numbers::pi * f * tau));
     EXPECT_NEAR(kb.kb_f_max, plain * ripple, 5e-4 * plain) << f;
     EXPECT_GE(kb.kb_f_max, plain) << f;
     EXPECT_LE(kb.kb_f_max, plain * (ripple + 5e-4)) << f;
     EXPECT_GT(kb.t_max, 1.0) << f;  // reached in the steady state, after ~8 tau
   }
   // The 16 Hz ripple the header quotes.
-  EXPECT_NEAR(std::sqrt(1.0 + 1.0 / std::hypot(1.0, 4.0 * kPi * 16.0 * tau)) - 1.0, 0.020, 5e-4);
+  EXPECT_NEAR(std::sqrt(1.0 + 1.0 / std::hypot(1.0, 4.0 * std::numbers::pi * 16.0 * tau)) - 1.0,
+              0.020, 5e-4);
 }
 
 // The running RMS integrates x^2 exactly when it varies linearly between samples: a constant c
@@ -91,9 +91,10 @@ TEST(RunningRms, ConstantInputFollowsTheExponentialExactly) {
 // there).
 TEST(EffectiveVelocity, SineClosedForms) {
   const double a = 1e-3, f = 16.0, dt = 1e-3;
-  const TimeSeries x = sine(a, f, dt, 10.0);  // 160 periods
+  const TimeSeries x = sine_record(a, f, dt, 10.0);  // 160 periods
   EXPECT_NEAR(effective_value(x.values), a / std::sqrt(2.0), 1e-12);
-  const double ripple = std::sqrt(1.0 + 1.0 / std::hypot(1.0, 4.0 * kPi * f * kFastTau));
+  const double ripple =
+      std::sqrt(1.0 + 1.0 / std::hypot(1.0, 4.0 * std::numbers::pi * f * kFastTau));
   EXPECT_NEAR(effective_velocity_max(x), a / std::sqrt(2.0) * ripple, 5e-4 * a);
   EXPECT_EQ(effective_value(std::vector<double>{}), 0.0);
 }

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "message_of.hpp"
 #include "post/din4150.hpp"
 #include "post/time_series.hpp"
 
@@ -25,7 +26,6 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-constexpr double kPi = std::numbers::pi;
 constexpr double kDt = 1e-3;      // s
 constexpr std::size_t kN = 2000;  // 2 s
 constexpr double kA = 2e-3;       // m/s
@@ -36,15 +36,6 @@ fs::path fresh_dir() {
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;
-}
-
-std::string message_of(auto&& call) {
-  try {
-    call();
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return "(no exception)";
 }
 
 void expect_contains(const std::string& text, const std::string& part) {
@@ -70,10 +61,10 @@ void write_csv(const fs::path& file, const std::vector<std::string>& names,
   }
 }
 
-std::vector<double> sine(double a, double f) {
+std::vector<double> sine_at_fs(double a, double f) {
   std::vector<double> v(kN);
   for (std::size_t k = 0; k < kN; ++k)
-    v[k] = a * std::sin(2.0 * kPi * f * static_cast<double>(k) * kDt);
+    v[k] = a * std::sin(2.0 * std::numbers::pi * f * static_cast<double>(k) * kDt);
   return v;
 }
 
@@ -104,7 +95,8 @@ double number(const std::map<std::string, std::string>& row, const std::string& 
 // "deep" (distance from summary.json only) at 2.5 m and 1 m depth.
 fs::path probe_run() {
   const fs::path dir = fresh_dir();
-  const std::vector<double> s25 = sine(kA, 25.0), s10 = sine(kA / 4, 10.0), zero(kN, 0.0);
+  const std::vector<double> s25 = sine_at_fs(kA, 25.0), s10 = sine_at_fs(kA / 4, 10.0),
+                            zero(kN, 0.0);
   std::vector<double> vx(kN), vz(kN);
   for (std::size_t k = 0; k < kN; ++k) vx[k] = 0.6 * s25[k], vz[k] = 0.8 * s25[k];
   std::vector<std::string> names;
@@ -158,7 +150,8 @@ TEST(PostRun, ProbeReceiversGiveTheClosedFormNumbers) {
   EXPECT_NEAR(number(near, "t(PPV_z) [s]"), 0.01, 1e-12);  // first crest
   EXPECT_EQ(near.at("component"), "vz");
   EXPECT_NEAR(number(near, "f_dom [Hz]"), 25.0, 1e-9);
-  const double ripple = std::sqrt(1.0 + 1.0 / std::hypot(1.0, 4.0 * kPi * 25.0 * kFastTau));
+  const double ripple =
+      std::sqrt(1.0 + 1.0 / std::hypot(1.0, 4.0 * std::numbers::pi * 25.0 * kFastTau));
   EXPECT_NEAR(number(near, "KB_F,max [m/s]"), 0.8 * kA / std::sqrt(2.0) * kb_gain(25.0) * ripple,
               1e-3 * kA);
   EXPECT_NEAR(number(near, "v_eff,F,max [m/s]"), 0.8 * kA / std::sqrt(2.0) * ripple, 1e-3 * kA);
@@ -218,7 +211,7 @@ TEST(PostRun, ProbeReceiversGiveTheClosedFormNumbers) {
 TEST(PostRun, DistanceColumnsGiveVerticalOnlyResults) {
   const fs::path dir = fresh_dir();
   write_csv(dir / "receivers.csv", {"d=2.500000 m [m/s]", "d=7.500000 m [m/s]"},
-            {sine(kA, 25.0), sine(kA / 3, 20.0)});
+            {sine_at_fs(kA, 25.0), sine_at_fs(kA / 3, 20.0)});
   PostOptions options;
   options.velocity_reference = kVelocityRefVdb;
   const PostResult r = post_process(dir, options);
@@ -248,7 +241,7 @@ TEST(PostRun, DistanceColumnsGiveVerticalOnlyResults) {
 // A run that diverged: the rows from the first non-finite value on are left out, with a warning.
 TEST(PostRun, DivergedRecordIsCutWithAWarning) {
   const fs::path dir = fresh_dir();
-  std::vector<double> v = sine(kA, 25.0);
+  std::vector<double> v = sine_at_fs(kA, 25.0);
   for (std::size_t k = 1500; k < kN; ++k) v[k] = k == 1500 ? 1e30 * 1e300 : std::nan("");
   write_csv(dir / "receivers.csv", {"d=2.500000 m [m/s]"}, {v});
   const PostResult r = post_process(dir);
@@ -268,26 +261,27 @@ TEST(PostRun, MissingFileOrColumnSaysWhatWhereAndTheFix) {
   expect_contains(m, "does not exist");
 
   // A probe receiver without its vy column.
-  write_csv(dir / "receivers.csv", {"x vx [m/s]", "x vz [m/s]"}, {sine(kA, 25.0), sine(kA, 25.0)});
+  write_csv(dir / "receivers.csv", {"x vx [m/s]", "x vz [m/s]"},
+            {sine_at_fs(kA, 25.0), sine_at_fs(kA, 25.0)});
   m = message_of([&] { post_process(dir); });
   expect_contains(m, "receivers.csv in '" + dir.string() + "' has no column 'x vy [m/s]'");
   expect_contains(m, "Rerun the scenario");
 
   // Columns that are no receivers at all.
-  write_csv(dir / "receivers.csv", {"something [N]"}, {sine(kA, 25.0)});
+  write_csv(dir / "receivers.csv", {"something [N]"}, {sine_at_fs(kA, 25.0)});
   m = message_of([&] { post_process(dir); });
   expect_contains(m, "has no receiver velocity column");
   expect_contains(m, "'something [N]'");
 
   // A named probe whose distance nothing gives (no summary.json).
   write_csv(dir / "receivers.csv", {"x vx [m/s]", "x vy [m/s]", "x vz [m/s]"},
-            {sine(kA, 25.0), sine(kA, 25.0), sine(kA, 25.0)});
+            {sine_at_fs(kA, 25.0), sine_at_fs(kA, 25.0), sine_at_fs(kA, 25.0)});
   m = message_of([&] { post_process(dir); });
   expect_contains(m, "summary.json is missing in '" + dir.string() + "'");
   expect_contains(m, "distance of receiver 'x'");
 
   // An unknown CWT receiver.
-  write_csv(dir / "receivers.csv", {"d=2.500000 m [m/s]"}, {sine(kA, 25.0)});
+  write_csv(dir / "receivers.csv", {"d=2.500000 m [m/s]"}, {sine_at_fs(kA, 25.0)});
   PostOptions options;
   options.cwt_receivers = {"d=3 m"};
   m = message_of([&] { post_process(dir, options); });

@@ -14,15 +14,13 @@
 namespace rumble::post {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
 // A Ricker wavelet (the second derivative of a Gaussian) of peak A at t_c, sampled so that t_c
 // is a sample: the peak is hit exactly, so PPV = A to rounding (1e-15 relative; 1e-12 allowed).
 TEST(Ppv, RickerPulsePeakIsItsAmplitude) {
   const double a = 3.2e-3, f = 25.0, dt = 1e-4, tc = 0.4;  // m/s, Hz, s, s
   std::vector<double> v(8000);
   for (std::size_t k = 0; k < v.size(); ++k) {
-    const double x = kPi * f * (static_cast<double>(k) * dt - tc);
+    const double x = std::numbers::pi * f * (static_cast<double>(k) * dt - tc);
     v[k] = -a * (1.0 - 2.0 * x * x) * std::exp(-x * x);  // negative-going: |min| is the peak
   }
   const Peak p = peak_abs(v);
@@ -36,11 +34,11 @@ TEST(Ppv, SampledSineReadsTheLargestSample) {
   std::vector<double> v(1000);
   double largest = 0.0;
   for (std::size_t k = 0; k < v.size(); ++k) {
-    v[k] = a * std::sin(2.0 * kPi * f * static_cast<double>(k) * dt + 0.3);
+    v[k] = a * std::sin(2.0 * std::numbers::pi * f * static_cast<double>(k) * dt + 0.3);
     largest = std::max(largest, std::abs(v[k]));
   }
   EXPECT_DOUBLE_EQ(peak_abs(v).value, largest);
-  EXPECT_GE(largest, a * std::cos(kPi * f * dt));
+  EXPECT_GE(largest, a * std::cos(std::numbers::pi * f * dt));
   EXPECT_LE(largest, a);
 }
 
@@ -51,7 +49,7 @@ TEST(Ppv, ThreeComponentIsTheLargestVectorMagnitude) {
   const std::size_t n = 2000, pulse = 1234;
   std::vector<double> vx(n), vy(n), vz(n, 0.0);
   for (std::size_t k = 0; k < n; ++k) {
-    const double w = 2.0 * kPi * f * static_cast<double>(k) * dt;
+    const double w = 2.0 * std::numbers::pi * f * static_cast<double>(k) * dt;
     vx[k] = a * std::cos(w);
     vy[k] = a * std::sin(w);
   }

@@ -17,12 +17,10 @@
 namespace rumble::post {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
 std::vector<double> sine(std::size_t n, double dt, double a, double f, double phase = 0.3) {
   std::vector<double> x(n);
   for (std::size_t k = 0; k < n; ++k)
-    x[k] = a * std::sin(2.0 * kPi * f * static_cast<double>(k) * dt + phase);
+    x[k] = a * std::sin(2.0 * std::numbers::pi * f * static_cast<double>(k) * dt + phase);
   return x;
 }
 
@@ -61,7 +59,7 @@ TEST(Spectrum, BinCentredSineReadsItsAmplitude) {
 // -f and the next sidelobes add at most ~1e-4 at bin 50 of 1000).
 TEST(Spectrum, OffBinSineStaysWithinTheHannScallopingLoss) {
   const std::size_t n = 1000;
-  const double dt = 1e-3, a = 1e-3, bound = (2.0 / kPi) / 0.75;
+  const double dt = 1e-3, a = 1e-3, bound = (2.0 / std::numbers::pi) / 0.75;
   SpectrumAnalyzer hann(n, Window::kHann);
   for (double delta : {0.1, 0.25, 0.4, 0.5, 0.6, 0.9}) {
     const Spectrum s = hann.amplitude(sine(n, dt, a, 50.0 + delta), dt);

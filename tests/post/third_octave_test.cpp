@@ -14,12 +14,10 @@
 namespace rumble::post {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
-std::vector<double> sine(std::size_t n, double dt, double a, double f) {
+std::vector<double> sampled_sine(std::size_t n, double dt, double a, double f) {
   std::vector<double> x(n);
   for (std::size_t k = 0; k < n; ++k)
-    x[k] = a * std::sin(2.0 * kPi * f * static_cast<double>(k) * dt + 0.7);
+    x[k] = a * std::sin(2.0 * std::numbers::pi * f * static_cast<double>(k) * dt + 0.7);
   return x;
 }
 
@@ -70,7 +68,7 @@ TEST(ThirdOctave, SineLevelInItsBand) {
   const std::size_t n = 10000;
   const double dt = 1e-3, a = 1e-3;
   SpectrumAnalyzer rect(n, Window::kRectangular);
-  const Spectrum p = rect.power(sine(n, dt, a, 16.0), dt);
+  const Spectrum p = rect.power(sampled_sine(n, dt, a, 16.0), dt);
   const std::vector<ThirdOctaveBand> bands = third_octave_bands(1.0, 250.0);
   const double expected = 20.0 * std::log10(a / std::sqrt(2.0) / kVelocityRefIso1683);
   EXPECT_NEAR(expected, 116.99, 5e-3);
@@ -91,7 +89,7 @@ TEST(ThirdOctave, OffBinSineLevelWithinLeakageBound) {
   const std::size_t n = 10000;
   const double dt = 1e-3, a = 1e-3;
   SpectrumAnalyzer rect(n, Window::kRectangular);
-  const auto levels = band_levels(rect.power(sine(n, dt, a, 16.05), dt),
+  const auto levels = band_levels(rect.power(sampled_sine(n, dt, a, 16.05), dt),
                                   third_octave_bands(10.0, 25.0), kVelocityRefIso1683);
   const double expected = 20.0 * std::log10(a / std::sqrt(2.0) / kVelocityRefIso1683);
   EXPECT_NEAR(band(levels, "16").level, expected, 0.1);
@@ -102,8 +100,9 @@ TEST(ThirdOctave, OffBinSineLevelWithinLeakageBound) {
 TEST(ThirdOctave, PowersAddWithinABand) {
   const std::size_t n = 10000;
   const double dt = 1e-3;
-  std::vector<double> x = sine(n, dt, 1e-3, 40.0);
-  const std::vector<double> y = sine(n, dt, 2e-3, 42.0), z = sine(n, dt, 5e-4, 100.0);
+  std::vector<double> x = sampled_sine(n, dt, 1e-3, 40.0);
+  const std::vector<double> y = sampled_sine(n, dt, 2e-3, 42.0),
+                            z = sampled_sine(n, dt, 5e-4, 100.0);
   for (std::size_t k = 0; k < n; ++k) x[k] += y[k] + z[k];
   SpectrumAnalyzer rect(n, Window::kRectangular);
   const auto levels =

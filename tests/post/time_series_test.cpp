@@ -12,19 +12,12 @@
 #include <string>
 #include <vector>
 
+#include "message_of.hpp"
+
 namespace rumble::post {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string message_of(auto&& call) {
-  try {
-    call();
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return "(no exception)";
-}
 
 fs::path temp_file(const std::string& name, const std::string& text) {
   const fs::path dir = fs::temp_directory_path() / "rumble_post_time_series_test" /

@@ -14,14 +14,13 @@
 namespace rumble::soils {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 TEST(SoilHalfSpace, SquareMeanSettlementFactor) {
   // Mean settlement of a flexible square of side B: q B (1 - nu^2) / E * 0.946 (physics.md
   // §5.3), i.e. an influence of 0.946 pi / B; Python: 0.946402.
-  EXPECT_NEAR(mean_flexible_influence(1.0, 1.0, 0.0) / kPi, 0.946402, 1e-5);
-  EXPECT_NEAR(mean_flexible_influence(2.0, 2.0, 0.0) / kPi, 0.946402 / 2, 1e-5);
+  EXPECT_NEAR(mean_flexible_influence(1.0, 1.0, 0.0) / std::numbers::pi, 0.946402, 1e-5);
+  EXPECT_NEAR(mean_flexible_influence(2.0, 2.0, 0.0) / std::numbers::pi, 0.946402 / 2, 1e-5);
 }
 
 TEST(SoilHalfSpace, NeighbourRatiosOfTheTable) {
@@ -37,7 +36,7 @@ TEST(SoilHalfSpace, CentreStressLimits) {
   EXPECT_NEAR(centre_vertical_stress(2.6, 0.26, 1e-9), 1.0, 1e-8);  // q at the surface
   // Far below, the load acts as a point force P = q A: 3 P / (2 pi z^2) (Boussinesq); the
   // relative difference is O((L / z)^2) ~ 2e-4 at z = 100 m.
-  const double z = 100.0, point = 3 * 2.6 * 0.26 / (2 * kPi * z * z);
+  const double z = 100.0, point = 3 * 2.6 * 0.26 / (2 * std::numbers::pi * z * z);
   EXPECT_NEAR(centre_vertical_stress(2.6, 0.26, z), point, 1e-3 * point);
 }
 

@@ -23,7 +23,6 @@ namespace rumble::test {
 namespace {
 
 using cd = std::complex<double>;
-constexpr double kPi = std::numbers::pi;
 
 struct Model {
   const char* label;
@@ -62,7 +61,7 @@ Steady run(const Model& model, double f, Eigen::Index at) {
   constexpr int kSamplesPerPeriod = 400;
   constexpr double kSettle = 0.3;  // s: every transient below 1e-11 (slowest rate 125 1/s)
   constexpr Eigen::Index kN = 9, kCentre = 4;
-  const double h = 1.0 / (f * kSamplesPerPeriod), w = 2.0 * kPi * f;
+  const double h = 1.0 / (f * kSamplesPerPeriod), w = 2.0 * std::numbers::pi * f;
   nlohmann::json params = model.params;
   params["max_step"] = h;  // one Newmark step per macro step: F sampled at the step ends
   TestSoil soil(model.type, params.dump());
@@ -84,7 +83,7 @@ Steady run(const Model& model, double f, Eigen::Index at) {
       sum += soil.displacement()[at] * std::exp(cd(0.0, -w * static_cast<double>(k + 1) * h));
     }
   }
-  const double f_d = std::tan(w * h / 2.0) / (kPi * h);
+  const double f_d = std::tan(w * h / 2.0) / (std::numbers::pi * h);
   constexpr double kDelta = 1e-4;
   const cd exact = soil.receptance(f)(at, kCentre);
   return {2.0 * sum / static_cast<double>(kSamplesPerPeriod), exact,

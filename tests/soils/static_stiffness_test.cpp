@@ -15,7 +15,6 @@
 namespace rumble::test {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 constexpr double kTable = 5e-3;  // relative, 3-digit table values
 
 /// Gazetas (1991), rigid 2L x 2B, typed again from physics.md §5.3.
@@ -27,7 +26,7 @@ double gazetas(const Soil& s, double length, double width) {
 /// Lysmer's analog dashpot, typed again from physics.md §5.3.
 double lysmer(const Soil& s, double area) {
   const double cs = std::sqrt(s.E / (2 * (1 + s.nu)) / s.rho);
-  return s.rho * 3.4 * cs / (kPi * (1 - s.nu)) * area;
+  return s.rho * 3.4 * cs / (std::numbers::pi * (1 - s.nu)) * area;
 }
 
 /// Single-footprint winkler from soil: stiffness from statics, dashpot and mass from 1/H(f).
@@ -39,7 +38,7 @@ Footing winkler_footing(const nlohmann::json& params, double length, double widt
   soil.accept_layout(sleeper_row(1, 0.6, length, width));
   const double force = 1e5;  // N
   const double k = force / soil.initialize(VectorXd::Constant(1, force))[0];
-  const double f = 50.0, w = 2 * kPi * f;  // 1/H = k - w^2 m + i w c
+  const double f = 50.0, w = 2 * std::numbers::pi * f;  // 1/H = k - w^2 m + i w c
   const std::complex<double> z = 1.0 / soil.receptance(f)(0, 0);
   return {k, z.imag() / w, (k - z.real()) / (w * w)};
 }
@@ -69,8 +68,9 @@ TEST(SoilStatics, WinklerFromSoilMatchesGazetasAndLysmer) {
 TEST(SoilStatics, WinklerTrappedMassIsWolfsCone) {
   const Soil s{"nu 0.4", 155e6, 0.4, 1800.0};
   const Footing f = winkler_footing(soil_params(s), 2.6, 0.26);
-  const double r0 = std::sqrt(2.6 * 0.26 / kPi);
-  const double wolf = 2.4 * (0.4 - 1.0 / 3.0) * 1800.0 * kPi * r0 * r0 * r0;  // 90.0 kg
+  const double r0 = std::sqrt(2.6 * 0.26 / std::numbers::pi);
+  const double wolf =
+      2.4 * (0.4 - 1.0 / 3.0) * 1800.0 * std::numbers::pi * r0 * r0 * r0;  // 90.0 kg
   // m comes from Re(1/H) = k - w^2 m: k ~ 2.6e8, w^2 m ~ 8.9e6, round-off ~1e-16 k.
   EXPECT_NEAR(f.m, wolf, 1e-9 * wolf);
   // A given m replaces it.
@@ -132,7 +132,8 @@ TEST(SoilStatics, MasslessClmDrivingPointIsTheSingleFooting) {
   soil.accept_layout(sleeper_row(41));
   for (const double f : {0.0, 10.0, 40.0, 100.0}) {
     const std::complex<double> expected =
-        1.0 / std::complex<double>(gazetas(s, 2.6, 0.26), 2 * kPi * f * lysmer(s, 2.6 * 0.26));
+        1.0 / std::complex<double>(gazetas(s, 2.6, 0.26),
+                                   2 * std::numbers::pi * f * lysmer(s, 2.6 * 0.26));
     EXPECT_LT(std::abs(soil.receptance(f)(20, 20) - expected), 1e-6 * std::abs(expected)) << f;
   }
 }

@@ -15,10 +15,8 @@
 namespace rumble::test {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
 double plateau(double nu) {
-  return (1.0 - nu) / (2.0 * kPi);
+  return (1.0 - nu) / (2.0 * std::numbers::pi);
 }
 double tau_p(double nu) {
   return std::sqrt((1.0 - 2.0 * nu) / (2.0 - 2.0 * nu));
@@ -69,7 +67,7 @@ TEST(LambSurface, StaticPlateauAfterRayleighWave) {
       EXPECT_DOUBLE_EQ(lamb_step_surface_u(tau, nu), plateau(nu)) << "nu " << nu;
     }
   }
-  EXPECT_DOUBLE_EQ(lamb_step_surface_u(2.0, 0.25), 3.0 / (8.0 * kPi));  // Pekeris
+  EXPECT_DOUBLE_EQ(lamb_step_surface_u(2.0, 0.25), 3.0 / (8.0 * std::numbers::pi));  // Pekeris
 }
 
 TEST(LambSurface, ZeroBeforePArrivalAndContinuousAtIt) {
@@ -128,9 +126,9 @@ double pekeris_u(double tau) {
   if (tau < 1.0) {
     return (6.0 - s3 / std::sqrt(t2 - 0.25) +
             std::sqrt(3.0 * s3 - 5.0) / std::sqrt(t2 - (3.0 - s3) / 4.0) - rayleigh) /
-           (32.0 * kPi);
+           (32.0 * std::numbers::pi);
   }
-  return (6.0 - rayleigh) / (16.0 * kPi);
+  return (6.0 - rayleigh) / (16.0 * std::numbers::pi);
 }
 
 TEST(LambSurface, PekerisClosedFormAtQuarterPoisson) {

@@ -11,13 +11,12 @@
 #include <numbers>
 #include <vector>
 
+#include "simpson_log.hpp"
 #include "track/unevenness.hpp"
 #include "track/unevenness_psd.hpp"
 
 namespace rumble {
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 nlohmann::json spec(const char* cls, unsigned seed, double lmin, double lmax) {
   return {{"type", "random"},
@@ -27,29 +26,17 @@ nlohmann::json spec(const char* cls, unsigned seed, double lmin, double lmax) {
           {"wavelength_max", lmax}};
 }
 
-/// integral of f over [a, b] by composite Simpson in ln(Omega).
-template <class F>
-double simpson_log(F&& f, double a, double b, int n = 20000) {
-  const double la = std::log(a), h = (std::log(b) - la) / n;
-  double sum = 0.0;
-  for (int i = 0; i <= n; ++i) {
-    const double w = std::exp(la + i * h);
-    sum += ((i == 0 || i == n) ? 1.0 : (i % 2 ? 4.0 : 2.0)) * f(w) * w;
-  }
-  return sum * h / 3.0;
-}
-
 TEST(RandomProfileStatistics, VarianceAlongTheTrackAveragedOverSeedsIsThePsdIntegral) {
   // FRA4, wavelengths 1 .. 30 m, track of W = 600 m (the profile's period is 1024 m, so each
   // seed's mean square over the track is a random variable with mean exactly sum A_k^2/2).
   const double lmin = 1.0, lmax = 30.0, x0 = -0.6, x1 = 599.4, W = x1 - x0;
   const RoughnessSpectrum psd = RoughnessSpectrum::fra(4);
-  const double w_lo = 2 * kPi / lmax, w_hi = 2 * kPi / lmin;
+  const double w_lo = 2 * std::numbers::pi / lmax, w_hi = 2 * std::numbers::pi / lmin;
   const double sigma2 = psd.integral(w_lo, w_hi);  // m^2
   // Gaussian process, window W >> correlation length: Var(mean square) = (2/W) int R^2 dtau =
   // (2 pi / W) int_0^inf S^2 dOmega for a one-sided S per rad/m.
   const double s2 = simpson_log([&](double w) { return psd(w) * psd(w); }, w_lo, w_hi);
-  const double sd_one = std::sqrt(2.0 * kPi * s2 / W);
+  const double sd_one = std::sqrt(2.0 * std::numbers::pi * s2 / W);
   const int seeds = 24;
   const double tolerance = 4.0 * sd_one / std::sqrt(static_cast<double>(seeds));
   // The test must be able to see the classic errors: factor 2 and factor 2 pi.
@@ -90,17 +77,17 @@ TEST(RandomProfileStatistics, WelchEstimateMatchesThePsdInBands) {
   std::vector<double> window(seg);
   double window_power = 0.0;
   for (int j = 0; j < seg; ++j) {
-    window[static_cast<std::size_t>(j)] = 0.5 * (1.0 - std::cos(2.0 * kPi * j / seg));
+    window[static_cast<std::size_t>(j)] = 0.5 * (1.0 - std::cos(2.0 * std::numbers::pi * j / seg));
     window_power += window[static_cast<std::size_t>(j)] * window[static_cast<std::size_t>(j)];
   }
-  const double line = 2.0 * kPi / (seg * dx);      // DFT line spacing [rad/m]
-  std::vector<std::complex<double>> twiddle(seg);  // exp(-2 pi i n / seg)
+  const double line = 2.0 * std::numbers::pi / (seg * dx);  // DFT line spacing [rad/m]
+  std::vector<std::complex<double>> twiddle(seg);           // exp(-2 pi i n / seg)
   for (int n = 0; n < seg; ++n)
-    twiddle[static_cast<std::size_t>(n)] = std::polar(1.0, -2.0 * kPi * n / seg);
+    twiddle[static_cast<std::size_t>(n)] = std::polar(1.0, -2.0 * std::numbers::pi * n / seg);
 
   for (double centre : {2.0, 5.0, 10.0, 20.0}) {  // m, inside the band, away from its edges
     SCOPED_TRACE(centre);
-    const double w_c = 2.0 * kPi / centre;
+    const double w_c = 2.0 * std::numbers::pi / centre;
     const int k_first = static_cast<int>(std::ceil(0.9 * w_c / line));
     const int k_last = static_cast<int>(std::floor(1.1 * w_c / line));
     const int m = k_last - k_first + 1;
@@ -113,7 +100,7 @@ TEST(RandomProfileStatistics, WelchEstimateMatchesThePsdInBands) {
           sum += window[static_cast<std::size_t>(j)] * r[static_cast<std::size_t>(start + j)] *
                  twiddle[static_cast<std::size_t>((j * k) % seg)];
         }
-        estimate += dx / (kPi * window_power) * std::norm(sum);
+        estimate += dx / (std::numbers::pi * window_power) * std::norm(sum);
       }
     }
     for (int k = k_first; k <= k_last; ++k) truth += psd(k * line);

@@ -13,7 +13,6 @@
 namespace rumble {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 // r(x_min) [m] for FRA5, 1 .. 30 m, seed 42, span 1000 m, as first generated.
 constexpr double kPinnedSample0 = -0.0062008071332702377;
 
@@ -21,7 +20,7 @@ constexpr double kPinnedSample0 = -0.0062008071332702377;
 double fra4_band(double lambda_min, double lambda_max) {
   const double kA = 0.25 * 0.5376e-4, c = 0.8245;
   const auto F = [&](double w) { return -kA * (1.0 / w + std::atan(w / c) / c); };
-  return F(2 * kPi / lambda_min) - F(2 * kPi / lambda_max);
+  return F(2 * std::numbers::pi / lambda_min) - F(2 * std::numbers::pi / lambda_max);
 }
 
 /// (1/N) sum_j r_j exp(-2 pi i j k / N): half the complex amplitude of line k.
@@ -29,7 +28,8 @@ std::complex<double> dft_line(const RandomProfile& p, std::size_t k) {
   std::complex<double> sum = 0.0;
   const std::size_t n = p.size();
   for (std::size_t j = 0; j < n; ++j) {
-    const double angle = -2.0 * kPi * static_cast<double>((j * k) % n) / static_cast<double>(n);
+    const double angle =
+        -2.0 * std::numbers::pi * static_cast<double>((j * k) % n) / static_cast<double>(n);
     sum += p.sample(j) * std::complex<double>(std::cos(angle), std::sin(angle));
   }
   return sum / static_cast<double>(n);
@@ -42,7 +42,7 @@ TEST(RandomProfile, GridFollowsTheDocumentedRules) {
   EXPECT_GE(p.period(), 500.6);              // covers the span without repeating
   EXPECT_GE(p.period(), 32.0 * 30.0);        // >= 31 lines below the band's lowest wavenumber
   EXPECT_LT(p.period(), 2.0 * 32.0 * 30.0);  // smallest such power of two
-  EXPECT_NEAR(p.line_spacing(), 2.0 * kPi / p.period(), 1e-15);
+  EXPECT_NEAR(p.line_spacing(), 2.0 * std::numbers::pi / p.period(), 1e-15);
   const RandomProfile long_track(RoughnessSpectrum::fra(4), 1.0, 30.0, 1, 0.0, 5000.0);
   EXPECT_GE(long_track.period(), 5000.0);
   EXPECT_LT(long_track.period(), 2.0 * 5000.0);
@@ -74,7 +74,7 @@ TEST(RandomProfile, Iso3095MeanSquareOverOnePeriodIsTheBandIntegral) {
   double ms = 0.0;
   for (std::size_t j = 0; j < p.size(); ++j) ms += p.sample(j) * p.sample(j);
   ms /= static_cast<double>(p.size());
-  const double band = iso.integral(2 * kPi / 0.25, 2 * kPi / 0.005);
+  const double band = iso.integral(2 * std::numbers::pi / 0.25, 2 * std::numbers::pi / 0.005);
   EXPECT_NEAR(ms, band, 1e-9 * band);
 }
 
@@ -85,7 +85,8 @@ TEST(RandomProfile, EachLineCarriesItsBinOfThePsdAndNothingOutsideTheBand) {
   const double lmin = 2.0, lmax = 25.0;
   const RoughnessSpectrum fra = RoughnessSpectrum::fra(4);
   const RandomProfile p(fra, lmin, lmax, 5, 0.0, 100.0);
-  const double dw = p.line_spacing(), w_lo = 2 * kPi / lmax, w_hi = 2 * kPi / lmin;
+  const double dw = p.line_spacing(), w_lo = 2 * std::numbers::pi / lmax,
+               w_hi = 2 * std::numbers::pi / lmin;
   const auto k_lo = static_cast<std::size_t>(std::floor(w_lo / dw + 0.5));
   const auto k_hi = static_cast<std::size_t>(std::floor(w_hi / dw + 0.5));
   const double rms = std::sqrt(p.mean_square());

@@ -6,25 +6,11 @@
 #include <numbers>
 
 #include "expect_message.hpp"
+#include "simpson_log.hpp"
 #include "track/unevenness_psd.hpp"
 
 namespace rumble {
 namespace {
-
-constexpr double kPi = std::numbers::pi;
-
-/// Composite Simpson in u = ln(Omega) (the spectra are smooth power laws there), n even.
-template <class F>
-double simpson_log(F&& f, double a, double b, int n = 20000) {
-  const double la = std::log(a), h = (std::log(b) - la) / n;
-  double sum = 0.0;
-  for (int i = 0; i <= n; ++i) {
-    const double w = std::exp(la + i * h);
-    const double weight = (i == 0 || i == n) ? 1.0 : (i % 2 ? 4.0 : 2.0);
-    sum += weight * f(w) * w;  // dOmega = Omega du
-  }
-  return sum * h / 3.0;
-}
 
 TEST(RoughnessSpectrum, FraClassesFollowTheTabulatedConstants) {
   // Typed here independently of the implementation: A_v [cm^2 rad/m] per class, Omega_c =
@@ -54,8 +40,8 @@ TEST(RoughnessSpectrum, FraIntegralIsTheClosedFormAndMatchesQuadrature) {
   const double kA = 0.25 * 0.5376e-4, c = 0.8245;
   const auto antiderivative = [&](double w) { return -kA * (1.0 / w + std::atan(w / c) / c); };
   const RoughnessSpectrum s = RoughnessSpectrum::fra(4);
-  for (auto [a, b] : {std::pair{2 * kPi / 30, 2 * kPi / 1.0}, std::pair{0.1, 0.2},
-                      std::pair{3.0, 50.0}, std::pair{0.01, 100.0}}) {
+  for (auto [a, b] : {std::pair{2 * std::numbers::pi / 30, 2 * std::numbers::pi / 1.0},
+                      std::pair{0.1, 0.2}, std::pair{3.0, 50.0}, std::pair{0.01, 100.0}}) {
     const double closed = antiderivative(b) - antiderivative(a);
     EXPECT_NEAR(s.integral(a, b), closed, 1e-12 * closed) << a << " " << b;
     const double quad = simpson_log([&](double w) { return s(w); }, a, b);
@@ -83,7 +69,7 @@ TEST(RoughnessSpectrum, Iso3095ReproducesTheThirdOctaveBandLevels) {
   const RoughnessSpectrum s = RoughnessSpectrum::iso3095();
   for (int i = 0; i < 22; ++i) {
     const double lambda = std::pow(10.0, -(4 + i) / 10.0);  // base-10 third-octave centre
-    const double w = 2.0 * kPi / lambda;
+    const double w = 2.0 * std::numbers::pi / lambda;
     // Band [W 10^-0.05, W 10^0.05]; L = 10 log10(r^2 / (1 um)^2).
     const double ms = s.integral(w * std::pow(10.0, -0.05), w * std::pow(10.0, 0.05));
     EXPECT_NEAR(10.0 * std::log10(ms / 1e-12), levels[i], 1e-9) << lambda;
@@ -96,7 +82,8 @@ TEST(RoughnessSpectrum, Iso3095ReproducesTheThirdOctaveBandLevels) {
   EXPECT_NEAR(s.max_wavelength(), std::pow(10.0, -0.35), 1e-15);
   EXPECT_NEAR(s.min_wavelength(), std::pow(10.0, -2.55), 1e-15);
   // Power law between centres: quadrature over the whole range agrees with integral().
-  const double a = 2 * kPi / s.max_wavelength(), b = 2 * kPi / s.min_wavelength();
+  const double a = 2 * std::numbers::pi / s.max_wavelength(),
+               b = 2 * std::numbers::pi / s.min_wavelength();
   const double quad = simpson_log([&](double w) { return s(w); }, a, b, 200000);
   EXPECT_NEAR(s.integral(a, b), quad, 1e-6 * quad);
 }
@@ -106,13 +93,14 @@ TEST(RoughnessSpectrum, PerCycleSpectrumIsTwoPiTimesPerRadian) {
   // S_n(n) = 2 pi S(2 pi n). Using S in place of S_n (or the reverse) is off by 2 pi.
   const RoughnessSpectrum s = RoughnessSpectrum::fra(3);
   const double n_lo = 1.0 / 30.0, n_hi = 1.0 / 1.0;
-  const double per_cycle =
-      simpson_log([&](double n) { return 2.0 * kPi * s(2.0 * kPi * n); }, n_lo, n_hi);
-  const double sigma2 = s.integral(2.0 * kPi * n_lo, 2.0 * kPi * n_hi);
+  const double per_cycle = simpson_log(
+      [&](double n) { return 2.0 * std::numbers::pi * s(2.0 * std::numbers::pi * n); }, n_lo, n_hi);
+  const double sigma2 = s.integral(2.0 * std::numbers::pi * n_lo, 2.0 * std::numbers::pi * n_hi);
   EXPECT_NEAR(per_cycle, sigma2, 1e-9 * sigma2);
   // And the trap itself is large: integrating S(Omega) over n instead differs by 2 pi.
-  const double wrong = simpson_log([&](double n) { return s(2.0 * kPi * n); }, n_lo, n_hi);
-  EXPECT_NEAR(sigma2 / wrong, 2.0 * kPi, 1e-6);
+  const double wrong =
+      simpson_log([&](double n) { return s(2.0 * std::numbers::pi * n); }, n_lo, n_hi);
+  EXPECT_NEAR(sigma2 / wrong, 2.0 * std::numbers::pi, 1e-6);
 }
 
 TEST(RoughnessSpectrum, UnknownNamesAreRejected) {

@@ -13,7 +13,6 @@ namespace rumble {
 namespace {
 
 using nlohmann::json;
-constexpr double kPi = std::numbers::pi;
 const std::vector<double> kRadii = {0.46, 0.42};  // two wheels
 
 Unevenness make(const json& spec) {
@@ -44,16 +43,18 @@ TEST(UnevennessShapes, DipIsARaisedCosineOfGivenDepthAndSupport) {
     const double x0 = centre - 0.5 * length, x = centre + s;
     EXPECT_GT(u.at(0, centre - s, 0.0), 0.0);
     EXPECT_NEAR(u.at(0, centre - s, 0.0), u.at(0, centre + s, 0.0), 1e-15);
-    EXPECT_NEAR(u.at(0, x, 0.0), depth * 0.5 * (1.0 - std::cos(2.0 * kPi * (x - x0) / length)),
-                1e-15);
+    EXPECT_NEAR(u.at(0, x, 0.0),
+                depth * 0.5 * (1.0 - std::cos(2.0 * std::numbers::pi * (x - x0) / length)), 1e-15);
     EXPECT_LE(u.at(0, x, 0.0), depth);
   }
   // C1 at the ends: r(end - h) = depth sin^2(pi h / L) ~ depth (pi h / L)^2, so the slope
   // r/h -> 0 (a kink would leave r/h finite).
   for (double h : {1e-3, 1e-4, 1e-5}) {
     const double r = u.at(0, centre + 0.5 * length - h, 0.0);
-    EXPECT_NEAR(r, depth * std::pow(std::sin(kPi * h / length), 2), 1e-12 * depth) << h;
-    EXPECT_LT(r / h, 2.0 * depth * kPi * kPi * h / (length * length)) << h;
+    EXPECT_NEAR(r, depth * std::pow(std::sin(std::numbers::pi * h / length), 2), 1e-12 * depth)
+        << h;
+    EXPECT_LT(r / h, 2.0 * depth * std::numbers::pi * std::numbers::pi * h / (length * length))
+        << h;
   }
 }
 
@@ -71,12 +72,12 @@ TEST(UnevennessShapes, WheelFlatDefaultDepthIsLSquaredOver16R) {
   const double L = 0.06, R = kRadii[1];
   const Unevenness u = make({{"type", "wheel_flat"}, {"length", L}, {"wheel", 1}});
   // Default phase: the flat's centre is under the contact after half a turn, pi R.
-  EXPECT_DOUBLE_EQ(u.at(1, 5.0, kPi * R), L * L / (16.0 * R));
+  EXPECT_DOUBLE_EQ(u.at(1, 5.0, std::numbers::pi * R), L * L / (16.0 * R));
   EXPECT_NEAR(L * L / (16.0 * R), 0.000535714, 1e-9);  // 0.54 mm for 6 cm on R = 0.42 m
 }
 
 TEST(UnevennessShapes, WheelFlatRepeatsEveryCircumferenceOfRolledDistance) {
-  const double L = 0.05, d = 4e-4, R = kRadii[0], first = 0.3, C = 2.0 * kPi * R;
+  const double L = 0.05, d = 4e-4, R = kRadii[0], first = 0.3, C = 2.0 * std::numbers::pi * R;
   const Unevenness u =
       make({{"type", "wheel_flat"}, {"length", L}, {"depth", d}, {"first_impact", first}});
   for (int n = 0; n < 40; ++n) {
@@ -100,11 +101,11 @@ TEST(UnevennessShapes, WheelFlatRepeatsEveryCircumferenceOfRolledDistance) {
 
 TEST(UnevennessShapes, WheelFlatOnlyOnItsWheelAndIndependentOfPosition) {
   const Unevenness u = make({{"type", "wheel_flat"}, {"length", 0.05}, {"depth", 4e-4}});
-  const double at_impact = kPi * kRadii[0];
+  const double at_impact = std::numbers::pi * kRadii[0];
   EXPECT_DOUBLE_EQ(u.at(0, 0.0, at_impact), 4e-4);
   EXPECT_DOUBLE_EQ(u.at(0, 37.0, at_impact), 4e-4);
   EXPECT_EQ(u.at(1, 0.0, at_impact), 0.0);
-  EXPECT_EQ(u.at(1, 0.0, kPi * kRadii[1]), 0.0);
+  EXPECT_EQ(u.at(1, 0.0, std::numbers::pi * kRadii[1]), 0.0);
 }
 
 }  // namespace

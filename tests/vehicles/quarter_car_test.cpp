@@ -11,19 +11,19 @@
 namespace rumble::test {
 namespace {
 
-constexpr double kG = 9.81;  // m/s^2, the plugin's default
+constexpr double kDefaultGravity = 9.81;  // m/s^2, the plugin's default
 
 // Two masses: wheel 900 kg, bogie 700 kg, primary 1.5 MN/m, 6 kN s/m, payload 20 kN.
-const char* const kTwoMass =
+const char* const kTwoMassParams =
     R"({"wheel_mass": 900, "bogie_mass": 700, "primary": {"k": 1.5e6, "c": 6e3},
         "static_load": 2e4})";
 // Three masses: as above plus a 4 t car body on 250 kN/m, 12 kN s/m.
-const char* const kThreeMass =
+const char* const kThreeMassParams =
     R"({"wheel_mass": 900, "bogie_mass": 700, "primary": {"k": 1.5e6, "c": 6e3},
         "secondary": {"car_body_mass": 4000, "k": 2.5e5, "c": 1.2e4}, "static_load": 2e4})";
 
 TEST(QuarterCar, EquationsOfTheThreeMassChain) {
-  TestVehicle v("quarter_car", kThreeMass);
+  TestVehicle v("quarter_car", kThreeMassParams);
   ASSERT_EQ(v.dofs(), 3);
   ASSERT_EQ(v.wheel_count(), 1);
   EXPECT_EQ(v.wheels()[0].offset, 0.0);
@@ -35,9 +35,10 @@ TEST(QuarterCar, EquationsOfTheThreeMassChain) {
   // Hand-written f; compression of each stage pushes its lower mass down, its upper mass up.
   const double primary = 1.5e6 * (3e-3 - 1e-3) + 6e3 * (-0.2 - 0.1);
   const double secondary = 2.5e5 * (7e-3 - 3e-3) + 1.2e4 * (0.3 + 0.2);
-  const VectorXd expected = (VectorXd(3) << 900 * kG + primary, 700 * kG - primary + secondary,
-                             4000 * kG - secondary + 2e4)
-                                .finished();
+  const VectorXd expected =
+      (VectorXd(3) << 900 * kDefaultGravity + primary, 700 * kDefaultGravity - primary + secondary,
+       4000 * kDefaultGravity - secondary + 2e4)
+          .finished();
   // Tolerance: a few ulps of the largest term (~4e4 N).
   EXPECT_LT((v.forces(q, qd) - expected).norm(), 1e-9);
   VectorXd z;
@@ -51,18 +52,18 @@ TEST(QuarterCar, EquationsOfTheThreeMassChain) {
 }
 
 TEST(QuarterCar, StaticWheelLoadIsTheWholeWeightPlusTheLoad) {
-  TestVehicle v("quarter_car", kThreeMass);
+  TestVehicle v("quarter_car", kThreeMassParams);
   const Equilibrium e = rigid_rail_statics(v);
-  const double expected = (900 + 700 + 4000) * kG + 2e4;  // N
+  const double expected = (900 + 700 + 4000) * kDefaultGravity + 2e4;  // N
   // An equilibrium, not an approximation: the Newton residual is < 1e-12 of the weight.
   EXPECT_NEAR(e.contact_force(0), expected, 1e-9 * expected);
   // Static deflections of the two stages: carried weight / stiffness.
-  EXPECT_NEAR(e.q(1) - e.q(0), (700 + 4000) * kG / 1.5e6 + 2e4 / 1.5e6, 1e-12);
-  EXPECT_NEAR(e.q(2) - e.q(1), 4000 * kG / 2.5e5 + 2e4 / 2.5e5, 1e-12);
+  EXPECT_NEAR(e.q(1) - e.q(0), (700 + 4000) * kDefaultGravity / 1.5e6 + 2e4 / 1.5e6, 1e-12);
+  EXPECT_NEAR(e.q(2) - e.q(1), 4000 * kDefaultGravity / 2.5e5 + 2e4 / 2.5e5, 1e-12);
 }
 
 TEST(QuarterCar, TwoMassRigidRailFrequencyIsBogieOnPrimary) {
-  TestVehicle v("quarter_car", kTwoMass);
+  TestVehicle v("quarter_car", kTwoMassParams);
   const VectorXd f = rigid_rail_frequencies_hz(v, VectorXd::Zero(2));
   ASSERT_EQ(f.size(), 1);
   // Wheel held: one DOF, f = sqrt(k1 / m_b) / 2 pi. Eigen-solver accuracy ~1e-15 relative.
@@ -70,7 +71,7 @@ TEST(QuarterCar, TwoMassRigidRailFrequencyIsBogieOnPrimary) {
 }
 
 TEST(QuarterCar, ThreeMassRigidRailFrequenciesMatchTheTwoDofClosedForm) {
-  TestVehicle v("quarter_car", kThreeMass);
+  TestVehicle v("quarter_car", kThreeMassParams);
   const VectorXd f = rigid_rail_frequencies_hz(v, VectorXd::Zero(3));
   ASSERT_EQ(f.size(), 2);
   // Bogie m1 on k1 (to the held wheel), car body m2 on k2: the roots w^2 of
@@ -85,7 +86,7 @@ TEST(QuarterCar, ThreeMassRigidRailFrequenciesMatchTheTwoDofClosedForm) {
 }
 
 TEST(QuarterCar, TangentMatchesCentralDifferences) {
-  TestVehicle v("quarter_car", kThreeMass);
+  TestVehicle v("quarter_car", kThreeMassParams);
   const VectorXd q = (VectorXd(3) << 1e-3, -2e-3, 4e-3).finished();
   const VectorXd qd = (VectorXd(3) << 0.2, 0.1, -0.3).finished();
   MatrixXd k, c, k_fd, c_fd;

@@ -1,6 +1,7 @@
 #include "cli/arguments.hpp"
 
 #include <cstdlib>
+#include <sstream>
 
 namespace rumble::cli {
 
@@ -73,6 +74,14 @@ double Arguments::number(const std::string& name, double fallback) const {
     throw UsageError("--" + name + "=" + *v + " is not a number");
   }
   return x;
+}
+
+std::vector<std::string> split_list(const std::string& list) {
+  std::vector<std::string> out;
+  std::stringstream in(list);
+  for (std::string item; std::getline(in, item, ',');)
+    if (!item.empty()) out.push_back(item);
+  return out;
 }
 
 }  // namespace rumble::cli

@@ -39,4 +39,7 @@ class Arguments {
   std::map<std::string, std::vector<std::string>> repeated_;
 };
 
+/// The items of a comma-separated list ("a,b,,c" -> a, b, c): empty items are dropped.
+std::vector<std::string> split_list(const std::string& list);
+
 }  // namespace rumble::cli

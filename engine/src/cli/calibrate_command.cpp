@@ -15,19 +15,6 @@
 #include "track/footprint_layout.hpp"
 
 namespace rumble::cli {
-namespace {
-
-std::vector<std::string> split(const std::string& list) {
-  std::vector<std::string> out;
-  std::stringstream ss(list);
-  std::string item;
-  while (std::getline(ss, item, ','))
-    if (!item.empty()) out.push_back(item);
-  return out;
-}
-
-}  // namespace
-
 int calibrate_command(const std::vector<std::string>& args) {
   const Arguments a(args, {},
                     {"model", "params", "fit", "fmin", "fmax", "points", "terms", "output"});
@@ -67,7 +54,7 @@ int calibrate_command(const std::vector<std::string>& args) {
   problem.base_params = start;
   problem.scenario_dir = doc->path.parent_path();
   problem.layout = footprint_layout(TrackConfig::from_json(doc->json.at("track")));
-  problem.fit = a.value("fit") ? split(*a.value("fit")) : std::vector<std::string>{};
+  problem.fit = a.value("fit") ? split_list(*a.value("fit")) : std::vector<std::string>{};
   if (problem.fit.empty()) {  // every positive number given
     for (const auto& [key, value] : start.items())
       if (value.is_number() && value.get<double>() > 0.0) problem.fit.push_back(key);

@@ -38,7 +38,7 @@ constexpr std::array<Template, 3> kTemplates{{
     {"coupler", "template_coupler", "template_coupler", "TemplateCoupler"},
 }};
 
-constexpr const char* kUsage = "usage: rumble new-plugin soil|vehicle|coupler NAME [DIR]";
+constexpr const char* kNewPluginUsage = "usage: rumble new-plugin soil|vehicle|coupler NAME [DIR]";
 
 const Template& find_template(const std::string& kind) {
   for (const Template& t : kTemplates) {
@@ -130,7 +130,7 @@ int new_plugin_command(const std::vector<std::string>& args) {
   const Arguments a(args, {}, {});
   const std::vector<std::string>& p = a.positional();
   if (p.size() < 2 || p.size() > 3) {
-    throw UsageError(std::string("new-plugin takes KIND NAME [DIR]; ") + kUsage +
+    throw UsageError(std::string("new-plugin takes KIND NAME [DIR]; ") + kNewPluginUsage +
                      " (e.g. rumble new-plugin soil my_soil)");
   }
   const Template& t = find_template(p[0]);

@@ -18,24 +18,16 @@
 namespace rumble::cli {
 namespace {
 
-constexpr const char* kUsage =
+constexpr const char* kPostUsage =
     "usage: rumble post RESULTS_DIR [--cwt NAME,NAME...] [--cwt-distances M,M...] "
     "[--f-max HZ] [--reference iso|vdb]";
 
-std::vector<std::string> split(const std::string& text) {
-  std::vector<std::string> out;
-  std::stringstream in(text);
-  for (std::string item; std::getline(in, item, ',');)
-    if (!item.empty()) out.push_back(item);
-  return out;
-}
-
 post::PostOptions options_from(const Arguments& a) {
   post::PostOptions o;
-  if (const auto names = a.value("cwt")) o.cwt_receivers = split(*names);
+  if (const auto names = a.value("cwt")) o.cwt_receivers = split_list(*names);
   if (const auto distances = a.value("cwt-distances")) {
     o.cwt_distances.clear();
-    for (const std::string& d : split(*distances)) {
+    for (const std::string& d : split_list(*distances)) {
       try {
         std::size_t used = 0;
         o.cwt_distances.push_back(std::stod(d, &used));
@@ -65,7 +57,7 @@ void post_process_run(const std::filesystem::path& results_dir, const post::Post
 
 int post_command(const std::vector<std::string>& args) {
   const Arguments a(args, {}, {"cwt", "cwt-distances", "f-max", "reference"});
-  if (a.positional().size() != 1) throw UsageError(kUsage);
+  if (a.positional().size() != 1) throw UsageError(kPostUsage);
   const post::PostOptions options = options_from(a);
   ResultsDirectory results(a.positional().front(), ResultsDirectory::Reopen{});
   try {

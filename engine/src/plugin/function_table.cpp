@@ -9,9 +9,9 @@
 namespace rumble {
 namespace {
 
-using Entry = std::pair<const char*, bool>;  // name, present
+using RequiredFunction = std::pair<const char*, bool>;  // name, present
 
-std::string first_missing(std::initializer_list<Entry> required) {
+std::string first_missing(std::initializer_list<RequiredFunction> required) {
   for (const auto& [name, present] : required) {
     if (!present) return std::string("function table has no '") + name + "'";
   }

@@ -6,6 +6,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/number_text.hpp"
+
 namespace rumble::post {
 namespace {
 
@@ -15,25 +17,19 @@ double eta_f(double omega0) {
   return 0.5 * (omega0 + std::sqrt(2.0 + omega0 * omega0));
 }
 
-std::string num(double v) {
-  std::ostringstream s;
-  s.precision(6);
-  s << v;
-  return s.str();
-}
-
 void check_options(std::size_t n, double dt, const CwtOptions& o) {
   auto fail = [](const std::string& m) { throw std::invalid_argument("CWT: " + m); };
   if (n < 2) fail("the record has " + std::to_string(n) + " sample(s); at least 2 are needed");
-  if (!(dt > 0.0) || !std::isfinite(dt)) fail("time step " + num(dt) + " s is not > 0");
-  if (!(o.omega0 > 0.0)) fail("omega0 = " + num(o.omega0) + " is not > 0 (6 is usual)");
-  if (!(o.f_min > 0.0)) fail("f_min = " + num(o.f_min) + " Hz is not > 0");
+  if (!(dt > 0.0) || !std::isfinite(dt)) fail("time step " + number_text(dt) + " s is not > 0");
+  if (!(o.omega0 > 0.0)) fail("omega0 = " + number_text(o.omega0) + " is not > 0 (6 is usual)");
+  if (!(o.f_min > 0.0)) fail("f_min = " + number_text(o.f_min) + " Hz is not > 0");
   if (!(o.f_max >= o.f_min))
-    fail("f_max = " + num(o.f_max) + " Hz is below f_min = " + num(o.f_min) + " Hz");
+    fail("f_max = " + number_text(o.f_max) + " Hz is below f_min = " + number_text(o.f_min) +
+         " Hz");
   const double nyquist = 0.5 / dt;
   if (!(o.f_max < nyquist))
-    fail("f_max = " + num(o.f_max) + " Hz is not below the Nyquist frequency " + num(nyquist) +
-         " Hz of the record (dt = " + num(dt) + " s); lower f_max");
+    fail("f_max = " + number_text(o.f_max) + " Hz is not below the Nyquist frequency " +
+         number_text(nyquist) + " Hz of the record (dt = " + number_text(dt) + " s); lower f_max");
   if (o.n_freq == 0) fail("n_freq is 0; at least 1 frequency is needed");
   if (o.time_stride == 0) fail("time_stride is 0; 1 keeps every sample");
 }

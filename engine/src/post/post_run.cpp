@@ -17,6 +17,7 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "core/number_text.hpp"
 #include "post/cwt.hpp"
 #include "post/din4150.hpp"
 #include "post/guide_values.hpp"
@@ -33,12 +34,6 @@ using nlohmann::json;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr const char* kComponents[3] = {"vx", "vy", "vz"};
-
-std::string num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.9g", v);  // as the engine's CSVs
-  return buf;
-}
 
 // JSON has no NaN or infinity: null stands for "not available".
 json number_or_null(double v) {
@@ -223,13 +218,15 @@ void cut_at_divergence(RunRecord& run, std::vector<std::string>& warnings, const
     }
   if (first_bad == t.time.size()) return;
   if (first_bad < 2)
-    throw std::runtime_error("receivers.csv in " + quoted(dir) + ": column '" + column +
-                             "' is not finite from its first rows (t = " + num(t.time[first_bad]) +
-                             " s); the run diverged at once. Check the run's summary.json "
-                             "status and stability, then rerun with a smaller macro step");
-  warnings.push_back("receivers.csv: '" + column + "' is not finite from t = " +
-                     num(t.time[first_bad]) + " s (the run diverged); the indicators use the " +
-                     std::to_string(first_bad) + " rows before it");
+    throw std::runtime_error(
+        "receivers.csv in " + quoted(dir) + ": column '" + column +
+        "' is not finite from its first rows (t = " + number_text(t.time[first_bad], 9) +
+        " s); the run diverged at once. Check the run's summary.json "
+        "status and stability, then rerun with a smaller macro step");
+  warnings.push_back("receivers.csv: '" + column +
+                     "' is not finite from t = " + number_text(t.time[first_bad], 9) +
+                     " s (the run diverged); the indicators use the " + std::to_string(first_bad) +
+                     " rows before it");
   t.time.resize(first_bad);
   for (std::vector<double>& v : t.columns) v.resize(first_bad);
 }
@@ -330,7 +327,7 @@ class CsvOut {
     first_ = false;
     return *this;
   }
-  CsvOut& operator<<(double v) { return *this << num(v); }
+  CsvOut& operator<<(double v) { return *this << number_text(v, 9); }
   void end_row() {
     text_ += '\n';
     first_ = true;
@@ -361,11 +358,11 @@ PostResult post_process(const fs::path& results_dir, const PostOptions& options)
     result.warnings.push_back(
         "receivers.csv: the time step varies; the record was linearly "
         "interpolated onto a uniform step of " +
-        num(grid.dt) + " s (the median step)");
+        number_text(grid.dt, 9) + " s (the median step)");
   if (!(options.velocity_reference > 0.0))
-    throw std::runtime_error(
-        "post-processing option velocity_reference = " + num(options.velocity_reference) +
-        " m/s is not > 0; use 1e-9 (ISO 1683) or 2.54e-8 (VdB)");
+    throw std::runtime_error("post-processing option velocity_reference = " +
+                             number_text(options.velocity_reference, 9) +
+                             " m/s is not > 0; use 1e-9 (ISO 1683) or 2.54e-8 (VdB)");
 
   // --- per receiver and component
   const std::size_t n = grid.count;
@@ -417,7 +414,7 @@ PostResult post_process(const fs::path& results_dir, const PostOptions& options)
                      : nan_check();
     if (!std::isfinite(g.dominant_f))
       result.warnings.push_back("receiver '" + rx.name + "': no spectral content above " +
-                                num(options.dominant_f_min) +
+                                number_text(options.dominant_f_min, 9) +
                                 " Hz, so no dominant frequency and no guide values");
     results.push_back(std::move(rr));
   }
@@ -456,18 +453,20 @@ PostResult post_process(const fs::path& results_dir, const PostOptions& options)
   cwt_options.time_stride = std::max<std::size_t>(
       1, (n + options.cwt_max_times - 1) / std::max<std::size_t>(1, options.cwt_max_times));
   if (cwt_options.f_max < options.cwt_f_max)
-    result.warnings.push_back("CWT: f_max lowered from " + num(options.cwt_f_max) + " Hz to " +
-                              num(cwt_options.f_max) + " Hz (0.4 of the sampling rate)");
+    result.warnings.push_back("CWT: f_max lowered from " + number_text(options.cwt_f_max, 9) +
+                              " Hz to " + number_text(cwt_options.f_max, 9) +
+                              " Hz (0.4 of the sampling rate)");
   if (!cwt_of.empty() && !(cwt_options.f_min < cwt_options.f_max)) {
-    result.warnings.push_back("CWT skipped: f_min = " + num(cwt_options.f_min) +
-                              " Hz is not below f_max = " + num(cwt_options.f_max) + " Hz");
+    result.warnings.push_back("CWT skipped: f_min = " + number_text(cwt_options.f_min, 9) +
+                              " Hz is not below f_max = " + number_text(cwt_options.f_max, 9) +
+                              " Hz");
     cwt_of.clear();
   }
 
   // --- write
   result.directory = results_dir / "post";
   make_directory(result.directory);
-  const std::string ref_label = "dB re " + num(options.velocity_reference) + " m/s";
+  const std::string ref_label = "dB re " + number_text(options.velocity_reference, 9) + " m/s";
 
   {  // ppv.csv
     std::vector<std::string> header = {
@@ -540,7 +539,7 @@ PostResult post_process(const fs::path& results_dir, const PostOptions& options)
         file = file_name_for(rr.rx->name + "_" + std::to_string(k));
       used.insert(file);
       std::vector<std::string> header = {"t [s]", "f_coi [Hz]"};
-      for (double f : s.frequency) header.push_back("|W| " + num(f) + " Hz [m/s]");
+      for (double f : s.frequency) header.push_back("|W| " + number_text(f, 9) + " Hz [m/s]");
       CsvOut out(result.directory / file, header);
       for (std::size_t j = 0; j < s.time.size(); ++j) {
         out << s.time[j] << s.coi_frequency[j];

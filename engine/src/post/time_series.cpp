@@ -7,15 +7,10 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/number_text.hpp"
+
 namespace rumble::post {
 namespace {
-
-std::string num(double v) {
-  std::ostringstream s;
-  s.precision(9);
-  s << v;
-  return s.str();
-}
 
 std::string trim(const std::string& s) {
   const auto b = s.find_first_not_of(" \t\r");
@@ -48,8 +43,8 @@ UniformGrid uniform_grid(std::span<const double> time, const std::string& what,
   for (std::size_t i = 0; i + 1 < n; ++i) {
     if (!std::isfinite(time[i]) || !std::isfinite(time[i + 1]) || !(time[i + 1] > time[i]))
       throw std::runtime_error(what + ": time is not strictly increasing at data row " +
-                               std::to_string(i + 2) + " (t = " + num(time[i]) + " s, then " +
-                               num(time[i + 1]) +
+                               std::to_string(i + 2) + " (t = " + number_text(time[i], 9) +
+                               " s, then " + number_text(time[i + 1], 9) +
                                " s); the file is damaged or two runs wrote into it. Rerun the "
                                "scenario into a fresh results directory");
   }
@@ -74,10 +69,11 @@ UniformGrid uniform_grid(std::span<const double> time, const std::string& what,
   if (*longest > max_step_ratio * median) {
     const auto row = static_cast<std::size_t>(longest - steps.begin()) + 2;
     throw std::runtime_error(
-        what + ": the time step varies too much to resample: the step of " + num(*longest) +
-        " s to data row " + std::to_string(row) + " (t = " + num(time[row - 1]) + " s) is " +
-        num(*longest / median) + " times the median step " + num(median) +
-        " s (allowed: " + num(max_step_ratio) +
+        what + ": the time step varies too much to resample: the step of " +
+        number_text(*longest, 9) + " s to data row " + std::to_string(row) +
+        " (t = " + number_text(time[row - 1], 9) + " s) is " + number_text(*longest / median, 9) +
+        " times the median step " + number_text(median, 9) +
+        " s (allowed: " + number_text(max_step_ratio, 9) +
         "). Record receivers at a fixed interval (outputs.receiver_interval) or post-process "
         "the part of the record before the gap");
   }

@@ -8,13 +8,6 @@ namespace {
 
 constexpr std::string_view kUtf8Bom = "\xEF\xBB\xBF";
 
-bool is_ws(char c) {
-  return c == ' ' || c == '\t' || c == '\n' || c == '\r';
-}
-bool is_structural(char c) {
-  return c == '{' || c == '}' || c == '[' || c == ']' || c == ',' || c == ':' || c == '"';
-}
-
 void append_utf8(std::string& out, std::uint32_t cp) {
   if (cp < 0x80) {
     out += static_cast<char>(cp);
@@ -48,7 +41,7 @@ class Scanner {
   void advance() { ++pos_; }
 
   void skip_ws() {
-    while (!at_end() && is_ws(text_[pos_])) ++pos_;
+    while (!at_end() && is_json_whitespace(text_[pos_])) ++pos_;
   }
 
   /// Reads the string starting at the current '"', decoding escapes into *out when given.
@@ -128,7 +121,7 @@ class Scanner {
       return false;
     }
     const std::size_t start = pos_;
-    while (!at_end() && !is_ws(peek()) && !is_structural(peek())) ++pos_;
+    while (!at_end() && !is_json_whitespace(peek()) && !is_json_structural(peek())) ++pos_;
     return pos_ > start;
   }
 
@@ -459,7 +452,7 @@ LineColumn line_column(std::string_view text, std::size_t offset) {
 std::size_t token_start(std::string_view text, std::size_t offset) {
   std::size_t pos = text.substr(0, kUtf8Bom.size()) == kUtf8Bom ? kUtf8Bom.size() : 0;
   while (pos < text.size()) {
-    while (pos < text.size() && is_ws(text[pos])) ++pos;
+    while (pos < text.size() && is_json_whitespace(text[pos])) ++pos;
     if (pos >= text.size() || pos > offset) break;
     const std::size_t start = pos;
     const char c = text[pos];
@@ -482,11 +475,12 @@ std::size_t token_start(std::string_view text, std::size_t offset) {
         }
       }
       if (offset < pos || (!closed && offset == pos)) return start;
-    } else if (is_structural(c)) {
+    } else if (is_json_structural(c)) {
       ++pos;
       if (offset < pos) return start;
     } else {
-      while (pos < text.size() && !is_ws(text[pos]) && !is_structural(text[pos])) ++pos;
+      while (pos < text.size() && !is_json_whitespace(text[pos]) && !is_json_structural(text[pos]))
+        ++pos;
       if (offset < pos) return start;
     }
   }

@@ -66,6 +66,15 @@ class PositionIndex {
 
 LineColumn line_column(std::string_view text, std::size_t offset);
 
+/// JSON's insignificant whitespace (RFC 8259): space, tab, line feed, carriage return.
+inline bool is_json_whitespace(char c) {
+  return c == ' ' || c == '\t' || c == '\n' || c == '\r';
+}
+/// A character that ends a bare JSON word or number: punctuation or a string's opening quote.
+inline bool is_json_structural(char c) {
+  return c == '{' || c == '}' || c == '[' || c == ']' || c == ',' || c == ':' || c == '"';
+}
+
 /// The start of the JSON token containing `offset` (strings, numbers, words, punctuation),
 /// found by lexing from the start; used to point parse errors at a token's first character.
 std::size_t token_start(std::string_view text, std::size_t offset);

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "core/number_text.hpp"
 #include "track/track_config.hpp"
 #include "track/unevenness_psd.hpp"
 
@@ -13,12 +14,6 @@ using scenario::Diagnostic;
 
 using scenario::finding;
 
-std::string num(double x) {
-  std::ostringstream s;
-  s << x;
-  return s.str();
-}
-
 }  // namespace
 
 std::vector<Diagnostic> check_scenario_relations(const nlohmann::json& sc) {
@@ -26,16 +21,16 @@ std::vector<Diagnostic> check_scenario_relations(const nlohmann::json& sc) {
   const double t_end = sc.at("time").at("end").get<double>();
   const double H = sc.at("time").at("macro_step").get<double>();
   if (H > t_end) {
-    out.push_back(
-        finding("/time/macro_step",
-                "the macro step " + num(H) + " s is longer than time.end = " + num(t_end) + " s",
-                "use a macro step of 1e-4 to 1e-3 s"));
+    out.push_back(finding("/time/macro_step",
+                          "the macro step " + number_text(H) +
+                              " s is longer than time.end = " + number_text(t_end) + " s",
+                          "use a macro step of 1e-4 to 1e-3 s"));
   }
   const TrackConfig track = TrackConfig::from_json(sc.at("track"));
   if (track.micro_step && *track.micro_step > H) {
     out.push_back(finding("/track/integrator/micro_step",
-                          "the micro-step " + num(*track.micro_step) +
-                              " s is longer than the macro step " + num(H) + " s",
+                          "the micro-step " + number_text(*track.micro_step) +
+                              " s is longer than the macro step " + number_text(H) + " s",
                           "give a micro-step <= time.macro_step, or leave it out to have it "
                           "chosen from the contact stiffness"));
   }
@@ -43,12 +38,12 @@ std::vector<Diagnostic> check_scenario_relations(const nlohmann::json& sc) {
   if (unevenness.value("type", "none") == "random" && unevenness.contains("wavelength_min") &&
       unevenness.contains("wavelength_max") &&
       !(unevenness["wavelength_max"].get<double>() > unevenness["wavelength_min"].get<double>())) {
-    out.push_back(
-        finding("/track/unevenness/wavelength_max",
-                "must be > wavelength_min = " + num(unevenness["wavelength_min"].get<double>()) +
-                    " m, got " + num(unevenness["wavelength_max"].get<double>()) + " m",
-                "the profile covers wavelengths from wavelength_min to wavelength_max, "
-                "e.g. 1 to 30 m for track geometry"));
+    out.push_back(finding(
+        "/track/unevenness/wavelength_max",
+        "must be > wavelength_min = " + number_text(unevenness["wavelength_min"].get<double>()) +
+            " m, got " + number_text(unevenness["wavelength_max"].get<double>()) + " m",
+        "the profile covers wavelengths from wavelength_min to wavelength_max, "
+        "e.g. 1 to 30 m for track geometry"));
   } else if (unevenness.value("type", "none") == "random" && unevenness.contains("class") &&
              unevenness.contains("wavelength_min") && unevenness.contains("wavelength_max")) {
     // The band must lie where the spectrum is defined (ISO 3095 covers rail roughness only).
@@ -58,19 +53,19 @@ std::vector<Diagnostic> check_scenario_relations(const nlohmann::json& sc) {
     const std::string range = "the " + spectrum.name() +
                               " spectrum is defined for wavelengths "
                               "from " +
-                              num(spectrum.min_wavelength()) + " m to " +
-                              num(spectrum.max_wavelength()) + " m";
+                              number_text(spectrum.min_wavelength()) + " m to " +
+                              number_text(spectrum.max_wavelength()) + " m";
     const std::string hint = spectrum.name() == "ISO3095"
                                  ? "ISO 3095 is rail roughness (short waves); for track "
                                    "geometry (1 to 30 m) use an FRA class"
                                  : "choose a band inside the spectrum's range";
     if (!spectrum.above_min(lo)) {
-      out.push_back(
-          finding("/track/unevenness/wavelength_min", range + ", got " + num(lo) + " m", hint));
+      out.push_back(finding("/track/unevenness/wavelength_min",
+                            range + ", got " + number_text(lo) + " m", hint));
     }
     if (!spectrum.below_max(hi)) {
-      out.push_back(
-          finding("/track/unevenness/wavelength_max", range + ", got " + num(hi) + " m", hint));
+      out.push_back(finding("/track/unevenness/wavelength_max",
+                            range + ", got " + number_text(hi) + " m", hint));
     }
   }
   // The vehicle reference must stay on the rail for the whole run (the wheels' offsets are
@@ -83,19 +78,21 @@ std::vector<Diagnostic> check_scenario_relations(const nlohmann::json& sc) {
     const double x_end = start + speed * t_end;
     if (start < track.rail_start() || start > track.rail_end()) {
       out.push_back(finding(ptr + "/start",
-                            "the vehicle starts at x = " + num(start) + " m, off the rail [" +
-                                num(track.rail_start()) + ", " + num(track.rail_end()) + "] m",
+                            "the vehicle starts at x = " + number_text(start) +
+                                " m, off the rail [" + number_text(track.rail_start()) + ", " +
+                                number_text(track.rail_end()) + "] m",
                             "sleeper i lies at x = i * spacing; start within the track"));
     } else if (x_end > track.rail_end()) {
       const int needed = static_cast<int>(std::ceil((x_end + 2.0 * track.sleeper_spacing) /
                                                     track.sleeper_spacing)) +
                          1;
-      out.push_back(finding(ptr + "/speed",
-                            "at " + num(speed) + " m/s the vehicle reaches x = " + num(x_end) +
-                                " m at t = " + num(t_end) + " s, past the end of the rail at " +
-                                num(track.rail_end()) + " m",
-                            "lower time.end or the speed, or use at least " +
-                                std::to_string(needed) + " sleepers (track.sleepers.count)"));
+      out.push_back(finding(
+          ptr + "/speed",
+          "at " + number_text(speed) + " m/s the vehicle reaches x = " + number_text(x_end) +
+              " m at t = " + number_text(t_end) + " s, past the end of the rail at " +
+              number_text(track.rail_end()) + " m",
+          "lower time.end or the speed, or use at least " + std::to_string(needed) +
+              " sleepers (track.sleepers.count)"));
     }
   }
   return out;

@@ -1,7 +1,7 @@
 #include "scenario/schema_check.hpp"
 
-// Without this valijson reports a bad schema (or a value it cannot handle) by abort().
-#define VALIJSON_USE_EXCEPTIONS 1
+// VALIJSON_USE_EXCEPTIONS is defined for the whole engine (engine/CMakeLists.txt): without it
+// valijson reports a bad schema (or a value it cannot handle) by abort().
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>

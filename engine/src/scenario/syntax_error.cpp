@@ -12,13 +12,6 @@
 namespace rumble::scenario {
 namespace {
 
-bool is_ws(char c) {
-  return c == ' ' || c == '\t' || c == '\n' || c == '\r';
-}
-bool is_structural(char c) {
-  return c == '{' || c == '}' || c == '[' || c == ']' || c == ',' || c == ':' || c == '"';
-}
-
 Diagnostic at(std::string_view text, std::size_t offset, std::string message,
               std::string hint = "") {
   Diagnostic d;
@@ -33,7 +26,8 @@ Diagnostic at(std::string_view text, std::size_t offset, std::string message,
 /// The word (number, literal, garbage) starting at `offset`, at most 40 bytes, printable.
 std::string word_at(std::string_view text, std::size_t offset) {
   std::string word;
-  for (std::size_t i = offset; i < text.size() && !is_ws(text[i]) && !is_structural(text[i]); ++i) {
+  for (std::size_t i = offset;
+       i < text.size() && !is_json_whitespace(text[i]) && !is_json_structural(text[i]); ++i) {
     if (word.size() >= 40) {
       word += "...";
       break;
@@ -61,7 +55,7 @@ std::size_t previous_non_ws(std::string_view text, std::size_t offset, bool& fou
   found = false;
   while (offset > 0) {
     --offset;
-    if (!is_ws(text[offset])) {
+    if (!is_json_whitespace(text[offset])) {
       found = true;
       return offset;
     }
@@ -330,7 +324,8 @@ Diagnostic describe_number_overflow(std::string_view text, std::string_view what
     }
     if (c == '-' || (c >= '0' && c <= '9')) {
       const std::size_t start = pos;
-      while (pos < text.size() && !is_ws(text[pos]) && !is_structural(text[pos])) ++pos;
+      while (pos < text.size() && !is_json_whitespace(text[pos]) && !is_json_structural(text[pos]))
+        ++pos;
       const std::string token(text.substr(start, pos - start));
       if (token == number || !std::isfinite(std::strtod(token.c_str(), nullptr))) found = start;
       continue;

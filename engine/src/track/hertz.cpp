@@ -9,8 +9,6 @@
 namespace rumble {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
 [[noreturn]] void fail(const char* what, const char* rule, double value) {
   std::ostringstream m;
   m << "Hertz contact: " << what << ' ' << rule << ", got " << value;
@@ -57,7 +55,7 @@ EllipticSums elliptic_sums(double e, double k_prime) {
     if (c <= 1e-17 * a) break;  // the next term is below round-off of the sums
   }
   EllipticSums s;
-  s.K = kPi / (2.0 * a);
+  s.K = std::numbers::pi / (2.0 * a);
   s.S = 0.5 * e * e + tail;
   s.T = 0.5 * e * e - tail;
   return s;
@@ -116,9 +114,12 @@ HertzContact hertz_contact(double wheel_radius, double rail_radius, double E, do
   // Johnson §4.2 with p0 = 3P/(2 pi a b): a^3 = 3 P (K - E) / (2 pi e^2 E* A),
   // delta = 3 P K / (2 pi a E*); (K - E)/e^2 = K S / e^2 with S / e^2 -> 1/2 for e -> 0.
   c.eccentricity = e;
-  c.semi_major = std::cbrt(3.0 * load * s.K * (s.S / (e * e)) / (2.0 * kPi * e_star * A));
+  c.semi_major =
+      std::cbrt(3.0 * load * s.K * (s.S / (e * e)) / (2.0 * std::numbers::pi * e_star * A));
   c.semi_minor = c.semi_major * k_prime;
-  c.approach = c.semi_major > 0.0 ? 3.0 * load * s.K / (2.0 * kPi * c.semi_major * e_star) : 0.0;
+  c.approach = c.semi_major > 0.0
+                   ? 3.0 * load * s.K / (2.0 * std::numbers::pi * c.semi_major * e_star)
+                   : 0.0;
   return c;
 }
 

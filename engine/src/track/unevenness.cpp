@@ -7,17 +7,12 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/number_text.hpp"
+
 namespace rumble {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 constexpr const char* kPointer = "/track/unevenness";
-
-std::string num(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
 
 [[noreturn]] void fail(const std::string& key, const std::string& message) {
   throw std::invalid_argument(std::string(kPointer) + (key.empty() ? "" : "/" + key) + ": " +
@@ -34,7 +29,7 @@ double number(const nlohmann::json& spec, const char* key, const std::string& ty
 
 double positive(const nlohmann::json& spec, const char* key, const std::string& type) {
   const double v = number(spec, key, type);
-  if (!(v > 0.0) || !std::isfinite(v)) fail(key, "must be > 0 m, got " + num(v));
+  if (!(v > 0.0) || !std::isfinite(v)) fail(key, "must be > 0 m, got " + number_text(v));
   return v;
 }
 
@@ -52,10 +47,10 @@ Unevenness::Unevenness(const nlohmann::json& spec, const std::vector<double>& wh
   if (type == "dip" || type == "bump") {
     kind_ = Kind::kShape;
     centre_ = number(spec, "position", type);
-    if (!std::isfinite(centre_)) fail("position", "must be finite, got " + num(centre_));
+    if (!std::isfinite(centre_)) fail("position", "must be finite, got " + number_text(centre_));
     length_ = positive(spec, "length", type);
     amplitude_ = type == "dip" ? positive(spec, "depth", type) : -positive(spec, "height", type);
-    wavenumber_ = 2.0 * kPi / length_;
+    wavenumber_ = 2.0 * std::numbers::pi / length_;
     return;
   }
 
@@ -72,22 +67,23 @@ Unevenness::Unevenness(const nlohmann::json& spec, const std::vector<double>& wh
                         std::to_string(wheel_radii.size()) + " wheel(s), numbered from 0");
     }
     const double radius = wheel_radii[flat_wheel_];
-    if (!(radius > 0.0)) fail("wheel", "wheel radius must be > 0 m, got " + num(radius));
-    circumference_ = 2.0 * kPi * radius;
+    if (!(radius > 0.0)) fail("wheel", "wheel radius must be > 0 m, got " + number_text(radius));
+    circumference_ = 2.0 * std::numbers::pi * radius;
     length_ = positive(spec, "length", type);
     if (length_ >= circumference_) {
-      fail("length", "a flat of " + num(length_) + " m does not fit on a wheel of circumference " +
-                         num(circumference_) + " m");
+      fail("length", "a flat of " + number_text(length_) +
+                         " m does not fit on a wheel of circumference " +
+                         number_text(circumference_) + " m");
     }
-    wavenumber_ = 2.0 * kPi / length_;
+    wavenumber_ = 2.0 * std::numbers::pi / length_;
     amplitude_ = spec.contains("depth") ? positive(spec, "depth", type)
                                         : length_ * length_ / (16.0 * radius);
-    first_impact_ = kPi * radius;
+    first_impact_ = std::numbers::pi * radius;
     if (spec.contains("first_impact")) {
       first_impact_ = number(spec, "first_impact", type);
       if (!(first_impact_ >= 0.0 && first_impact_ < circumference_)) {
-        fail("first_impact", "must be in [0, 2 pi R) = [0, " + num(circumference_) + ") m, got " +
-                                 num(first_impact_));
+        fail("first_impact", "must be in [0, 2 pi R) = [0, " + number_text(circumference_) +
+                                 ") m, got " + number_text(first_impact_));
       }
     }
     return;
@@ -112,8 +108,8 @@ Unevenness::Unevenness(const nlohmann::json& spec, const std::vector<double>& wh
     const double lambda_min = positive(spec, "wavelength_min", type);
     const double lambda_max = positive(spec, "wavelength_max", type);
     if (!(lambda_max > lambda_min)) {
-      fail("wavelength_max",
-           "must be > wavelength_min = " + num(lambda_min) + " m, got " + num(lambda_max) + " m");
+      fail("wavelength_max", "must be > wavelength_min = " + number_text(lambda_min) + " m, got " +
+                                 number_text(lambda_max) + " m");
     }
     try {
       random_.emplace(*spectrum, lambda_min, lambda_max, seed.get<std::uint64_t>(), x_min, x_max);

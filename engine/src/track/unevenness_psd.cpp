@@ -10,8 +10,6 @@
 namespace rumble {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
 // US FRA vertical profile, classes 1..6 (see the header for the source).
 constexpr std::array<double, 6> kFraAvCm2 = {1.2107, 1.0181, 0.6816, 0.5376, 0.2095, 0.0339};
 constexpr double kFraOmegaC = 0.8245;  // rad/m
@@ -70,7 +68,7 @@ RoughnessSpectrum RoughnessSpectrum::iso3095() {
   std::vector<double> band_power;  // r_i^2 [m^2]
   for (std::size_t i = 0; i < kIsoLevelsDb.size(); ++i) {
     const double lambda = std::pow(10.0, -(kIsoFirstBand + static_cast<int>(i)) / 10.0);
-    const double omega = 2.0 * kPi / lambda;
+    const double omega = 2.0 * std::numbers::pi / lambda;
     band_power.push_back(kIsoReference * kIsoReference * std::pow(10.0, kIsoLevelsDb[i] / 10.0));
     s.omega_.push_back(omega);
     s.psd_.push_back(band_power.back() / (omega * width));

@@ -10,10 +10,10 @@
 #include <string>
 #include <utility>
 
+#include "core/number_text.hpp"
+
 namespace rumble {
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 /// In place a_j <- sum_k a_k exp(+2 pi i j k / n), n a power of two (iterative radix-2
 /// Cooley-Tukey; twiddles from a table of exact cos/sin, so the error stays O(eps log n)).
@@ -27,7 +27,7 @@ void synthesize(std::vector<std::complex<double>>& a) {
   }
   std::vector<std::complex<double>> w(n / 2);
   for (std::size_t k = 0; k < n / 2; ++k) {
-    const double angle = 2.0 * kPi * static_cast<double>(k) / static_cast<double>(n);
+    const double angle = 2.0 * std::numbers::pi * static_cast<double>(k) / static_cast<double>(n);
     w[k] = {std::cos(angle), std::sin(angle)};
   }
   for (std::size_t len = 2; len <= n; len <<= 1) {
@@ -42,12 +42,6 @@ void synthesize(std::vector<std::complex<double>>& a) {
   }
 }
 
-std::string num(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
-
 }  // namespace
 
 RandomProfile::RandomProfile(const RoughnessSpectrum& spectrum, double wavelength_min,
@@ -56,39 +50,41 @@ RandomProfile::RandomProfile(const RoughnessSpectrum& spectrum, double wavelengt
   if (!(wavelength_min > 0.0) || !(wavelength_max > wavelength_min) ||
       !std::isfinite(wavelength_max)) {
     throw std::invalid_argument("random profile: need 0 < wavelength_min < wavelength_max, got " +
-                                num(wavelength_min) + " m and " + num(wavelength_max) + " m");
+                                number_text(wavelength_min) + " m and " +
+                                number_text(wavelength_max) + " m");
   }
   if (!spectrum.above_min(wavelength_min) || !spectrum.below_max(wavelength_max)) {
     throw std::invalid_argument(
         "random profile: the " + spectrum.name() + " spectrum is defined for wavelengths from " +
-        num(spectrum.min_wavelength()) + " m to " + num(spectrum.max_wavelength()) + " m, got " +
-        num(wavelength_min) + " m to " + num(wavelength_max) + " m");
+        number_text(spectrum.min_wavelength()) + " m to " + number_text(spectrum.max_wavelength()) +
+        " m, got " + number_text(wavelength_min) + " m to " + number_text(wavelength_max) + " m");
   }
   if (!(x_max > x_min) || !std::isfinite(x_max - x_min)) {
-    throw std::invalid_argument("random profile: the track span [" + num(x_min) + ", " +
-                                num(x_max) + "] m is empty");
+    throw std::invalid_argument("random profile: the track span [" + number_text(x_min) + ", " +
+                                number_text(x_max) + "] m is empty");
   }
   dx_ = wavelength_min / kPointsPerMinWavelength;
   const double needed = std::max(x_max - x_min, kMinPeriodsOfMaxWavelength * wavelength_max);
   const double cells = std::ceil(needed / dx_);
   if (!(cells <= static_cast<double>(kMaxSamples))) {
     throw std::invalid_argument(
-        "random profile: " + num(needed) + " m at a spacing of wavelength_min/" +
-        std::to_string(kPointsPerMinWavelength) + " = " + num(dx_) + " m needs " + num(cells) +
-        " points, more than " + std::to_string(kMaxSamples) +
+        "random profile: " + number_text(needed) + " m at a spacing of wavelength_min/" +
+        std::to_string(kPointsPerMinWavelength) + " = " + number_text(dx_) + " m needs " +
+        number_text(cells) + " points, more than " + std::to_string(kMaxSamples) +
         "; raise wavelength_min, lower wavelength_max or shorten the track");
   }
   const std::size_t n = std::max<std::size_t>(std::bit_ceil(static_cast<std::size_t>(cells)), 64);
   x0_ = x_min;
   inv_dx_ = 1.0 / dx_;
   n_ = static_cast<double>(n);
-  line_spacing_ = 2.0 * kPi / (n_ * dx_);
+  line_spacing_ = 2.0 * std::numbers::pi / (n_ * dx_);
 
   // Line k stands for the bin [(k - 1/2), (k + 1/2)) dOmega; its power is the PSD's integral
   // over the part of the bin inside the band, so the lines' powers add up to the band's
   // integral exactly. The highest line is far below the grid's Nyquist line n/2 (16 points
   // per shortest wavelength: k_last ~ n/16).
-  const double w_lo = 2.0 * kPi / wavelength_max, w_hi = 2.0 * kPi / wavelength_min;
+  const double w_lo = 2.0 * std::numbers::pi / wavelength_max,
+               w_hi = 2.0 * std::numbers::pi / wavelength_min;
   const auto k_first =
       std::max<std::size_t>(1, static_cast<std::size_t>(std::floor(w_lo / line_spacing_ + 0.5)));
   const auto k_last = static_cast<std::size_t>(std::floor(w_hi / line_spacing_ + 0.5));
@@ -99,7 +95,7 @@ RandomProfile::RandomProfile(const RoughnessSpectrum& spectrum, double wavelengt
     const double lo = std::max(w_lo, (kd - 0.5) * line_spacing_);
     const double hi = std::min(w_hi, (kd + 0.5) * line_spacing_);
     const double power = hi > lo ? spectrum.integral(lo, hi) : 0.0;  // m^2
-    const double phase = 2.0 * kPi * static_cast<double>(rng() >> 11) * 0x1p-53;
+    const double phase = 2.0 * std::numbers::pi * static_cast<double>(rng() >> 11) * 0x1p-53;
     lines[k] = std::polar(std::sqrt(2.0 * power), phase);
     mean_square_ += power;
   }

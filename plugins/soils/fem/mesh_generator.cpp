@@ -15,8 +15,6 @@ namespace rumble::fem {
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
 bool inside_domain(const MeshPlan& p, double x, double y, double depth) {
   if (depth < 0.0 || depth > p.depth()) return false;
   if (p.shape == MeshShape::kBox)
@@ -101,7 +99,8 @@ TetMesh generate_mesh(const FemSettings& s, const std::vector<Footprint>& footpr
   const double bdx = p.region.x1 - p.region.x0 + 2.0 * R, bdy = p.region.y1 - p.region.y0 + 2.0 * R;
   gmsh_call("build the geometry", [&] {
     const int volume = p.shape == MeshShape::kHemisphere
-                           ? occ::addSphere(xc, yc, 0.0, R, -1, -kPi / 2.0, 0.0, 2.0 * kPi)
+                           ? occ::addSphere(xc, yc, 0.0, R, -1, -std::numbers::pi / 2.0, 0.0,
+                                            2.0 * std::numbers::pi)
                            : occ::addBox(bx0, by0, -R, bdx, bdy, R);
     gmsh::vectorpair tools;
     for (const Footprint& f : footprints)

@@ -19,41 +19,41 @@
 namespace rumble::soiltest {
 namespace {
 
-constexpr Index kN = 41, kMid = 20;
+constexpr Index kChainN = 41, kChainMid = 20;
 constexpr double kF = 1e5;  // N
 
 struct Chain {
-  VectorXd u;  // static displacements [m] under kF at kMid
+  VectorXd u;  // static displacements [m] under kF at kChainMid
   Lumped p;    // the chain's parameters, read back
 };
 
 Chain loaded_chain(const nlohmann::json& params, double spacing = 0.6, double length = 2.6,
                    double width = 0.26) {
-  auto soil = make_soil("clm", params, sleeper_row(kN, spacing, length, width));
-  VectorXd F = VectorXd::Zero(kN);
-  F[kMid] = kF;
-  return {static_displacement(*soil, F), lumped_parameters(*soil, kN)};
+  auto soil = make_soil("clm", params, sleeper_row(kChainN, spacing, length, width));
+  VectorXd F = VectorXd::Zero(kChainN);
+  F[kChainMid] = kF;
+  return {static_displacement(*soil, F), lumped_parameters(*soil, kChainN)};
 }
 
 TEST(SoilChainCoupling, NeighbourRatioIsTheHalfSpaceValueAndTheChainsClosedForm) {
   const Chain c = loaded_chain(soil_properties());  // medium soil
-  const double r = c.u[kMid + 1] / c.u[kMid];
+  const double r = c.u[kChainMid + 1] / c.u[kChainMid];
   std::printf(
       "  u1/u0 = %.5f (physics.md 0.395), u2/u0 = %.5f (chain r^2 0.156; half-space "
       "0.249)\n",
-      r, c.u[kMid + 2] / c.u[kMid]);
+      r, c.u[kChainMid + 2] / c.u[kChainMid]);
   EXPECT_NEAR(r, 0.395, 0.02 * 0.395);
-  EXPECT_NEAR(c.u[kMid - 1], c.u[kMid + 1], 1e-14 * c.u[kMid]);  // symmetric
+  EXPECT_NEAR(c.u[kChainMid - 1], c.u[kChainMid + 1], 1e-14 * c.u[kChainMid]);  // symmetric
 
   const double kf = c.p.k_f, kc = c.p.k_c, root = std::sqrt(kf * kf + 4.0 * kf * kc);
   const double r_closed = ((kf + 2.0 * kc) - root) / (2.0 * kc), G0 = 1.0 / root;
   // k_f, k_c come from inverting a 41 x 41 receptance (condition ~ (1+r)/(1-r) = 2.3): 1e-12.
   for (Index i = 0; i <= 8; ++i) {
-    EXPECT_NEAR(c.u[kMid + i], kF * G0 * std::pow(r_closed, i), 1e-10 * c.u[kMid])
+    EXPECT_NEAR(c.u[kChainMid + i], kF * G0 * std::pow(r_closed, i), 1e-10 * c.u[kChainMid])
         << "footprint +" << i;
   }
   // The loaded footprint keeps the single-footing stiffness: G0 = 1 / K_z = 1 / 2.22e8 N/m.
-  EXPECT_NEAR(kF / c.u[kMid], 2.22e8, 0.005e8);
+  EXPECT_NEAR(kF / c.u[kChainMid], 2.22e8, 0.005e8);
   // The inversion rule, exactly, and the table's k_f G0 = 0.434 and k_c G0 = 0.467 (within 2 %,
   // as r: both follow from r alone).
   EXPECT_NEAR(kf * G0, (1.0 - r) / (1.0 + r), 1e-10);
@@ -67,7 +67,7 @@ TEST(SoilChainCoupling, NeighbourRatioIsTheHalfSpaceValueAndTheChainsClosedForm)
 // nearest-neighbour model (docs/soils.md). The chain value is what the plugin must give.
 TEST(SoilChainCoupling, SecondNeighbourIsTheChainsSquareNotTheHalfSpaceValue) {
   const Chain c = loaded_chain(soil_properties());
-  const double r = c.u[kMid + 1] / c.u[kMid], r2 = c.u[kMid + 2] / c.u[kMid];
+  const double r = c.u[kChainMid + 1] / c.u[kChainMid], r2 = c.u[kChainMid + 2] / c.u[kChainMid];
   EXPECT_NEAR(r2, r * r, 1e-12);
   EXPECT_NEAR(r2, 0.156, 0.02 * 0.156);
   EXPECT_LT(r2, 0.7 * 0.249);  // clearly below the half-space value: 0.156 / 0.249 = 0.63
@@ -78,12 +78,13 @@ TEST(SoilChainCoupling, RatioDependsOnGeometryOnly) {
   // proportional to (1 - nu^2) / E) ...
   const double r_medium = [] {
     const Chain c = loaded_chain(soil_properties());
-    return c.u[kMid + 1] / c.u[kMid];
+    return c.u[kChainMid + 1] / c.u[kChainMid];
   }();
   for (const double E : {10e6, 750e6}) {
     for (const double nu : {0.2, 0.3}) {
       const Chain c = loaded_chain(soil_properties(E, nu));
-      EXPECT_NEAR(c.u[kMid + 1] / c.u[kMid], r_medium, 1e-12) << "E = " << E << ", nu = " << nu;
+      EXPECT_NEAR(c.u[kChainMid + 1] / c.u[kChainMid], r_medium, 1e-12)
+          << "E = " << E << ", nu = " << nu;
     }
   }
   // ... and the table's other footprints (physics.md §2.3): 2.6 x 0.30 m and 3.0 x 0.50 m at
@@ -91,7 +92,8 @@ TEST(SoilChainCoupling, RatioDependsOnGeometryOnly) {
   const struct { double length, width, r; } rows[] = {{2.6, 0.30, 0.412}, {3.0, 0.50, 0.513}};
   for (const auto& row : rows) {
     const Chain c = loaded_chain(soil_properties(), 0.6, row.length, row.width);
-    EXPECT_NEAR(c.u[kMid + 1] / c.u[kMid], row.r, 0.02 * row.r) << row.length << " x " << row.width;
+    EXPECT_NEAR(c.u[kChainMid + 1] / c.u[kChainMid], row.r, 0.02 * row.r)
+        << row.length << " x " << row.width;
   }
 }
 

@@ -26,18 +26,18 @@
 namespace rumble::soiltest {
 namespace {
 
-constexpr Index kN = 9, kMid = 4;
-constexpr double kMass = 500.0;      // kg per footprint (a trapped soil mass of that order)
-constexpr double kMacroStep = 1e-3;  // s
+constexpr Index kEnergyN = 9, kEnergyMid = 4;
+constexpr double kMass = 500.0;            // kg per footprint (a trapped soil mass of that order)
+constexpr double kEnergyMacroStep = 1e-3;  // s
 constexpr double kSoils[] = {10e6, 155e6, 750e6};  // E [Pa]
 
 /// The chain's K (tridiagonal, end footprints with one neighbour).
 Eigen::MatrixXd chain_stiffness(const Lumped& p) {
-  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(kN, kN);
-  for (Index i = 0; i < kN; ++i) {
+  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(kEnergyN, kEnergyN);
+  for (Index i = 0; i < kEnergyN; ++i) {
     K(i, i) = p.k_f;
     if (i > 0) K(i, i) += p.k_c, K(i, i - 1) = -p.k_c;
-    if (i + 1 < kN) K(i, i) += p.k_c, K(i, i + 1) = -p.k_c;
+    if (i + 1 < kEnergyN) K(i, i) += p.k_c, K(i, i + 1) = -p.k_c;
   }
   return K;
 }
@@ -51,18 +51,18 @@ double energy(const Motion& m, const Eigen::MatrixXd& K) {
 /// k_f), the uniform motion).
 std::vector<double> free_vibration(const Lumped& p, double periods,
                                    double* max_kinetic_share = nullptr) {
-  auto soil = make_soil("clm", clm_params(p), sleeper_row(kN));
-  VectorXd F = VectorXd::Zero(kN);
-  F[kMid] = 1e5;
+  auto soil = make_soil("clm", clm_params(p), sleeper_row(kEnergyN));
+  VectorXd F = VectorXd::Zero(kEnergyN);
+  F[kEnergyMid] = 1e5;
   const VectorXd u0 = static_displacement(*soil, F);
   const Eigen::MatrixXd K = chain_stiffness(p);
   const double T = 2.0 * std::numbers::pi * std::sqrt(kMass / p.k_f);
-  const auto steps = static_cast<long>(std::ceil(periods * T / kMacroStep));
+  const auto steps = static_cast<long>(std::ceil(periods * T / kEnergyMacroStep));
   std::vector<double> E{0.5 * u0.dot(K * u0)};
-  const VectorXd zero = VectorXd::Zero(kN);
+  const VectorXd zero = VectorXd::Zero(kEnergyN);
   for (long s = 0; s < steps; ++s) {
-    advance_held(*soil, static_cast<double>(s) * kMacroStep, kMacroStep, zero);
-    const Motion now = motion(*soil, kN);
+    advance_held(*soil, static_cast<double>(s) * kEnergyMacroStep, kEnergyMacroStep, zero);
+    const Motion now = motion(*soil, kEnergyN);
     E.push_back(energy(now, K));
     if (max_kinetic_share != nullptr) {
       *max_kinetic_share =
@@ -73,8 +73,8 @@ std::vector<double> free_vibration(const Lumped& p, double periods,
 }
 
 Lumped calibrated(double E) {
-  auto soil = make_soil("clm", soil_properties(E), sleeper_row(kN));
-  return lumped_parameters(*soil, kN);
+  auto soil = make_soil("clm", soil_properties(E), sleeper_row(kEnergyN));
+  return lumped_parameters(*soil, kEnergyN);
 }
 
 TEST(SoilChainEnergy, UndampedChainConservesEnergyToRoundOff) {
@@ -115,21 +115,21 @@ TEST(SoilChainEnergy, DampedChainEnergyDecaysMonotonically) {
 
 TEST(SoilChainEnergy, MasslessChainCreepsToTheStaticSolutionWithoutOvershoot) {
   for (const double E : kSoils) {
-    auto soil = make_soil("clm", soil_properties(E), sleeper_row(kN));
-    VectorXd F = VectorXd::Zero(kN);
-    F[kMid] = 1e5;  // N
+    auto soil = make_soil("clm", soil_properties(E), sleeper_row(kEnergyN));
+    VectorXd F = VectorXd::Zero(kEnergyN);
+    F[kEnergyMid] = 1e5;  // N
     const VectorXd u_static = static_displacement(*soil, F);
-    static_displacement(*soil, VectorXd::Zero(kN));  // start unloaded, at rest
+    static_displacement(*soil, VectorXd::Zero(kEnergyN));  // start unloaded, at rest
     // 0.5 s: 80 time constants on the soft soil (C_z / K_z = 6.1 ms), more on the others.
     const long steps = 500;
     double overshoot = 0.0;
     for (long s = 0; s < steps; ++s) {
-      advance_held(*soil, static_cast<double>(s) * kMacroStep, kMacroStep, F);
-      const VectorXd u = motion(*soil, kN).u;
-      for (Index i = 0; i < kN; ++i)
+      advance_held(*soil, static_cast<double>(s) * kEnergyMacroStep, kEnergyMacroStep, F);
+      const VectorXd u = motion(*soil, kEnergyN).u;
+      for (Index i = 0; i < kEnergyN; ++i)
         overshoot = std::max(overshoot, std::abs(u[i]) / std::abs(u_static[i]) - 1.0);
     }
-    const Motion end = motion(*soil, kN);
+    const Motion end = motion(*soil, kEnergyN);
     const double error = (end.u - u_static).cwiseAbs().maxCoeff() / u_static.cwiseAbs().maxCoeff();
     std::printf(
         "  E = %3.0f MPa: max |u_i| / |u_static,i| - 1 = %+.1e, after 0.5 s |u - u_static| "
@@ -138,7 +138,8 @@ TEST(SoilChainEnergy, MasslessChainCreepsToTheStaticSolutionWithoutOvershoot) {
     EXPECT_LE(overshoot, 1e-12) << "E = " << E;  // bounded by the static solution
     EXPECT_LT(error, 1e-9) << "E = " << E;       // e^-80 of the start, so round-off only
     // At rest: what the velocity would move in one macro step is round-off too.
-    EXPECT_LT(end.v.cwiseAbs().maxCoeff() * kMacroStep, 1e-9 * u_static.cwiseAbs().maxCoeff());
+    EXPECT_LT(end.v.cwiseAbs().maxCoeff() * kEnergyMacroStep,
+              1e-9 * u_static.cwiseAbs().maxCoeff());
   }
 }
 

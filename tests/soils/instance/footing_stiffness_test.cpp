@@ -16,7 +16,6 @@
 namespace rumble::soiltest {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 constexpr double kLength = 2.6, kWidth = 0.26;  // m
 
 struct TableRow {
@@ -42,7 +41,7 @@ double gazetas(double E, double nu) {
 
 double lysmer(double E, double nu, double rho) {
   const double cs = std::sqrt(E / (2.0 * (1.0 + nu)) / rho);
-  return rho * 3.4 * cs / (kPi * (1.0 - nu)) * kLength * kWidth;
+  return rho * 3.4 * cs / (std::numbers::pi * (1.0 - nu)) * kLength * kWidth;
 }
 
 TEST(SoilFootingStiffness, WinklerFromSoilIsGazetasThroughInitialize) {
@@ -64,7 +63,8 @@ TEST(SoilFootingStiffness, WinklerFromSoilIsGazetasThroughInitialize) {
 }
 
 TEST(SoilFootingStiffness, WinklerDashpotIsLysmerAndNoMassBelowOneThird) {
-  const double f = 50.0, w = 2.0 * kPi * f;  // Hz, rad/s: any frequency does (constant C)
+  const double f = 50.0,
+               w = 2.0 * std::numbers::pi * f;  // Hz, rad/s: any frequency does (constant C)
   for (const TableRow& row : kTable) {
     auto soil = make_soil("winkler", soil_properties(row.E), sleeper_row(3));
     const std::complex<double> D = 1.0 / receptance(*soil, f, 3)(1, 1);
@@ -81,8 +81,8 @@ TEST(SoilFootingStiffness, WinklerTrappedMassAboveOneThird) {
   const double nu = 0.4, rho = 1800.0;
   auto soil = make_soil("winkler", soil_properties(155e6, nu, rho), sleeper_row(1));
   const Lumped p = lumped_parameters(*soil, 1);
-  const double r0 = std::sqrt(kLength * kWidth / kPi);
-  const double wolf = 2.4 * (nu - 1.0 / 3.0) * rho * kPi * r0 * r0 * r0;  // 90.3 kg
+  const double r0 = std::sqrt(kLength * kWidth / std::numbers::pi);
+  const double wolf = 2.4 * (nu - 1.0 / 3.0) * rho * std::numbers::pi * r0 * r0 * r0;  // 90.3 kg
   // m comes from a difference of two stiffnesses ~1e8 N/m divided by w^2 = 3.9e3 1/s^2:
   // round-off ~1e-16 * 1e8 / 3.9e3 ~ 1e-11 kg.
   EXPECT_NEAR(p.m_f, wolf, 1e-6);

@@ -13,18 +13,18 @@
 namespace rumble::soiltest {
 namespace {
 
-constexpr Index kN = 7;
+constexpr Index kRestoreN = 7;
 constexpr double kH = 1e-3;  // s
 
-struct Model {
+struct RestoreModel {
   const char* type;
   nlohmann::json params;
 };
 
 /// A smooth, footprint-dependent force history [N] (a passing axle, roughly).
 VectorXd force(double t) {
-  VectorXd F(kN);
-  for (Index i = 0; i < kN; ++i)
+  VectorXd F(kRestoreN);
+  for (Index i = 0; i < kRestoreN; ++i)
     F[i] = 5e4 * (1.0 + std::sin(40.0 * t - 0.7 * static_cast<double>(i)));
   return F;
 }
@@ -35,40 +35,40 @@ std::vector<double> record(SoilInstance& soil, long first, long steps) {
   for (long s = first; s < first + steps; ++s) {
     const double t = static_cast<double>(s) * kH;
     advance_linear(soil, t, kH, force(t), force(t + kH));
-    const Motion m = motion(soil, kN);
-    out.insert(out.end(), m.u.data(), m.u.data() + kN);
-    out.insert(out.end(), m.v.data(), m.v.data() + kN);
+    const Motion m = motion(soil, kRestoreN);
+    out.insert(out.end(), m.u.data(), m.u.data() + kRestoreN);
+    out.insert(out.end(), m.v.data(), m.v.data() + kRestoreN);
   }
   return out;
 }
 
 TEST(SoilSaveRestore, RoundTripIsExact) {
-  const Model models[] = {
+  const RestoreModel models[] = {
       {"winkler", {{"k", 2.22e8}, {"c", 3.42e5}, {"m", 500.0}}},
       {"winkler", soil_properties(155e6, 0.4)},  // Wolf's trapped mass
       {"clm", soil_properties()},                // massless
       {"clm", {{"m_f", 300.0}, {"k_f", 9.6e7}, {"c_f", 1.5e5}, {"k_c", 1.04e8}, {"c_c", 1.6e5}}}};
-  for (const Model& m : models) {
-    auto soil = make_soil(m.type, m.params, sleeper_row(kN));
+  for (const RestoreModel& m : models) {
+    auto soil = make_soil(m.type, m.params, sleeper_row(kRestoreN));
     static_displacement(*soil, force(0.0));
     record(*soil, 0, 40);
     std::vector<double> saved;
     soil->save_state(saved);
     ASSERT_FALSE(saved.empty()) << m.params.dump();
-    const VectorXd u_saved = motion(*soil, kN).u;
+    const VectorXd u_saved = motion(*soil, kRestoreN).u;
     const std::vector<double> first = record(*soil, 40, 30);
 
     // Wander off: another step size (another factorization inside), another force.
     for (int s = 0; s < 5; ++s) {
       advance_held(*soil, 0.07 + 2.5e-3 * s, 2.5e-3, 3.0 * force(0.01 * s));
     }
-    ASSERT_NE(motion(*soil, kN).u, u_saved);
+    ASSERT_NE(motion(*soil, kRestoreN).u, u_saved);
 
     soil->restore_state(saved);
     std::vector<double> again_saved;
     soil->save_state(again_saved);
     EXPECT_EQ(again_saved, saved) << m.params.dump();
-    EXPECT_EQ(motion(*soil, kN).u, u_saved);
+    EXPECT_EQ(motion(*soil, kRestoreN).u, u_saved);
     const std::vector<double> second = record(*soil, 40, 30);
     EXPECT_EQ(second, first) << m.type << " " << m.params.dump();
   }

@@ -32,7 +32,6 @@ namespace rumble::soiltest {
 namespace {
 
 using cd = std::complex<double>;
-constexpr double kPi = std::numbers::pi;
 constexpr double kMacroStep = 1.0 / 1200.0;  // s; 1200 Hz is a multiple of every test frequency
 constexpr double kF0 = 1e4;                  // N, force amplitude
 constexpr Index kN = 9, kDriven = 4;         // footprints; the driven one (in the middle)
@@ -79,7 +78,7 @@ cd harmonic_fit(const std::vector<double>& t, const std::vector<double>& u, doub
 /// Drive footprint kDriven with kF0 sin(2 pi f t), run kSettle (at least 3 periods), then fit
 /// over the last 2 whole periods.
 Steady steady_response(SoilInstance& soil, double f) {
-  const double w = 2.0 * kPi * f;
+  const double w = 2.0 * std::numbers::pi * f;
   const auto per_period = static_cast<long>(std::lround(1.0 / (f * kMacroStep)));
   const long settle = std::max(3L, static_cast<long>(std::ceil(kSettle * f))) * per_period;
   const long total = settle + 2 * per_period;
@@ -132,7 +131,7 @@ TEST(SoilTimeResponse, HarmonicForceMatchesReceptanceWithinNewmarkPeriodError) {
       ASSERT_GT(std::abs(H(kDriven, kDriven)), 0.0) << m.label;
       // Coupling: the clm's neighbour moves, winkler's does not (checked below, exactly).
       ASSERT_EQ(std::abs(H(kDriven + 1, kDriven)) > 0.0, std::string(m.type) == "clm") << m.label;
-      const double wH = 2.0 * kPi * f * kMacroStep;
+      const double wH = 2.0 * std::numbers::pi * f * kMacroStep;
       for (const Index i : {kDriven, kDriven + 1}) {
         const cd exact = H(i, kDriven) * kF0;
         const cd measured = i == kDriven ? s.driven : s.neighbour;
@@ -160,10 +159,10 @@ TEST(SoilTimeResponse, ThreeSubStepsMatchTheInterpolatedForceAtTheWarpedFrequenc
     for (const double f : {5.0, 20.0, 60.0}) {
       auto soil = make_soil(m.type, m.params, sleeper_row(kN));
       const Steady s = steady_response(*soil, f);
-      const double w = 2.0 * kPi * f;
+      const double w = 2.0 * std::numbers::pi * f;
       const double kept =
           std::pow(std::sin(w * kMacroStep / 2.0) / (3.0 * std::sin(w * h / 2.0)), 2);
-      const double f_warped = std::tan(w * h / 2.0) / (kPi * h);
+      const double f_warped = std::tan(w * h / 2.0) / (std::numbers::pi * h);
       const MatrixXcd H = receptance(*soil, f_warped, kN);
       const double tol = 5e-4 * std::pow(w * kMacroStep / 0.314, 2);
       expect_close("driven", m, f, s.driven, kept * H(kDriven, kDriven) * kF0, tol);
@@ -179,8 +178,9 @@ TEST(SoilTimeResponse, OneSubStepPerMacroStepIsExactAtTheWarpedFrequency) {
     for (const double f : {5.0, 20.0, 60.0}) {
       auto soil = make_soil(m.type, m.params, sleeper_row(kN));
       const Steady s = steady_response(*soil, f);
-      const double w = 2.0 * kPi * f;
-      const double f_warped = std::tan(w * kMacroStep / 2.0) / (kPi * kMacroStep);  // w_d / 2 pi
+      const double w = 2.0 * std::numbers::pi * f;
+      const double f_warped =
+          std::tan(w * kMacroStep / 2.0) / (std::numbers::pi * kMacroStep);  // w_d / 2 pi
       const MatrixXcd H = receptance(*soil, f_warped, kN);
       // Round-off: the fit sums ~500 samples of a response known to ~1e-15 relative.
       constexpr double kTol = 1e-9;
