@@ -13,6 +13,17 @@
 
 namespace rumble::testing {
 
+/// small_scenario() with a 0.5 mm dip 0.5 m long that the wheel reaches after 10 ms, run for
+/// `end` [s]; `micro_step` [s] fixes the track's micro-step (0: the default, which depends on H).
+inline nlohmann::json dip_scenario(double end, double micro_step = 0.0) {
+  nlohmann::json s = small_scenario();
+  s["time"]["end"] = end;
+  s["track"]["unevenness"] = {
+      {"type", "dip"}, {"position", 3.45}, {"length", 0.5}, {"depth", 5e-4}};
+  if (micro_step > 0.0) s["track"]["integrator"] = {{"micro_step", micro_step}};
+  return s;
+}
+
 /// One results file: the time column and the other columns row after row.
 struct Histories {
   std::vector<double> times, values;

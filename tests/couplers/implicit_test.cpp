@@ -18,22 +18,16 @@
 #include <vector>
 
 #include "cli_runner.hpp"
+#include "coupler_runs.hpp"
 
 namespace rumble::testing {
 namespace {
 
 using ::testing::HasSubstr;
 
-constexpr double kMicroStep = 1e-5;  // s, the track's micro-step in every accuracy run
-
-/// small_scenario() with a 0.5 mm dip 0.5 m long that the wheel reaches after 10 ms.
-nlohmann::json dip_scenario() {
-  nlohmann::json s = small_scenario();
-  s["time"]["end"] = 0.04;
-  s["track"]["unevenness"] = {
-      {"type", "dip"}, {"position", 3.45}, {"length", 0.5}, {"depth", 5e-4}};
-  s["track"]["integrator"] = {{"micro_step", kMicroStep}};
-  return s;
+/// The dip scenario over 40 ms with the track's micro-step fixed at 10 us in every accuracy run.
+nlohmann::json implicit_dip_scenario() {
+  return dip_scenario(0.04, 1e-5);
 }
 
 nlohmann::json implicit(const nlohmann::json& params = nlohmann::json::object()) {
@@ -46,7 +40,7 @@ struct RunResult {
   std::vector<double> times, displacements;  // footprint_displacement.csv
 };
 
-RunResult run(const std::string& name, const nlohmann::json& scenario) {
+RunResult run_and_read(const std::string& name, const nlohmann::json& scenario) {
   const auto dir = scratch_directory(name);
   const CliResult r = run_rumble({"run", write_scenario(dir, scenario).string(), "--no-progress"});
   EXPECT_EQ(r.exit_code, 0) << r.output;
@@ -74,14 +68,14 @@ double mean_iterations(const RunResult& r) {
 }
 
 TEST(Implicit, ConvergedAtOneMillisecondMatchesGaussSeidelAtAHundredthOfIt) {
-  nlohmann::json fine = dip_scenario();
+  nlohmann::json fine = implicit_dip_scenario();
   fine["time"]["macro_step"] = 1e-5;
   fine["outputs"]["every"] = 100;  // rows at the same times as the 1 ms runs
-  const RunResult reference = run("implicit_accuracy_reference", fine);
-  nlohmann::json coarse = dip_scenario();
-  const RunResult gauss_seidel = run("implicit_accuracy_gs", coarse);
+  const RunResult reference = run_and_read("implicit_accuracy_reference", fine);
+  nlohmann::json coarse = implicit_dip_scenario();
+  const RunResult gauss_seidel = run_and_read("implicit_accuracy_gs", coarse);
   coarse["coupling"] = implicit();
-  const RunResult iterated = run("implicit_accuracy_implicit", coarse);
+  const RunResult iterated = run_and_read("implicit_accuracy_implicit", coarse);
   const double e_gs = difference(gauss_seidel, reference);
   const double e_implicit = difference(iterated, reference);
   EXPECT_EQ(iterated.summary["coupling"]["unconverged_steps"], 0);
@@ -95,13 +89,13 @@ TEST(Implicit, ConvergedAtOneMillisecondMatchesGaussSeidelAtAHundredthOfIt) {
 }
 
 TEST(Implicit, AitkenAndIqnIlsIterateLessThanConstantRelaxation) {
-  nlohmann::json s = dip_scenario();
+  nlohmann::json s = implicit_dip_scenario();
   s["coupling"] = implicit({{"acceleration", "constant"}});
-  const double constant = mean_iterations(run("implicit_constant", s));
+  const double constant = mean_iterations(run_and_read("implicit_constant", s));
   s["coupling"] = implicit({{"acceleration", "aitken"}});
-  const double aitken = mean_iterations(run("implicit_aitken", s));
+  const double aitken = mean_iterations(run_and_read("implicit_aitken", s));
   s["coupling"] = implicit({{"acceleration", "iqn_ils"}});
-  const double iqn_ils = mean_iterations(run("implicit_iqn_ils", s));
+  const double iqn_ils = mean_iterations(run_and_read("implicit_iqn_ils", s));
   // Measured (iterations per step): constant (omega 0.5) 8.98, aitken 4.33, iqn_ils 4.08.
   EXPECT_LT(aitken, constant) << aitken << " vs " << constant;
   EXPECT_LT(iqn_ils, constant) << iqn_ils << " vs " << constant;
@@ -111,7 +105,7 @@ TEST(Implicit, RecordsIterationsPerStep) {
   nlohmann::json s = small_scenario();
   s["time"]["end"] = 0.01;
   s["coupling"] = implicit();
-  const RunResult r = run("implicit_iterations_recorded", s);
+  const RunResult r = run_and_read("implicit_iterations_recorded", s);
   const auto& c = r.summary["coupling"];
   EXPECT_NEAR(c["iterations"]["total"].get<double>(),
               c["iterations"]["mean_per_step"].get<double>() * 10, 1e-9);
@@ -137,7 +131,7 @@ TEST(Implicit, RunsTheSoftMasslessSoilNoExplicitSchemeSurvives) {
   s["soil"] = {{"type", "clm"}, {"params", {{"E", 1e7}, {"nu", 0.3}, {"rho", 1800.0}}}};
   s["time"]["end"] = 0.2;
   s["coupling"] = implicit();
-  const RunResult r = run("implicit_soft_massless", s);
+  const RunResult r = run_and_read("implicit_soft_massless", s);
   EXPECT_EQ(r.summary["status"], "completed");
   EXPECT_EQ(r.summary["coupling"]["unconverged_steps"], 0);
   // Measured: 4.47 iterations per step (at most 12); aitken 8.1; constant relaxation (omega
@@ -173,12 +167,12 @@ TEST(Implicit, OrOnRequestStopsTheRun) {
 }
 
 TEST(Implicit, SoilFirstConvergesToTheSameSolution) {
-  nlohmann::json s = dip_scenario();
+  nlohmann::json s = implicit_dip_scenario();
   s["time"]["end"] = 0.02;
   s["coupling"] = implicit();
-  const RunResult track_first = run("implicit_track_first", s);
+  const RunResult track_first = run_and_read("implicit_track_first", s);
   s["coupling"] = implicit({{"order", "soil_first"}});
-  const RunResult soil_first = run("implicit_soil_first", s);
+  const RunResult soil_first = run_and_read("implicit_soil_first", s);
   // Both converge to the same fixed point to within the tolerances (1e-5 relative).
   EXPECT_LT(difference(soil_first, track_first), 1e-4);
 }

@@ -24,14 +24,11 @@ namespace {
 
 using ::testing::HasSubstr;
 
-constexpr double kMicroStep = 2.5e-5;  // s: divides every macro step below
-
-nlohmann::json dip_scenario(double H) {
-  nlohmann::json s = small_scenario();
-  s["time"] = {{"end", 0.03}, {"macro_step", H}};
-  s["track"]["unevenness"] = {
-      {"type", "dip"}, {"position", 3.45}, {"length", 0.5}, {"depth", 5e-4}};
-  s["track"]["integrator"] = {{"micro_step", kMicroStep}};
+/// The dip scenario over 30 ms at macro step H [s], the track's micro-step fixed at 25 us (it
+/// divides every H below).
+nlohmann::json fixed_micro_step_dip(double H) {
+  nlohmann::json s = dip_scenario(0.03, 2.5e-5);
+  s["time"]["macro_step"] = H;
   return s;
 }
 
@@ -62,7 +59,7 @@ double relative_error(const Histories& a, const Histories& reference) {
 }
 
 TEST(Monolithic, AWheelAtRestStaysAtTheStaticState) {
-  nlohmann::json s = dip_scenario(1e-3);
+  nlohmann::json s = fixed_micro_step_dip(1e-3);
   s["track"].erase("unevenness");
   s["vehicles"][0]["speed"] = 0.0;
   s["coupling"] = monolithic();
@@ -86,13 +83,13 @@ TEST(Monolithic, AWheelAtRestStaysAtTheStaticState) {
 }
 
 TEST(Monolithic, GaussSeidelConvergesToItAtFirstOrderImplicitAtSecond) {
-  nlohmann::json s = dip_scenario(1e-3);
+  nlohmann::json s = fixed_micro_step_dip(1e-3);
   s["coupling"] = monolithic();
   const auto reference = run("monolithic_reference", s);
   const Histories u_ref = csv(reference / "footprint_displacement.csv");
   std::vector<double> errors, energy_residuals, soil_energies;
   for (double H : {1e-3, 5e-4, 1e-4}) {
-    nlohmann::json g = dip_scenario(H);
+    nlohmann::json g = fixed_micro_step_dip(H);
     g["coupling"] = {{"type", "gauss_seidel"}, {"params", nlohmann::json::object()}};
     const auto dir = run("monolithic_gs_" + std::to_string(static_cast<int>(H * 1e5)), g);
     errors.push_back(relative_error(csv(dir / "footprint_displacement.csv"), u_ref));
@@ -114,7 +111,7 @@ TEST(Monolithic, GaussSeidelConvergesToItAtFirstOrderImplicitAtSecond) {
   EXPECT_NEAR(soil_energies[0], energy, 0.05 * energy);
   std::vector<double> implicit_errors;
   for (double H : {1e-3, 5e-4, 2.5e-4, 2.5e-5}) {
-    nlohmann::json i = dip_scenario(H);
+    nlohmann::json i = fixed_micro_step_dip(H);
     i["coupling"] = {{"type", "implicit"}, {"params", {{"relative_tolerance", 1e-8}}}};
     const auto dir = run("monolithic_implicit_" + std::to_string(static_cast<int>(H * 1e6)), i);
     implicit_errors.push_back(relative_error(csv(dir / "footprint_displacement.csv"), u_ref));

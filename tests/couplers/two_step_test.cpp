@@ -24,14 +24,6 @@ namespace {
 
 using ::testing::HasSubstr;
 
-nlohmann::json dip_scenario() {
-  nlohmann::json s = small_scenario();
-  s["time"]["end"] = 0.03;
-  s["track"]["unevenness"] = {
-      {"type", "dip"}, {"position", 3.45}, {"length", 0.5}, {"depth", 5e-4}};
-  return s;
-}
-
 nlohmann::json winkler(double k) {
   return {{"type", "winkler"}, {"params", {{"k", k}, {"c", 2e5}}}};
 }
@@ -43,7 +35,7 @@ nlohmann::json two_step(const nlohmann::json& reduced_soil) {
 }
 
 TEST(TwoStep, SameSoilInBothStepsEqualsGaussSeidel) {
-  nlohmann::json s = dip_scenario();
+  nlohmann::json s = dip_scenario(0.03);
   s["coupling"] = {{"type", "gauss_seidel"}, {"params", {{"interpolation", 1}}}};
   const auto gs = run("two_step_same_gs", s);
   s["coupling"] = two_step(s["soil"]);
@@ -74,7 +66,7 @@ TEST(TwoStep, SameSoilInBothStepsEqualsGaussSeidel) {
 }
 
 TEST(TwoStep, TrackRunsOnTheReducedSoilAndTheSoilFollowsItsForces) {
-  nlohmann::json s = dip_scenario();
+  nlohmann::json s = dip_scenario(0.03);
   s["soil"] = winkler(1e8);
   s["coupling"] = {{"type", "gauss_seidel"}, {"params", {{"interpolation", 1}}}};
   s["soil"] = winkler(2e8);  // the reduced soil alone, coupled directly
@@ -102,7 +94,7 @@ TEST(TwoStep, TrackRunsOnTheReducedSoilAndTheSoilFollowsItsForces) {
 }
 
 TEST(TwoStep, WithoutAReducedSoilValidateSaysWhatToAdd) {
-  nlohmann::json s = dip_scenario();
+  nlohmann::json s = dip_scenario(0.03);
   s["coupling"] = {{"type", "two_step"}, {"params", nlohmann::json::object()}};
   const auto dir = scratch_directory("two_step_no_reduced_soil");
   const CliResult r = run_rumble({"validate", write_scenario(dir, s).string()});
