@@ -5,17 +5,20 @@ person opens first, and its figures as PNG and SVG files.
 usage: tools/study_report.py STUDY_OUTPUT_DIR
 
 Reads STUDY_OUTPUT_DIR/study.json (the runs, their status and results directories) and, for
-every run that has them, its summary.json, post/ppv.csv, post/cwt_*.csv, contact.csv and
-interface.csv. Writes STUDY_OUTPUT_DIR/report.html (figures embedded, so the page can be mailed
+every run that has them, its summary.json, post/ppv.csv, post/cwt_*.csv,
+post/third_octave.csv, contact.csv and interface.csv. Writes STUDY_OUTPUT_DIR/report.html (figures embedded, so the page can be mailed
 or archived alone) and STUDY_OUTPUT_DIR/figures/*.png and *.svg:
   ppv_vs_distance    vertical PPV against distance from the track, one panel per value of the
                      study's first axis, one line per run (the seed paper's Figures 4 and 5)
   scalogram_<dist>   wavelet scalograms |W(t, f)| of the vertical velocity at the receivers
                      nearest 2.5 m and 5 m, one panel per run (Figures 6 and 7)
+  third_octave       vertical one-third-octave velocity levels at the receivers nearest 2.5 m
+                     and 5 m, one line per run
   contact_force      the first wheel's wheel/rail force of every run
   interface          the energy passed through the track/soil cut and the coupler's residual
                      over time: a diverging run shows here first
-and the tables: PPV per distance per run, each run's co-simulation diagnostics, and per receiver
+and the tables: PPV per distance per run, each run's co-simulation diagnostics (with the energy
+residual at the cut and when a diverging run was caught), and per receiver
 the indicators of post/ppv.csv (PPV, dominant frequency, KB_F,max, DIN 4150-3 / BS 7385-2 ratios). Needs
 python3-matplotlib and numpy (Debian packages).
 """
@@ -233,6 +236,43 @@ def scalogram_figure(runs, distance):
     return fig
 
 
+def third_octave_figure(runs, distances=(2.5, 5.0)):
+    """Vertical one-third-octave velocity levels (post/third_octave.csv) at the receivers nearest
+    each distance [m]: one panel per distance, one line per run."""
+    panels = []
+    for d in distances:
+        lines = []
+        for r in runs:
+            table = read_csv(r.dir / "post" / "third_octave.csv")
+            names = {number(row.get("distance [m]")): row.get("receiver", "") for row in r.ppv}
+            names = {k: v for k, v in names.items() if not math.isnan(k)}
+            if table is None or not names:
+                continue
+            near = min(names, key=lambda x: abs(x - d))
+            if abs(near - d) > 0.5 * d:
+                continue
+            header, data = table
+            col = next((i for i, h in enumerate(header) if h.startswith(names[near] + " vz L_v")),
+                       None)
+            if col is not None:
+                lines.append((r.name, data[:, 1], data[:, col], header[col]))
+        if lines:
+            panels.append((d, lines))
+    if not panels:
+        return None
+    fig, axes = plt.subplots(1, len(panels), figsize=(5.2 * len(panels), 3.6), squeeze=False)
+    for ax, (d, lines) in zip(axes.flat, panels):
+        for name, f, level, _ in lines:
+            ax.semilogx(f, level, marker="o", ms=3, lw=0.9, label=name)
+        unit = lines[0][3].split("L_v", 1)[-1].strip()  # e.g. "[dB re 1e-09 m/s]"
+        ax.set(xlabel="band centre f_m [Hz]", ylabel=f"vertical L_v {unit}",
+               title=f"one-third-octave levels near {d:g} m")
+        ax.grid(True, which="both", alpha=0.4)
+        ax.legend(fontsize=7)
+    fig.tight_layout()
+    return fig
+
+
 def contact_figure(runs):
     fig, ax = plt.subplots(figsize=(8, 3.6))
     drawn = False
@@ -335,6 +375,8 @@ def diagnostics_table(runs):
         wall = s.get("wall_time_s", {}).get("total")
         mean_its = its.get("mean_per_step")
         energy = iface.get("energy_exchanged_J")
+        energy_residual = iface.get("energy_residual_J")
+        diverged = (s.get("divergence") or {}).get("t_detected_s")
         status = r.status if r.status != "unknown" else s.get("status", "unknown")
         css = "ok" if status in ("completed", "skipped") else "bad"
         message = html.escape(str(s.get("message", ""))[:300])
@@ -344,10 +386,13 @@ def diagnostics_table(runs):
             f"<td>{s.get('time', {}).get('macro_step', '')}</td>"
             f"<td>{'' if mean_its is None else f'{mean_its:.3g}'}</td>"
             f"<td>{residuals}</td><td>{'' if energy is None else f'{energy:.4g}'}</td>"
+            f"<td>{'' if energy_residual is None else f'{energy_residual:.3g}'}</td>"
+            f"<td>{'' if diverged is None else f'{diverged:.4g}'}</td>"
             f"<td>{coupling.get('discarded_steps', '')}</td><td>{message}</td></tr>")
     return ("<table><caption>Co-simulation diagnostics</caption><tr><th>run</th><th>status</th>"
             "<th>wall time [s]</th><th>macro step [s]</th><th>iterations per step</th>"
             "<th>largest relative residual by channel group</th><th>energy into the soil [J]</th>"
+            "<th>energy residual at the cut [J]</th><th>diverging from t [s]</th>"
             "<th>discarded steps</th><th>message</th></tr>" + "".join(rows) + "</table>")
 
 
@@ -389,6 +434,7 @@ def main(directory):
         ("Peak particle velocity against distance", "ppv_vs_distance", ppv_figure(runs, axes)),
         ("Wavelet transform at 2.5 m", "scalogram_2.5m", scalogram_figure(runs, 2.5)),
         ("Wavelet transform at 5 m", "scalogram_5m", scalogram_figure(runs, 5.0)),
+        ("One-third-octave velocity levels", "third_octave", third_octave_figure(runs)),
         ("Wheel/rail contact force", "contact_force", contact_figure(runs)),
         ("The track/soil cut: energy and residual", "interface", interface_figure(runs)),
     ):
