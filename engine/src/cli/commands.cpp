@@ -39,6 +39,9 @@ commands:
                                     its report in the log, its mesh in DIR/mesh.vtu (FEM soil)
   soil-frf FILE [options]           receptance of the scenario's soil at its footprints (CSV)
   calibrate FILE [options]          fit a reduced soil's parameters to a target soil's receptance
+  stability FILE [--macro-steps LIST] [--output FILE.json]
+                                    spectral radius of one gauss_seidel and jacobi macro step,
+                                    linearized at rest, for the scenario's track and linear soil
   post RESULTS_DIR [options]        recompute a run's vibration indicators (PPV, spectra, KB,
                                     third-octave levels, guide values, wavelets) into
                                     RESULTS_DIR/post; `run` does it after every run with receivers
@@ -64,6 +67,7 @@ std::map<std::string, Command>& command_table() {
                                               {"schema", &schema_command},
                                               {"mesh", &mesh_command},
                                               {"soil-frf", &soil_frf_command},
+                                              {"stability", &stability_command},
                                               {"calibrate", &calibrate_command},
                                               {"new-plugin", &new_plugin_command},
                                               {"post", &post_command},

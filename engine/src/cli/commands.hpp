@@ -19,6 +19,7 @@ int validate_command(const std::vector<std::string>& args);
 int plugins_command(const std::vector<std::string>& args);
 int schema_command(const std::vector<std::string>& args);
 int soil_frf_command(const std::vector<std::string>& args);
+int stability_command(const std::vector<std::string>& args);
 int mesh_command(const std::vector<std::string>& args);
 int calibrate_command(const std::vector<std::string>& args);
 int new_plugin_command(const std::vector<std::string>& args);

@@ -3,6 +3,7 @@
 #include <sched.h>
 
 #include <algorithm>
+#include <array>
 #include <thread>
 
 #include "core/errors.hpp"
@@ -114,6 +115,18 @@ void finalize_components(RunComponents& c) {
   c.soil->finalize();
   for (auto& [name, extra] : c.extras) extra->finalize();
   for (const auto& v : c.track->vehicles().vehicles()) v.instance->finalize();
+}
+
+std::unique_ptr<IntegratedSoil> linear_soil(SoilInstance& soil, const std::string& purpose) {
+  std::array<Eigen::SparseMatrix<double>, 4> m;  // M, C, K, B (rumble_matrix order)
+  for (std::size_t which = 0; which < m.size(); ++which) {
+    if (!soil.linear_matrix(static_cast<rumble_matrix>(which), m[which])) {
+      throw ConfigError("/soil/type: soil type '" + soil.type_name() +
+                        "' gives no linear matrices, which " + purpose +
+                        " needs; choose a soil that offers them (winkler, clm; rumble plugins)");
+    }
+  }
+  return std::make_unique<IntegratedSoil>(soil.type_name(), m[0], m[1], m[2], m[3]);
 }
 
 }  // namespace rumble

@@ -11,6 +11,7 @@
 
 #include "plugin/instance.hpp"
 #include "scenario/run_spec.hpp"
+#include "track/integrated_soil.hpp"
 #include "track/track_participant.hpp"
 
 namespace rumble {
@@ -40,6 +41,10 @@ RunComponents build_components(const scenario::RunSpec& spec, const PluginRegist
 /// What rumble_host tells the plugins during the run: the results directory, and the threads
 /// each may use (all cores; one less for the soils when the coupler runs participants at once).
 void give_run_context(RunComponents& c, const std::filesystem::path& results_dir);
+
+/// The soil as its linear matrices (M, C, K, B) describe it, for `purpose` ("a monolithic
+/// coupler", "a stability analysis"); throws ConfigError naming the fix when it gives none.
+std::unique_ptr<IntegratedSoil> linear_soil(SoilInstance& soil, const std::string& purpose);
 
 /// Lets every plugin flush after a run that completed or stopped cleanly (lifecycle finalize).
 void finalize_components(RunComponents& c);

@@ -1,6 +1,5 @@
 #include "run/run_scenario.hpp"
 
-#include <array>
 #include <chrono>
 #include <cmath>
 #include <memory>
@@ -90,18 +89,7 @@ SoilInstance& static_partner(RunComponents& c) {
 /// integrated inside the track (decision 0008). Returns whether it was.
 bool integrate_soil_if_asked(RunComponents& c) {
   if (!c.coupler->type().capabilities.has(RUMBLE_CAP_MONOLITHIC)) return false;
-  std::array<Eigen::SparseMatrix<double>, 4> m;  // M, C, K, B (rumble_matrix order)
-  for (int which = 0; which < 4; ++which) {
-    if (!c.soil->linear_matrix(static_cast<rumble_matrix>(which),
-                               m[static_cast<std::size_t>(which)])) {
-      throw RunError("soil '" + c.soil->type_name() +
-                     "' gives no linear matrices, which coupler '" + c.coupler->type_name() +
-                     "' needs to integrate it with the track; choose a soil that offers them "
-                     "(rumble plugins)");
-    }
-  }
-  c.track->integrate_soil(
-      std::make_unique<IntegratedSoil>(c.soil->type_name(), m[0], m[1], m[2], m[3]));
+  c.track->integrate_soil(linear_soil(*c.soil, "coupler '" + c.coupler->type_name() + "'"));
   return true;
 }
 

@@ -1,0 +1,65 @@
+// `rumble stability FILE [--macro-steps 1e-3,5e-4,...] [--output FILE]`: the spectral radius of
+// one macro step of gauss_seidel and jacobi for the scenario's track on its soil, linearized at
+// rest (analysis/coupling_stability.hpp), per macro step: a table, and JSON with --output.
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "analysis/coupling_stability.hpp"
+#include "cli/arguments.hpp"
+#include "cli/commands.hpp"
+#include "cli/exit_codes.hpp"
+#include "cli/scenario_prepare.hpp"
+#include "core/errors.hpp"
+
+namespace rumble::cli {
+
+int stability_command(const std::vector<std::string>& args) {
+  const Arguments a(args, {}, {"macro-steps", "output"});
+  if (a.positional().size() != 1) {
+    throw UsageError(
+        "usage: rumble stability FILE [--macro-steps 1e-3,5e-4,2e-4,1e-4] [--output FILE.json]");
+  }
+  std::vector<double> steps;
+  for (const std::string& item :
+       split_list(a.value("macro-steps").value_or("1e-3,5e-4,2e-4,1e-4"))) {
+    std::size_t used = 0;
+    double H = 0.0;
+    try {
+      H = std::stod(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != item.size() || !(H > 0.0) || !std::isfinite(H)) {
+      throw UsageError("--macro-steps: '" + item + "' is not a positive number of seconds");
+    }
+    steps.push_back(H);
+  }
+  PluginRegistry registry;
+  const auto doc = prepare_scenario(a.positional()[0], registry, scenario::Format::kText);
+  if (!doc) return kExitConfig;
+  const auto points =
+      coupling_stability(scenario::make_run_spec(doc->json, doc->path), registry, steps);
+  std::cout << "spectral radius of one macro step, linearized at rest (> 1: grows by that factor "
+               "every step, the run diverges)\n"
+            << "  H [s]        gauss_seidel  jacobi\n";
+  nlohmann::json out = nlohmann::json::array();
+  for (std::size_t k = 0; k + 1 < points.size(); k += 2) {
+    std::cout << "  " << std::setw(11) << std::left << points[k].macro_step << "  " << std::setw(12)
+              << points[k].spectral_radius << "  " << points[k + 1].spectral_radius << '\n';
+  }
+  for (const StabilityPoint& p : points) {
+    out.push_back({{"scheme", p.scheme},
+                   {"macro_step_s", p.macro_step},
+                   {"spectral_radius", p.spectral_radius},
+                   {"state_size", p.state_size}});
+  }
+  if (const auto file = a.value("output")) {
+    std::ofstream(*file) << out.dump(2) << '\n';
+    std::cout << "wrote " << *file << '\n';
+  }
+  return kExitOk;
+}
+
+}  // namespace rumble::cli
