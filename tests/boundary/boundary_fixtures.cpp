@@ -75,7 +75,7 @@ class PickySoil final : public rumble::Soil {
   "properties": {)") + kSpringSchema +
                                  R"(,
     "max_step": {"type": "number", "exclusiveMinimum": 0, "default": 1.0},
-    "csc_defect": {"enum": ["none", "unsorted", "nan"], "default": "none"},
+    "csc_defect": {"enum": ["none", "unsorted", "nan", "stiffer"], "default": "none"},
     "stall_at": {"type": "number", "default": 1.0e30}}})";
     return s.c_str();
   }
@@ -145,11 +145,13 @@ class PickySoil final : public rumble::Soil {
     }
     row_.assign(probes.size() * RUMBLE_PROBE_VALUES, 0.0);
   }
-  /// M = 0, C = c I, K = k I, B = I; or, on request, a CSC with the defect named.
+  /// M = 0, C = c I, K = k I, B = I; or, on request, a CSC with the defect named ("stiffer": a
+  /// valid K = 2 k I that does not describe the soil).
   void linear_matrix(rumble_matrix which, rumble::CscMatrix& out) override {
     const std::size_t n = spring_.u_.size();
+    const double k = csc_defect_ == "stiffer" ? 2.0 * spring_.k() : spring_.k();
     const double value = which == RUMBLE_MATRIX_DAMPING     ? spring_.c()
-                         : which == RUMBLE_MATRIX_STIFFNESS ? spring_.k()
+                         : which == RUMBLE_MATRIX_STIFFNESS ? k
                          : which == RUMBLE_MATRIX_INPUT     ? 1.0
                                                             : 0.0;
     out.rows = out.cols = n;

@@ -1,6 +1,8 @@
 // The engine checks every CSC matrix a soil hands over (ABI 1.1 linear_matrix) before using it:
 // sizes, column pointers, sorted in-range row indices, finite values, and names the defect.
-// picky_soil gives M = 0, C = c I, K = k I, B = I, or one of two defects on request.
+// picky_soil gives M = 0, C = c I, K = k I, B = I, or one of three defects on request. A monolithic
+// run also checks that the matrices describe the soil: its own statics against K^-1 B F.
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <Eigen/SparseCore>
@@ -69,6 +71,19 @@ TEST(LinearMatrix, ANonFiniteValueIsNamed) {
                  "soil 'picky_soil' (/soil): linear_matrix 1 is not a valid CSC matrix: a value "
                  "is not finite in column 0");
   }
+}
+
+TEST(LinearMatrix, MatricesThatDoNotDescribeTheSoilAreRefusedByAMonolithicRun) {
+  nlohmann::json s =
+      fixture_scenario({{"type", "picky_soil"}, {"params", {{"csc_defect", "stiffer"}}}},
+                       {{"type", "monolithic"}, {"params", nlohmann::json::object()}});
+  CliResult r;
+  run_in("linear_matrix_stiffer", s, r);
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  // K twice the soil's: the matrices' settlement is half the plugin's.
+  EXPECT_THAT(r.output, ::testing::HasSubstr("soil 'picky_soil': its linear matrices give static "
+                                             "footprint displacements up to"));
+  EXPECT_THAT(r.output, ::testing::HasSubstr("cannot be integrated with the track"));
 }
 
 }  // namespace

@@ -16,7 +16,6 @@
 #include "run/run_components.hpp"
 #include "run/run_recorder.hpp"
 #include "run/step_observer.hpp"
-#include "track/integrated_soil.hpp"
 
 namespace rumble {
 namespace {

@@ -32,7 +32,6 @@ class IntegratedSoil {
 
   std::size_t dof_count() const { return n_x_; }
   std::size_t footprint_count() const { return n_f_; }
-  std::size_t half_bandwidth() const { return band_; }
   /// Band storage above which a soil is refused [doubles]: 4e7 (320 MB for each of the three
   /// matrices and the factor).
   static constexpr double kMaxBandStorage = 4e7;

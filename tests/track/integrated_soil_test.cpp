@@ -1,0 +1,91 @@
+// The linear soil the monolithic coupler integrates with the track (track/integrated_soil.hpp):
+//   - one mass on a spring released from its static deflection follows the average-acceleration
+//     rule's closed form: from the first step on (the release makes the start's acceleration
+//     inconsistent) u_n = A cos(n theta + phi), theta = 2 atan(omega h / 2), i.e.
+//     u_n+1 + u_n-1 = 2 cos(theta) u_n, and the energy 1/2 m v^2 + 1/2 k u^2 stays constant;
+//   - statics are K^-1 B F; the step receptance G is B^T (K + c_a M)^-1 B;
+//   - matrices it cannot use are refused with what is wrong.
+#include "track/integrated_soil.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "core/errors.hpp"
+
+namespace rumble {
+namespace {
+
+using Sparse = Eigen::SparseMatrix<double>;
+
+Sparse diagonal(std::initializer_list<double> values) {
+  Sparse a(static_cast<Eigen::Index>(values.size()), static_cast<Eigen::Index>(values.size()));
+  Eigen::Index i = 0;
+  for (double v : values) {
+    if (v != 0.0) a.insert(i, i) = v;
+    ++i;
+  }
+  a.makeCompressed();
+  return a;
+}
+
+constexpr double kMass = 600.0, kStiffness = 6e7;  // kg, N/m: omega = 316 rad/s
+
+TEST(IntegratedSoil, AMassOnASpringFollowsTheAverageAccelerationRuleExactly) {
+  IntegratedSoil soil("test", diagonal({kMass}), diagonal({0.0}), diagonal({kStiffness}),
+                      diagonal({1.0}));
+  const double force = 5e4, u0 = force / kStiffness;  // N, m
+  double u = 0.0;
+  soil.static_displacement(&force, &u);
+  EXPECT_NEAR(u, u0, 1e-15 * u0);
+  soil.start_static(&force);
+  const Newmark newmark;  // beta 1/4, gamma 1/2
+  const double h = 2e-3;  // s: omega h = 0.63, a coarse step where the rule's phase error shows
+  soil.factorize(newmark, h);
+  EXPECT_NEAR(soil.step_receptance()(0, 0), 1.0 / (kStiffness + newmark.c_a(h) * kMass),
+              1e-15 / kStiffness);
+  const double theta = 2.0 * std::atan(std::sqrt(kStiffness / kMass) * h / 2.0);
+  Eigen::VectorXd predicted(1), p(1), zero = Eigen::VectorXd::Zero(1);
+  std::vector<double> u_n, energy;
+  for (int n = 1; n <= 200; ++n) {
+    soil.predict(newmark, h, predicted, p);
+    soil.correct(newmark, h, zero);  // released: no force
+    const double un = soil.footprint_u(0), vn = soil.footprint_v(0);
+    u_n.push_back(un);
+    energy.push_back(0.5 * kMass * vn * vn + 0.5 * kStiffness * un * un);
+  }
+  // Round-off: ~1e-16 of u0 per step, over 200 steps.
+  for (std::size_t n = 1; n + 1 < u_n.size(); ++n)
+    ASSERT_NEAR(u_n[n + 1] + u_n[n - 1], 2.0 * std::cos(theta) * u_n[n], 1e-12 * u0) << n;
+  for (double e : energy) ASSERT_NEAR(e, energy.front(), 1e-12 * energy.front());
+  EXPECT_GT(energy.front(), 0.1 * 0.5 * kStiffness * u0 * u0);  // it does oscillate
+}
+
+TEST(IntegratedSoil, MatricesItCannotUseAreRefusedWithWhatIsWrong) {
+  Sparse asymmetric(2, 2);
+  asymmetric.insert(0, 0) = 1e8;
+  asymmetric.insert(1, 1) = 1e8;
+  asymmetric.insert(0, 1) = -1e7;
+  const Sparse zero = diagonal({0.0, 0.0}), input = diagonal({1.0, 1.0});
+  const auto refusal = [&](const Sparse& M, const Sparse& K) {
+    try {
+      IntegratedSoil("clm", M, zero, K, input);
+    } catch (const RunError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_THAT(refusal(zero, asymmetric),
+              ::testing::HasSubstr("soil 'clm' cannot be integrated with the track (monolithic): "
+                                   "K is not symmetric (largest |K - K^T| is 0.1 of its largest "
+                                   "entry)"));
+  EXPECT_THAT(refusal(diagonal({1.0}), diagonal({1e8, 1e8})),
+              ::testing::HasSubstr("M is 1 x 1, K is 2 x 2"));
+  EXPECT_THAT(refusal(zero, diagonal({1e8, 0.0})),
+              ::testing::HasSubstr("its stiffness K is not positive definite"));
+}
+
+}  // namespace
+}  // namespace rumble
