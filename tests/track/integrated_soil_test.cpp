@@ -67,7 +67,7 @@ TEST(IntegratedSoil, MatricesItCannotUseAreRefusedWithWhatIsWrong) {
   Sparse asymmetric(2, 2);
   asymmetric.insert(0, 0) = 1e8;
   asymmetric.insert(1, 1) = 1e8;
-  asymmetric.insert(0, 1) = -1e7;
+  asymmetric.insert(0, 1) = -1e7;  // left uncompressed, as a caller may
   const Sparse zero = diagonal({0.0, 0.0}), input = diagonal({1.0, 1.0});
   const auto refusal = [&](const Sparse& M, const Sparse& K) {
     try {

@@ -19,13 +19,21 @@ std::size_t half_bandwidth_of(const Sparse& a) {
   return b;
 }
 
+/// Largest |entry|; 0 for an empty matrix. (Iterated, not coeffs(): that needs a compressed
+/// matrix, which a caller's need not be.)
+double largest_abs(const Sparse& a) {
+  double m = 0.0;
+  for (Eigen::Index j = 0; j < a.outerSize(); ++j)
+    for (Sparse::InnerIterator it(a, j); it; ++it) m = std::max(m, std::abs(it.value()));
+  return m;
+}
+
 /// Largest |A - A^T| relative to the largest |A|; 0 for an empty matrix.
 double asymmetry(const Sparse& a) {
-  const Sparse transposed = a.transpose();
-  const double scale = a.coeffs().size() == 0 ? 0.0 : a.coeffs().cwiseAbs().maxCoeff();
+  const double scale = largest_abs(a);
   if (scale == 0.0) return 0.0;
-  const Sparse difference = a - transposed;
-  return difference.coeffs().size() == 0 ? 0.0 : difference.coeffs().cwiseAbs().maxCoeff() / scale;
+  const Sparse transposed = a.transpose();
+  return largest_abs(Sparse(a - transposed)) / scale;
 }
 
 BandedSymmetric banded(const Sparse& a, std::size_t band) {
