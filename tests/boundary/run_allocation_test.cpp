@@ -1,10 +1,10 @@
-// A whole coupled run allocates nothing per macro step: the coupler (gauss_seidel, jacobi,
-// implicit, monolithic), the host and its step reports, both participants through their plugin
-// tables, the recorder, the receiver samples and summary.json's heartbeat (here after every step).
-// Measured as the difference between a run of N and of 2N macro steps of the same scenario (setup
-// and summary cost the same in both): a per-step allocation would show as at least N. The summary's
-// numbers differ in length between the two runs, so a handful of string growths may differ: the
-// bound is 10 with N = 50.
+// A whole coupled run allocates nothing per macro step: the coupler (gauss_seidel, also with an
+// adaptive step, jacobi, implicit, monolithic), the host and its step reports, both participants
+// through their plugin tables, the recorder, the receiver samples and summary.json's heartbeat
+// (here after every step). Measured as the difference between a run of N and of 2N macro steps of
+// the same scenario (setup and summary cost the same in both): a per-step allocation would show as
+// at least N. The summary's numbers differ in length between the two runs, so a handful of string
+// growths may differ: the bound is 10 with N = 50.
 #include <gtest/gtest.h>
 
 #include "allocation_counter.hpp"
@@ -54,6 +54,17 @@ TEST(RunAllocation, JacobiOnOneThreadWithCheckpoints) {
   s["coupling"] = {{"type", "jacobi"}, {"params", {{"threads", 1}}}};
   s["vehicles"][0]["start"] = 1.0;
   expect_no_allocation_per_step("run_allocation_jacobi", s);
+}
+
+TEST(RunAllocation, GaussSeidelWithAnAdaptiveStep) {
+  // Steps of 0.25 to 2 ms, some taken again (both participants checkpoint every step); each
+  // change of length refactors the track and the soil in place.
+  nlohmann::json s = small_scenario();
+  s["coupling"] = {
+      {"type", "gauss_seidel"},
+      {"params", {{"adaptive", {{"min_step", 2.5e-4}, {"max_step", 2e-3}, {"tolerance", 0.5}}}}}};
+  s["vehicles"][0]["start"] = 1.0;
+  expect_no_allocation_per_step("run_allocation_gs_adaptive", s);
 }
 
 TEST(RunAllocation, ImplicitIqnIls) {

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -51,6 +52,31 @@ inline double largest_difference(const Histories& a, const Histories& b) {
   for (std::size_t k = 0; k < std::min(a.values.size(), b.values.size()); ++k)
     d = std::max(d, std::abs(a.values[k] - b.values[k]));
   return d;
+}
+
+/// Largest |a - reference| over the times both recorded, relative to the largest
+/// |reference - reference at t = 0| (the dynamic part of the motion). Every time of the coarser
+/// of the two runs must be on the other's grid (one run's steps may be finer, or vary).
+inline double relative_error(const Histories& a, const Histories& reference) {
+  const std::size_t width = reference.values.size() / reference.times.size();
+  std::map<long long, std::size_t> row_at;  // time in ns -> row of a
+  for (std::size_t k = 0; k < a.times.size(); ++k) row_at[std::llround(a.times[k] * 1e9)] = k;
+  double error = 0.0, scale = 0.0;
+  std::size_t compared = 0;
+  for (std::size_t k = 0; k < reference.times.size(); ++k) {
+    for (std::size_t j = 0; j < width; ++j)
+      scale = std::max(scale, std::abs(reference.values[k * width + j] - reference.values[j]));
+    const auto it = row_at.find(std::llround(reference.times[k] * 1e9));
+    if (it == row_at.end()) continue;
+    ++compared;
+    for (std::size_t j = 0; j < width; ++j) {
+      error = std::max(
+          error, std::abs(a.values[it->second * width + j] - reference.values[k * width + j]));
+    }
+  }
+  EXPECT_EQ(compared, std::min(a.times.size(), reference.times.size()))
+      << "the runs do not share a time grid";
+  return error / scale;
 }
 
 }  // namespace rumble::testing

@@ -110,15 +110,18 @@ TEST(Implicit, RecordsIterationsPerStep) {
   EXPECT_NEAR(c["iterations"]["total"].get<double>(),
               c["iterations"]["mean_per_step"].get<double>() * 10, 1e-9);
   EXPECT_GE(c["iterations"]["max_per_step"], 2);
-  // interface.csv: residual, power, energy, iterations, track energy, energy residual
-  constexpr std::size_t kColumns = 6;
+  // interface.csv: residual, power, energy, iterations, track energy, energy residual, macro step
+  constexpr std::size_t kColumns = 7;
   std::vector<double> times, values;
   read_csv(r.dir / "interface.csv", times, values);
   ASSERT_EQ(times.size(), 11u);
   ASSERT_EQ(values.size(), kColumns * times.size());
   EXPECT_EQ(values[3], 0.0);  // t = 0: no step yet
   double total = 0.0;
-  for (std::size_t k = 1; k < times.size(); ++k) total += values[kColumns * k + 3];
+  for (std::size_t k = 1; k < times.size(); ++k) {
+    total += values[kColumns * k + 3];
+    EXPECT_DOUBLE_EQ(values[kColumns * k + 6], 1e-3);  // every step H: fixed steps
+  }
   EXPECT_EQ(total, c["iterations"]["total"].get<double>());
 }
 

@@ -12,7 +12,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <string>
 #include <vector>
 
@@ -34,28 +33,6 @@ nlohmann::json fixed_micro_step_dip(double H) {
 
 nlohmann::json monolithic() {
   return {{"type", "monolithic"}, {"params", nlohmann::json::object()}};
-}
-
-/// Largest |a - reference| over the times both recorded (a's steps may be finer), relative to
-/// the largest |reference - reference at t = 0| (the dynamic part of the motion).
-double relative_error(const Histories& a, const Histories& reference) {
-  const std::size_t width = reference.values.size() / reference.times.size();
-  std::map<long long, std::size_t> row_at;  // time in ns -> row of a
-  for (std::size_t k = 0; k < a.times.size(); ++k) row_at[std::llround(a.times[k] * 1e9)] = k;
-  double error = 0.0, scale = 0.0;
-  std::size_t compared = 0;
-  for (std::size_t k = 0; k < reference.times.size(); ++k) {
-    const auto it = row_at.find(std::llround(reference.times[k] * 1e9));
-    if (it == row_at.end()) continue;
-    ++compared;
-    for (std::size_t j = 0; j < width; ++j) {
-      const double r = reference.values[k * width + j];
-      error = std::max(error, std::abs(a.values[it->second * width + j] - r));
-      scale = std::max(scale, std::abs(r - reference.values[j]));
-    }
-  }
-  EXPECT_EQ(compared, reference.times.size()) << "the runs share no time grid";
-  return error / scale;
 }
 
 TEST(Monolithic, AWheelAtRestStaysAtTheStaticState) {

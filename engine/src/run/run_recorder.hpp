@@ -14,7 +14,9 @@
 //                                 the energy the coupling created (0 for monolithic). Energies
 //                                 are sums of 1/2 (F_k + F_k+1) (u_k+1 - u_k) over the records:
 //                                 displacement increments are right at any step, end-of-step
-//                                 velocities of an explicit scheme are not (issue #10)
+//                                 velocities of an explicit scheme are not (issue #10); the
+//                                 macro step that ended [s] (0 at t = 0; varies with an
+//                                 adaptive step or a halved refused one)
 //           receivers.csv         vertical velocity of surface receivers [m/s] (soils that offer
 //                                 them)
 //   extra soils of the coupler (e.g. two_step's reduced_soil):
@@ -44,7 +46,7 @@ class RunRecorder {
   void record_track(double t);
   /// The soil's state at time t [s]; residual: the coupler's relative interface residual of
   /// the last macro step, iterations: its iterations in that step (0 for the initial state).
-  void record_soil(double t, double residual, std::uint32_t iterations);
+  void record_soil(double t, double residual, std::uint32_t iterations, double macro_step);
   /// Extra soil e's footprint motion at time t [s].
   void record_extra(std::size_t e, double t);
   /// Everything at t = 0 (the static state).

@@ -235,13 +235,16 @@ RunOutcome run_scenario(const scenario::RunSpec& spec, const PluginRegistry& reg
         observer.steps() > 0
             ? static_cast<double>(observer.iterations()) / static_cast<double>(observer.steps())
             : 0.0;
-    summary.set("coupling", {{"discarded_steps", host.discards()},
-                             {"partial_step_reports", observer.partial_reports()},
-                             {"iterations",
-                              {{"total", observer.iterations()},
-                               {"mean_per_step", mean_iterations},
-                               {"max_per_step", observer.max_iterations()}}},
-                             {"unconverged_steps", observer.unconverged_steps()}});
+    summary.set("coupling",
+                {{"discarded_steps", host.discards()},
+                 {"partial_step_reports", observer.partial_reports()},
+                 {"iterations",
+                  {{"total", observer.iterations()},
+                   {"mean_per_step", mean_iterations},
+                   {"max_per_step", observer.max_iterations()}}},
+                 {"unconverged_steps", observer.unconverged_steps()},
+                 {"macro_step_s",
+                  {{"shortest", observer.shortest_step()}, {"longest", observer.longest_step()}}}});
     nlohmann::json files = recorder.files();
     if (probes) {
       summary.set("ppv", probes->peaks());

@@ -93,10 +93,12 @@ void StepObserver::on_soil(const StepOutcome& step, double t) {
   const bool record = soil_.advance(t, every_, t_end_);
   iterations_ += step.iterations;
   max_iterations_ = std::max(max_iterations_, step.iterations);
+  shortest_step_ = std::min(shortest_step_, step.H);
+  longest_step_ = std::max(longest_step_, step.H);
   if (!step.converged) ++unconverged_;
   if (sinks_.probes != nullptr) sinks_.probes->take();
   if (sinks_.fields != nullptr) sinks_.fields->at(t);
-  if (record) sinks_.recorder.record_soil(t, step.max_relative_residual(), step.iterations);
+  if (record) sinks_.recorder.record_soil(t, step.max_relative_residual(), step.iterations, step.H);
   check_soil(soil_side_, 0, t);
 }
 

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <limits>
 #include <map>
 #include <string>
 #include <vector>
@@ -60,6 +61,9 @@ class StepObserver {
   std::uint64_t iterations() const { return iterations_; }
   std::uint32_t max_iterations() const { return max_iterations_; }
   std::size_t unconverged_steps() const { return unconverged_; }
+  /// s: the shortest and longest of the soil's final macro steps (0 before the first).
+  double shortest_step() const { return soil_.steps > 0 ? shortest_step_ : 0.0; }
+  double longest_step() const { return longest_step_; }
   const DivergenceMonitor& divergence() const { return divergence_; }
 
  private:
@@ -88,6 +92,7 @@ class StepObserver {
   std::size_t partial_ = 0, unconverged_ = 0;
   std::uint64_t iterations_ = 0;
   std::uint32_t max_iterations_ = 0;
+  double shortest_step_ = std::numeric_limits<double>::infinity(), longest_step_ = 0.0;  // s
   DivergenceMonitor divergence_;
   std::vector<double> scratch_;                               // soil outputs, sized once
   std::map<std::string, double, std::less<>> max_residuals_;  // by group; keys made once

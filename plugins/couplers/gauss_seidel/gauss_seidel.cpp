@@ -12,13 +12,20 @@
 // to max_step_halvings times; when the second participant refuses, the first is restored from a
 // checkpoint taken at the step's start (the track's state is small; a soil advancing first is
 // checkpointed only when it can be).
+//
+// With "adaptive", the macro step follows the energy residual at the cut (rumble/macro_steps.hpp).
+#include <memory>
 #include <rumble/coupling.hpp>
+#include <rumble/cut_energy.hpp>
+#include <rumble/macro_steps.hpp>
 #include <rumble/params.hpp>
 #include <rumble/plugin.hpp>
+#include <string>
 
 namespace {
 
 using rumble::CosimHost;
+using rumble::coupling::CutEnergy;
 using rumble::coupling::GroupResiduals;
 using rumble::coupling::Link;
 using rumble::coupling::OutputHistory;
@@ -30,7 +37,7 @@ class GaussSeidel final : public rumble::Coupler {
       "sequential explicit coupling: one participant advances first, the other follows with its "
       "new outputs";
   static const char* params_schema() {
-    return R"schema({
+    static const std::string schema = std::string(R"schema({
   "type": "object",
   "additionalProperties": false,
   "properties": {
@@ -41,9 +48,12 @@ class GaussSeidel final : public rumble::Coupler {
     "interpolation": {"type": "integer", "minimum": 0, "maximum": 1, "default": 0,
                       "description": "polynomial order of the second participant's input over the step (0 = the first participant's new end-of-step value held; 1 = linear from its previous to its new value)"},
     "max_step_halvings": {"type": "integer", "minimum": 0, "maximum": 20, "default": 10,
-                          "description": "how many times a macro step refused by a participant (DISCARD) is halved and retried before the run stops; 0 = stop at the first refusal"}
+                          "description": "how many times a macro step refused by a participant (DISCARD) is halved and retried before the run stops; 0 = stop at the first refusal"},
+    )schema") + rumble::coupling::kAdaptiveStepSchema +
+                                      R"schema(
   }
 })schema";
+    return schema.c_str();
   }
 
   GaussSeidel(const std::string& params_json, const rumble::Host& /*host*/) {
@@ -52,11 +62,15 @@ class GaussSeidel final : public rumble::Coupler {
     extrapolation_ = p.get_or<std::uint32_t>("extrapolation", 0);
     interpolation_ = p.get_or<std::uint32_t>("interpolation", 0);
     max_halvings_ = p.get_or<int>("max_step_halvings", 10);
+    adaptive_ = rumble::coupling::read_adaptive_step(p);
   }
 
   void run(const CosimHost& host, double t0, double t_end, double H) override {
     const std::uint32_t first = track_first_ ? CosimHost::kTrack : CosimHost::kSoil;
     const std::uint32_t second = track_first_ ? CosimHost::kSoil : CosimHost::kTrack;
+    // A step above the adaptive tolerance is taken again when both participants can restore.
+    const bool retakes = adaptive_.enabled() && adaptive_.retake && host.can_checkpoint(first) &&
+                         host.can_checkpoint(second);
     Scheme s{host,
              first,
              second,
@@ -65,16 +79,26 @@ class GaussSeidel final : public rumble::Coupler {
              Link(host, second, first),
              Link(host, first, second),
              GroupResiduals(host, second),
-             max_halvings_ > 0 && host.can_checkpoint(first)};
+             (max_halvings_ > 0 || retakes) && host.can_checkpoint(first),
+             retakes};
     s.first_history.sample(t0);
     s.second_history.sample(t0);
     s.residuals.observe(s.second_history.latest());
     report_.residuals.resize(s.residuals.groups());
-    const std::size_t steps = rumble::coupling::macro_step_count(t0, t_end, H);
-    for (std::size_t k = 0; k < steps; ++k) {
-      step(s, rumble::coupling::macro_step_start(t0, H, k),
-           rumble::coupling::macro_step_length(t0, t_end, H, k), 0);
+    new_first_.resize(s.first_history.size());
+    new_second_.resize(s.second_history.size());
+    if (adaptive_.enabled()) {
+      s.energy = std::make_unique<CutEnergy>(host, CosimHost::kTrack, CosimHost::kSoil);
+      s.energy->start(track_first_ ? s.first_history.latest() : s.second_history.latest(),
+                      track_first_ ? s.second_history.latest() : s.first_history.latest());
     }
+    rumble::coupling::MacroSteps steps(t0, t_end, H, adaptive_);
+    while (!steps.done()) {
+      step_energy_ = step_work_ = 0.0;
+      if (step(s, steps.t(), steps.h(), 0, &steps)) steps.accept(step_energy_, step_work_);
+    }
+    if (adaptive_.enabled()) rumble::coupling::log_adaptive_steps(host, steps);
+    if (s.retakes) host.free_checkpoint(second, kSlot);
     if (s.checkpoints) host.free_checkpoint(first, kSlot);
   }
 
@@ -89,19 +113,24 @@ class GaussSeidel final : public rumble::Coupler {
     Link to_first, to_second;
     GroupResiduals residuals;  // of the second participant's outputs
     bool checkpoints;          // the first participant is checkpointed at every step start
+    bool retakes;              // ... and the second: a step may be taken again (adaptive)
+    std::unique_ptr<CutEnergy> energy = nullptr;  // with an adaptive step
   };
 
-  void step(Scheme& s, double t, double h, int halvings) {
+  /// Takes [t, t + h]; false when `steps` asked for it again, shorter (both participants are
+  /// back at t). Sub-steps of a refused step (halvings > 0) pass no `steps`.
+  bool step(Scheme& s, double t, double h, int halvings,
+            rumble::coupling::MacroSteps* steps = nullptr) {
     const CosimHost& host = s.host;
     const std::uint32_t order_first = s.second_history.extrapolate(extrapolation_, t, h, wave_);
     s.to_first.map(wave_, order_first, in_first_);
     if (s.checkpoints) host.save(s.first, kSlot);
+    if (s.retakes) host.save(s.second, kSlot);
     host.set_input(s.first, order_first, in_first_);
     if (host.advance(s.first, t, h) == RUMBLE_DISCARD) {
       check_halvings(s, t, h, halvings, s.first);
       return retry(s, t, h, halvings);
     }
-    new_first_.resize(s.first_history.size());
     host.get_output(s.first, new_first_);
     const std::uint32_t order_second =
         s.first_history.interpolate(interpolation_, new_first_, wave_second_);
@@ -116,12 +145,29 @@ class GaussSeidel final : public rumble::Coupler {
       host.restore(s.first, kSlot);
       return retry(s, t, h, halvings);
     }
+    host.get_output(s.second, new_second_);
+    if (s.energy) {
+      const double residual = track_first_
+                                  ? s.energy->step(h, in_first_, order_first, new_first_,
+                                                   in_second_, order_second, new_second_)
+                                  : s.energy->step(h, in_second_, order_second, new_second_,
+                                                   in_first_, order_first, new_first_);
+      if (s.retakes && steps != nullptr && steps->retake(residual, s.energy->work())) {
+        s.energy->undo();
+        host.restore(s.first, kSlot);
+        host.restore(s.second, kSlot);
+        return false;
+      }
+      step_energy_ += residual;
+      step_work_ += s.energy->work();
+    }
     s.first_history.push(t + h, new_first_);
-    s.second_history.sample(t + h);
+    s.second_history.push(t + h, new_second_);
     s.residuals.measure(wave_, order_first, s.second_history.latest(), report_.residuals.data());
     report_.t = t;
     report_.H = h;
     host.step_report(report_);
+    return true;
   }
 
   /// Stops the run when `who` refused [t, t + h] and no halving is left.
@@ -133,16 +179,19 @@ class GaussSeidel final : public rumble::Coupler {
   }
 
   /// Takes [t, t + h] again as two halves.
-  void retry(Scheme& s, double t, double h, int halvings) {
+  bool retry(Scheme& s, double t, double h, int halvings) {
     step(s, t, 0.5 * h, halvings + 1);
     step(s, t + 0.5 * h, 0.5 * h, halvings + 1);
+    return true;
   }
 
   bool track_first_ = true;
   std::uint32_t extrapolation_ = 0;
   std::uint32_t interpolation_ = 0;
   int max_halvings_ = 10;
-  std::vector<double> wave_, wave_second_, in_first_, in_second_, new_first_;
+  rumble::coupling::AdaptiveStep adaptive_;
+  double step_energy_ = 0.0, step_work_ = 0.0;  // J, over the macro step being taken
+  std::vector<double> wave_, wave_second_, in_first_, in_second_, new_first_, new_second_;
   rumble::StepReport report_;
 };
 

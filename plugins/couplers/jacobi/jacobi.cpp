@@ -7,15 +7,22 @@
 // A refused step (DISCARD) is taken again as two halves, up to max_step_halvings times; the
 // participant that did advance is restored from the checkpoint taken at the step's start, so
 // retrying needs both participants to checkpoint (otherwise a refusal stops the run).
+//
+// With "adaptive", the macro step follows the energy residual at the cut (rumble/macro_steps.hpp).
 #include <exception>
+#include <memory>
 #include <rumble/coupling.hpp>
+#include <rumble/cut_energy.hpp>
+#include <rumble/macro_steps.hpp>
 #include <rumble/params.hpp>
 #include <rumble/plugin.hpp>
+#include <string>
 #include <thread>
 
 namespace {
 
 using rumble::CosimHost;
+using rumble::coupling::CutEnergy;
 using rumble::coupling::GroupResiduals;
 using rumble::coupling::Link;
 using rumble::coupling::OutputHistory;
@@ -28,7 +35,7 @@ class Jacobi final : public rumble::Coupler {
   /// Runs two participants at once: the host gives the soil one thread less.
   static constexpr std::uint64_t kCapabilities = rumble::kCapThreads;
   static const char* params_schema() {
-    return R"schema({
+    static const std::string schema = std::string(R"schema({
   "type": "object",
   "additionalProperties": false,
   "properties": {
@@ -37,9 +44,12 @@ class Jacobi final : public rumble::Coupler {
     "threads": {"type": "integer", "minimum": 1, "maximum": 2, "default": 2,
                 "description": "2: the two participants advance on two threads; 1: one after the other (same results)"},
     "max_step_halvings": {"type": "integer", "minimum": 0, "maximum": 20, "default": 10,
-                          "description": "how many times a macro step refused by a participant (DISCARD) is halved and retried before the run stops; 0 = stop at the first refusal"}
+                          "description": "how many times a macro step refused by a participant (DISCARD) is halved and retried before the run stops; 0 = stop at the first refusal"},
+    )schema") + rumble::coupling::kAdaptiveStepSchema +
+                                      R"schema(
   }
 })schema";
+    return schema.c_str();
   }
 
   Jacobi(const std::string& params_json, const rumble::Host& /*host*/) {
@@ -47,6 +57,7 @@ class Jacobi final : public rumble::Coupler {
     extrapolation_ = p.get_or<std::uint32_t>("extrapolation", 0);
     threads_ = p.get_or<int>("threads", 2);
     max_halvings_ = p.get_or<int>("max_step_halvings", 10);
+    adaptive_ = rumble::coupling::read_adaptive_step(p);
   }
 
   void run(const CosimHost& host, double t0, double t_end, double H) override {
@@ -58,17 +69,25 @@ class Jacobi final : public rumble::Coupler {
              Link(host, kTrack, kSoil),
              GroupResiduals(host, kTrack),
              GroupResiduals(host, kSoil),
-             max_halvings_ > 0 && host.can_checkpoint(kTrack) && host.can_checkpoint(kSoil)};
+             (max_halvings_ > 0 || (adaptive_.enabled() && adaptive_.retake)) &&
+                 host.can_checkpoint(kTrack) && host.can_checkpoint(kSoil)};
     s.track.sample(t0);
     s.soil.sample(t0);
     s.track_residuals.observe(s.track.latest());
     s.soil_residuals.observe(s.soil.latest());
     report_.residuals.resize(s.soil_residuals.groups() + s.track_residuals.groups());
-    const std::size_t steps = rumble::coupling::macro_step_count(t0, t_end, H);
-    for (std::size_t k = 0; k < steps; ++k) {
-      step(s, rumble::coupling::macro_step_start(t0, H, k),
-           rumble::coupling::macro_step_length(t0, t_end, H, k), 0);
+    if (adaptive_.enabled()) {
+      s.energy = std::make_unique<CutEnergy>(host, kTrack, kSoil);
+      s.energy->start(s.track.latest(), s.soil.latest());
     }
+    new_track_.resize(s.track.size());
+    new_soil_.resize(s.soil.size());
+    rumble::coupling::MacroSteps steps(t0, t_end, H, adaptive_);
+    while (!steps.done()) {
+      step_energy_ = step_work_ = 0.0;
+      if (step(s, steps.t(), steps.h(), 0, &steps)) steps.accept(step_energy_, step_work_);
+    }
+    if (adaptive_.enabled()) rumble::coupling::log_adaptive_steps(host, steps);
     if (s.checkpoints) {
       host.free_checkpoint(kTrack, kSlot);
       host.free_checkpoint(kSoil, kSlot);
@@ -83,10 +102,15 @@ class Jacobi final : public rumble::Coupler {
     OutputHistory track, soil;
     Link to_track, to_soil;
     GroupResiduals track_residuals, soil_residuals;
-    bool checkpoints;  // both participants are checkpointed at every step start
+    bool checkpoints;  // both participants are checkpointed at every step start (a refused
+                       // step is retried, a step above the adaptive tolerance retaken)
+    std::unique_ptr<CutEnergy> energy = nullptr;  // with an adaptive step
   };
 
-  void step(Scheme& s, double t, double h, int halvings) {
+  /// Takes [t, t + h]; false when `steps` asked for it again, shorter (both participants are
+  /// back at t). Sub-steps of a refused step (halvings > 0) pass no `steps`.
+  bool step(Scheme& s, double t, double h, int halvings,
+            rumble::coupling::MacroSteps* steps = nullptr) {
     constexpr std::uint32_t kTrack = CosimHost::kTrack, kSoil = CosimHost::kSoil;
     const CosimHost& host = s.host;
     const std::uint32_t order_track = s.soil.extrapolate(extrapolation_, t, h, from_soil_);
@@ -117,16 +141,31 @@ class Jacobi final : public rumble::Coupler {
       }
       step(s, t, 0.5 * h, halvings + 1);
       step(s, t + 0.5 * h, 0.5 * h, halvings + 1);
-      return;
+      return true;
     }
-    s.track.sample(t + h);
-    s.soil.sample(t + h);
+    host.get_output(kTrack, new_track_);
+    host.get_output(kSoil, new_soil_);
+    if (s.energy) {
+      const double residual =
+          s.energy->step(h, in_track_, order_track, new_track_, in_soil_, order_soil, new_soil_);
+      if (s.checkpoints && steps != nullptr && steps->retake(residual, s.energy->work())) {
+        s.energy->undo();
+        host.restore(kTrack, kSlot);
+        host.restore(kSoil, kSlot);
+        return false;
+      }
+      step_energy_ += residual;
+      step_work_ += s.energy->work();
+    }
+    s.track.push(t + h, new_track_);
+    s.soil.push(t + h, new_soil_);
     s.soil_residuals.measure(from_soil_, order_track, s.soil.latest(), report_.residuals.data());
     s.track_residuals.measure(from_track_, order_soil, s.track.latest(),
                               report_.residuals.data() + s.soil_residuals.groups());
     report_.t = t;
     report_.H = h;
     host.step_report(report_);
+    return true;
   }
 
   /// Advances the track and the soil over [t, t + h], on two threads when asked; returns their
@@ -158,7 +197,9 @@ class Jacobi final : public rumble::Coupler {
   std::uint32_t extrapolation_ = 0;
   int threads_ = 2;
   int max_halvings_ = 10;
-  std::vector<double> from_soil_, from_track_, in_track_, in_soil_;
+  rumble::coupling::AdaptiveStep adaptive_;
+  double step_energy_ = 0.0, step_work_ = 0.0;  // J, over the macro step being taken
+  std::vector<double> from_soil_, from_track_, in_track_, in_soil_, new_track_, new_soil_;
   rumble::StepReport report_;
 };
 

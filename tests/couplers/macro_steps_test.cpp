@@ -1,0 +1,164 @@
+// rumble::coupling::MacroSteps (rumble/macro_steps.hpp) and CutEnergy (rumble/cut_energy.hpp),
+// the SDK 1.2 pieces of an adaptive macro step, without an engine:
+//   - fixed steps are exactly the SDK 1.1 ones (index-computed starts, a short last step);
+//   - the controller grows the step by max_change while the error is 0, shrinks it while the
+//     error is large, keeps every step a whole number of min_step within the bounds, ends
+//     exactly at t_end, and settles where the error is on target for an error that grows with h;
+//   - inverted bounds are refused with both values and the fix;
+//   - the energy residual of a step is the trapezoid of the power residual (the force side's
+//     forces on the velocities it was given minus the motion side's given forces on its
+//     velocities), by hand on two footprints; undo() forgets a step.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <rumble/cut_energy.hpp>
+#include <rumble/macro_steps.hpp>
+#include <vector>
+
+namespace {
+
+using rumble::CosimHost;
+using rumble::coupling::AdaptiveStep;
+using rumble::coupling::CutEnergy;
+using rumble::coupling::MacroSteps;
+using ::testing::HasSubstr;
+
+AdaptiveStep adaptive(double min_step, double max_step) {
+  AdaptiveStep a;
+  a.min_step = min_step;
+  a.max_step = max_step;
+  return a;
+}
+
+/// True when h is a whole number of q (to round-off).
+bool whole_multiple(double h, double q) {
+  return std::abs(h / q - std::round(h / q)) < 1e-9;
+}
+
+TEST(MacroSteps, FixedStepsAreTheIndexedOnes) {
+  MacroSteps steps(0.0, 0.0105, 1e-3, AdaptiveStep{});
+  std::size_t k = 0;
+  for (; !steps.done(); ++k) {
+    EXPECT_EQ(steps.t(), rumble::coupling::macro_step_start(0.0, 1e-3, k));
+    EXPECT_EQ(steps.h(), rumble::coupling::macro_step_length(0.0, 0.0105, 1e-3, k));
+    steps.accept(123.0, 1.0);  // energies do not steer fixed steps
+  }
+  EXPECT_EQ(k, 11u);
+  EXPECT_EQ(steps.error(), 0.0);
+}
+
+TEST(MacroSteps, AnErrorFreeRunGrowsToTheLongestStepAndEndsOnTime) {
+  const double q = 1e-4, t_end = 0.05;
+  MacroSteps steps(0.0, t_end, 1e-4, adaptive(q, 2e-3));
+  double previous = 0.0, end = 0.0;
+  while (!steps.done()) {
+    const double h = steps.h();
+    EXPECT_GE(h, q * (1.0 - 1e-12));
+    EXPECT_LE(h, 2e-3 * (1.0 + 1e-12));
+    if (steps.t() + h < t_end - 1e-12) {
+      EXPECT_TRUE(whole_multiple(h, q)) << h;
+      EXPECT_GE(h, previous);  // no error: the step only grows ...
+      EXPECT_LE(h, 1.5 * previous + q) << "by at most max_change (1.5) and rounding";
+    }
+    previous = h;
+    end = steps.t() + h;
+    steps.accept(0.0, 1.0);
+  }
+  EXPECT_DOUBLE_EQ(end, t_end);
+  EXPECT_DOUBLE_EQ(steps.t(), t_end);
+}
+
+TEST(MacroSteps, ALargeErrorShrinksTheStepToTheShortest) {
+  MacroSteps steps(0.0, 1.0, 2e-3, adaptive(1e-4, 2e-3));
+  for (int k = 0; k < 30; ++k) steps.accept(1e6, 1.0);  // error >> 1: every change 0.2
+  EXPECT_DOUBLE_EQ(steps.h(), 1e-4);
+  EXPECT_GT(steps.error(), 1.0);
+}
+
+TEST(MacroSteps, SettlesWhereTheErrorIsOnTarget) {
+  // A first-order scheme: residual power c h (energy residual c h^2 per step) against a steady
+  // power of 1 W through the cut, so the error is c h / tolerance and is on target (safety 0.9)
+  // at h = 0.9 tolerance / c.
+  AdaptiveStep a = adaptive(1e-6, 1e-2);
+  const double c = 1e3;  // W/s
+  const double expected = a.safety * a.tolerance / c;
+  MacroSteps steps(0.0, 0.5, 1e-2, a);
+  for (int k = 0; k < 200 && !steps.done(); ++k) {
+    const double h = steps.h();
+    steps.accept(c * h * h, 1.0 * h);
+  }
+  EXPECT_NEAR(steps.h() / expected, 1.0, 0.02);  // min_step rounding: 1e-6 of 4.5e-5
+  EXPECT_NEAR(steps.error(), a.safety, 0.05);
+}
+
+TEST(MacroSteps, InvertedBoundsAreRefusedWithBothValues) {
+  const rumble::Params params(R"({"adaptive": {"min_step": 0.001, "max_step": 0.0001}})");
+  try {
+    rumble::coupling::read_adaptive_step(params);
+    FAIL() << "inverted bounds accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_THAT(e.what(), HasSubstr("params/adaptive: min_step 0.001 s is longer than max_step "
+                                    "0.0001 s; give min_step <= max_step"));
+  }
+  EXPECT_FALSE(rumble::coupling::read_adaptive_step(rumble::Params("{}")).enabled());
+}
+
+// A host with two footprints: participant 0 (track) outputs "footprint_force" [N] and takes
+// "footprint_displacement" [m] and "footprint_velocity" [m/s]; participant 1 (soil) outputs
+// displacement then velocity and takes the force.
+rumble_status cut_groups(void*, std::uint32_t p, std::uint32_t side, rumble_channel_group* out,
+                         std::uint64_t capacity, std::uint64_t* n) {
+  static const rumble_channel_group kForce[1] = {{"footprint_force", "N", 0, 2}};
+  static const rumble_channel_group kMotion[2] = {{"footprint_displacement", "m", 0, 2},
+                                                  {"footprint_velocity", "m/s", 2, 2}};
+  const bool force = (p == 0) == (side == RUMBLE_SIDE_OUTPUT);
+  *n = force ? 1 : 2;
+  for (std::uint64_t i = 0; i < capacity && i < *n; ++i) out[i] = force ? kForce[i] : kMotion[i];
+  return RUMBLE_OK;
+}
+
+TEST(CutEnergy, IsThePowerResidualOfEachSidesOwnViewOverTheStep) {
+  rumble_cosim_host table{};
+  table.struct_size = sizeof table;
+  table.channel_groups = &cut_groups;
+  const CosimHost host(&table);
+  CutEnergy energy(host, 0, 1);
+  // At the start both sides see 100 N x 0.01 m/s + 200 N x 0.02 m/s = 5 W.
+  energy.start({100.0, 200.0}, {1e-3, 2e-3, 0.01, 0.02});
+  // Over 1 ms the track was given a linear velocity waveform (order 1) ending at (0.02, 0.01)
+  // m/s and put out (300, 100) N: 7 W. The soil was given (310, 90) N held (order 0) and ended
+  // at (0.03, 0) m/s: 9.3 W.
+  const std::vector<double> track_in{1e-3, 2e-3, 0.01, 0.02, 0.0, 0.0, 0.01, -0.01};
+  const std::vector<double> soil_in{310.0, 90.0};
+  const std::vector<double> track_out{300.0, 100.0}, soil_out{1.1e-3, 2e-3, 0.03, 0.0};
+  const double residual = energy.step(1e-3, track_in, 1, track_out, soil_in, 0, soil_out);
+  EXPECT_NEAR(residual, 0.5e-3 * ((5.0 - 5.0) + (7.0 - 9.3)), 1e-15);
+  EXPECT_NEAR(energy.work(), 0.5e-3 * (5.0 + 9.3), 1e-15);
+  // Forgotten and taken again: the same numbers (the start is restored).
+  energy.undo();
+  EXPECT_NEAR(energy.step(1e-3, track_in, 1, track_out, soil_in, 0, soil_out), residual, 1e-18);
+  // The next step starts from this one's end (-2.3 W); given the soil's velocities, the track
+  // puts 300 N x 0.03 m/s = 9 W through against the soil's 9.3 W: -0.3 W.
+  EXPECT_NEAR(energy.step(2e-3, {0, 0, 0.03, 0.0}, 0, track_out, soil_in, 0, soil_out),
+              0.5 * 2e-3 * (-2.3 - 0.3), 1e-15);
+}
+
+TEST(CutEnergy, NamesAMissingGroup) {
+  rumble_cosim_host table{};
+  table.struct_size = sizeof table;
+  table.channel_groups = &cut_groups;
+  table.participant_name = [](void*, std::uint32_t p) -> const char* {
+    return p == 0 ? "track" : "soil";
+  };
+  const CosimHost host(&table);
+  try {
+    CutEnergy energy(host, 0, 1, "footprint_force", "rail_velocity");
+    FAIL() << "a missing group accepted";
+  } catch (const CosimHost::Stop& e) {
+    EXPECT_THAT(e.what(), HasSubstr("needs the output group 'rail_velocity' of participant "
+                                    "'soil', which it does not have"));
+  }
+}
+
+}  // namespace
