@@ -48,10 +48,11 @@ TEST(RunAllocation, GaussSeidelWithReceivers) {
   expect_no_allocation_per_step("run_allocation_gs", s);
 }
 
-TEST(RunAllocation, JacobiOnOneThreadWithCheckpoints) {
-  // threads 1: a thread per step would allocate (its stack); jacobi checkpoints every step.
+TEST(RunAllocation, JacobiOnTwoThreadsWithCheckpoints) {
+  // Two threads: the soil advances on a worker kept for the run (a thread per step would
+  // allocate its stack); jacobi checkpoints every step.
   nlohmann::json s = small_scenario();
-  s["coupling"] = {{"type", "jacobi"}, {"params", {{"threads", 1}}}};
+  s["coupling"] = {{"type", "jacobi"}, {"params", {{"threads", 2}}}};
   s["vehicles"][0]["start"] = 1.0;
   expect_no_allocation_per_step("run_allocation_jacobi", s);
 }

@@ -1,8 +1,8 @@
 // jacobi: the parallel explicit co-simulation scheme. Per macro step [t, t+H] both participants
-// advance at once, on two threads, each from the other's last final outputs extrapolated over
-// the step (order 0: held constant; 1: linear; 2: quadratic, through the sample times).
-// Cheaper in wall time than Gauss-Seidel, usually less stable for stiff interfaces. Outputs and
-// inputs are matched by channel group name (rumble/coupling.hpp).
+// advance at once, on two threads (the soil on a worker thread kept for the run), each from the
+// other's last final outputs extrapolated over the step (order 0: held constant; 1: linear; 2:
+// quadratic, through the sample times). Cheaper in wall time than Gauss-Seidel, usually less stable
+// for stiff interfaces. Outputs and inputs are matched by channel group name (rumble/coupling.hpp).
 //
 // A refused step (DISCARD) is taken again as two halves, up to max_step_halvings times; the
 // participant that did advance is restored from the checkpoint taken at the step's start, so
@@ -11,13 +11,15 @@
 // With "adaptive", the macro step follows the energy residual at the cut (rumble/macro_steps.hpp).
 #include <exception>
 #include <memory>
+#include <optional>
 #include <rumble/coupling.hpp>
 #include <rumble/cut_energy.hpp>
 #include <rumble/macro_steps.hpp>
 #include <rumble/params.hpp>
 #include <rumble/plugin.hpp>
 #include <string>
-#include <thread>
+
+#include "advance_worker.hpp"
 
 namespace {
 
@@ -82,6 +84,7 @@ class Jacobi final : public rumble::Coupler {
     }
     new_track_.resize(s.track.size());
     new_soil_.resize(s.soil.size());
+    if (threads_ == 2) s.soil_worker.emplace(host, kSoil);
     rumble::coupling::MacroSteps steps(t0, t_end, H, adaptive_);
     while (!steps.done()) {
       step_energy_ = step_work_ = 0.0;
@@ -105,6 +108,7 @@ class Jacobi final : public rumble::Coupler {
     bool checkpoints;  // both participants are checkpointed at every step start (a refused
                        // step is retried, a step above the adaptive tolerance retaken)
     std::unique_ptr<CutEnergy> energy = nullptr;  // with an adaptive step
+    std::optional<rumble_jacobi::AdvanceWorker> soil_worker = std::nullopt;  // with two threads
   };
 
   /// Takes [t, t + h]; false when `steps` asked for it again, shorter (both participants are
@@ -123,7 +127,7 @@ class Jacobi final : public rumble::Coupler {
     }
     host.set_input(kTrack, order_track, in_track_);
     host.set_input(kSoil, order_soil, in_soil_);
-    const auto [track_status, soil_status] = advance_both(host, t, h);
+    const auto [track_status, soil_status] = advance_both(s, t, h);
     const bool track_refused = track_status == RUMBLE_DISCARD;
     const bool soil_refused = soil_status == RUMBLE_DISCARD;
     if (track_refused || soil_refused) {
@@ -168,29 +172,23 @@ class Jacobi final : public rumble::Coupler {
     return true;
   }
 
-  /// Advances the track and the soil over [t, t + h], on two threads when asked; returns their
-  /// statuses (OK, WARNING or DISCARD; a stop is rethrown after both have returned).
-  std::pair<rumble_status, rumble_status> advance_both(const CosimHost& host, double t,
-                                                       double h) const {
-    if (threads_ != 2)
-      return {host.advance(CosimHost::kTrack, t, h), host.advance(CosimHost::kSoil, t, h)};
-    rumble_status soil_status = RUMBLE_OK, track_status = RUMBLE_OK;
-    std::exception_ptr soil_error, track_error;
-    std::thread soil_thread([&] {
-      try {
-        soil_status = host.advance(CosimHost::kSoil, t, h);
-      } catch (...) {
-        soil_error = std::current_exception();
-      }
-    });
+  /// Advances the track and the soil over [t, t + h], the soil on the worker thread when there
+  /// is one; returns their statuses (OK, WARNING or DISCARD; a stop is rethrown after both have
+  /// returned).
+  static std::pair<rumble_status, rumble_status> advance_both(Scheme& s, double t, double h) {
+    if (!s.soil_worker) {
+      return {s.host.advance(CosimHost::kTrack, t, h), s.host.advance(CosimHost::kSoil, t, h)};
+    }
+    s.soil_worker->start(t, h);
+    rumble_status track_status = RUMBLE_OK;
+    std::exception_ptr track_error;
     try {
-      track_status = host.advance(CosimHost::kTrack, t, h);
+      track_status = s.host.advance(CosimHost::kTrack, t, h);
     } catch (...) {
       track_error = std::current_exception();
     }
-    soil_thread.join();
+    const rumble_status soil_status = s.soil_worker->wait();  // rethrows the soil's stop
     if (track_error) std::rethrow_exception(track_error);
-    if (soil_error) std::rethrow_exception(soil_error);
     return {track_status, soil_status};
   }
 
