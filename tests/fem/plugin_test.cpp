@@ -84,6 +84,20 @@ TEST(FemDynamics, NoMotionUnderTheStaticLoad) {
   EXPECT_EQ((u - u_static).norm(), 0.0);
 }
 
+TEST(FemDynamics, AMacroStepOfTooManySubStepsIsRefusedWithTheCount) {
+  // Any macro step is cut into equal sub-steps no longer than the stable one (about 1e-4 s
+  // here); 1e6 s would be about 1e10 of them: refused before an int count overflows.
+  TestSoil soil("fem", small_stiff_soil().dump());
+  soil.accept_layout(sleeper_row(3));
+  soil.initialize(VectorXd::Constant(3, 5e4));
+  std::string message;
+  EXPECT_EQ(soil.try_advance(0.0, 1e6, 0, VectorXd::Constant(3, 5e4), &message), RUMBLE_ERROR);
+  EXPECT_NE(message.find("fem: a macro step of 1e+06 s in explicit sub-steps of at most"),
+            std::string::npos)
+      << message;
+  EXPECT_NE(message.find("more than 1e+09; lower /time/macro_step"), std::string::npos) << message;
+}
+
 TEST(FemCheckpoints, RestoreAndRepeatIsBitExact) {
   TestSoil soil("fem", small_stiff_soil().dump());
   soil.accept_layout(sleeper_row(3));

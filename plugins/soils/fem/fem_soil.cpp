@@ -33,6 +33,9 @@ namespace {
 
 using rumble::fem::ExplicitState;
 
+/// Sub-steps in one macro step, at most (as the lumped soils): beyond, a macro step is a mistake.
+constexpr double kMaxSubSteps = 1e9;
+
 std::string format(double x, int digits = 3) {
   std::ostringstream s;
   s.precision(digits);
@@ -112,7 +115,17 @@ class FemSoil final : public rumble::Soil {
   void advance(double t, double H, const rumble::Waveform& force) override {
     require_layout("advance");
     op_->set_threads(host_.threads());  // granted with the run context, after the layout
-    const int sub_steps = std::max(1, static_cast<int>(std::ceil(H / max_step() - 1e-9)));
+    // Counted in floating point first: a macro step far beyond the soil's step must not overflow
+    // the count (any H is cut into equal sub-steps; only their number is bounded).
+    const double count = std::ceil(H / max_step() - 1e-9);
+    if (!(count <= kMaxSubSteps)) {
+      std::ostringstream m;
+      m << "fem: a macro step of " << H << " s in " << (implicit_ ? "implicit" : "explicit")
+        << " sub-steps of at most " << format(max_step()) << " s is " << count
+        << " sub-steps, more than " << kMaxSubSteps << "; lower /time/macro_step";
+      throw std::invalid_argument(m.str());
+    }
+    const int sub_steps = std::max(1, static_cast<int>(count));
     const double dt = H / sub_steps;
     if (H != reported_macro_step_) {  // once at info level, later changes (adaptive H) at debug
       host_.log(reported_macro_step_ < 0.0 ? RUMBLE_LOG_INFO : RUMBLE_LOG_DEBUG,
