@@ -47,9 +47,8 @@ class GaussSeidel final : public rumble::Coupler {
                       "description": "polynomial order of the first participant's input over the step, extrapolated from past macro steps (0 = held constant)"},
     "interpolation": {"type": "integer", "minimum": 0, "maximum": 1, "default": 0,
                       "description": "polynomial order of the second participant's input over the step (0 = the first participant's new end-of-step value held; 1 = linear from its previous to its new value)"},
-    "max_step_halvings": {"type": "integer", "minimum": 0, "maximum": 20, "default": 10,
-                          "description": "how many times a macro step refused by a participant (DISCARD) is halved and retried before the run stops; 0 = stop at the first refusal"},
-    )schema") + rumble::coupling::kAdaptiveStepSchema +
+    )schema") + rumble::coupling::kMaxStepHalvingsSchema +
+                                      ",\n    " + rumble::coupling::kAdaptiveStepSchema +
                                       R"schema(
   }
 })schema";
@@ -172,10 +171,7 @@ class GaussSeidel final : public rumble::Coupler {
 
   /// Stops the run when `who` refused [t, t + h] and no halving is left.
   void check_halvings(const Scheme& s, double t, double h, int halvings, std::uint32_t who) const {
-    if (halvings >= max_halvings_) {
-      rumble::coupling::refused_step(
-          s.host, t, h, who, "max_step_halvings (" + std::to_string(max_halvings_) + ") reached");
-    }
+    rumble::coupling::require_halving_left(s.host, t, h, who, halvings, max_halvings_);
   }
 
   /// Takes [t, t + h] again as two halves.

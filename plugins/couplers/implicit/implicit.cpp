@@ -37,6 +37,7 @@
 #include <limits>
 #include <map>
 #include <rumble/coupling.hpp>
+#include <rumble/macro_steps.hpp>
 #include <rumble/params.hpp>
 #include <rumble/plugin.hpp>
 #include <string>
@@ -73,7 +74,7 @@ class Implicit final : public rumble::Coupler {
       "converges, with constant, Aitken or IQN-ILS acceleration";
   static constexpr std::uint64_t kSoilNeeds = rumble::kCapSaveRestore;
   static const char* params_schema() {
-    return R"schema({
+    static const std::string schema = std::string(R"schema({
   "type": "object",
   "additionalProperties": false,
   "properties": {
@@ -111,10 +112,11 @@ class Implicit final : public rumble::Coupler {
                     "description": "iqn_ils: columns kept at most, oldest dropped first"},
     "filter_epsilon": {"type": "number", "exclusiveMinimum": 0, "exclusiveMaximum": 1, "default": 1e-2,
                        "description": "iqn_ils QR filter [-]: a column whose part independent of the newer columns is below this fraction of its norm is left out"},
-    "max_step_halvings": {"type": "integer", "minimum": 0, "maximum": 20, "default": 10,
-                          "description": "how many times a macro step refused by a participant (DISCARD) is halved and retried before the run stops; 0 = stop at the first refusal"}
+    )schema") + rumble::coupling::kMaxStepHalvingsSchema +
+                                      R"schema(
   }
 })schema";
+    return schema.c_str();
   }
 
   Implicit(const std::string& params_json, const rumble::Host& /*host*/) {
@@ -344,10 +346,7 @@ class Implicit final : public rumble::Coupler {
   /// p refused [t, t + h]: takes it again as two halves, the other participant put back first.
   void retry(Scheme& s, double t, double h, int halvings, std::uint32_t who, bool track_moved,
              bool soil_moved) {
-    if (halvings >= max_halvings_) {
-      rumble::coupling::refused_step(
-          s.host, t, h, who, "max_step_halvings (" + std::to_string(max_halvings_) + ") reached");
-    }
+    rumble::coupling::require_halving_left(s.host, t, h, who, halvings, max_halvings_);
     // The participant that refused is unchanged: at the step's start (restored before it
     // advanced again, or never advanced). The other one goes back.
     if (who != kTrack && track_moved) s.host.restore(kTrack, kSlot);

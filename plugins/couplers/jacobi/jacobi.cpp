@@ -45,9 +45,8 @@ class Jacobi final : public rumble::Coupler {
                       "description": "polynomial order of each participant's input over the step, extrapolated from past macro steps (0 = held constant)"},
     "threads": {"type": "integer", "minimum": 1, "maximum": 2, "default": 2,
                 "description": "2: the two participants advance on two threads; 1: one after the other (same results)"},
-    "max_step_halvings": {"type": "integer", "minimum": 0, "maximum": 20, "default": 10,
-                          "description": "how many times a macro step refused by a participant (DISCARD) is halved and retried before the run stops; 0 = stop at the first refusal"},
-    )schema") + rumble::coupling::kAdaptiveStepSchema +
+    )schema") + rumble::coupling::kMaxStepHalvingsSchema +
+                                      ",\n    " + rumble::coupling::kAdaptiveStepSchema +
                                       R"schema(
   }
 })schema";
@@ -132,10 +131,7 @@ class Jacobi final : public rumble::Coupler {
     const bool soil_refused = soil_status == RUMBLE_DISCARD;
     if (track_refused || soil_refused) {
       const std::uint32_t who = track_refused ? kTrack : kSoil;
-      if (halvings >= max_halvings_) {
-        rumble::coupling::refused_step(
-            host, t, h, who, "max_step_halvings (" + std::to_string(max_halvings_) + ") reached");
-      }
+      rumble::coupling::require_halving_left(host, t, h, who, halvings, max_halvings_);
       if (track_refused != soil_refused) {  // the other one advanced: take it back
         if (!s.checkpoints) {
           rumble::coupling::refused_step(host, t, h, who,

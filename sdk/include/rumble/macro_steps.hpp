@@ -49,6 +49,21 @@ struct AdaptiveStep {
   bool enabled() const { return max_step > 0.0; }
 };
 
+/// JSON schema of the "max_step_halvings" property, for a coupler's params_schema.
+inline constexpr const char* kMaxStepHalvingsSchema = R"schema("max_step_halvings": {
+      "type": "integer", "minimum": 0, "maximum": 20, "default": 10,
+      "description": "how many times a macro step refused by a participant (DISCARD) is halved and retried before the run stops; 0 = stop at the first refusal"})schema";
+
+/// Stops the run (CosimHost::Stop) when participant `who` refused [t, t + h] after `halvings`
+/// halvings and max_halvings allow no more.
+inline void require_halving_left(const CosimHost& host, double t, double h, std::uint32_t who,
+                                 int halvings, int max_halvings) {
+  if (halvings >= max_halvings) {
+    refused_step(host, t, h, who,
+                 "max_step_halvings (" + std::to_string(max_halvings) + ") reached");
+  }
+}
+
 /// JSON schema of the "adaptive" property, for a coupler's params_schema.
 inline constexpr const char* kAdaptiveStepSchema = R"schema("adaptive": {
       "type": "object", "additionalProperties": false, "required": ["min_step", "max_step"],
