@@ -25,6 +25,7 @@ TEST(CliRun, GaussSeidelRunWritesResultsAndSummary) {
   EXPECT_NEAR(summary["static"]["wheel_loads_N"][0].get<double>(), 50000.0 + 750.0 * 9.81, 1e-3);
   EXPECT_EQ(summary["scenario"]["name"], "cli test: single wheel on winkler");
   EXPECT_TRUE(summary["wall_time_s"].contains("vehicle/track"));
+  EXPECT_TRUE(summary["wall_time_s"].contains("recording"));
   // An explicit scheme: one iteration per step, every step converged.
   EXPECT_EQ(summary["coupling"]["iterations"]["total"], 50);
   EXPECT_EQ(summary["coupling"]["iterations"]["max_per_step"], 1);
