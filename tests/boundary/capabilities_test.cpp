@@ -37,6 +37,13 @@ TEST(Capabilities, ASoilThatCannotSaveIsRefusedForACouplerThatNeedsIt) {
   EXPECT_NE(r.output.find("choose a soil that can ("), std::string::npos) << r.output;
 }
 
+TEST(Capabilities, TheMonolithicCouplerRefusesASoilWithoutLinearMatrices) {
+  // It integrates the soil's M, C, K and B inside the track (decision 0008).
+  const CliResult r =
+      validate("caps_monolithic", fixture_scenario(kForgetful, {{"type", "monolithic"}}));
+  expect_error(r, "/soil/type", "linear matrices");
+}
+
 TEST(Capabilities, TheImplicitCouplerRefusesASoilThatCannotSave) {
   // It takes every macro step several times from checkpoints (declared kSoilNeeds).
   const CliResult r =

@@ -4,6 +4,8 @@
 //     inconsistent) u_n = A cos(n theta + phi), theta = 2 atan(omega h / 2), i.e.
 //     u_n+1 + u_n-1 = 2 cos(theta) u_n, and the energy 1/2 m v^2 + 1/2 k u^2 stays constant;
 //   - statics are K^-1 B F; the step receptance G is B^T (K + c_a M)^-1 B;
+//   - a chain numbered in a scrambled order is held in its narrow band (reverse Cuthill-McKee)
+//     and moves exactly as the same chain numbered in order;
 //   - matrices it cannot use are refused with what is wrong.
 #include "track/integrated_soil.hpp"
 
@@ -11,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <tuple>
 #include <vector>
 
 #include "core/errors.hpp"
@@ -61,6 +64,65 @@ TEST(IntegratedSoil, AMassOnASpringFollowsTheAverageAccelerationRuleExactly) {
     ASSERT_NEAR(u_n[n + 1] + u_n[n - 1], 2.0 * std::cos(theta) * u_n[n], 1e-12 * u0) << n;
   for (double e : energy) ASSERT_NEAR(e, energy.front(), 1e-12 * energy.front());
   EXPECT_GT(energy.front(), 0.1 * 0.5 * kStiffness * u0 * u0);  // it does oscillate
+}
+
+/// A chain of n masses on springs to the ground and to their neighbours, mass j numbered
+/// number[j]; B loads the first and last masses.
+struct Chain {
+  Sparse M, C, K, B;
+};
+Chain chain(const std::vector<int>& number) {
+  const auto n = static_cast<Eigen::Index>(number.size());
+  Chain c{Sparse(n, n), Sparse(n, n), Sparse(n, n), Sparse(n, 2)};
+  std::vector<Eigen::Triplet<double>> m, d, k;
+  for (Eigen::Index j = 0; j < n; ++j) {
+    const int a = number[static_cast<std::size_t>(j)];
+    m.emplace_back(a, a, 100.0 + 10.0 * static_cast<double>(j));
+    k.emplace_back(a, a, 3e7);
+    d.emplace_back(a, a, 2e4);
+    if (j + 1 < n) {
+      const int b = number[static_cast<std::size_t>(j + 1)];
+      for (auto [r, col, v] : {std::tuple{a, a, 1e7}, std::tuple{b, b, 1e7}, std::tuple{a, b, -1e7},
+                               std::tuple{b, a, -1e7}})
+        k.emplace_back(r, col, v);
+    }
+  }
+  c.M.setFromTriplets(m.begin(), m.end());
+  c.C.setFromTriplets(d.begin(), d.end());
+  c.K.setFromTriplets(k.begin(), k.end());
+  c.B.insert(number.front(), 0) = 1.0;
+  c.B.insert(number.back(), 1) = 1.0;
+  return c;
+}
+
+TEST(IntegratedSoil, AScrambledNumberingIsHeldInItsNarrowBandAndMovesTheSame) {
+  const std::vector<int> in_order{0, 1, 2, 3, 4, 5, 6, 7, 8, 9};
+  const std::vector<int> scrambled{7, 2, 9, 0, 5, 3, 8, 1, 6, 4};  // half bandwidth 9 as given
+  const Chain a = chain(in_order), b = chain(scrambled);
+  IntegratedSoil ordered("ordered", a.M, a.C, a.K, a.B);
+  IntegratedSoil renumbered("scrambled", b.M, b.C, b.K, b.B);
+  EXPECT_EQ(ordered.half_bandwidth(), 1u);
+  EXPECT_EQ(renumbered.half_bandwidth(), 1u);
+  const double force[2] = {5e4, 2e4};  // N
+  ordered.start_static(force);
+  renumbered.start_static(force);
+  const Newmark newmark;
+  const double h = 1e-3;  // s
+  ordered.factorize(newmark, h);
+  renumbered.factorize(newmark, h);
+  EXPECT_LT((ordered.step_receptance() - renumbered.step_receptance()).cwiseAbs().maxCoeff(),
+            1e-12 * ordered.step_receptance().cwiseAbs().maxCoeff());
+  Eigen::VectorXd u0(2), p(2), released = Eigen::VectorXd::Zero(2);
+  for (int n = 0; n < 50; ++n) {
+    ordered.predict(newmark, h, u0, p);
+    ordered.correct(newmark, h, released);
+    renumbered.predict(newmark, h, u0, p);
+    renumbered.correct(newmark, h, released);
+  }
+  for (std::size_t i = 0; i < 2; ++i) {
+    EXPECT_NEAR(renumbered.footprint_u(i), ordered.footprint_u(i), 1e-12 * 5e4 / 3e7) << i;
+    EXPECT_NEAR(renumbered.footprint_v(i), ordered.footprint_v(i), 1e-9) << i;
+  }
 }
 
 TEST(IntegratedSoil, MatricesItCannotUseAreRefusedWithWhatIsWrong) {

@@ -5,19 +5,12 @@
 #include <sstream>
 
 #include "core/errors.hpp"
+#include "track/bandwidth_order.hpp"
 
 namespace rumble {
 namespace {
 
 using Sparse = Eigen::SparseMatrix<double>;
-
-std::size_t half_bandwidth_of(const Sparse& a) {
-  std::size_t b = 0;
-  for (Eigen::Index j = 0; j < a.outerSize(); ++j)
-    for (Sparse::InnerIterator it(a, j); it; ++it)
-      b = std::max(b, static_cast<std::size_t>(std::abs(it.row() - it.col())));
-  return b;
-}
 
 /// Largest |entry|; 0 for an empty matrix. (Iterated, not coeffs(): that needs a compressed
 /// matrix, which a caller's need not be.)
@@ -69,7 +62,21 @@ IntegratedSoil::IntegratedSoil(const std::string& name, const Sparse& M, const S
   }
   if (static_cast<std::size_t>(B.rows()) != n_x_)
     throw refuse("B has " + std::to_string(B.rows()) + " rows, K has " + std::to_string(n_x_));
-  band_ = std::max({half_bandwidth_of(M), half_bandwidth_of(C), half_bandwidth_of(K)});
+  // The soil's own order, or reverse Cuthill-McKee where that narrows the band (a mesh's nodes
+  // come in any order); the matrices are then held permuted, which only the band sees.
+  const Sparse pattern = Sparse(M.cwiseAbs()) + Sparse(C.cwiseAbs()) + Sparse(K.cwiseAbs());
+  band_ = rumble::half_bandwidth(pattern);
+  Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, Sparse::StorageIndex> order(
+      static_cast<Eigen::Index>(n_x_));
+  order.setIdentity();
+  if (band_ > 1) {
+    const std::vector<Eigen::Index> rcm = bandwidth_reducing_order(pattern);
+    if (const std::size_t narrower = rumble::half_bandwidth(pattern, rcm); narrower < band_) {
+      band_ = narrower;
+      for (std::size_t k = 0; k < rcm.size(); ++k)
+        order.indices()[rcm[k]] = static_cast<Sparse::StorageIndex>(k);  // unknown rcm[k] -> k
+    }
+  }
   if (static_cast<double>(band_ + 1) * static_cast<double>(n_x_) > kMaxBandStorage) {
     std::ostringstream text;
     text << n_x_ << " DOFs with a half bandwidth of " << band_ << " need "
@@ -78,10 +85,10 @@ IntegratedSoil::IntegratedSoil(const std::string& name, const Sparse& M, const S
          << "; use a smaller soil (or a co-simulation scheme: gauss_seidel, implicit)";
     throw refuse(text.str());
   }
-  mass_ = banded(M, band_);
-  damping_ = banded(C, band_);
-  stiffness_ = banded(K, band_);
-  input_ = B;
+  mass_ = banded(Sparse(order * M * order.transpose()), band_);
+  damping_ = banded(Sparse(order * C * order.transpose()), band_);
+  stiffness_ = banded(Sparse(order * K * order.transpose()), band_);
+  input_ = order * B;
   input_.makeCompressed();
   static_factor_ = stiffness_;
   if (!static_factor_.factorize())

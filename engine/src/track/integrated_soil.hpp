@@ -8,8 +8,9 @@
 // u0 the motion under no new force (from the soil's state) and p = B^T pv its velocity predictor.
 // The track condenses the soil onto its sleepers with G (TrackParticipant, "integrated soil").
 //
-// Storage is banded in the soil's own DOF order (tridiagonal for the lumped soils): a soil whose
-// band would not fit is refused with a message, not solved slowly.
+// Storage is banded, in the soil's own DOF order (tridiagonal for the lumped soils) or in a
+// reverse Cuthill-McKee order where that is narrower (a FEM mesh): a soil whose band would not
+// fit is refused with a message, not solved slowly. The state x is held in that order.
 #pragma once
 
 #include <Eigen/Dense>
@@ -31,6 +32,8 @@ class IntegratedSoil {
                  const Eigen::SparseMatrix<double>& B);
 
   std::size_t dof_count() const { return n_x_; }
+  /// Half bandwidth of the band storage (after reordering where that narrowed it).
+  std::size_t half_bandwidth() const { return band_; }
   std::size_t footprint_count() const { return n_f_; }
   /// Band storage above which a soil is refused [doubles]: 4e7 (320 MB for each of the three
   /// matrices and the factor).

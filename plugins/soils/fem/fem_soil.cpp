@@ -21,6 +21,7 @@
 #include "footprint_loads.hpp"
 #include "gmsh_model.hpp"
 #include "implicit_solver.hpp"
+#include "linear_matrices.hpp"
 #include "mesh_cache.hpp"
 #include "mesh_generator.hpp"
 #include "probe_locator.hpp"
@@ -49,7 +50,9 @@ class FemSoil final : public rumble::Soil {
   static constexpr const char* kSummary =
       "3D finite-element half-space meshed with gmsh (linear tetrahedra, Lysmer-Kuhlemeyer "
       "viscous-spring boundary, explicit sub-cycled steps, receivers at any depth, VTU fields)";
-  static constexpr std::uint64_t kCapabilities = rumble::kCapThreads;
+  /// Its matrices make it a soil for the monolithic reference (small meshes: the engine holds
+  /// them banded) and for `rumble stability`.
+  static constexpr std::uint64_t kCapabilities = rumble::kCapThreads | rumble::kCapLinearMatrices;
   static const char* params_schema() { return rumble::fem::settings_schema(); }
 
   FemSoil(const std::string& params_json, const rumble::Host& host)
@@ -196,6 +199,12 @@ class FemSoil final : public rumble::Soil {
           settings_.damping.stiffness_coefficient());
     receptance_->at(f_hz, receptance);
     return true;
+  }
+
+  void linear_matrix(rumble_matrix which, rumble::CscMatrix& out) override {
+    require_layout("linear_matrix");
+    rumble::fem::linear_matrix(*op_, weights_, settings_.damping.mass_coefficient(),
+                               settings_.damping.stiffness_coefficient(), which, out);
   }
 
   void wave_speeds(double& c_s_min, double& c_r_min) const override {
