@@ -11,6 +11,7 @@
 #include <cmath>
 #include <complex>
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -33,12 +34,65 @@ using vehicles::fail;
 
 constexpr double kComplexStep = 1e-20;  // imaginary step of the complex-step tangent
 
+// A vehicle definition is a few kilobytes; the limit keeps /dev/zero or a mistaken data file
+// from being read into memory (it once grew to 4 GB).
+constexpr std::uintmax_t kMaxDefinitionBytes = 1u << 20;
+
 nlohmann::json parse_json(const std::string& text, const std::string& where) {
   try {
     return nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& e) {
-    fail(where, std::string("not valid JSON: ") + e.what());
+    // "[json.exception.parse_error.101] parse error at line 3, column 5: ..." without the tag.
+    std::string what = e.what();
+    if (const auto tag = what.find("] ");
+        what.rfind("[json.exception", 0) == 0 && tag != std::string::npos)
+      what.erase(0, tag + 2);
+    fail(where, "not valid JSON: " + what, {},
+         "a vehicle definition is one JSON object (docs/vehicles.md); is this the right file?");
   }
+}
+
+/// The text of the definition file at `path` (as the user wrote it: `name`): a regular file of
+/// at most kMaxDefinitionBytes, else a refusal at params/file naming the value and the fix.
+std::string read_definition_file(const std::filesystem::path& path, const nlohmann::json& name,
+                                 const std::string& dir) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::file_status status = fs::status(path, ec);
+  if (!fs::exists(status)) {
+    fail("params/file", "no such file \"" + path.string() + "\"", vehicles::shown(name),
+         "give the path of a vehicle definition relative to the scenario file's directory (\"" +
+             dir + "\")");
+  }
+  if (!fs::is_regular_file(status)) {
+    fail("params/file",
+         "\"" + path.string() + "\" is not a regular file (a directory, device or pipe)",
+         vehicles::shown(name), "name a vehicle definition file (JSON)");
+  }
+  const std::uintmax_t size = fs::file_size(path, ec);
+  if (!ec && size > kMaxDefinitionBytes) {
+    fail("params/file",
+         "\"" + path.string() + "\" is too large (" + std::to_string(size) +
+             " bytes; a vehicle definition is at most " + std::to_string(kMaxDefinitionBytes) +
+             " bytes)",
+         vehicles::shown(name), "is this the right file?");
+  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    fail("params/file", "cannot read \"" + path.string() + "\"", vehicles::shown(name),
+         "check the file's permissions");
+  }
+  // At most one byte past the limit, in case the file grew since its size was read.
+  std::string text(kMaxDefinitionBytes + 1, '\0');
+  in.read(text.data(), static_cast<std::streamsize>(text.size()));
+  text.resize(static_cast<std::size_t>(in.gcount()));
+  if (text.size() > kMaxDefinitionBytes) {
+    fail("params/file",
+         "\"" + path.string() + "\" is too large (more than " +
+             std::to_string(kMaxDefinitionBytes) + " bytes)",
+         vehicles::shown(name), "is this the right file?");
+  }
+  return text;
 }
 
 /// params -> Definition: inline, or from the file named by params/file (relative to the
@@ -57,17 +111,12 @@ Definition load_definition(const std::string& params_json, const rumble::Host& h
     }
   }
   const std::string name = file.get<std::string>();
+  // A scenario given as "x.json" has the directory "": the current one.
+  const std::string dir = host.scenario_dir().empty() ? "." : host.scenario_dir();
   std::filesystem::path path(name);
-  if (path.is_relative()) path = std::filesystem::path(host.scenario_dir()) / path;
-  std::ifstream in(path);
-  if (!in) {
-    fail("params/file", "cannot open \"" + path.string() + "\"", vehicles::shown(file),
-         "give the path of a vehicle definition relative to the scenario file's directory (\"" +
-             host.scenario_dir() + "\")");
-  }
-  std::stringstream text;
-  text << in.rdbuf();
-  return parse_definition(parse_json(text.str(), name), name + "#");
+  if (path.is_relative()) path = std::filesystem::path(dir) / path;
+  return parse_definition(parse_json(read_definition_file(path, file, dir), name + "#"),
+                          name + "#");
 }
 
 class MbsVehicle final : public rumble::Vehicle {
