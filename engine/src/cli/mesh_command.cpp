@@ -17,7 +17,8 @@ int mesh_command(const std::vector<std::string>& args) {
   const Arguments a(args, {}, {"output"});
   if (a.positional().size() != 1) throw UsageError("usage: rumble mesh FILE [--output DIR]");
   PluginRegistry registry;
-  const auto doc = prepare_scenario(a.positional().front(), registry, scenario::Format::kText);
+  const auto doc =
+      prepare_scenario(a.positional().front(), registry, scenario::Format::kText, {}, kNotARun);
   if (!doc) return kExitConfig;
   const ScenarioSoil s = soil_on_footprints(*doc, registry);
   const std::filesystem::path out_dir = a.value("output")
