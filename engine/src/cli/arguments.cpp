@@ -1,5 +1,6 @@
 #include "cli/arguments.hpp"
 
+#include <cmath>
 #include <cstdlib>
 #include <sstream>
 
@@ -74,6 +75,22 @@ double Arguments::number(const std::string& name, double fallback) const {
     throw UsageError("--" + name + "=" + *v + " is not a number");
   }
   return x;
+}
+
+long long Arguments::integer(const std::string& name, long long fallback, long long min,
+                             long long max) const {
+  const auto v = value(name);
+  if (!v) return fallback;
+  const double x = number(name, 0.0);
+  const std::string range =
+      "; give a whole number from " + std::to_string(min) + " to " + std::to_string(max);
+  if (!(x == std::floor(x)))
+    throw UsageError("--" + name + "=" + *v + " is not a whole number" + range);
+  if (x < static_cast<double>(min))
+    throw UsageError("--" + name + "=" + *v + " is too small" + range);
+  if (x > static_cast<double>(max))
+    throw UsageError("--" + name + "=" + *v + " is too large" + range);
+  return static_cast<long long>(x);
 }
 
 std::vector<std::string> split_list(const std::string& list) {

@@ -29,6 +29,10 @@ class Arguments {
   std::string choice(const std::string& name, const std::vector<std::string>& choices,
                      const std::string& fallback) const;
   double number(const std::string& name, double fallback) const;
+  /// The value as a whole number from min to max; "2.5" or "1e9" beyond max is refused with the
+  /// range (a count cast from a double silently became 2, or overflowed an int).
+  long long integer(const std::string& name, long long fallback, long long min,
+                    long long max) const;
   /// Every value of a repeated option, in command-line order.
   std::vector<std::string> values(const std::string& name) const;
 
