@@ -88,7 +88,9 @@ options:
   --points N                frequencies, log-spaced, an integer from 2 to 100000 (default: 100)
   --terms N                 transfer terms beside the driving point, an integer >= 0 (default: 2)
   --output DIR              a directory for the CSVs (default: <outputs.directory>/soil_frf);
-                            locked while written
+                            locked while written; a rerun replaces its own files
+  --overwrite               also replace what another set of scenarios wrote there, keeping
+                            files rumble did not write (default: refuse)
   --no-plot                 no plot
 )"},
       {"calibrate", R"(usage: rumble calibrate TARGET_SCENARIO --model TYPE [options]
