@@ -213,6 +213,21 @@ TEST(MbsBadInput, TextThatIsNotJsonSaysWhereWithoutTheParsersTag) {
   std::filesystem::remove_all(dir);
 }
 
+// A key written twice in a definition file: the first value would be dropped without a word.
+TEST(MbsBadInput, DuplicateKeyInAFileIsPointedAt) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / "rumble_mbs_duplicate_key_test";
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "dup.json")
+      << R"({"bodies": [{"name": "w", "mass": 900, "transforms": [{"type": "tz", "dof": "z"}]},
+                        {"name": "v", "mass": 1, "mass": 2}],
+             "wheels": [{"body": "w"}]})";
+  EXPECT_EQ(creation_error("mbs", R"({"file": "dup.json"})", dir.string()),
+            "dup.json#/bodies/1/mass: duplicate key; JSON keeps only the last value and would "
+            "drop the other without a word; keep one of the two");
+  std::filesystem::remove_all(dir);
+}
+
 TEST(MbsBadInput, ErrorsInAFileArePointedInThatFile) {
   const std::filesystem::path dir =
       std::filesystem::temp_directory_path() / "rumble_mbs_bad_input_test";

@@ -52,6 +52,67 @@ nlohmann::json parse_json(const std::string& text, const std::string& where) {
   }
 }
 
+/// Refuses a key written twice in one object of a definition file: nlohmann keeps the last value
+/// and drops the other without a word (the engine refuses the same in a scenario). `where` is the
+/// file as written plus "#"; the refusal points at the repeated member.
+void refuse_duplicate_keys(const std::string& text, const std::string& where) {
+  struct Frame {
+    bool object = false;
+    std::string pointer;
+    std::vector<std::string> keys;  // objects: the keys so far (a definition has a few)
+    std::size_t index = 0;          // arrays: the next element's index
+  };
+  std::vector<Frame> stack;
+  std::string duplicate;  // pointer of the first repeat found
+  const auto child_pointer = [&]() -> std::string {
+    if (stack.empty()) return "";
+    Frame& parent = stack.back();
+    if (parent.object) return parent.pointer + "/" + parent.keys.back();
+    return parent.pointer + "/" + std::to_string(parent.index++);
+  };
+  using Event = nlohmann::json::parse_event_t;
+  const auto callback = [&](int /*depth*/, Event event, nlohmann::json& parsed) {
+    switch (event) {
+      case Event::object_start:
+      case Event::array_start: {
+        Frame f;
+        f.object = event == Event::object_start;
+        f.pointer = child_pointer();
+        stack.push_back(std::move(f));
+        break;
+      }
+      case Event::object_end:
+      case Event::array_end:
+        stack.pop_back();
+        break;
+      case Event::key: {
+        Frame& f = stack.back();
+        const std::string key = parsed.get<std::string>();
+        if (duplicate.empty() && std::find(f.keys.begin(), f.keys.end(), key) != f.keys.end())
+          duplicate = f.pointer + "/" + key;
+        f.keys.push_back(key);
+        break;
+      }
+      case Event::value:
+        if (!stack.empty() && !stack.back().object) ++stack.back().index;
+        break;
+    }
+    return true;
+  };
+  try {
+    const nlohmann::json parsed = nlohmann::json::parse(text, callback);  // a second, small parse
+    static_cast<void>(parsed);
+  } catch (const nlohmann::json::exception&) {
+    return;  // parse_json says what is wrong with the text
+  }
+  if (!duplicate.empty()) {
+    fail(where + duplicate,
+         "duplicate key; JSON keeps only the last value and would drop the "
+         "other without a word",
+         {}, "keep one of the two");
+  }
+}
+
 /// The text of the definition file at `path` (as the user wrote it: `name`): a regular file of
 /// at most kMaxDefinitionBytes, else a refusal at params/file naming the value and the fix.
 std::string read_definition_file(const std::filesystem::path& path, const nlohmann::json& name,
@@ -115,8 +176,10 @@ Definition load_definition(const std::string& params_json, const rumble::Host& h
   const std::string dir = host.scenario_dir().empty() ? "." : host.scenario_dir();
   std::filesystem::path path(name);
   if (path.is_relative()) path = std::filesystem::path(dir) / path;
-  return parse_definition(parse_json(read_definition_file(path, file, dir), name + "#"),
-                          name + "#");
+  const std::string text = read_definition_file(path, file, dir);
+  nlohmann::json definition = parse_json(text, name + "#");
+  refuse_duplicate_keys(text, name + "#");
+  return parse_definition(definition, name + "#");
 }
 
 class MbsVehicle final : public rumble::Vehicle {
