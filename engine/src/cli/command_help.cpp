@@ -53,6 +53,8 @@ options:
   --force                   rerun every run (default: skip those up to date)
   --dry-run                 list the runs and their state, run nothing
   --no-report               no report plots at the end
+  --yes                     run even the runs estimated beyond the limits on steps, memory or
+                            bytes written (default: such a run is not valid)
 )"},
       {"plugins", R"(usage: rumble plugins [options]
 
