@@ -13,6 +13,7 @@
 #include "cli/plot_script.hpp"
 #include "cli/scenario_prepare.hpp"
 #include "core/errors.hpp"
+#include "core/number_text.hpp"
 #include "plugin/instance.hpp"
 #include "run/results_directory.hpp"
 #include "run/run_scenario.hpp"
@@ -31,7 +32,7 @@ int soil_frf_command(const std::vector<std::string>& args) {
   const long long terms = a.integer("terms", 2, 0, 1000);
   if (!(f_min > 0.0) || !(f_max > f_min) || !std::isfinite(f_max)) {
     throw UsageError("need 0 < --fmin < --fmax (finite frequencies in Hz), got --fmin " +
-                     std::to_string(f_min) + " and --fmax " + std::to_string(f_max));
+                     number_text(f_min) + " and --fmax " + number_text(f_max));
   }
   if (const auto out = a.value("output");
       out && std::filesystem::path(*out).extension() == ".csv") {
