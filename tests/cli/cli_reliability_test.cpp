@@ -189,8 +189,16 @@ TEST(CliReliability, SoilFrfCountsAreWholeNumbersAndItsOutputIsADirectory) {
   const CliResult file =
       run_rumble({"soil-frf", path, "--output", (dir / "x.csv").string(), "--no-plot"});
   EXPECT_EQ(file.exit_code, 1);
-  EXPECT_THAT(file.output, HasSubstr("x.csv names a file; soil-frf writes one CSV per scenario"));
+  EXPECT_THAT(file.output, HasSubstr("x.csv names a file; this command writes one CSV per "
+                                     "scenario into the directory --output names, e.g. --output "));
   EXPECT_FALSE(fs::exists(dir / "x.csv"));
+  // The same for every --output that names a directory.
+  for (const char* command : {"run", "mesh"}) {
+    const CliResult r = run_rumble({command, path, "--output", (dir / "out.json").string()});
+    EXPECT_EQ(r.exit_code, 1) << command;
+    EXPECT_THAT(r.output, HasSubstr("out.json names a file; this command writes ")) << command;
+    EXPECT_FALSE(fs::exists(dir / "out.json")) << command;
+  }
 }
 
 // soil-frf writes into a results directory like run's: locked, with a manifest, so a rerun

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <sstream>
 
 namespace rumble::cli {
@@ -59,6 +60,21 @@ std::string Arguments::choice(const std::string& name, const std::vector<std::st
     list += (list.empty() ? "" : ", ") + c;
   }
   throw UsageError("--" + name + "=" + *v + " is not valid; choose one of: " + list);
+}
+
+std::optional<std::string> Arguments::directory(const std::string& name,
+                                                const std::string& writes) const {
+  const auto v = value(name);
+  if (!v) return v;
+  const std::filesystem::path p(*v);
+  const std::string ext = p.extension().string();
+  for (const char* file_type : {".csv", ".json", ".vtu", ".pvd", ".png", ".svg", ".txt", ".log"}) {
+    if (ext != file_type) continue;
+    throw UsageError("--" + name + " " + *v + " names a file; this command writes " + writes +
+                     " into the directory --" + name + " names, e.g. --" + name + " " +
+                     std::filesystem::path(p).replace_extension().string());
+  }
+  return v;
 }
 
 std::vector<std::string> Arguments::values(const std::string& name) const {

@@ -34,13 +34,7 @@ int soil_frf_command(const std::vector<std::string>& args) {
     throw UsageError("need 0 < --fmin < --fmax (finite frequencies in Hz), got --fmin " +
                      number_text(f_min) + " and --fmax " + number_text(f_max));
   }
-  if (const auto out = a.value("output");
-      out && std::filesystem::path(*out).extension() == ".csv") {
-    throw UsageError("--output " + *out +
-                     " names a file; soil-frf writes one CSV per scenario into the directory "
-                     "--output names, e.g. --output " +
-                     std::filesystem::path(*out).replace_extension().string());
-  }
+  const auto output = a.directory("output", "one CSV per scenario");
   const std::vector<double> frequency = log_frequencies(f_min, f_max, static_cast<int>(points));
   std::optional<ResultsDirectory> results;
   PluginRegistry registry;
@@ -49,8 +43,8 @@ int soil_frf_command(const std::vector<std::string>& args) {
     if (!doc) return kExitConfig;
     if (!results) {
       const std::filesystem::path out_dir =
-          a.value("output") ? std::filesystem::path(*a.value("output"))
-                            : scenario::results_directory(doc->json, doc->path) / "soil_frf";
+          output ? std::filesystem::path(*output)
+                 : scenario::results_directory(doc->json, doc->path) / "soil_frf";
       // The first scenario owns the directory; the others make the set (a rerun with the same
       // files replaces its own CSVs, another set needs --overwrite).
       std::vector<std::string> others(a.positional().begin() + 1, a.positional().end());
