@@ -12,6 +12,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <limits>
 #include <rumble/params.hpp>
@@ -76,7 +77,8 @@ class PickySoil final : public rumble::Soil {
                                  R"(,
     "max_step": {"type": "number", "exclusiveMinimum": 0, "default": 1.0},
     "csc_defect": {"enum": ["none", "unsorted", "nan", "stiffer"], "default": "none"},
-    "stall_at": {"type": "number", "default": 1.0e30}}})";
+    "stall_at": {"type": "number", "default": 1.0e30},
+    "exit_at": {"type": "number", "default": 1.0e30}}})";
     return s.c_str();
   }
   PickySoil(const std::string& params, const rumble::Host& host) : host_(host) {
@@ -85,6 +87,7 @@ class PickySoil final : public rumble::Soil {
     max_step_ = p.get<double>("max_step");
     csc_defect_ = p.get<std::string>("csc_defect");
     stall_at_ = p.get<double>("stall_at");
+    exit_at_ = p.get_or<double>("exit_at", 1.0e30);  // tests build it without the schema too
   }
   void accept_layout(const std::vector<rumble::Footprint>& f) override {
     footprints_ = f;
@@ -98,6 +101,7 @@ class PickySoil final : public rumble::Soil {
                             " s, asked " + std::to_string(H));
     }
     if (t >= stall_at_) stall();
+    if (t >= exit_at_) std::exit(0);  // a careless plugin ending the process (issue #8)
     ++advances_;
     spring_.step(t, H, force, [&](double now) { record(now); });
   }
@@ -216,7 +220,7 @@ class PickySoil final : public rumble::Soil {
   std::vector<rumble::Footprint> footprints_;
   std::vector<std::size_t> nearest_;  // footprint of each probe
   std::vector<double> row_;
-  double max_step_ = 0.0, stall_at_ = 0.0;  // s
+  double max_step_ = 0.0, stall_at_ = 0.0, exit_at_ = 0.0;  // s
   std::string csc_defect_;
   long advances_ = 0, refusals_ = 0, checkpoints_ = 0;
   mutable long state_copies_ = 0;  // save_state/restore_state: the host-copy path

@@ -46,5 +46,23 @@ TEST(Stop, RequestReachesAPluginInsideALongAdvance) {
   EXPECT_EQ(csv_rows(outcome.results_dir / "contact.csv"), 11u);  // t = 0 .. 0.01 s
 }
 
+// A plugin calling exit(0) mid-run ended rumble with exit code 0, a truncated run and
+// summary.json "running" (issue #8): the exit is intercepted, the run is "aborted", exit code 3.
+TEST(Stop, PluginCallingExitAbortsTheRunVisibly) {
+  const nlohmann::json s = fixture_scenario(
+      {{"type", "picky_soil"}, {"params", {{"exit_at", 0.0195}}}}, {{"type", "gauss_seidel"}});
+  CliResult r;
+  const auto results = run_in("plugin_calls_exit", s, r);
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_NE(r.output.find("rumble: error: the process was told to exit during the run (a plugin "
+                          "called exit()?)"),
+            std::string::npos)
+      << r.output;
+  const nlohmann::json summary = read_json(results / "summary.json");
+  EXPECT_EQ(summary["status"], "aborted");
+  EXPECT_NE(summary["message"].get<std::string>().find("exit()"), std::string::npos);
+  EXPECT_LE(csv_rows(results / "contact.csv"), 21u);  // at most t = 0 .. 0.02 s
+}
+
 }  // namespace
 }  // namespace rumble::testing

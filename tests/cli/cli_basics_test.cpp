@@ -32,7 +32,7 @@ TEST(Cli, UnknownOptionAndBadLogLevel) {
   EXPECT_THAT(
       run_rumble({"run", "x.json", "--fast"}).output,
       HasSubstr("unknown option '--fast'; options here: --allow-outside-results, --no-plots, "
-                "--no-progress, --overwrite, --output"));
+                "--no-progress, --overwrite, --yes, --output, --set"));
   const CliResult r = run_rumble({"--log-level", "loud", "plugins"});
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_THAT(r.output, HasSubstr("--log-level loud is not a level; choose trace, debug, info"));

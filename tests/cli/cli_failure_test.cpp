@@ -122,12 +122,19 @@ TEST(CliFailure, AStableRunRecordsNoDivergence) {
 }
 
 // A micro-step far too small for the macro step (issue #8: 1e-15 s at 1 ms overflowed an int
-// count and ran one micro-step per macro step): refused with the count and the fix.
+// count and ran one micro-step per macro step): refused with the count and the fix, at validate
+// by the run's size estimate, and when confirmed (--yes) by the track before its first step.
 TEST(CliFailure, AbsurdMicroStepCountIsRefused) {
   const auto dir = scratch_directory("absurd_micro_step");
   nlohmann::json s = small_scenario();
   s["track"]["integrator"] = {{"micro_step", 1e-15}};
-  const CliResult r = run_rumble({"run", write_scenario(dir, s).string(), "--no-progress"});
+  const std::string path = write_scenario(dir, s).string();
+  const CliResult v = run_rumble({"validate", path});
+  EXPECT_EQ(v.exit_code, 1) << v.output;
+  EXPECT_THAT(v.output, HasSubstr("/track/integrator/micro_step: the track takes 5e+13 "
+                                  "micro-steps over the run (time.end / micro_step), more than "
+                                  "the limit of 1e+09"));
+  const CliResult r = run_rumble({"run", path, "--no-progress", "--yes"});
   EXPECT_EQ(r.exit_code, 3) << r.output;
   EXPECT_THAT(r.output, HasSubstr("track: a macro step of 0.001 s in micro-steps of 1e-15 s is "
                                   "1e+12 micro-steps, more than 1e+07; raise "

@@ -5,6 +5,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -163,6 +164,94 @@ TEST_F(FaultySoil, EngineReportsCallErrorWithLastMessage) {
   }
   const rumble::test::ConstantForce too_long({1.0, 1.0});
   EXPECT_THROW(soil.advance(0.0, 2.0, too_long.waveform), rumble::Discarded);
+}
+
+}  // namespace
+
+// ------------------------------------------------ what crosses the C table, checked by the host
+
+namespace {
+
+class RawSoil : public testing::Test {
+ protected:
+  const rumble::ComponentType& type(const char* library, const char* name) {
+    registry_.load_library(library);
+    const rumble::ComponentType* t = registry_.find(RUMBLE_KIND_SOIL, name);
+    EXPECT_NE(t, nullptr);
+    return *t;
+  }
+  /// The message of what `fn` throws as E; "" when it throws nothing.
+  template <class E, class Fn>
+  static std::string thrown(Fn&& fn) {
+    try {
+      fn();
+    } catch (const E& e) {
+      return e.what();
+    }
+    return "";
+  }
+  rumble::PluginRegistry registry_;
+};
+
+// A C plugin may return NULL from last_message; std::string(NULL) is undefined behaviour and
+// libstdc++ throws "basic_string: construction from null is not valid", which hid the call.
+TEST_F(RawSoil, NullLastMessageReadsAsNoMessage) {
+  rumble::SoilInstance soil(type(fixture::raw, "loader_test_raw"), "/soil",
+                            nlohmann::json{{"mode", "null_message"}}, ".");
+  const std::string what =
+      thrown<rumble::ConfigError>([&] { soil.accept_layout(rumble::test::footprints(3)); });
+  EXPECT_THAT(what, HasSubstr("soil 'loader_test_raw' (/soil): accept_layout failed: no message"));
+}
+
+TEST_F(RawSoil, NanStaticDisplacementIsRefusedNamingPluginAndCall) {
+  rumble::SoilInstance soil(type(fixture::raw, "loader_test_raw"), "/soil",
+                            nlohmann::json{{"mode", "nan_static"}}, ".");
+  soil.accept_layout(rumble::test::footprints(3));
+  std::vector<double> f(3, 1e4), u;
+  const std::string what = thrown<rumble::RunError>([&] { soil.initialize(0.0, f, u); });
+  EXPECT_THAT(what, HasSubstr("soil 'loader_test_raw' (/soil): initialize returned a static "
+                              "displacement that is not finite (nan at 1) from finite inputs"));
+  EXPECT_THAT(what, HasSubstr(fs::canonical(fixture::raw).string()));
+}
+
+TEST_F(RawSoil, InfiniteVelocityIsRefusedNamingPluginAndCall) {
+  rumble::SoilInstance soil(type(fixture::raw, "loader_test_raw"), "/soil",
+                            nlohmann::json{{"mode", "inf_velocity"}}, ".");
+  soil.accept_layout(rumble::test::footprints(3));
+  std::vector<double> u(3), v(3);
+  const std::string what = thrown<rumble::RunError>([&] { soil.motion(u.data(), v.data(), 3); });
+  EXPECT_THAT(what, HasSubstr("soil 'loader_test_raw' (/soil): motion returned a velocity that "
+                              "is not finite (inf at 1) from finite inputs"));
+}
+
+TEST_F(RawSoil, ForceThatIsNotFiniteIsADivergenceNotTheSoils) {
+  rumble::SoilInstance soil(type(fixture::raw, "loader_test_raw"), "/soil",
+                            nlohmann::json::object(), ".");
+  soil.accept_layout(rumble::test::footprints(3));
+  const rumble::test::ConstantForce force({0.0, std::nan(""), 0.0});
+  const std::string what =
+      thrown<rumble::RunError>([&] { soil.advance(0.25, 1e-3, force.waveform); });
+  EXPECT_THAT(what, HasSubstr("simulation diverged at t = 0.25 s: the footprint force given "
+                              "to soil 'loader_test_raw' (/soil) is not finite (footprint 1)"));
+}
+
+TEST_F(RawSoil, ExceptionEscapingCreateNamesPluginAndCall) {
+  const rumble::ComponentType& t = type(fixture::raw_throw, "loader_test_raw_throw");
+  const std::string what = thrown<rumble::RunError>([&] {
+    rumble::SoilInstance(t, "/soil", nlohmann::json{{"x", "throw_create"}}, ".");
+  });
+  EXPECT_THAT(what, HasSubstr("soil 'loader_test_raw_throw' (/soil): create let an exception "
+                              "escape through the C interface: raw_throw: create threw"));
+}
+
+TEST_F(RawSoil, ExceptionEscapingACallNamesPluginAndCall) {
+  rumble::SoilInstance soil(type(fixture::raw_throw, "loader_test_raw_throw"), "/soil",
+                            nlohmann::json::object(), ".");
+  const std::string what =
+      thrown<rumble::ConfigError>([&] { soil.accept_layout(rumble::test::footprints(3)); });
+  EXPECT_THAT(what, HasSubstr("soil 'loader_test_raw_throw' (/soil): accept_layout let an "
+                              "exception escape through the C interface: raw_throw: "
+                              "accept_layout threw"));
 }
 
 }  // namespace

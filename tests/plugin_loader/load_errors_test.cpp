@@ -1,6 +1,7 @@
 // Every way a library can fail to register, with the loader's exact message, and the registry
 // left as it was. The fixtures are built by this directory's CMakeLists.txt (fixture_paths.hpp).
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -242,21 +243,53 @@ TEST(PluginLoadErrors, SameLibraryTwiceIsLoadedOnce) {
   EXPECT_EQ(registry.libraries().size(), 1u);
 }
 
-// RUMBLE_PLUGIN_PATH entries may be files; a missing one is reported, not skipped.
-TEST(PluginLoadErrors, MissingFileInPluginPath) {
+// RUMBLE_PLUGIN_PATH entries may be files or directories; a missing one, or a library that does
+// not load, is reported and skipped: the others still load (issue #8: one bad entry made every
+// command fail, `rumble plugins` too).
+TEST(PluginLoadErrors, BadEntriesInPluginPathAreSkippedAndReported) {
   const std::string missing = std::string(fixture::dir) + "/not_there.so";
-  ASSERT_EQ(setenv("RUMBLE_PLUGIN_PATH", (std::string(fixture::faulty) + ":" + missing).c_str(), 1),
-            0);
+  const std::string missing_dir = std::string(fixture::dir) + "/no_such_directory";
+  const std::string path =
+      std::string(fixture::no_entry) + ":" + missing + ":" + missing_dir + ":" + fixture::faulty;
+  ASSERT_EQ(setenv("RUMBLE_PLUGIN_PATH", path.c_str(), 1), 0);
   PluginRegistry registry;
-  try {
-    registry.load_default_directories();
-    FAIL() << "no error for " << missing;
-  } catch (const rumble::PluginLoadError& e) {
-    EXPECT_EQ(std::string(e.what()), "plugin '" + missing +
-                                         "': file not found; check the path (relative paths are "
-                                         "relative to the scenario file) or RUMBLE_PLUGIN_PATH");
-  }
-  EXPECT_NE(registry.find(RUMBLE_KIND_SOIL, "loader_test_faulty"), nullptr);
+  ASSERT_NO_THROW(registry.load_default_directories());
+  unsetenv("RUMBLE_PLUGIN_PATH");
+  const rumble::ComponentType* faulty = registry.find(RUMBLE_KIND_SOIL, "loader_test_faulty");
+  ASSERT_NE(faulty, nullptr);
+  EXPECT_EQ(faulty->library->origin, "RUMBLE_PLUGIN_PATH");
+  ASSERT_EQ(registry.skipped().size(), 3u);
+  EXPECT_EQ(registry.skipped()[0].path, fs::path(fixture::no_entry));
+  EXPECT_EQ(registry.skipped()[0].origin, "RUMBLE_PLUGIN_PATH");
+  EXPECT_EQ(registry.skipped()[0].reason.rfind(
+                "plugin " + quoted(fixture::no_entry) + ": not a Rumble plugin", 0),
+            0u)
+      << registry.skipped()[0].reason;
+  EXPECT_EQ(registry.skipped()[1].reason,
+            "RUMBLE_PLUGIN_PATH entry '" + missing +
+                "': no such file or directory; correct or remove the entry");
+  EXPECT_EQ(registry.skipped()[2].reason,
+            "RUMBLE_PLUGIN_PATH entry '" + missing_dir +
+                "': no such file or directory; correct or remove the entry");
+}
+
+// dlopen on a FIFO blocks until someone writes to it (validate and run hung): only regular files
+// are loaded, whatever their name.
+TEST(PluginLoadErrors, FifoAndDirectoryAreNotLibraries) {
+  const fs::path fifo = fs::path(fixture::dir) / "loader_fifo.so";
+  fs::remove(fifo);
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  PluginRegistry registry;
+  EXPECT_EQ(load_error(registry, fifo),
+            "plugin '" + fifo.string() +
+                "': a FIFO (named pipe), not a regular file; name a shared library (.so) file");
+  fs::remove(fifo);
+  EXPECT_EQ(load_error(registry, fixture::dir),
+            "plugin '" + std::string(fixture::dir) +
+                "': a directory, not a regular file; name a shared library (.so) file");
+  EXPECT_EQ(load_error(registry, "/dev/zero"),
+            "plugin '/dev/zero': a device, not a regular file; name a shared library (.so) file");
+  EXPECT_TRUE(registry.libraries().empty());
 }
 
 }  // namespace

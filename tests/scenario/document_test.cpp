@@ -122,6 +122,28 @@ TEST(ScenarioDocument, ParsesValidTextAndKeepsItForPositions) {
   EXPECT_EQ(doc->text.size(), 18u);
 }
 
+// nlohmann keeps the last of a repeated key: the first value would be dropped without a word.
+TEST(ScenarioDocument, DuplicateKeysAreRefusedWithBothPlaces) {
+  EXPECT_EQ(parse_failure("{\"time\": {\"end\": 1.2,\n  \"end\": 0.5}}"),
+            "2:3: duplicate key \"end\" (first at line 1, column 11); JSON keeps only the last "
+            "value and would drop the other without a word | keep one of the two");
+  std::vector<Diagnostic> diags;
+  EXPECT_FALSE(
+      parse_document("x.json", R"({"a": 1, "b": [{"c": 1, "c": 2}], "a": 3, "a": 4})", diags));
+  ASSERT_EQ(diags.size(), 3u);
+  EXPECT_EQ(diags[0].pointer, "/b/0/c");
+  EXPECT_EQ(diags[1].pointer, "/a");
+  EXPECT_EQ(diags[1].column, 35u);
+  EXPECT_EQ(diags[2].pointer, "/a");
+  EXPECT_EQ(diags[2].column, 43u);
+  EXPECT_NE(diags[2].message.find("(first at line 1, column 35)"), std::string::npos)
+      << diags[2].message;
+  // The same key in sibling objects, or escaped differently but equal, is (not) a repeat.
+  diags.clear();
+  EXPECT_TRUE(parse_document("x.json", R"({"a": {"k": 1}, "b": {"k": 1}})", diags));
+  EXPECT_FALSE(parse_document("x.json", R"({"k": 1, "\u006b": 2})", diags));
+}
+
 TEST(ScenarioDocument, EmptyAndBlankFilesAreRefused) {
   EXPECT_EQ(parse_failure(""), "0:0: file is empty | a scenario is one JSON object: { ... }");
   EXPECT_EQ(parse_failure(" \n\t\r\n"),

@@ -15,6 +15,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "scenario/check_file.hpp"
 #include "scenario/scenario.hpp"
 #include "test_support.hpp"
 
@@ -86,19 +87,17 @@ Expected read_expected(const fs::path& file) {
   return e;
 }
 
-/// What `rumble validate` would print for the case, with the file named relative to the source
-/// root.
+/// What `rumble validate` would print for the case (the whole check: schema, relations, run
+/// size, components), with the file named relative to the source root.
 std::string run_case(const std::string& name, Format format) {
   const fs::path relative = fs::path("tests") / "scenario" / "invalid" / (name + ".json");
-  std::vector<Diagnostic> diags;
-  auto doc = load_document(test::source_dir() / relative, diags);
-  if (doc) {
-    PluginRegistry registry = test::golden_registry();
-    load_scenario_plugins(*doc, registry);
-    diags = validate(*doc, registry);
-  }
+  PluginRegistry registry = test::golden_registry();
+  std::vector<Override> overrides;
+  const CheckedScenario checked =
+      check_scenario_file(test::source_dir() / relative, overrides, registry);
   std::ostringstream os;
-  print_diagnostics(os, doc ? &*doc : nullptr, relative, diags, format);
+  print_diagnostics(os, checked.doc ? &*checked.doc : nullptr, relative, checked.diagnostics,
+                    format);
   return os.str();
 }
 
@@ -136,7 +135,8 @@ TEST(ScenarioGoldenCases, EveryMessageShapeHasACase) {
        {"file_not_found", "parse_trailing_comma", "missing_required_key", "wrong_type",
         "out_of_range_exclusive", "out_of_range_inclusive", "enum_violation",
         "unknown_key_did_you_mean", "unknown_type_did_you_mean", "plugin_params_violation",
-        "multiple_errors", "unevenness_variant_wrong_key"}) {
+        "multiple_errors", "unevenness_variant_wrong_key", "duplicate_key",
+        "run_size_too_many_steps", "sleepers_count_too_large", "rail_too_short_for_run"}) {
     EXPECT_NE(std::find(names.begin(), names.end(), needed), names.end()) << needed;
   }
   bool has_json = false;

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <sstream>
+#include <stdexcept>
 
 #include "plugin/registry.hpp"
 #include "test_support.hpp"
@@ -50,12 +51,11 @@ TEST(ScenarioSchemaPrint, OneRowPerParamInDeclarationOrderWithNestedObjectsDotte
             "  nu           number  no        0.3      [0, 0.5)\n");
 }
 
-TEST(ScenarioSchemaPrint, RawSchemaFollowsOnRequest) {
-  const std::string out = printed(component(R"({"type": "object"})"), true);
-  EXPECT_NE(out.find("params: none\n"), std::string::npos) << out;
-  EXPECT_NE(out.find("JSON Schema of the params:\n{\n  \"type\": \"object\"\n}\n"),
-            std::string::npos)
-      << out;
+// `rumble schema TYPE --json` is for tools: JSON and nothing else (issue #8).
+TEST(ScenarioSchemaPrint, RawSchemaIsJsonOnly) {
+  const std::string out = printed(component(R"({"type": "object", "required": ["k"]})"), true);
+  EXPECT_EQ(out, "{\n  \"type\": \"object\",\n  \"required\": [\n    \"k\"\n  ]\n}\n");
+  EXPECT_THROW(printed(component("{oops"), true), std::runtime_error);
 }
 
 TEST(ScenarioSchemaPrint, BrokenSchemaIsSaidNotThrown) {

@@ -1,6 +1,7 @@
 // Every refusal of a bad mbs definition, with its exact text: where (JSON pointer relative to the
 // params or the definition file), what, the value, and the fix.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <filesystem>
 #include <fstream>
@@ -152,10 +153,79 @@ TEST(MbsBadInput, FileAndInlineDefinitionTogether) {
 TEST(MbsBadInput, MissingFile) {
   const std::string dir = vehicles_dir();
   EXPECT_EQ(creation_error("mbs", R"({"file": "no_such_train.json"})"),
-            "params/file: cannot open \"" + dir +
+            "params/file: no such file \"" + dir +
                 "/no_such_train.json\", got \"no_such_train.json\"; give the path of a vehicle "
                 "definition relative to the scenario file's directory (\"" +
                 dir + "\")");
+}
+
+// A scenario named as "x.json" has the directory "" (the current one): the message says ".".
+TEST(MbsBadInput, MissingFileNextToAScenarioInTheCurrentDirectory) {
+  EXPECT_EQ(creation_error("mbs", R"({"file": "nothere.json"})", ""),
+            "params/file: no such file \"./nothere.json\", got \"nothere.json\"; give the path "
+            "of a vehicle definition relative to the scenario file's directory (\".\")");
+}
+
+// Issue #8: /dev/zero was read until memory ran out (4 GB), a FIFO blocked, a text file gave the
+// parser's raw text. Only regular files of at most 1 MiB are read.
+TEST(MbsBadInput, DeviceDirectoryAndFifoAreNotDefinitions) {
+  EXPECT_EQ(creation_error("mbs", R"({"file": "/dev/zero"})"),
+            "params/file: \"/dev/zero\" is not a regular file (a directory, device or pipe), got "
+            "\"/dev/zero\"; name a vehicle definition file (JSON)");
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / "rumble_mbs_bad_file_test";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir / "sub");
+  EXPECT_EQ(creation_error("mbs", R"({"file": "sub"})", dir.string()),
+            "params/file: \"" + (dir / "sub").string() +
+                "\" is not a regular file (a directory, device or pipe), got \"sub\"; name a "
+                "vehicle definition file (JSON)");
+  ASSERT_EQ(mkfifo((dir / "fifo").c_str(), 0600), 0);
+  EXPECT_EQ(creation_error("mbs", R"({"file": "fifo"})", dir.string()),
+            "params/file: \"" + (dir / "fifo").string() +
+                "\" is not a regular file (a directory, device or pipe), got \"fifo\"; name a "
+                "vehicle definition file (JSON)");
+  std::filesystem::remove_all(dir);
+}
+
+TEST(MbsBadInput, LargeFileIsRefusedUnread) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / "rumble_mbs_large_file_test";
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "big.json") << "{}";
+  std::filesystem::resize_file(dir / "big.json", 3u << 20);  // sparse: costs no disk
+  EXPECT_EQ(creation_error("mbs", R"({"file": "big.json"})", dir.string()),
+            "params/file: \"" + (dir / "big.json").string() +
+                "\" is too large (3145728 bytes; a vehicle definition is at most 1048576 bytes), "
+                "got \"big.json\"; is this the right file?");
+  std::filesystem::remove_all(dir);
+}
+
+TEST(MbsBadInput, TextThatIsNotJsonSaysWhereWithoutTheParsersTag) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / "rumble_mbs_not_json_test";
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "passwd") << "root:x:0:0:root:/root:/bin/bash\n";
+  EXPECT_EQ(creation_error("mbs", R"({"file": "passwd"})", dir.string()),
+            "passwd#: not valid JSON: parse error at line 1, column 1: syntax error while parsing "
+            "value - invalid literal; last read: 'r'; a vehicle definition is one JSON object "
+            "(docs/vehicles.md); is this the right file?");
+  std::filesystem::remove_all(dir);
+}
+
+// A key written twice in a definition file: the first value would be dropped without a word.
+TEST(MbsBadInput, DuplicateKeyInAFileIsPointedAt) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / "rumble_mbs_duplicate_key_test";
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "dup.json")
+      << R"({"bodies": [{"name": "w", "mass": 900, "transforms": [{"type": "tz", "dof": "z"}]},
+                        {"name": "v", "mass": 1, "mass": 2}],
+             "wheels": [{"body": "w"}]})";
+  EXPECT_EQ(creation_error("mbs", R"({"file": "dup.json"})", dir.string()),
+            "dup.json#/bodies/1/mass: duplicate key; JSON keeps only the last value and would "
+            "drop the other without a word; keep one of the two");
+  std::filesystem::remove_all(dir);
 }
 
 TEST(MbsBadInput, ErrorsInAFileArePointedInThatFile) {

@@ -1,6 +1,8 @@
 #include "cli/arguments.hpp"
 
+#include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <sstream>
 
 namespace rumble::cli {
@@ -60,6 +62,21 @@ std::string Arguments::choice(const std::string& name, const std::vector<std::st
   throw UsageError("--" + name + "=" + *v + " is not valid; choose one of: " + list);
 }
 
+std::optional<std::string> Arguments::directory(const std::string& name,
+                                                const std::string& writes) const {
+  const auto v = value(name);
+  if (!v) return v;
+  const std::filesystem::path p(*v);
+  const std::string ext = p.extension().string();
+  for (const char* file_type : {".csv", ".json", ".vtu", ".pvd", ".png", ".svg", ".txt", ".log"}) {
+    if (ext != file_type) continue;
+    throw UsageError("--" + name + " " + *v + " names a file; this command writes " + writes +
+                     " into the directory --" + name + " names, e.g. --" + name + " " +
+                     std::filesystem::path(p).replace_extension().string());
+  }
+  return v;
+}
+
 std::vector<std::string> Arguments::values(const std::string& name) const {
   const auto it = repeated_.find(name);
   return it == repeated_.end() ? std::vector<std::string>{} : it->second;
@@ -74,6 +91,22 @@ double Arguments::number(const std::string& name, double fallback) const {
     throw UsageError("--" + name + "=" + *v + " is not a number");
   }
   return x;
+}
+
+long long Arguments::integer(const std::string& name, long long fallback, long long min,
+                             long long max) const {
+  const auto v = value(name);
+  if (!v) return fallback;
+  const double x = number(name, 0.0);
+  const std::string range =
+      "; give a whole number from " + std::to_string(min) + " to " + std::to_string(max);
+  if (!(x == std::floor(x)))
+    throw UsageError("--" + name + "=" + *v + " is not a whole number" + range);
+  if (x < static_cast<double>(min))
+    throw UsageError("--" + name + "=" + *v + " is too small" + range);
+  if (x > static_cast<double>(max))
+    throw UsageError("--" + name + "=" + *v + " is too large" + range);
+  return static_cast<long long>(x);
 }
 
 std::vector<std::string> split_list(const std::string& list) {

@@ -29,6 +29,14 @@ class Arguments {
   std::string choice(const std::string& name, const std::vector<std::string>& choices,
                      const std::string& fallback) const;
   double number(const std::string& name, double fallback) const;
+  /// The value as a whole number from min to max; "2.5" or "1e9" beyond max is refused with the
+  /// range (a count cast from a double silently became 2, or overflowed an int).
+  long long integer(const std::string& name, long long fallback, long long min,
+                    long long max) const;
+  /// The value of an option that names a directory, refused when it looks like a file name
+  /// (x.csv, x.json, x.vtu, x.png ...), which would otherwise become a folder of that name;
+  /// `writes`: what the command puts there, for the message ("one CSV per scenario").
+  std::optional<std::string> directory(const std::string& name, const std::string& writes) const;
   /// Every value of a repeated option, in command-line order.
   std::vector<std::string> values(const std::string& name) const;
 

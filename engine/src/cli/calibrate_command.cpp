@@ -1,7 +1,7 @@
 // `rumble calibrate TARGET --model TYPE --params JSON [--fit a,b]`: fit a reduced soil's
 // parameters to the receptance of the target scenario's soil over a frequency band, and report
 // the fitted params (ready to paste into a scenario) and the residual.
-#include <fstream>
+#include <cmath>
 #include <iostream>
 #include <sstream>
 
@@ -12,6 +12,7 @@
 #include "cli/scenario_prepare.hpp"
 #include "core/errors.hpp"
 #include "plugin/instance.hpp"
+#include "run/new_file.hpp"
 #include "track/footprint_layout.hpp"
 
 namespace rumble::cli {
@@ -24,7 +25,8 @@ int calibrate_command(const std::vector<std::string>& args) {
         "[--fmin 1] [--fmax 100] [--points 40] [--terms 2] [--output FILE]");
   }
   PluginRegistry registry;
-  const auto doc = prepare_scenario(a.positional()[0], registry, scenario::Format::kText);
+  const auto doc =
+      prepare_scenario(a.positional()[0], registry, scenario::Format::kText, {}, kNotARun);
   if (!doc) return kExitConfig;
   const std::string model_name = *a.value("model");
   const ComponentType* model = registry.find(RUMBLE_KIND_SOIL, model_name);
@@ -63,10 +65,13 @@ int calibrate_command(const std::vector<std::string>& args) {
                       "/soil", target_soil.value("params", nlohmann::json::object()),
                       problem.scenario_dir);
   target.accept_layout(problem.layout);
-  const auto frequency = log_frequencies(a.number("fmin", 1.0), a.number("fmax", 100.0),
-                                         static_cast<int>(a.number("points", 40)));
+  const double f_min = a.number("fmin", 1.0), f_max = a.number("fmax", 100.0);
+  if (!(f_min > 0.0) || !(f_max > f_min) || !std::isfinite(f_max))
+    throw UsageError("need 0 < --fmin < --fmax (finite frequencies in Hz)");
+  const auto frequency =
+      log_frequencies(f_min, f_max, static_cast<int>(a.integer("points", 40, 2, 100000)));
   if (!soil_frf(target, problem.layout.size(), frequency,
-                static_cast<std::size_t>(a.number("terms", 2)), problem.target)) {
+                static_cast<std::size_t>(a.integer("terms", 2, 0, 1000)), problem.target)) {
     throw ConfigError("target soil '" + target.type_name() + "' offers no frequency response");
   }
   const CalibrationResult result = calibrate(problem);
@@ -79,7 +84,10 @@ int calibrate_command(const std::vector<std::string>& args) {
                            {"iterations", result.iterations},
                            {"converged", result.converged}};
   std::cout << report.dump(2) << '\n';
-  if (a.value("output")) std::ofstream(*a.value("output")) << report.dump(2) << '\n';
+  if (const auto out = a.value("output")) {  // a new file: never written through a link
+    const std::filesystem::path file(*out);
+    replace_file(file, file.string() + ".tmp", report.dump(2) + '\n');
+  }
   return kExitOk;
 }
 

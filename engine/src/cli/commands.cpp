@@ -19,22 +19,24 @@ constexpr const char* kUsage = R"(rumble: railway ground-vibration co-simulation
 usage: rumble [--log-level LEVEL] COMMAND [ARGS]   (--log-level may also follow the command)
 
 commands:
-  run FILE [--output DIR] [--overwrite] [--allow-outside-results] [--no-progress] [--no-plots]
-           [--set POINTER=VALUE ...]
+  run FILE [--output DIR] [--overwrite] [--allow-outside-results] [--yes] [--no-progress]
+           [--no-plots] [--set POINTER=VALUE ...]
                                     validate, then run a scenario; results go to outputs.directory
                                     inside the scenario's folder (elsewhere: --output DIR, or
                                     --allow-outside-results); a rerun replaces its own results
                                     there; --overwrite: also another scenario's, keeping files
                                     rumble did not write; --set: replace the value at a JSON
                                     pointer first (repeatable), e.g. --set /soil/params/E=1e7
-  validate FILE [--format text|json] [--set POINTER=VALUE ...]
-                                    check a scenario without running it (all errors at once)
-  study FILE [--jobs N] [--force] [--dry-run] [--no-report]
+  validate FILE [--format text|json] [--no-load] [--set POINTER=VALUE ...]
+                                    check a scenario without running it (all errors at once);
+                                    --no-load: without loading its plugins or building its parts
+  study FILE [--jobs N] [--force] [--dry-run] [--no-report] [--yes]
                                     run a study: the product of scenario variations and/or a list,
                                     N runs at once as processes, skipping runs that are up to
                                     date (--force: rerun all; --dry-run: list them); docs/study.md
   plugins [--format text|json]      list plugin libraries and the types they provide
-  schema TYPE [--json]              the parameters of a type: units, defaults, ranges
+  schema [TYPE] [--json]            the parameters of a type: units, defaults, ranges; without
+                                    TYPE, the known types
   mesh FILE [--output DIR]          build the scenario's soil on its footprints without running:
                                     its report in the log, its mesh in DIR/mesh.vtu (FEM soil)
   soil-frf FILE [options]           receptance of the scenario's soil at its footprints (CSV)
@@ -48,10 +50,13 @@ commands:
   new-plugin KIND NAME [DIR]        start a plugin project (KIND soil, vehicle or coupler) in DIR
                                     (default ./NAME) from the SDK's template, with its own test
 
+  help [COMMAND]                    this text, or one command's options and their defaults
+                                    (also: rumble COMMAND --help)
+
 options:
   --log-level LEVEL   trace, debug, info (default), warn, error, off
   --version           print the version
-  --help              this text
+  --help, -h          this text
 
 plugins are found in the engine's plugin directory, in RUMBLE_PLUGIN_PATH (':'-separated
 directories or files) and in a scenario's "plugins" list.
@@ -101,7 +106,7 @@ int main(int argc, char** argv) {
       }
     }
     std::size_t i = 0;
-    for (; i < args.size() && args[i].rfind("--", 0) == 0; ++i) {
+    for (; i < args.size() && (args[i].rfind("--", 0) == 0 || args[i] == "-h"); ++i) {
       const std::string& a = args[i];
       if (a == "--help" || a == "-h") {
         std::cout << kUsage;
@@ -119,14 +124,33 @@ int main(int argc, char** argv) {
       return kExitConfig;
     }
     const std::string name = args[i];
+    const std::vector<std::string> rest(args.begin() + static_cast<long>(i) + 1, args.end());
     const auto it = command_table().find(name);
-    if (it == command_table().end()) {
+    if (it == command_table().end() && name != "help") {
       std::string known;
       for (const auto& [k, v] : command_table()) known += (known.empty() ? "" : ", ") + k;
-      throw UsageError("unknown command '" + name + "'; commands: " + known);
+      throw UsageError("unknown command '" + name + "'; commands: " + known + ", help");
     }
-    return it->second(
-        std::vector<std::string>(args.begin() + static_cast<long>(i) + 1, args.end()));
+    // `rumble COMMAND --help`: that command's options, whatever else was given.
+    for (const std::string& a : rest) {
+      if (a == "--help" || a == "-h") {
+        const char* text = command_help(name);
+        std::cout << (text != nullptr ? text : kUsage);
+        return kExitOk;
+      }
+    }
+    if (name == "help") {  // `rumble help [COMMAND]`
+      if (rest.empty()) {
+        std::cout << kUsage;
+        return kExitOk;
+      }
+      const char* text = command_help(rest.front());
+      if (text == nullptr)
+        throw UsageError("help: unknown command '" + rest.front() + "'; see rumble --help");
+      std::cout << text;
+      return kExitOk;
+    }
+    return it->second(rest);
   } catch (const UsageError& e) {
     std::cerr << "rumble: error: " << e.what() << '\n';
     return kExitConfig;

@@ -14,6 +14,10 @@ namespace rumble::cli {
 /// Parses argv and runs a sub-command; returns the process exit code (see exit_codes.hpp).
 int main(int argc, char** argv);
 
+/// The help text of a command (its options, each with its meaning and default); null when
+/// there is no such command.
+const char* command_help(const std::string& command);
+
 int run_command(const std::vector<std::string>& args);
 int validate_command(const std::vector<std::string>& args);
 int plugins_command(const std::vector<std::string>& args);

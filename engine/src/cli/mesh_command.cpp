@@ -16,13 +16,14 @@ namespace rumble::cli {
 int mesh_command(const std::vector<std::string>& args) {
   const Arguments a(args, {}, {"output"});
   if (a.positional().size() != 1) throw UsageError("usage: rumble mesh FILE [--output DIR]");
+  const auto output = a.directory("output", "mesh.vtu");  // before a mesh is built
   PluginRegistry registry;
-  const auto doc = prepare_scenario(a.positional().front(), registry, scenario::Format::kText);
+  const auto doc =
+      prepare_scenario(a.positional().front(), registry, scenario::Format::kText, {}, kNotARun);
   if (!doc) return kExitConfig;
   const ScenarioSoil s = soil_on_footprints(*doc, registry);
-  const std::filesystem::path out_dir = a.value("output")
-                                            ? std::filesystem::path(*a.value("output"))
-                                            : scenario::results_directory(doc->json, doc->path);
+  const std::filesystem::path out_dir =
+      output ? std::filesystem::path(*output) : scenario::results_directory(doc->json, doc->path);
   std::filesystem::create_directories(out_dir);
   const auto path = out_dir / "mesh.vtu";
   if (!s.soil->write_fields(0.0, path)) {

@@ -38,8 +38,10 @@ int plugins_command(const std::vector<std::string>& args) {
                      {"abi", std::to_string(d->abi_major) + "." + std::to_string(d->abi_minor)},
                      {"build", d->build_fingerprint},
                      {"path", lib->path.string()},
+                     {"origin", lib->origin},
                      {"types", types}});
     }
+    // Skipped libraries are in the log (stderr), so stdout stays one JSON array of libraries.
     std::cout << out.dump(2) << '\n';
     return kExitOk;
   }
@@ -51,7 +53,7 @@ int plugins_command(const std::vector<std::string>& args) {
     const auto* d = lib->descriptor;
     std::cout << '\n'
               << d->plugin_name << ' ' << d->plugin_version << "  (ABI " << d->abi_major << '.'
-              << d->abi_minor << ")  " << lib->path.string() << '\n';
+              << d->abi_minor << ")  " << lib->path.string() << "  (from " << lib->origin << ")\n";
     for (const ComponentType& t : registry.types()) {
       if (t.library != lib) continue;
       std::cout << "  " << kind_name(t.kind) << ' ' << t.type_name << ": " << t.summary << '\n';
@@ -68,6 +70,11 @@ int plugins_command(const std::vector<std::string>& args) {
         std::cout << "    needs of every soil: " << needs << '\n';
       }
     }
+  }
+  if (!registry.skipped().empty()) {
+    std::cout << "\nnot loaded (skipped; the plugins above are usable):\n";
+    for (const SkippedPlugin& s : registry.skipped())
+      std::cout << "  " << s.path.string() << "  (from " << s.origin << "): " << s.reason << '\n';
   }
   return kExitOk;
 }

@@ -17,21 +17,26 @@
 namespace rumble::cli {
 
 int run_command(const std::vector<std::string>& args) {
-  const Arguments a(args, {"no-progress", "no-plots", "overwrite", "allow-outside-results"},
+  const Arguments a(args, {"no-progress", "no-plots", "overwrite", "allow-outside-results", "yes"},
                     {"output"}, {"set"});
   if (a.positional().size() != 1) {
     throw UsageError(
-        "usage: rumble run FILE [--output DIR] [--overwrite] [--allow-outside-results] "
+        "usage: rumble run FILE [--output DIR] [--overwrite] [--allow-outside-results] [--yes] "
         "[--no-progress] [--no-plots] [--set POINTER=VALUE ...]");
   }
   std::vector<scenario::Override> overrides;
   for (const std::string& set : a.values("set"))
     overrides.push_back(scenario::parse_set_option(set));
+  const auto output = a.directory("output", "its results");  // before anything is checked
   PluginRegistry registry;
-  auto doc = prepare_scenario(a.positional()[0], registry, scenario::Format::kText, overrides);
+  scenario::CheckOptions check;
+  check.size_confirmed = a.flag("yes");  // a run beyond the size limits (scenario/run_size.hpp)
+  check.results_directory = !output;     // --output DIR replaces outputs.directory
+  auto doc =
+      prepare_scenario(a.positional()[0], registry, scenario::Format::kText, overrides, check);
   if (!doc) return kExitConfig;
-  if (const auto dir = a.value("output")) {  // overrides outputs.directory: the user's choice
-    doc->json["outputs"]["directory"] = std::filesystem::absolute(*dir).string();
+  if (output) {  // overrides outputs.directory: the user's choice
+    doc->json["outputs"]["directory"] = std::filesystem::absolute(*output).string();
   } else if (!a.flag("allow-outside-results")) {
     if (const auto outside = scenario::results_outside_scenario_folder(doc->json, doc->path)) {
       scenario::print_diagnostics(std::cerr, &*doc, doc->path, {*outside}, scenario::Format::kText);

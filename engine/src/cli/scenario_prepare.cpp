@@ -10,9 +10,11 @@ namespace rumble::cli {
 std::optional<scenario::Document> prepare_scenario(const std::filesystem::path& path,
                                                    PluginRegistry& registry,
                                                    scenario::Format format,
-                                                   std::vector<scenario::Override> overrides) {
-  registry.load_default_directories();
-  scenario::CheckedScenario checked = scenario::check_scenario_file(path, overrides, registry);
+                                                   std::vector<scenario::Override> overrides,
+                                                   const scenario::CheckOptions& options) {
+  if (options.load_plugins) registry.load_default_directories();
+  scenario::CheckedScenario checked =
+      scenario::check_scenario_file(path, overrides, registry, options);
   std::optional<scenario::Document>& doc = checked.doc;
   const std::vector<scenario::Diagnostic>& diagnostics = checked.diagnostics;
   const bool ok = checked.ok();

@@ -9,6 +9,7 @@
 
 #include "plugin/instance.hpp"
 #include "plugin/registry.hpp"
+#include "scenario/check_file.hpp"
 #include "scenario/overrides.hpp"
 #include "scenario/scenario.hpp"
 
@@ -17,11 +18,17 @@ namespace rumble::cli {
 /// Returns the validated document (defaults filled), or nullopt when anything is wrong (the
 /// diagnostics have been printed). `overrides` (--set) are applied in order before validation.
 /// Throws PluginLoadError when a plugin cannot be loaded, ConfigError when an override cannot be
-/// applied.
+/// applied. options.load_plugins false: not even the default plugin directories are loaded.
 std::optional<scenario::Document> prepare_scenario(const std::filesystem::path& path,
                                                    PluginRegistry& registry,
                                                    scenario::Format format,
-                                                   std::vector<scenario::Override> overrides = {});
+                                                   std::vector<scenario::Override> overrides = {},
+                                                   const scenario::CheckOptions& options = {});
+
+/// For the commands that build a scenario's parts without running it (mesh, soil-frf,
+/// calibrate, stability): the run's size is no concern of theirs.
+inline constexpr scenario::CheckOptions kNotARun{
+    .load_plugins = true, .size_confirmed = true, .results_directory = false};
 
 /// The scenario's soil (/soil), built and laid on the track's footprints as a run lays it: what
 /// `rumble mesh` and `rumble soil-frf` look at.

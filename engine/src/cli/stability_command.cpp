@@ -37,7 +37,8 @@ int stability_command(const std::vector<std::string>& args) {
     steps.push_back(H);
   }
   PluginRegistry registry;
-  const auto doc = prepare_scenario(a.positional()[0], registry, scenario::Format::kText);
+  const auto doc =
+      prepare_scenario(a.positional()[0], registry, scenario::Format::kText, {}, kNotARun);
   if (!doc) return kExitConfig;
   const auto points =
       coupling_stability(scenario::make_run_spec(doc->json, doc->path), registry, steps);

@@ -27,7 +27,7 @@ using study::RunRecord;
 using study::RunState;
 
 constexpr const char* kStudyUsage =
-    "usage: rumble study FILE [--jobs N] [--force] [--dry-run] [--no-report]";
+    "usage: rumble study FILE [--jobs N] [--force] [--dry-run] [--no-report] [--yes]";
 
 int parse_jobs(const std::string& text) {
   std::size_t used = 0;
@@ -56,7 +56,7 @@ std::string shown(const fs::path& p) {
 }  // namespace
 
 int study_command(const std::vector<std::string>& args) {
-  const Arguments a(args, {"force", "dry-run", "no-report"}, {"jobs"});
+  const Arguments a(args, {"force", "dry-run", "no-report", "yes"}, {"jobs"});
   if (a.positional().size() != 1) throw UsageError(kStudyUsage);
   const int cli_jobs = a.value("jobs") ? parse_jobs(*a.value("jobs")) : 0;  // 0: not given
   const fs::path file = a.positional()[0];
@@ -75,7 +75,8 @@ int study_command(const std::vector<std::string>& args) {
 
   PluginRegistry registry;
   registry.load_default_directories();
-  std::vector<RunRecord> records = study::prepare_runs(*s, std::move(runs), registry, std::cerr);
+  std::vector<RunRecord> records =
+      study::prepare_runs(*s, std::move(runs), registry, std::cerr, a.flag("yes"));
   const fs::path state_file = s->output / "study.json";
   const auto previous = study::read_previous_state(state_file);
   for (RunRecord& r : records) {

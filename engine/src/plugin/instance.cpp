@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "core/errors.hpp"
 #include "core/interrupt.hpp"
 #include "core/logging.hpp"
+#include "core/number_text.hpp"
 
 namespace rumble {
 namespace {
@@ -37,13 +39,26 @@ const rumble_lifecycle_api* lifecycle_table(const ComponentType& type) {
   return nullptr;
 }
 
+/// The index of the first value that is not finite (NaN, +-inf), if any (none in no array).
+std::optional<std::size_t> first_not_finite(const double* v, std::size_t n) {
+  if (v == nullptr) return std::nullopt;
+  for (std::size_t i = 0; i < n; ++i)
+    if (!std::isfinite(v[i])) return i;
+  return std::nullopt;
+}
+
+bool all_finite(const double* v, std::size_t n) {
+  return !first_not_finite(v, n);
+}
+
 }  // namespace
 
 Instance::Instance(const ComponentType& type, std::string label, const nlohmann::json& params,
                    const std::filesystem::path& scenario_dir)
     : type_(type),
       label_(std::move(label)),
-      scenario_dir_(scenario_dir.string()),
+      // "x.json" has the directory "": the current one, which plugins should read as ".".
+      scenario_dir_(scenario_dir.empty() ? std::string(".") : scenario_dir.string()),
       logger_(logger(std::string(kind_name(type.kind)) + "/" + type.type_name)) {
   host_.struct_size = sizeof(rumble_host);
   host_.abi_minor = RUMBLE_ABI_MINOR;
@@ -57,7 +72,14 @@ Instance::Instance(const ComponentType& type, std::string label, const nlohmann:
   lifecycle_ = lifecycle_table(type);
   const std::string text = params.dump();
   const char* error = nullptr;
-  const rumble_status s = type.factory->create(text.c_str(), &host_, &handle_, &error);
+  rumble_status s = RUMBLE_ERROR;
+  try {  // a plugin written against abi.h directly may let an exception escape
+    s = type.factory->create(text.c_str(), &host_, &handle_, &error);
+  } catch (const std::exception& e) {
+    throw_escaped("create", e.what());
+  } catch (...) {
+    throw_escaped("create", "an exception not derived from std::exception");
+  }
   if (s != RUMBLE_OK || handle_ == nullptr) {
     throw ConfigError(label_ + ": " + kind_name(type.kind) + " type '" + type.type_name +
                       "' refused its params: " + (error != nullptr ? error : "no message") +
@@ -98,7 +120,7 @@ void Instance::set_run_context(const std::filesystem::path& results_dir, unsigne
 
 void Instance::finalize() {
   if (lifecycle_ != nullptr && lifecycle_->finalize != nullptr)
-    check(lifecycle_->finalize(handle_), "finalize");
+    call("finalize", [&] { return lifecycle_->finalize(handle_); });
 }
 
 bool Instance::owns_checkpoints() const {
@@ -106,21 +128,54 @@ bool Instance::owns_checkpoints() const {
          type_.capabilities.has(RUMBLE_CAP_OWN_CHECKPOINTS);
 }
 void Instance::checkpoint_save(std::uint32_t slot) {
-  check(lifecycle_->checkpoint_save(handle_, slot), "checkpoint_save");
+  call("checkpoint_save", [&] { return lifecycle_->checkpoint_save(handle_, slot); });
 }
 void Instance::checkpoint_restore(std::uint32_t slot) {
-  check(lifecycle_->checkpoint_restore(handle_, slot), "checkpoint_restore");
+  call("checkpoint_restore", [&] { return lifecycle_->checkpoint_restore(handle_, slot); });
 }
 void Instance::checkpoint_free(std::uint32_t slot) {
   if (lifecycle_->checkpoint_free != nullptr)
-    check(lifecycle_->checkpoint_free(handle_, slot), "checkpoint_free");
+    call("checkpoint_free", [&] { return lifecycle_->checkpoint_free(handle_, slot); });
+}
+
+std::string Instance::who() const {
+  return std::string(kind_name(type_.kind)) + " '" + type_.type_name + "' (" + label_ + ")";
+}
+
+std::string Instance::last_message() const {
+  // NULL is what a C plugin returns when it has nothing to say; std::string(NULL) is undefined.
+  const char* m = handle_ != nullptr ? common_->last_message(handle_) : nullptr;
+  return m != nullptr && *m != '\0' ? std::string(m) : std::string("no message");
+}
+
+void Instance::throw_escaped(const char* call, const std::string& what) const {
+  throw RunError(who() + ": " + call + " let an exception escape through the C interface: " + what +
+                 " (plugin " + type_.library->path.string() +
+                 "); a plugin must catch its exceptions and return a status (the SDK's "
+                 "RUMBLE_PLUGIN() does this); report it to the plugin's author");
+}
+
+void Instance::throw_not_finite(const char* call, const std::string& what, std::size_t index,
+                                double value, bool inputs_finite) const {
+  const std::string got = std::isnan(value) ? "nan" : (value > 0 ? "inf" : "-inf");
+  if (!inputs_finite) {
+    throw RunError(who() + ": " + call + " returned a " + what + " that is not finite (" + got +
+                   " at " + std::to_string(index) +
+                   ") from inputs that were not finite either: the solution diverged before "
+                   "this call; reduce time.macro_step or track.integrator.micro_step, or use the "
+                   "implicit coupler");
+  }
+  throw RunError(who() + ": " + call + " returned a " + what + " that is not finite (" + got +
+                 " at " + std::to_string(index) + ") from finite inputs (plugin " +
+                 type_.library->path.string() +
+                 "): a defect or an instability inside the plugin; check its params, or report "
+                 "it to the plugin's author");
 }
 
 rumble_status Instance::check(rumble_status status, const char* call) const {
   if (status == RUMBLE_OK) return status;
-  const std::string what = common_->last_message(handle_);
-  const std::string who =
-      std::string(kind_name(type_.kind)) + " '" + type_.type_name + "' (" + label_ + ")";
+  const std::string what = last_message();
+  const std::string who = this->who();
   switch (status) {
     case RUMBLE_WARNING:
       logger_->warn("{}: {}", call, what);
@@ -136,7 +191,7 @@ rumble_status Instance::check(rumble_status status, const char* call) const {
 
 std::size_t Instance::state_size() const {
   std::uint64_t n = 0;
-  check(common_->state_size(handle_, &n), "state_size");
+  call("state_size", [&] { return common_->state_size(handle_, &n); });
   return static_cast<std::size_t>(n);
 }
 
@@ -146,11 +201,12 @@ void Instance::save_state(std::vector<double>& buffer) const {
     throw RunError(std::string(kind_name(type_.kind)) + " '" + type_.type_name +
                    "' does not support save/restore, which this coupling scheme needs");
   }
-  check(common_->save_state(handle_, buffer.data(), buffer.size()), "save_state");
+  call("save_state", [&] { return common_->save_state(handle_, buffer.data(), buffer.size()); });
 }
 
 void Instance::restore_state(const std::vector<double>& buffer) {
-  check(common_->restore_state(handle_, buffer.data(), buffer.size()), "restore_state");
+  call("restore_state",
+       [&] { return common_->restore_state(handle_, buffer.data(), buffer.size()); });
 }
 
 // ---------------------------------------------------------------- vehicle
@@ -161,12 +217,18 @@ VehicleInstance::VehicleInstance(const ComponentType& type, std::string label,
     : Instance(type, std::move(label), params, scenario_dir),
       api_(static_cast<const rumble_vehicle_api*>(type.factory->api)) {
   std::uint64_t n = 0;
-  check(api_->dof_count(handle(), &n), "dof_count");
+  call("dof_count", [&] { return api_->dof_count(handle(), &n); });
   n_dof_ = static_cast<std::size_t>(n);
   std::uint64_t n_wheels = 0;
-  check(api_->wheels(handle(), nullptr, 0, &n_wheels), "wheels");
+  call("wheels", [&] { return api_->wheels(handle(), nullptr, 0, &n_wheels); });
   wheels_.resize(static_cast<std::size_t>(n_wheels));
-  check(api_->wheels(handle(), wheels_.data(), n_wheels, &n_wheels), "wheels");
+  call("wheels", [&] { return api_->wheels(handle(), wheels_.data(), n_wheels, &n_wheels); });
+  for (std::size_t w = 0; w < wheels_.size(); ++w) {
+    if (!std::isfinite(wheels_[w].offset))
+      throw_not_finite("wheels", "wheel offset", w, wheels_[w].offset);
+    if (!std::isfinite(wheels_[w].radius))
+      throw_not_finite("wheels", "wheel radius", w, wheels_[w].radius);
+  }
   if (n_dof_ == 0 || wheels_.empty()) {
     throw ConfigError(this->label() + ": vehicle type '" + type.type_name + "' declares " +
                       std::to_string(n_dof_) + " DOFs and " + std::to_string(wheels_.size()) +
@@ -181,36 +243,48 @@ bool VehicleInstance::has_lengths() const {
 
 void VehicleInstance::mass_matrix(const double* q, double* mass) const {
   if (has_lengths()) {
-    check(api_->mass_matrix2(handle(), q, n_dof_, mass, n_dof_ * n_dof_), "mass_matrix");
+    call("mass_matrix",
+         [&] { return api_->mass_matrix2(handle(), q, n_dof_, mass, n_dof_ * n_dof_); });
   } else {
-    check(api_->mass_matrix(handle(), q, mass), "mass_matrix");
+    call("mass_matrix", [&] { return api_->mass_matrix(handle(), q, mass); });
   }
+  if (const auto bad = first_not_finite(mass, n_dof_ * n_dof_))
+    throw_not_finite("mass_matrix", "mass matrix entry", *bad, mass[*bad], all_finite(q, n_dof_));
 }
 void VehicleInstance::forces(double t, const double* q, const double* qd, double* f) const {
   if (has_lengths()) {
-    check(api_->forces2(handle(), t, q, qd, n_dof_, f), "forces");
+    call("forces", [&] { return api_->forces2(handle(), t, q, qd, n_dof_, f); });
   } else {
-    check(api_->forces(handle(), t, q, qd, f), "forces");
+    call("forces", [&] { return api_->forces(handle(), t, q, qd, f); });
   }
+  if (const auto bad = first_not_finite(f, n_dof_))
+    throw_not_finite("forces", "generalized force", *bad, f[*bad],
+                     all_finite(q, n_dof_) && all_finite(qd, n_dof_));
 }
 void VehicleInstance::wheel_kinematics(const double* q, double* z, double* jacobian) const {
   if (has_lengths()) {
-    check(api_->wheel_kinematics2(handle(), q, n_dof_, z, wheels_.size(), jacobian),
-          "wheel_kinematics");
+    call("wheel_kinematics",
+         [&] { return api_->wheel_kinematics2(handle(), q, n_dof_, z, wheels_.size(), jacobian); });
   } else {
-    check(api_->wheel_kinematics(handle(), q, z, jacobian), "wheel_kinematics");
+    call("wheel_kinematics", [&] { return api_->wheel_kinematics(handle(), q, z, jacobian); });
   }
+  if (const auto bad = first_not_finite(z, wheels_.size()))
+    throw_not_finite("wheel_kinematics", "wheel position", *bad, z[*bad], all_finite(q, n_dof_));
+  if (jacobian == nullptr) return;
+  if (const auto bad = first_not_finite(jacobian, wheels_.size() * n_dof_))
+    throw_not_finite("wheel_kinematics", "Jacobian entry", *bad, jacobian[*bad],
+                     all_finite(q, n_dof_));
 }
 bool VehicleInstance::tangent(double t, const double* q, const double* qd, double* k,
                               double* c) const {
   if (has_lengths()) {
     if (!capabilities().has(RUMBLE_CAP_TANGENT) || api_->tangent2 == nullptr) return false;
-    check(api_->tangent2(handle(), t, q, qd, n_dof_, k, c), "tangent");
+    call("tangent", [&] { return api_->tangent2(handle(), t, q, qd, n_dof_, k, c); });
     return true;
   }
   if (api_->tangent == nullptr) return false;
   try {
-    check(api_->tangent(handle(), t, q, qd, k, c), "tangent");
+    call("tangent", [&] { return api_->tangent(handle(), t, q, qd, k, c); });
   } catch (const Discarded&) {
     return false;
   }
@@ -220,14 +294,15 @@ std::vector<std::string> VehicleInstance::output_names() const {
   std::vector<std::string> names;
   if (has_lengths() && api_->output_names2 != nullptr) {
     std::uint64_t n = 0;
-    check(api_->output_names2(handle(), nullptr, 0, &n), "output_names");
+    call("output_names", [&] { return api_->output_names2(handle(), nullptr, 0, &n); });
     std::vector<const char*> raw(static_cast<std::size_t>(n), nullptr);
-    check(api_->output_names2(handle(), raw.data(), n, &n), "output_names");
+    call("output_names", [&] { return api_->output_names2(handle(), raw.data(), n, &n); });
     for (const char* name : raw) names.emplace_back(name != nullptr ? name : "");
     return names;
   }
   if (api_->output_names == nullptr) return names;
-  const std::string all = api_->output_names(handle());
+  const char* listed = api_->output_names(handle());
+  const std::string all = listed != nullptr ? listed : "";
   std::size_t start = 0;
   while (start < all.size()) {
     const std::size_t end = all.find(';', start);
@@ -239,9 +314,9 @@ std::vector<std::string> VehicleInstance::output_names() const {
 }
 void VehicleInstance::outputs(double t, const double* q, const double* qd, double* values) const {
   if (has_lengths() && api_->outputs2 != nullptr) {
-    check(api_->outputs2(handle(), t, q, qd, n_dof_, values, n_outputs_), "outputs");
+    call("outputs", [&] { return api_->outputs2(handle(), t, q, qd, n_dof_, values, n_outputs_); });
   } else if (api_->outputs != nullptr) {
-    check(api_->outputs(handle(), t, q, qd, values), "outputs");
+    call("outputs", [&] { return api_->outputs(handle(), t, q, qd, values); });
   }
 }
 
@@ -254,7 +329,8 @@ SoilInstance::SoilInstance(const ComponentType& type, std::string label,
 
 void SoilInstance::accept_layout(const std::vector<rumble_footprint>& footprints) {
   try {
-    check(api_->accept_layout(handle(), footprints.data(), footprints.size()), "accept_layout");
+    call("accept_layout",
+         [&] { return api_->accept_layout(handle(), footprints.data(), footprints.size()); });
   } catch (const std::exception& e) {
     throw ConfigError(std::string(e.what()) +
                       "; the layout comes from /track/sleepers (count, spacing, footprint)");
@@ -263,13 +339,33 @@ void SoilInstance::accept_layout(const std::vector<rumble_footprint>& footprints
 void SoilInstance::initialize(double t0, const std::vector<double>& static_force,
                               std::vector<double>& u) {
   u.resize(static_force.size());
-  check(api_->initialize(handle(), t0, static_force.data(), u.data(), u.size()), "initialize");
+  call("initialize",
+       [&] { return api_->initialize(handle(), t0, static_force.data(), u.data(), u.size()); });
+  if (const auto bad = first_not_finite(u.data(), u.size()))
+    throw_not_finite("initialize", "static displacement", *bad, u[*bad],
+                     all_finite(static_force.data(), static_force.size()));
 }
 void SoilInstance::advance(double t, double H, const rumble_waveform& force) {
-  check(api_->advance(handle(), t, H, &force), "advance");
+  // The forces come from the engine's side (the track, or a reduced soil's recorded forces):
+  // when they are not finite the coupled solution has diverged, whatever the soil does next.
+  const std::size_t n_coeff = (force.order + 1) * force.n;
+  if (const auto bad = first_not_finite(force.coeff, n_coeff)) {
+    throw RunError("simulation diverged at t = " + number_text(t) +
+                   " s: the footprint force given to " + who() + " is not finite (footprint " +
+                   std::to_string(*bad % force.n) +
+                   "); reduce time.macro_step or track.integrator.micro_step, or use the "
+                   "implicit coupler");
+  }
+  call("advance", [&] { return api_->advance(handle(), t, H, &force); });
 }
 void SoilInstance::motion(double* u, double* v, std::size_t n) const {
-  check(api_->motion(handle(), u, v, n), "motion");
+  call("motion", [&] { return api_->motion(handle(), u, v, n); });
+  // Every input (the forces) was checked finite by advance, so a value that is not finite is
+  // the plugin's own (the divergence monitor would otherwise blame the coupling for it).
+  if (const auto bad = first_not_finite(u, n))
+    throw_not_finite("motion", "displacement", *bad, u[*bad]);
+  if (const auto bad = first_not_finite(v, n))
+    throw_not_finite("motion", "velocity", *bad, v[*bad]);
 }
 bool SoilInstance::frequency_response(double f_hz, std::size_t n,
                                       std::vector<std::complex<double>>& receptance) {
@@ -278,11 +374,15 @@ bool SoilInstance::frequency_response(double f_hz, std::size_t n,
   re_.resize(n * n);
   im_.resize(n * n);
   try {
-    check(api_->frequency_response(handle(), f_hz, re_.data(), im_.data(), n),
-          "frequency_response");
+    call("frequency_response",
+         [&] { return api_->frequency_response(handle(), f_hz, re_.data(), im_.data(), n); });
   } catch (const Discarded&) {
     return false;
   }
+  if (const auto bad = first_not_finite(re_.data(), n * n))
+    throw_not_finite("frequency_response", "receptance (real part)", *bad, re_[*bad]);
+  if (const auto bad = first_not_finite(im_.data(), n * n))
+    throw_not_finite("frequency_response", "receptance (imaginary part)", *bad, im_[*bad]);
   receptance.resize(n * n);
   for (std::size_t k = 0; k < n * n; ++k) receptance[k] = {re_[k], im_[k]};
   return true;
@@ -291,51 +391,56 @@ bool SoilInstance::set_receivers(const std::vector<rumble_receiver>& receivers) 
   if (api_->set_receivers == nullptr) return false;
   if (type().abi_minor >= 1 && !capabilities().has(RUMBLE_CAP_SURFACE_RECEIVERS)) return false;
   try {
-    check(api_->set_receivers(handle(), receivers.data(), receivers.size()), "set_receivers");
+    call("set_receivers",
+         [&] { return api_->set_receivers(handle(), receivers.data(), receivers.size()); });
   } catch (const Discarded&) {
     return false;
   }
   return true;
 }
 void SoilInstance::receiver_velocity(double* v, std::size_t n) const {
-  check(api_->receiver_velocity(handle(), v, n), "receiver_velocity");
+  call("receiver_velocity", [&] { return api_->receiver_velocity(handle(), v, n); });
+  if (const auto bad = first_not_finite(v, n))
+    throw_not_finite("receiver_velocity", "receiver velocity", *bad, v[*bad]);
 }
 bool SoilInstance::set_probes(const std::vector<rumble_probe>& probes, double sample_interval) {
   if (type().abi_minor < 1 || !capabilities().has(RUMBLE_CAP_RECEIVERS)) return false;
-  check(api_->set_probes(handle(), probes.data(), probes.size(), sample_interval), "set_probes");
+  call("set_probes",
+       [&] { return api_->set_probes(handle(), probes.data(), probes.size(), sample_interval); });
   n_probes_ = probes.size();
   return true;
 }
 void SoilInstance::take_probe_samples(std::vector<double>& times, std::vector<double>& values) {
   if (n_probes_ == 0) return;
   std::uint64_t n = 0;
-  check(api_->probe_samples(handle(), nullptr, nullptr, 0, &n), "probe_samples");
+  call("probe_samples", [&] { return api_->probe_samples(handle(), nullptr, nullptr, 0, &n); });
   if (n == 0) return;
   const std::size_t t0 = times.size(), v0 = values.size();
   times.resize(t0 + n);
   values.resize(v0 + n * n_probes_ * RUMBLE_PROBE_VALUES);
   std::uint64_t written = 0;
-  check(api_->probe_samples(handle(), times.data() + t0, values.data() + v0, n, &written),
-        "probe_samples");
+  call("probe_samples", [&] {
+    return api_->probe_samples(handle(), times.data() + t0, values.data() + v0, n, &written);
+  });
   times.resize(t0 + written);
   values.resize(v0 + written * n_probes_ * RUMBLE_PROBE_VALUES);
 }
 bool SoilInstance::write_fields(double t, const std::filesystem::path& path) {
   if (type().abi_minor < 1 || !capabilities().has(RUMBLE_CAP_FIELD_OUTPUT)) return false;
-  check(api_->write_fields(handle(), t, path.c_str()), "write_fields");
+  call("write_fields", [&] { return api_->write_fields(handle(), t, path.c_str()); });
   return true;
 }
 bool SoilInstance::linear_matrix(rumble_matrix which, Eigen::SparseMatrix<double>& out) {
   if (type().abi_minor < 1 || !capabilities().has(RUMBLE_CAP_LINEAR_MATRICES)) return false;
   rumble_csc csc{};
-  check(api_->linear_matrix(handle(), which, &csc), "linear_matrix");
+  call("linear_matrix", [&] { return api_->linear_matrix(handle(), which, &csc); });
   const std::uint64_t rows = csc.rows, cols = csc.cols, nnz = csc.nnz;
   std::vector<std::int64_t> col_ptr(cols + 1), row_index(nnz);
   std::vector<double> values(nnz);
   csc.col_ptr = col_ptr.data();
   csc.row_index = row_index.data();
   csc.values = values.data();
-  check(api_->linear_matrix(handle(), which, &csc), "linear_matrix");
+  call("linear_matrix", [&] { return api_->linear_matrix(handle(), which, &csc); });
   const auto defect = [&](const std::string& what) {
     return RunError("soil '" + type_name() + "' (" + label() + "): linear_matrix " +
                     std::to_string(static_cast<int>(which)) +
@@ -369,7 +474,9 @@ bool SoilInstance::linear_matrix(rumble_matrix which, Eigen::SparseMatrix<double
 
 bool SoilInstance::wave_speeds(double& c_s_min, double& c_r_min) const {
   if (type().abi_minor < 1 || !capabilities().has(RUMBLE_CAP_WAVE_SPEEDS)) return false;
-  check(api_->wave_speeds(handle(), &c_s_min, &c_r_min), "wave_speeds");
+  call("wave_speeds", [&] { return api_->wave_speeds(handle(), &c_s_min, &c_r_min); });
+  if (!std::isfinite(c_s_min)) throw_not_finite("wave_speeds", "shear wave speed", 0, c_s_min);
+  if (!std::isfinite(c_r_min)) throw_not_finite("wave_speeds", "Rayleigh wave speed", 0, c_r_min);
   return true;
 }
 
@@ -383,8 +490,15 @@ CouplerInstance::CouplerInstance(const ComponentType& type, std::string label,
 
 rumble_status CouplerInstance::run(const rumble_cosim_host& host, double t0, double t_end, double H,
                                    std::string& message) {
-  const rumble_status s = api_->run(handle(), &host, t0, t_end, H);
-  message = s == RUMBLE_OK ? "" : common().last_message(handle());
+  rumble_status s = RUMBLE_ERROR;
+  try {
+    s = api_->run(handle(), &host, t0, t_end, H);
+  } catch (const std::exception& e) {
+    throw_escaped("run", e.what());
+  } catch (...) {
+    throw_escaped("run", "an exception not derived from std::exception");
+  }
+  message = s == RUMBLE_OK ? "" : last_message();
   return s;
 }
 

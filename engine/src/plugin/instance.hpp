@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -60,8 +61,35 @@ class Instance {
   void finalize();
 
  protected:
+  /// Makes one call into the plugin's C table: `fn` returns its status. A status other than OK
+  /// or WARNING throws RunError (ERROR/FATAL) or Discarded, naming the call and the plugin; so
+  /// does an exception thrown across the C table (a plugin written against abi.h directly may
+  /// let one escape), which would otherwise arrive without either.
+  template <class Fn>
+  rumble_status call(const char* name, Fn&& fn) const {
+    rumble_status status = RUMBLE_ERROR;
+    try {
+      status = fn();
+    } catch (const std::exception& e) {
+      throw_escaped(name, e.what());
+    } catch (...) {
+      throw_escaped(name, "an exception not derived from std::exception");
+    }
+    return check(status, name);
+  }
   /// Throws RunError (ERROR/FATAL) or Discarded, naming the call and the plugin.
   rumble_status check(rumble_status status, const char* call) const;
+  /// RunError: `call` returned a value that is not finite (`what`: "displacement", at `index`).
+  /// When the inputs the engine gave were not finite either (`inputs_finite` false), the
+  /// engine's side diverged first and the message says so instead of blaming the plugin.
+  [[noreturn]] void throw_not_finite(const char* call, const std::string& what, std::size_t index,
+                                     double value, bool inputs_finite = true) const;
+  /// RunError: an exception escaped `call` through the C table.
+  [[noreturn]] void throw_escaped(const char* call, const std::string& what) const;
+  /// "soil 'clm' (/soil)".
+  std::string who() const;
+  /// The plugin's last_message, "no message" when it gives none (NULL or empty).
+  std::string last_message() const;
   rumble_instance* handle() const { return handle_; }
   const rumble_common_api& common() const { return *common_; }
   const rumble_lifecycle_api* lifecycle() const { return lifecycle_; }

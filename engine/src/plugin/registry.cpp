@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "core/errors.hpp"
+#include "core/logging.hpp"
 #include "plugin/function_table.hpp"
 
 namespace rumble {
@@ -19,6 +20,37 @@ namespace dll = boost::dll;
 
 std::string quoted(const fs::path& p) {
   return "'" + p.string() + "'";
+}
+
+/// What a path that is no regular file is, for messages.
+std::string file_kind(const fs::file_status& status) {
+  switch (status.type()) {
+    case fs::file_type::directory:
+      return "a directory";
+    case fs::file_type::fifo:
+      return "a FIFO (named pipe)";
+    case fs::file_type::character:
+    case fs::file_type::block:
+      return "a device";
+    case fs::file_type::socket:
+      return "a socket";
+    default:
+      return "not a file";
+  }
+}
+
+/// The *.so regular files of dir, sorted (deterministic order, so duplicate errors are too);
+/// none when dir is not a directory.
+std::vector<fs::path> library_files(const fs::path& dir) {
+  std::error_code ec;
+  std::vector<fs::path> files;
+  if (!fs::is_directory(dir, ec)) return files;
+  for (const auto& entry : fs::directory_iterator(dir, ec)) {
+    if (entry.is_regular_file(ec) && entry.path().extension() == ".so")
+      files.push_back(entry.path());
+  }
+  std::sort(files.begin(), files.end());
+  return files;
 }
 
 /// Boost.DLL appends a stale errno ("...: Bad file descriptor"); keep dlerror's text only.
@@ -105,7 +137,7 @@ bool PluginRegistry::already_loaded(const fs::path& canonical) const {
                      [&](const auto& lib) { return lib->path == canonical; });
 }
 
-void PluginRegistry::load_library(const fs::path& requested) {
+void PluginRegistry::load_library(const fs::path& requested, const std::string& origin) {
   std::error_code ec;
   if (!fs::exists(requested, ec)) {
     throw PluginLoadError("plugin " + quoted(requested) +
@@ -113,6 +145,11 @@ void PluginRegistry::load_library(const fs::path& requested) {
                           "scenario file) or RUMBLE_PLUGIN_PATH");
   }
   const fs::path path = fs::canonical(requested, ec);
+  // dlopen on a FIFO blocks until a writer comes, on a device reads it: regular files only.
+  if (const auto status = fs::status(path, ec); !fs::is_regular_file(status)) {
+    throw PluginLoadError("plugin " + quoted(requested) + ": " + file_kind(status) +
+                          ", not a regular file; name a shared library (.so) file");
+  }
   if (already_loaded(path)) return;
 
   auto library = std::make_shared<dll::shared_library>();
@@ -165,6 +202,7 @@ void PluginRegistry::load_library(const fs::path& requested) {
   loaded->path = path;
   loaded->library = library;
   loaded->descriptor = d;
+  loaded->origin = origin;
 
   if (d->n_factories == 0) {
     throw PluginLoadError("plugin " + quoted(path) +
@@ -242,31 +280,45 @@ void PluginRegistry::load_library(const fs::path& requested) {
 }
 
 void PluginRegistry::load_directory(const fs::path& dir) {
-  std::error_code ec;
-  if (!fs::is_directory(dir, ec)) return;
-  std::vector<fs::path> files;
-  for (const auto& entry : fs::directory_iterator(dir, ec)) {
-    if (entry.is_regular_file() && entry.path().extension() == ".so") files.push_back(entry.path());
-  }
-  std::sort(files.begin(), files.end());  // deterministic order, so duplicate errors are too
-  for (const fs::path& f : files) load_library(f);
+  for (const fs::path& f : library_files(dir)) load_library(f);
 }
 
 void PluginRegistry::load_default_directories() {
-  load_directory(builtin_plugin_directory());
+  // One bad library must not stop `rumble plugins` (or a scenario that does not need it):
+  // each failure is reported and skipped. A scenario using one of its types then fails at
+  // validation with "unknown type", whose hint names what was skipped.
+  const auto load = [&](const fs::path& file, const std::string& origin) {
+    try {
+      load_library(file, origin);
+    } catch (const PluginLoadError& e) {
+      skip(file, origin, e.what());
+    }
+  };
+  for (const fs::path& f : library_files(builtin_plugin_directory()))
+    load(f, "engine plugin directory");
   if (const char* env = std::getenv("RUMBLE_PLUGIN_PATH"); env != nullptr) {
     std::stringstream ss(env);
     std::string item;
     while (std::getline(ss, item, ':')) {
       if (item.empty()) continue;
       const fs::path p(item);
-      if (fs::is_directory(p)) {
-        load_directory(p);
+      std::error_code ec;
+      if (fs::is_directory(p, ec)) {
+        for (const fs::path& f : library_files(p)) load(f, "RUMBLE_PLUGIN_PATH");
+      } else if (!fs::exists(p, ec)) {
+        skip(p, "RUMBLE_PLUGIN_PATH",
+             "RUMBLE_PLUGIN_PATH entry '" + item +
+                 "': no such file or directory; correct or remove the entry");
       } else {
-        load_library(p);  // a file in RUMBLE_PLUGIN_PATH; a missing one is reported
+        load(p, "RUMBLE_PLUGIN_PATH");  // a library file named in RUMBLE_PLUGIN_PATH
       }
     }
   }
+}
+
+void PluginRegistry::skip(const fs::path& path, const std::string& origin, std::string reason) {
+  logger("plugins")->warn("{} (from {}); skipped, the other plugins are loaded", reason, origin);
+  skipped_.push_back({path, origin, std::move(reason)});
 }
 
 const ComponentType* PluginRegistry::find(rumble_kind kind, std::string_view type_name) const {

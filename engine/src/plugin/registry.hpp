@@ -27,6 +27,17 @@ struct LoadedLibrary {
   std::filesystem::path path;
   std::shared_ptr<boost::dll::shared_library> library;
   const rumble_plugin_descriptor* descriptor = nullptr;  // static data inside the library
+  /// Where the path came from: "engine plugin directory", "RUMBLE_PLUGIN_PATH",
+  /// "scenario /plugins/0", or "named directly" (tests, tools).
+  std::string origin;
+};
+
+/// A library or RUMBLE_PLUGIN_PATH entry of the default search that could not be loaded: it is
+/// reported and skipped, so that one bad file does not stop every command.
+struct SkippedPlugin {
+  std::filesystem::path path;
+  std::string origin;  // as LoadedLibrary::origin
+  std::string reason;  // the PluginLoadError text
 };
 
 /// What a component type offers and needs (rumble_capabilities), as the engine uses it.
@@ -56,12 +67,17 @@ class PluginRegistry {
  public:
   /// Loads one library and registers its types. Throws PluginLoadError with the exact reason:
   /// file not found, not a Rumble plugin, ABI major mismatch, newer minor, duplicate type.
-  void load_library(const std::filesystem::path& path);
-  /// Loads every *.so in each directory (non-existent directories are skipped).
+  /// Only regular files are loaded (a FIFO or device would block or mislead dlopen).
+  void load_library(const std::filesystem::path& path,
+                    const std::string& origin = "named directly");
+  /// Loads every *.so in each directory (non-existent directories are skipped); throws at the
+  /// first library that cannot be loaded.
   void load_directory(const std::filesystem::path& dir);
   /// The default search: the engine's own plugin directory, then RUMBLE_PLUGIN_PATH
-  /// (':'-separated).
+  /// (':'-separated directories or files). Never throws for one bad library or entry: each is
+  /// logged as a warning and listed in skipped(), and the search goes on.
   void load_default_directories();
+  const std::vector<SkippedPlugin>& skipped() const { return skipped_; }
 
   const ComponentType* find(rumble_kind kind, std::string_view type_name) const;
   /// Sorted type names of one kind.
@@ -74,8 +90,10 @@ class PluginRegistry {
 
  private:
   bool already_loaded(const std::filesystem::path& canonical) const;
+  void skip(const std::filesystem::path& path, const std::string& origin, std::string reason);
   std::vector<std::shared_ptr<const LoadedLibrary>> libraries_;
   std::vector<ComponentType> types_;
+  std::vector<SkippedPlugin> skipped_;
 };
 
 }  // namespace rumble

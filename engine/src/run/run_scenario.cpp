@@ -1,7 +1,10 @@
 #include "run/run_scenario.hpp"
 
+#include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <memory>
 #include <sstream>
 #include <vector>
@@ -26,6 +29,47 @@ using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
+
+// A plugin calling exit() in the middle of a run ended rumble with exit code 0, a truncated run
+// and summary.json still "running" (issue #8). While a run goes, exit() and quick_exit() are
+// intercepted: summary.json says "aborted" and why, stderr too, and the process ends with exit
+// code 3 whatever code was passed. (_exit() and signals cannot be caught so; a crash leaves
+// "running" with a stale heartbeat, docs/scenario.md.)
+std::atomic<bool> g_run_active{false};
+std::atomic<SummaryWriter*> g_run_summary{nullptr};
+
+void exit_during_run() {
+  if (!g_run_active.exchange(false)) return;
+  const std::string message =
+      "the process was told to exit during the run (a plugin called exit()?); the run did not "
+      "finish; the results up to the last completed macro step are on disk";
+  if (SummaryWriter* summary = g_run_summary.exchange(nullptr))
+    summary->fail(message, RunStatus::kAborted);
+  std::fprintf(stderr, "rumble: error: %s\n", message.c_str());
+  std::fflush(nullptr);
+  std::_Exit(exit_code(RunStatus::kAborted));
+}
+
+/// Arms the interception for one run (handlers registered once per process).
+class ExitGuard {
+ public:
+  ExitGuard() {
+    static const bool registered = [] {
+      std::atexit(exit_during_run);
+      std::at_quick_exit(exit_during_run);
+      return true;
+    }();
+    (void)registered;
+    g_run_active = true;
+  }
+  ~ExitGuard() {
+    g_run_active = false;
+    g_run_summary = nullptr;
+  }
+  ExitGuard(const ExitGuard&) = delete;
+  ExitGuard& operator=(const ExitGuard&) = delete;
+  void watch(SummaryWriter& summary) { g_run_summary = &summary; }
+};
 
 struct Ending {
   RunStatus status = RunStatus::kCompleted;
@@ -134,12 +178,14 @@ RunOutcome run_scenario(const scenario::RunSpec& spec, const PluginRegistry& reg
                         ResultsDirectory& results, const RunOptions& options) {
   const auto log = logger("engine");
   const auto run_start = Clock::now();
+  ExitGuard exit_guard;  // from the first plugin call: a constructor may call exit() too
   RunComponents c = build_components(spec, registry);
   TrackParticipant& track = *c.track;
 
   RunOutcome outcome;
   outcome.results_dir = results.path();
   SummaryWriter summary(results, spec, c, options.heartbeat_seconds);
+  exit_guard.watch(summary);
   give_run_context(c, outcome.results_dir);
 
   // Anything failing from here on leaves summary.json saying so, then propagates.

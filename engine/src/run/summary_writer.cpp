@@ -36,6 +36,8 @@ const char* status_name(RunStatus status) {
       return "interrupted";
     case RunStatus::kFailed:
       return "failed";
+    case RunStatus::kAborted:
+      return "aborted";
   }
   return "failed";
 }
@@ -91,9 +93,9 @@ void SummaryWriter::finish(RunStatus status, const std::string& message) {
   write();
 }
 
-void SummaryWriter::fail(const std::string& message) noexcept {
+void SummaryWriter::fail(const std::string& message, RunStatus status) noexcept {
   try {
-    summary_["status"] = status_name(RunStatus::kFailed);
+    summary_["status"] = status_name(status);
     summary_["message"] = message;
     write();
   } catch (...) {

@@ -18,9 +18,9 @@ namespace rumble {
 struct RunComponents;
 class ResultsDirectory;
 
-enum class RunStatus { kRunning, kCompleted, kInterrupted, kFailed };
+enum class RunStatus { kRunning, kCompleted, kInterrupted, kFailed, kAborted };
 
-/// "running", "completed", "interrupted", "failed" (as summary.json spells them).
+/// "running", "completed", "interrupted", "failed", "aborted" (as summary.json spells them).
 const char* status_name(RunStatus status);
 /// The process exit code of a run that ended so: 0 completed, 3 otherwise (exit_codes.hpp).
 int exit_code(RunStatus status);
@@ -42,9 +42,9 @@ class SummaryWriter {
   void heartbeat(double t, std::size_t steps);
   /// Writes the final summary with the run's status (and why, when not completed).
   void finish(RunStatus status, const std::string& message);
-  /// After an exception: status "failed" with the message, as far as the disk allows; never
-  /// throws (the original error is the one to report).
-  void fail(const std::string& message) noexcept;
+  /// After an exception: status "failed" (or `status`) with the message, as far as the disk
+  /// allows; never throws (the original error is the one to report).
+  void fail(const std::string& message, RunStatus status = RunStatus::kFailed) noexcept;
 
  private:
   using Clock = std::chrono::steady_clock;

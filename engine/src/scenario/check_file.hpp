@@ -18,6 +18,18 @@ class PluginRegistry;
 
 namespace rumble::scenario {
 
+/// What to check beyond the file itself.
+struct CheckOptions {
+  /// false (`rumble validate --no-load`): no library of /plugins is loaded and no component is
+  /// built, so no plugin code runs; component types and params go unchecked.
+  bool load_plugins = true;
+  /// true (`--yes`): a run estimated beyond the size limits (scenario/run_size.hpp) is wanted.
+  bool size_confirmed = false;
+  /// false when the command line names another results directory (`run --output DIR`) or the
+  /// command writes none: outputs.directory need not be usable then.
+  bool results_directory = true;
+};
+
 struct CheckedScenario {
   std::optional<Document> doc;  // nullopt when the file could not be read or parsed
   std::vector<Diagnostic> diagnostics;
@@ -29,8 +41,9 @@ struct CheckedScenario {
 /// filled into doc.json; diagnostics about a value an override set end with its note
 /// ("(set by --set)"). Throws ConfigError when an override cannot be applied, PluginLoadError
 /// when a plugin library the scenario lists cannot be loaded. The registry should hold the
-/// default plugin directories already.
+/// default plugin directories already. The run's estimated size is checked last.
 CheckedScenario check_scenario_file(const std::filesystem::path& path,
-                                    std::vector<Override>& overrides, PluginRegistry& registry);
+                                    std::vector<Override>& overrides, PluginRegistry& registry,
+                                    const CheckOptions& options = {});
 
 }  // namespace rumble::scenario

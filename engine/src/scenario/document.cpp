@@ -8,6 +8,7 @@
 
 #include "scenario/json_position.hpp"
 #include "scenario/syntax_error.hpp"
+#include "scenario/value_text.hpp"
 
 namespace rumble::scenario {
 namespace {
@@ -125,6 +126,28 @@ std::optional<Document> parse_document(fs::path path, std::string text,
     diagnostics.push_back(file_error(std::string("cannot be parsed: ") + e.what()));
     return std::nullopt;
   }
+  // nlohmann keeps the last of a repeated key and drops the first without a word: a value the
+  // user wrote would be ignored. Refused, with both places.
+  const auto duplicates = find_duplicate_keys(text);
+  for (const DuplicateKey& dup : duplicates) {
+    const LineColumn first = line_column(text, dup.first.begin);
+    const LineColumn second = line_column(text, dup.second.begin);
+    Diagnostic d = file_error(
+        "duplicate key " +
+            truncate_text(
+                std::string_view(text).substr(dup.first.begin, dup.first.end - dup.first.begin),
+                60) +
+            " (first at line " + std::to_string(first.line) + ", column " +
+            std::to_string(first.column) +
+            "); JSON keeps only the last value and would drop "
+            "the other without a word",
+        "keep one of the two");
+    d.pointer = dup.pointer;
+    d.line = second.line;
+    d.column = second.column;
+    diagnostics.push_back(std::move(d));
+  }
+  if (!duplicates.empty()) return std::nullopt;
   doc.text = std::move(text);
   return doc;
 }

@@ -449,6 +449,71 @@ LineColumn line_column(std::string_view text, std::size_t offset) {
   return lc;
 }
 
+std::vector<DuplicateKey> find_duplicate_keys(std::string_view text) {
+  struct Frame {
+    std::string pointer;
+    bool object;
+    std::size_t next_index;
+    std::unordered_map<std::string, TextSpan> keys;  // objects: each key's latest position
+  };
+  std::vector<DuplicateKey> out;
+  std::vector<Frame> stack;
+  Scanner s(text);
+  std::string pointer;
+  const auto next_member = [&](Frame& frame) {
+    s.skip_ws();
+    if (!frame.object) {
+      pointer = frame.pointer + "/" + std::to_string(frame.next_index++);
+      return true;
+    }
+    const std::size_t key_begin = s.pos();
+    std::string name;
+    if (!s.read_string(&name)) return false;
+    const TextSpan key{key_begin, s.pos()};
+    s.skip_ws();
+    if (s.peek() != ':') return false;
+    s.advance();
+    pointer = frame.pointer + "/" + escape_pointer_token(name);
+    const auto [it, fresh] = frame.keys.emplace(std::move(name), key);
+    if (!fresh) {
+      out.push_back(DuplicateKey{pointer, it->second, key});
+      it->second = key;
+    }
+    return true;
+  };
+  while (true) {
+    s.skip_ws();
+    if (s.at_end()) return out;
+    const char c = s.peek();
+    if (c == '{' || c == '[') {
+      s.advance();
+      stack.push_back(Frame{pointer, c == '{', 0, {}});
+      s.skip_ws();
+      if (s.peek() != (c == '{' ? '}' : ']')) {
+        if (!next_member(stack.back())) return out;
+        continue;
+      }
+    } else if (!s.skip_value()) {
+      return out;
+    }
+    bool more = false;
+    while (!stack.empty()) {
+      s.skip_ws();
+      const char d = s.peek();
+      if (d == ',') {
+        s.advance();
+        if (!next_member(stack.back())) return out;
+        more = true;
+        break;
+      }
+      if (d != (stack.back().object ? '}' : ']')) return out;
+      s.advance();
+      stack.pop_back();
+    }
+    if (!more) return out;
+  }
+}
+
 std::size_t token_start(std::string_view text, std::size_t offset) {
   std::size_t pos = text.substr(0, kUtf8Bom.size()) == kUtf8Bom ? kUtf8Bom.size() : 0;
   while (pos < text.size()) {

@@ -66,6 +66,16 @@ class PositionIndex {
 
 LineColumn line_column(std::string_view text, std::size_t offset);
 
+/// An object key written twice: nlohmann keeps the last value and drops the first silently.
+struct DuplicateKey {
+  std::string pointer;  // of the member, e.g. "/time/end"
+  TextSpan first;       // the earlier key (with its quotes)
+  TextSpan second;      // the later one
+};
+/// Every key that repeats within one object, in text order (three times: two findings). One
+/// pass without recursion, like PositionIndex; stops quietly where the text is malformed.
+std::vector<DuplicateKey> find_duplicate_keys(std::string_view text);
+
 /// JSON's insignificant whitespace (RFC 8259): space, tab, line feed, carriage return.
 inline bool is_json_whitespace(char c) {
   return c == ' ' || c == '\t' || c == '\n' || c == '\r';

@@ -14,6 +14,8 @@ using scenario::Diagnostic;
 
 using scenario::finding;
 
+constexpr double kMaxSleepers = 100000;  // track.sleepers.count's maximum in the schema
+
 }  // namespace
 
 std::vector<Diagnostic> check_scenario_relations(const nlohmann::json& sc) {
@@ -83,16 +85,21 @@ std::vector<Diagnostic> check_scenario_relations(const nlohmann::json& sc) {
                                 number_text(track.rail_end()) + "] m",
                             "sleeper i lies at x = i * spacing; start within the track"));
     } else if (x_end > track.rail_end()) {
-      const int needed = static_cast<int>(std::ceil((x_end + 2.0 * track.sleeper_spacing) /
-                                                    track.sleeper_spacing)) +
-                         1;
+      // In double: a long run at speed may need more sleepers than an int counts (the hint
+      // once read "use at least -2147483647 sleepers").
+      const double needed =
+          std::ceil((x_end + 2.0 * track.sleeper_spacing) / track.sleeper_spacing) + 1.0;
+      const std::string more =
+          needed <= kMaxSleepers
+              ? ", or use at least " + number_text(needed, 15) + " sleepers (track.sleepers.count)"
+              : " (the rail would need " + number_text(needed) + " sleepers, more than the " +
+                    number_text(kMaxSleepers) + " allowed)";
       out.push_back(finding(
           ptr + "/speed",
           "at " + number_text(speed) + " m/s the vehicle reaches x = " + number_text(x_end) +
               " m at t = " + number_text(t_end) + " s, past the end of the rail at " +
               number_text(track.rail_end()) + " m",
-          "lower time.end or the speed, or use at least " + std::to_string(needed) +
-              " sleepers (track.sleepers.count)"));
+          "lower time.end or the speed" + more));
     }
   }
   return out;

@@ -61,7 +61,7 @@ constexpr std::string_view kSchema = R"json({
           "additionalProperties": false,
           "required": ["count", "spacing", "mass", "footprint"],
           "properties": {
-            "count": {"type": "integer", "minimum": 3, "description": "number of sleepers"},
+            "count": {"type": "integer", "minimum": 3, "maximum": 100000, "description": "number of sleepers (at most 100000: 60 km at 0.6 m)"},
             "spacing": {"type": "number", "exclusiveMinimum": 0, "description": "distance between sleepers; sleeper i is at x = i * spacing [m]"},
             "mass": {"type": "number", "exclusiveMinimum": 0, "description": "mass per rail seat (half sleeper) [kg]"},
             "footprint": {

@@ -4,6 +4,7 @@
 #include <array>
 #include <nlohmann/json.hpp>
 #include <ostream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -134,6 +135,18 @@ void add_rows(const ojson& root, const ojson& object, const std::string& prefix,
 }  // namespace
 
 void print_schema(std::ostream& os, const ComponentType& type, bool raw_json) {
+  if (raw_json) {  // JSON only, for tools: `rumble schema TYPE --json | jq`
+    ojson schema;
+    try {
+      schema = ojson::parse(type.params_schema);
+    } catch (const std::exception& e) {
+      throw std::runtime_error("type '" + type.type_name +
+                               "': the plugin's params schema is not valid JSON (" + e.what() +
+                               "); report this to the plugin's author");
+    }
+    os << schema.dump(2, ' ', false, ojson::error_handler_t::replace) << '\n';
+    return;
+  }
   os << type.type_name << " (" << kind_name(type.kind) << " type";
   if (type.library) os << ", plugin " << type.library->path.string();
   os << ")\n";
@@ -168,10 +181,6 @@ void print_schema(std::ostream& os, const ComponentType& type, bool raw_json) {
       while (!line.empty() && line.back() == ' ') line.pop_back();
       os << line << '\n';
     }
-  }
-  if (raw_json) {
-    os << "\nJSON Schema of the params:\n"
-       << schema.dump(2, ' ', false, ojson::error_handler_t::replace) << '\n';
   }
 }
 

@@ -170,11 +170,16 @@ std::string unknown_type_hint(const PluginRegistry& registry, rumble_kind kind,
     }
   }
   if (const auto m = closest_match(name, known)) hint += "did you mean \"" + *m + "\"? ";
+  // A library skipped by the default search may have been the one providing it.
+  std::string skipped;
+  for (const SkippedPlugin& s : registry.skipped())
+    skipped += (skipped.empty() ? "" : ", ") + s.path.string();
+  if (!skipped.empty()) skipped = "; not loaded (see the warnings above): " + skipped;
   if (known.empty()) {
     return hint + "no " + k + " plugins are loaded; list the library in /plugins or in " +
-           "RUMBLE_PLUGIN_PATH";
+           "RUMBLE_PLUGIN_PATH" + skipped;
   }
-  return hint + "known " + k + " types: " + join(known);
+  return hint + "known " + k + " types: " + join(known) + skipped;
 }
 
 bool blank(const std::string& s) {
@@ -260,7 +265,8 @@ void load_scenario_plugins(const Document& doc, PluginRegistry& registry) {
     const fs::path p(entry.get<std::string>());
     const std::string where = doc.path.string() + ": /plugins/" + std::to_string(i) + ": ";
     try {
-      registry.load_library(p.is_absolute() ? p : base / p);
+      registry.load_library(p.is_absolute() ? p : base / p,
+                            "scenario /plugins/" + std::to_string(i));
     } catch (const PluginLoadError& e) {
       throw PluginLoadError(where + e.what());
     } catch (const std::exception& e) {
@@ -291,7 +297,8 @@ void sort_diagnostics(std::vector<Diagnostic>& diagnostics) {
                    });
 }
 
-std::vector<Diagnostic> validate(Document& doc, const PluginRegistry& registry) {
+std::vector<Diagnostic> validate(Document& doc, const PluginRegistry& registry,
+                                 bool check_plugins) {
   std::vector<Diagnostic> out;
   std::size_t values = 0;
   std::size_t depth = 0;
@@ -317,10 +324,13 @@ std::vector<Diagnostic> validate(Document& doc, const PluginRegistry& registry) 
   engine.fill_defaults(doc.json);
   check_time(doc, at, out);
   if (doc.json.is_object()) {
-    for (const Component& c : components(doc.json)) check_component(doc, at, registry, c, out);
+    if (check_plugins) {
+      for (const Component& c : components(doc.json)) check_component(doc, at, registry, c, out);
+    }
     name_vehicles(doc.json);
   }
-  if (out.empty()) {  // capabilities are matched on a scenario whose shape is right
+  if (out.empty() &&
+      check_plugins) {  // capabilities are matched on a scenario whose shape is right
     for (Diagnostic& d : check_capabilities(doc.json, registry)) {
       Diagnostic placed = at.make(d.pointer, d.message, d.hint);
       placed.severity = d.severity;

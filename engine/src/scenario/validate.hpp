@@ -28,8 +28,11 @@ void load_scenario_plugins(const Document& doc, PluginRegistry& registry);
 
 /// Checks everything and returns the diagnostics sorted by position (empty = valid). Fills
 /// every default declared by the engine's and the plugins' schemas into doc.json, nested
-/// objects included, and /vehicles/<i>/name = "vehicle<i>" where absent.
-std::vector<Diagnostic> validate(Document& doc, const PluginRegistry& registry);
+/// objects included, and /vehicles/<i>/name = "vehicle<i>" where absent. check_plugins false
+/// (`rumble validate --no-load`): the engine's schema only; component types, their params and
+/// capabilities are not checked (no plugin is loaded to check them against).
+std::vector<Diagnostic> validate(Document& doc, const PluginRegistry& registry,
+                                 bool check_plugins = true);
 
 /// A diagnostic at `pointer` with the line:col of its value in doc.text (of the nearest
 /// ancestor that is in the text when the value itself is not, e.g. a filled-in default).

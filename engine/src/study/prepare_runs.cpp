@@ -14,7 +14,7 @@ namespace {
 namespace fs = std::filesystem;
 
 /// The child's arguments: run FILE --set P=V ... --output DIR --no-progress --overwrite.
-std::vector<std::string> child_command(const RunRecord& r) {
+std::vector<std::string> child_command(const RunRecord& r, bool size_confirmed) {
   std::vector<std::string> c{"run", fs::absolute(r.run.scenario).string()};
   for (const Patch& p : r.run.patches) {
     c.push_back("--set");
@@ -23,13 +23,18 @@ std::vector<std::string> child_command(const RunRecord& r) {
   }
   // --overwrite: run.log, written by the study, stands in the directory before the run starts.
   c.insert(c.end(), {"--output", fs::absolute(r.results).string(), "--no-progress", "--overwrite"});
+  if (size_confirmed) c.push_back("--yes");
   return c;
 }
 
 }  // namespace
 
 std::vector<RunRecord> prepare_runs(const StudyFile& study, std::vector<PlannedRun> runs,
-                                    PluginRegistry& registry, std::ostream& report) {
+                                    PluginRegistry& registry, std::ostream& report,
+                                    bool size_confirmed) {
+  scenario::CheckOptions options;
+  options.size_confirmed = size_confirmed;
+  options.results_directory = false;  // every run writes to its own --output directory
   std::vector<RunRecord> records;
   for (PlannedRun& run : runs) {
     RunRecord r;
@@ -38,10 +43,10 @@ std::vector<RunRecord> prepare_runs(const StudyFile& study, std::vector<PlannedR
     std::vector<scenario::Override> set = overrides(r.run, study.path);
     try {
       const scenario::CheckedScenario c =
-          scenario::check_scenario_file(r.run.scenario, set, registry);
+          scenario::check_scenario_file(r.run.scenario, set, registry, options);
       if (c.ok()) {
         r.key = run_key(r.run, *c.doc, registry);
-        r.command = child_command(r);
+        r.command = child_command(r, size_confirmed);
       } else {
         r.state = RunState::kInvalid;
         for (const scenario::Diagnostic& d : c.diagnostics) {

@@ -18,8 +18,10 @@ namespace rumble::study {
 
 /// One record per planned run, in order: kPending with key and command, or kInvalid with the
 /// reason in its message (the findings printed to `report`). The registry holds the default
-/// plugin directories; the plugins scenarios list are loaded into it.
+/// plugin directories; the plugins scenarios list are loaded into it. size_confirmed (`study
+/// --yes`): runs beyond the size limits (scenario/run_size.hpp) are wanted, and run with --yes.
 std::vector<RunRecord> prepare_runs(const StudyFile& study, std::vector<PlannedRun> runs,
-                                    PluginRegistry& registry, std::ostream& report);
+                                    PluginRegistry& registry, std::ostream& report,
+                                    bool size_confirmed = false);
 
 }  // namespace rumble::study

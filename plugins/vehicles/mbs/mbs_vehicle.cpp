@@ -11,6 +11,7 @@
 #include <cmath>
 #include <complex>
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -33,12 +34,126 @@ using vehicles::fail;
 
 constexpr double kComplexStep = 1e-20;  // imaginary step of the complex-step tangent
 
+// A vehicle definition is a few kilobytes; the limit keeps /dev/zero or a mistaken data file
+// from being read into memory (it once grew to 4 GB).
+constexpr std::uintmax_t kMaxDefinitionBytes = 1u << 20;
+
 nlohmann::json parse_json(const std::string& text, const std::string& where) {
   try {
     return nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& e) {
-    fail(where, std::string("not valid JSON: ") + e.what());
+    // "[json.exception.parse_error.101] parse error at line 3, column 5: ..." without the tag.
+    std::string what = e.what();
+    if (const auto tag = what.find("] ");
+        what.rfind("[json.exception", 0) == 0 && tag != std::string::npos)
+      what.erase(0, tag + 2);
+    fail(where, "not valid JSON: " + what, {},
+         "a vehicle definition is one JSON object (docs/vehicles.md); is this the right file?");
   }
+}
+
+/// Refuses a key written twice in one object of a definition file: nlohmann keeps the last value
+/// and drops the other without a word (the engine refuses the same in a scenario). `where` is the
+/// file as written plus "#"; the refusal points at the repeated member.
+void refuse_duplicate_keys(const std::string& text, const std::string& where) {
+  struct Frame {
+    bool object = false;
+    std::string pointer;
+    std::vector<std::string> keys;  // objects: the keys so far (a definition has a few)
+    std::size_t index = 0;          // arrays: the next element's index
+  };
+  std::vector<Frame> stack;
+  std::string duplicate;  // pointer of the first repeat found
+  const auto child_pointer = [&]() -> std::string {
+    if (stack.empty()) return "";
+    Frame& parent = stack.back();
+    if (parent.object) return parent.pointer + "/" + parent.keys.back();
+    return parent.pointer + "/" + std::to_string(parent.index++);
+  };
+  using Event = nlohmann::json::parse_event_t;
+  const auto callback = [&](int /*depth*/, Event event, nlohmann::json& parsed) {
+    switch (event) {
+      case Event::object_start:
+      case Event::array_start: {
+        Frame f;
+        f.object = event == Event::object_start;
+        f.pointer = child_pointer();
+        stack.push_back(std::move(f));
+        break;
+      }
+      case Event::object_end:
+      case Event::array_end:
+        stack.pop_back();
+        break;
+      case Event::key: {
+        Frame& f = stack.back();
+        const std::string key = parsed.get<std::string>();
+        if (duplicate.empty() && std::find(f.keys.begin(), f.keys.end(), key) != f.keys.end())
+          duplicate = f.pointer + "/" + key;
+        f.keys.push_back(key);
+        break;
+      }
+      case Event::value:
+        if (!stack.empty() && !stack.back().object) ++stack.back().index;
+        break;
+    }
+    return true;
+  };
+  try {
+    const nlohmann::json parsed = nlohmann::json::parse(text, callback);  // a second, small parse
+    static_cast<void>(parsed);
+  } catch (const nlohmann::json::exception&) {
+    return;  // parse_json says what is wrong with the text
+  }
+  if (!duplicate.empty()) {
+    fail(where + duplicate,
+         "duplicate key; JSON keeps only the last value and would drop the "
+         "other without a word",
+         {}, "keep one of the two");
+  }
+}
+
+/// The text of the definition file at `path` (as the user wrote it: `name`): a regular file of
+/// at most kMaxDefinitionBytes, else a refusal at params/file naming the value and the fix.
+std::string read_definition_file(const std::filesystem::path& path, const nlohmann::json& name,
+                                 const std::string& dir) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::file_status status = fs::status(path, ec);
+  if (!fs::exists(status)) {
+    fail("params/file", "no such file \"" + path.string() + "\"", vehicles::shown(name),
+         "give the path of a vehicle definition relative to the scenario file's directory (\"" +
+             dir + "\")");
+  }
+  if (!fs::is_regular_file(status)) {
+    fail("params/file",
+         "\"" + path.string() + "\" is not a regular file (a directory, device or pipe)",
+         vehicles::shown(name), "name a vehicle definition file (JSON)");
+  }
+  const std::uintmax_t size = fs::file_size(path, ec);
+  if (!ec && size > kMaxDefinitionBytes) {
+    fail("params/file",
+         "\"" + path.string() + "\" is too large (" + std::to_string(size) +
+             " bytes; a vehicle definition is at most " + std::to_string(kMaxDefinitionBytes) +
+             " bytes)",
+         vehicles::shown(name), "is this the right file?");
+  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    fail("params/file", "cannot read \"" + path.string() + "\"", vehicles::shown(name),
+         "check the file's permissions");
+  }
+  // At most one byte past the limit, in case the file grew since its size was read.
+  std::string text(kMaxDefinitionBytes + 1, '\0');
+  in.read(text.data(), static_cast<std::streamsize>(text.size()));
+  text.resize(static_cast<std::size_t>(in.gcount()));
+  if (text.size() > kMaxDefinitionBytes) {
+    fail("params/file",
+         "\"" + path.string() + "\" is too large (more than " +
+             std::to_string(kMaxDefinitionBytes) + " bytes)",
+         vehicles::shown(name), "is this the right file?");
+  }
+  return text;
 }
 
 /// params -> Definition: inline, or from the file named by params/file (relative to the
@@ -57,17 +172,14 @@ Definition load_definition(const std::string& params_json, const rumble::Host& h
     }
   }
   const std::string name = file.get<std::string>();
+  // A scenario given as "x.json" has the directory "": the current one.
+  const std::string dir = host.scenario_dir().empty() ? "." : host.scenario_dir();
   std::filesystem::path path(name);
-  if (path.is_relative()) path = std::filesystem::path(host.scenario_dir()) / path;
-  std::ifstream in(path);
-  if (!in) {
-    fail("params/file", "cannot open \"" + path.string() + "\"", vehicles::shown(file),
-         "give the path of a vehicle definition relative to the scenario file's directory (\"" +
-             host.scenario_dir() + "\")");
-  }
-  std::stringstream text;
-  text << in.rdbuf();
-  return parse_definition(parse_json(text.str(), name), name + "#");
+  if (path.is_relative()) path = std::filesystem::path(dir) / path;
+  const std::string text = read_definition_file(path, file, dir);
+  nlohmann::json definition = parse_json(text, name + "#");
+  refuse_duplicate_keys(text, name + "#");
+  return parse_definition(definition, name + "#");
 }
 
 class MbsVehicle final : public rumble::Vehicle {

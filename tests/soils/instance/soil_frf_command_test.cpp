@@ -70,10 +70,11 @@ TEST(SoilFrfCommand, WritesDrivingPointAndTransferTermsForBothModels) {
       t::run_rumble({"soil-frf", files[0], files[1], "--output", out.string(), "--no-plot"});
   ASSERT_EQ(r.exit_code, 0) << r.output;
 
-  // --no-plot: exactly the two CSVs, no figure.
+  // --no-plot: exactly the two CSVs, no figure (besides the directory's lock and manifest).
   std::vector<std::string> written;
   for (const auto& e : std::filesystem::directory_iterator(out))
-    written.push_back(e.path().filename().string());
+    if (e.path().filename().string().front() != '.')
+      written.push_back(e.path().filename().string());
   std::sort(written.begin(), written.end());
   EXPECT_EQ(written, (std::vector<std::string>{"scenario_clm.csv", "scenario_winkler.csv"}));
 

@@ -1,0 +1,129 @@
+#include "scenario/run_size.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "core/number_text.hpp"
+
+namespace rumble::scenario {
+namespace {
+
+using nlohmann::json;
+
+// Values per vehicle in the track's histories (wheel forces and DOFs): an estimate, the vehicle
+// plugins are not asked (validate --no-load estimates too).
+constexpr double kValuesPerVehicle = 10.0;
+constexpr double kInterfaceColumns = 7.0;  // interface.csv: t, residual, power, energies, ...
+
+/// "3.4 GiB", "120 MiB", "5 KiB" (binary units, as the limits are stated).
+std::string bytes_text(double bytes) {
+  const char* units[] = {"bytes", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB"};
+  int u = 0;
+  while (bytes >= 1024.0 && u < 6) {
+    bytes /= 1024.0;
+    ++u;
+  }
+  char buf[48];
+  const char* format = bytes < 10.0 && u > 0 ? "%.1f %s" : (bytes < 1e4 ? "%.0f %s" : "%.3g %s");
+  std::snprintf(buf, sizeof buf, format, bytes, units[u]);
+  return buf;
+}
+
+const char* const kConfirm = "if this run is meant, confirm it with --yes";
+
+}  // namespace
+
+RunSize estimate_run_size(const json& sc) {
+  RunSize r;
+  const double t_end = sc.at("time").at("end").get<double>();
+  const double H = sc.at("time").at("macro_step").get<double>();
+  r.macro_steps = std::ceil(t_end / H);
+  const json& track = sc.at("track");
+  if (const auto it = track.find("integrator"); it != track.end() && it->contains("micro_step"))
+    r.micro_steps = std::ceil(t_end / it->at("micro_step").get<double>());
+  const json& outputs = sc.at("outputs");
+  const double every = std::max(1.0, outputs.value("every", 1.0));
+  r.records = std::floor(r.macro_steps / every) + 1.0;
+
+  const double footprints = track.at("sleepers").at("count").get<double>();
+  const double vehicles = static_cast<double>(sc.at("vehicles").size());
+  const double receivers = static_cast<double>(outputs.value("receivers", json::array()).size());
+  const json& coupling = sc.at("coupling");
+  const double extras = static_cast<double>(coupling.value("participants", json::object()).size());
+  // contact.csv + vehicles.csv, footprint force/displacement/velocity, interface.csv,
+  // receivers.csv, and each extra soil's displacement and velocity; a time column in each.
+  r.values_per_record = (2.0 + vehicles * kValuesPerVehicle) + 3.0 * (footprints + 1.0) +
+                        kInterfaceColumns + (receivers > 0 ? receivers + 1.0 : 0.0) +
+                        extras * 2.0 * (footprints + 1.0);
+  r.bytes_written = r.records * r.values_per_record * kBytesPerValue;
+
+  // The recorder keeps one energy per record; two_step keeps the track's footprint forces and
+  // the reduced soil's motion over the whole run: 3 n (steps + 1) doubles (plugins/couplers).
+  r.memory_bytes = r.records * 8.0;
+  if (coupling.value("type", "") == "two_step")
+    r.memory_bytes += 3.0 * footprints * (r.macro_steps + 1.0) * 8.0;
+
+  if (const auto f = outputs.find("fields"); f != outputs.end() && f->contains("interval"))
+    r.field_snapshots = std::floor(t_end / f->at("interval").get<double>()) + 1.0;
+  return r;
+}
+
+std::vector<Diagnostic> check_run_size(const json& sc) {
+  std::vector<Diagnostic> out;
+  const RunSize r = estimate_run_size(sc);
+  const double t_end = sc.at("time").at("end").get<double>();
+  const double H = sc.at("time").at("macro_step").get<double>();
+  if (r.macro_steps > kMaxMacroSteps) {
+    out.push_back(finding("/time/macro_step",
+                          "the run takes " + number_text(r.macro_steps) +
+                              " macro steps (time.end " + number_text(t_end) + " s / macro_step " +
+                              number_text(H) + " s), more than the limit of " +
+                              number_text(kMaxMacroSteps),
+                          std::string("raise time.macro_step or shorten time.end; ") + kConfirm));
+  }
+  if (r.micro_steps > kMaxMicroSteps) {
+    out.push_back(finding("/track/integrator/micro_step",
+                          "the track takes " + number_text(r.micro_steps) +
+                              " micro-steps over the run (time.end / micro_step), more than the "
+                              "limit of " +
+                              number_text(kMaxMicroSteps),
+                          std::string("raise micro_step, or leave it out to have it chosen from "
+                                      "the contact stiffness; ") +
+                              kConfirm));
+  }
+  if (r.bytes_written > kMaxBytesWritten) {
+    out.push_back(finding("/outputs/every",
+                          "the time histories would take about " + bytes_text(r.bytes_written) +
+                              " on disk (" + number_text(r.records) + " records of about " +
+                              number_text(r.values_per_record) + " numbers), more than the " +
+                              "limit of " + bytes_text(kMaxBytesWritten),
+                          std::string("record every n-th macro step (outputs.every), shorten "
+                                      "time.end or raise time.macro_step; ") +
+                              kConfirm));
+  }
+  if (r.memory_bytes > kMaxMemoryBytes) {
+    const bool two_step = sc.at("coupling").value("type", "") == "two_step";
+    out.push_back(finding(two_step ? "/coupling/type" : "/time/end",
+                          "the run would reserve about " + bytes_text(r.memory_bytes) +
+                              " of memory for its histories" +
+                              (two_step ? " (two_step keeps every macro step's footprint forces "
+                                          "and motion)"
+                                        : std::string()) +
+                              ", more than the limit of " + bytes_text(kMaxMemoryBytes),
+                          std::string("shorten time.end, raise time.macro_step") +
+                              (two_step ? " or use fewer sleepers; " : "; ") + kConfirm));
+  }
+  if (r.field_snapshots > kMaxFieldSnapshots) {
+    out.push_back(finding("/outputs/fields/interval",
+                          "the run writes " + number_text(r.field_snapshots) +
+                              " field snapshots (time.end / interval + 1), more than the limit "
+                              "of " +
+                              number_text(kMaxFieldSnapshots),
+                          std::string("raise outputs.fields.interval; ") + kConfirm));
+  }
+  return out;
+}
+
+}  // namespace rumble::scenario

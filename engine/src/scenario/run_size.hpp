@@ -1,0 +1,46 @@
+// How big a run will be, estimated from the scenario alone before anything runs or loads.
+//
+// Issue #8: valid scenarios exhausted the machine: time.macro_step 1e-12 s validated and then
+// wrote about 1 GB a minute toward 5e10 steps; two_step reserved its force history up front and
+// died of std::bad_alloc. Validation estimates the number of steps, the bytes the time histories
+// will take on disk and the memory the run reserves for them, and refuses a run beyond the limits
+// below unless the user confirms it (`rumble run --yes`, `rumble validate --yes`). The estimate
+// covers what the engine and the in-tree couplers keep; a plugin's own memory (a FEM soil's mesh)
+// is its own and not counted. Limits and formulas: docs/scenario.md, "Run size".
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <vector>
+
+#include "scenario/diagnostic.hpp"
+
+namespace rumble::scenario {
+
+inline constexpr double kMaxMacroSteps = 1e7;                  // e.g. 1000 s at 0.1 ms
+inline constexpr double kMaxMicroSteps = 1e9;                  // track micro-steps over the run
+inline constexpr double kMaxBytesWritten = 10.0 * (1u << 30);  // 10 GiB of CSV time histories
+inline constexpr double kMaxMemoryBytes = 8.0 * (1u << 30);    // 8 GiB reserved for histories
+inline constexpr double kMaxFieldSnapshots = 1e4;              // VTU snapshots (outputs.fields)
+
+/// All counts as doubles: a scenario may ask for more than any integer type holds.
+struct RunSize {
+  double macro_steps = 0.0;      // ceil(time.end / time.macro_step)
+  double micro_steps = 0.0;      // time.end / track.integrator.micro_step; 0 when not given
+  double records = 0.0;          // rows of each time history: macro_steps / outputs.every + 1
+  double values_per_record = 0;  // numbers in one row of all time histories together
+  double bytes_written = 0.0;    // records x values_per_record x kBytesPerValue
+  double memory_bytes = 0.0;     // what the run reserves for its histories up front
+  double field_snapshots = 0.0;  // time.end / outputs.fields.interval + 1; 0 without fields
+};
+
+/// Bytes of one number in a CSV row: 9 significant digits, sign, exponent and separator.
+inline constexpr double kBytesPerValue = 17.0;
+
+/// scenario: valid against the engine's schema, defaults filled.
+RunSize estimate_run_size(const nlohmann::json& scenario);
+
+/// An error per limit the estimate exceeds, at the value to change, with the estimate and the
+/// fix ("... or confirm it with --yes").
+std::vector<Diagnostic> check_run_size(const nlohmann::json& scenario);
+
+}  // namespace rumble::scenario

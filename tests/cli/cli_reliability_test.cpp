@@ -1,0 +1,252 @@
+// Issue #8 as a careless or hostile user meets it at the command line: help everywhere, JSON that
+// is only JSON, a bad plugin path or a FIFO that neither stops nor hangs the CLI, runs too large
+// for the machine refused before they start, counts that are counts, duplicate keys refused.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+
+#include "cli_runner.hpp"
+
+namespace rumble::testing {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+using ::testing::Not;
+
+const char* const kCommands[] = {"run",       "validate", "study",      "plugins",
+                                 "schema",    "mesh",     "soil-frf",   "calibrate",
+                                 "stability", "post",     "new-plugin", "help"};
+
+TEST(CliReliability, EveryCommandHasHelpWithDefaults) {
+  for (const char* command : kCommands) {
+    for (const std::vector<std::string>& args :
+         {std::vector<std::string>{"help", command}, {command, "--help"}, {command, "x", "-h"}}) {
+      const CliResult r = run_rumble(args);
+      EXPECT_EQ(r.exit_code, 0) << command << ": " << r.output;
+      EXPECT_THAT(r.output, HasSubstr(std::string("usage: rumble ") + command)) << command;
+    }
+  }
+  EXPECT_THAT(run_rumble({"help", "run"}).output, HasSubstr("--yes"));
+  EXPECT_THAT(run_rumble({"soil-frf", "--help"}).output, HasSubstr("(default: 100)"));
+  const CliResult overview = run_rumble({"help"});
+  EXPECT_EQ(overview.exit_code, 0);
+  EXPECT_THAT(overview.output, HasSubstr("commands:"));
+  const CliResult unknown = run_rumble({"help", "rnu"});
+  EXPECT_EQ(unknown.exit_code, 1);
+  EXPECT_THAT(unknown.output, HasSubstr("help: unknown command 'rnu'"));
+}
+
+TEST(CliReliability, SchemaListsTypesAndItsJsonIsOnlyJson) {
+  const CliResult list = run_rumble({"schema"});
+  EXPECT_EQ(list.exit_code, 0) << list.output;
+  EXPECT_THAT(list.output, HasSubstr("vehicle: "));
+  EXPECT_THAT(list.output, HasSubstr("single_wheel"));
+  EXPECT_THAT(list.output, HasSubstr("soil: "));
+  const CliResult j = run_rumble({"schema", "single_wheel", "--json"});
+  EXPECT_EQ(j.exit_code, 0) << j.output;
+  ASSERT_TRUE(nlohmann::json::accept(j.output)) << j.output;
+  EXPECT_TRUE(nlohmann::json::parse(j.output).contains("properties"));
+}
+
+TEST(CliReliability, ValidateJsonReportsPluginLoadErrorsAsJson) {
+  nlohmann::json s = small_scenario();
+  s["plugins"] = {"missing.so"};
+  const auto path = write_scenario(scratch_directory("validate_json_load_error"), s);
+  const CliResult r = run_rumble({"validate", path.string(), "--format", "json"});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  ASSERT_TRUE(nlohmann::json::accept(r.output)) << r.output;
+  const auto j = nlohmann::json::parse(r.output);
+  EXPECT_EQ(j["errors"], 1);
+  EXPECT_THAT(j["diagnostics"][0]["message"].get<std::string>(), HasSubstr("/plugins/0: plugin '"));
+  EXPECT_THAT(j["diagnostics"][0]["message"].get<std::string>(), HasSubstr("file not found"));
+}
+
+// dlopen on a FIFO waits for a writer: validate and run hung.
+TEST(CliReliability, FifoInPluginsIsRefusedNotWaitedOn) {
+  const auto dir = scratch_directory("fifo_plugin");
+  ASSERT_EQ(mkfifo((dir / "pipe.so").c_str(), 0600), 0);
+  nlohmann::json s = small_scenario();
+  s["plugins"] = {"pipe.so"};
+  const CliResult r = run_rumble({"validate", write_scenario(dir, s).string()});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("/plugins/0: plugin '"));
+  EXPECT_THAT(r.output,
+              HasSubstr("': a FIFO (named pipe), not a regular file; name a shared library"));
+}
+
+// One bad library or missing directory in RUMBLE_PLUGIN_PATH made every command fail.
+TEST(CliReliability, BadPluginPathEntriesAreReportedAndSkipped) {
+  const auto dir = scratch_directory("bad_plugin_path");
+  std::ofstream(dir / "broken.so") << std::string(200, '#') << "\nnot a library\n";
+  const std::string path = (dir / "broken.so").string() + ":" + (dir / "missing_dir").string();
+  ASSERT_EQ(setenv("RUMBLE_PLUGIN_PATH", path.c_str(), 1), 0);
+  const CliResult plugins = run_rumble({"plugins"});
+  const CliResult validate =
+      run_rumble({"validate", write_scenario(dir, small_scenario()).string()});
+  unsetenv("RUMBLE_PLUGIN_PATH");
+  EXPECT_EQ(plugins.exit_code, 0) << plugins.output;
+  EXPECT_THAT(plugins.output, HasSubstr("soil winkler"));
+  EXPECT_THAT(plugins.output, HasSubstr("(from engine plugin directory)"));
+  EXPECT_THAT(plugins.output, HasSubstr("not loaded (skipped; the plugins above are usable):"));
+  EXPECT_THAT(plugins.output, HasSubstr("broken.so  (from RUMBLE_PLUGIN_PATH): plugin '"));
+  EXPECT_THAT(plugins.output,
+              HasSubstr("RUMBLE_PLUGIN_PATH entry '" + (dir / "missing_dir").string() +
+                        "': no such file or directory"));
+  EXPECT_EQ(validate.exit_code, 0) << validate.output;
+  EXPECT_THAT(validate.output, HasSubstr("skipped, the other plugins are loaded"));
+}
+
+// time.macro_step 1e-12 validated and then wrote about 1 GB a minute toward 5e10 steps.
+TEST(CliReliability, RunsBeyondTheSizeLimitsAreRefusedUnlessConfirmed) {
+  nlohmann::json s = small_scenario();
+  s["time"]["macro_step"] = 1e-12;
+  const auto dir = scratch_directory("run_size");
+  const auto path = write_scenario(dir, s).string();
+  const CliResult r = run_rumble({"validate", path});
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("error: /time/macro_step: the run takes 5e+10 macro steps "
+                                  "(time.end 0.05 s / macro_step 1e-12 s), more than the limit "
+                                  "of 1e+07"));
+  EXPECT_THAT(r.output, HasSubstr("if this run is meant, confirm it with --yes"));
+  EXPECT_THAT(r.output, HasSubstr("error: /outputs/every: the time histories would take about "));
+  const CliResult run = run_rumble({"run", path, "--no-progress"});
+  EXPECT_EQ(run.exit_code, 1) << run.output;
+  EXPECT_FALSE(fs::exists(dir / "results"));
+  const CliResult confirmed = run_rumble({"validate", path, "--yes"});
+  EXPECT_EQ(confirmed.exit_code, 0) << confirmed.output;
+}
+
+// sleepers.count 1e7 died of std::bad_alloc, 2^63-1 gave a message about the vehicle's start, and
+// a hint read "use at least -2147483647 sleepers".
+TEST(CliReliability, SleeperCountHasAnUpperBoundAndHintsDoNotOverflow) {
+  for (const char* count : {"10000000", "9223372036854775807"}) {
+    nlohmann::json s = small_scenario();
+    const auto dir = scratch_directory(std::string("sleepers_") + count);
+    std::string text = s.dump(2);
+    const std::string key = "\"count\": 20";
+    text.replace(text.find(key), key.size(), std::string("\"count\": ") + count);
+    std::ofstream(dir / "scenario.json") << text;
+    const CliResult r = run_rumble({"validate", (dir / "scenario.json").string()});
+    EXPECT_EQ(r.exit_code, 1) << r.output;
+    EXPECT_THAT(r.output, HasSubstr("/track/sleepers/count: must be in [3, 100000], got " +
+                                    std::string(count)))
+        << count;
+  }
+  nlohmann::json s = small_scenario();
+  s["time"]["end"] = 1e6;
+  s["time"]["macro_step"] = 1e-1;
+  const CliResult far =
+      run_rumble({"validate", write_scenario(scratch_directory("far"), s).string()});
+  EXPECT_EQ(far.exit_code, 1) << far.output;
+  EXPECT_THAT(far.output, HasSubstr("hint: lower time.end or the speed (the rail would need "
+                                    "3.33333e+07 sleepers, more than the 100000 allowed)"));
+  EXPECT_THAT(far.output, Not(HasSubstr("-2147483647")));
+}
+
+TEST(CliReliability, ValidateWithoutLoadingPlugins) {
+  nlohmann::json s = small_scenario();
+  s["plugins"] = {"not_built_yet.so"};
+  s["soil"]["type"] = "my_soil";
+  const auto path = write_scenario(scratch_directory("validate_no_load"), s).string();
+  const CliResult r = run_rumble({"validate", path, "--no-load"});
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("valid (--no-load: component types, params and plugins not "
+                                  "checked)"));
+  s["time"]["end"] = -1;
+  const auto bad = write_scenario(scratch_directory("validate_no_load_bad"), s).string();
+  const CliResult b = run_rumble({"validate", bad, "--no-load"});
+  EXPECT_EQ(b.exit_code, 1) << b.output;
+  EXPECT_THAT(b.output, HasSubstr("/time/end: must be > 0, got -1"));
+}
+
+TEST(CliReliability, DuplicateKeysAreRefused) {
+  const auto dir = scratch_directory("duplicate_keys");
+  std::string text = small_scenario().dump(2);
+  const std::string key = "\"end\": 0.05";
+  text.replace(text.find(key), key.size(), "\"end\": 0.05, \"end\": 5");
+  std::ofstream(dir / "scenario.json") << text;
+  const CliResult r = run_rumble({"validate", (dir / "scenario.json").string()});
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("error: /time/end: duplicate key \"end\" (first at line "));
+}
+
+TEST(CliReliability, SoilFrfCountsAreWholeNumbersAndItsOutputIsADirectory) {
+  const auto dir = scratch_directory("soil_frf_arguments");
+  const auto path = write_scenario(dir, small_scenario()).string();
+  const CliResult half = run_rumble({"soil-frf", path, "--points", "2.5", "--no-plot"});
+  EXPECT_EQ(half.exit_code, 1);
+  EXPECT_THAT(half.output, HasSubstr("--points=2.5 is not a whole number; give a whole number "
+                                     "from 2 to 100000"));
+  const CliResult huge = run_rumble({"soil-frf", path, "--points", "1e9", "--no-plot"});
+  EXPECT_EQ(huge.exit_code, 1);
+  EXPECT_THAT(huge.output, HasSubstr("--points=1e9 is too large; give a whole number from 2 to "
+                                     "100000"));
+  const CliResult file =
+      run_rumble({"soil-frf", path, "--output", (dir / "x.csv").string(), "--no-plot"});
+  EXPECT_EQ(file.exit_code, 1);
+  EXPECT_THAT(file.output, HasSubstr("x.csv names a file; this command writes one CSV per "
+                                     "scenario into the directory --output names, e.g. --output "));
+  EXPECT_FALSE(fs::exists(dir / "x.csv"));
+  // The same for every --output that names a directory.
+  for (const char* command : {"run", "mesh"}) {
+    const CliResult r = run_rumble({command, path, "--output", (dir / "out.json").string()});
+    EXPECT_EQ(r.exit_code, 1) << command;
+    EXPECT_THAT(r.output, HasSubstr("out.json names a file; this command writes ")) << command;
+    EXPECT_FALSE(fs::exists(dir / "out.json")) << command;
+  }
+}
+
+// soil-frf writes into a results directory like run's: locked, with a manifest, so a rerun
+// replaces its own files.
+TEST(CliReliability, SoilFrfOwnsItsDirectory) {
+  const auto dir = scratch_directory("soil_frf_manifest");
+  const auto path = write_scenario(dir, small_scenario()).string();
+  for (int i = 0; i < 2; ++i) {
+    const CliResult r = run_rumble({"soil-frf", path, "--no-plot"});
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+  }
+  const auto out = dir / "results" / "soil_frf";
+  const nlohmann::json manifest = read_json(out / ".rumble-manifest.json");
+  EXPECT_THAT(manifest.dump(), HasSubstr("scenario_winkler.csv"));
+  EXPECT_TRUE(fs::exists(out / "scenario_winkler.csv"));
+}
+
+// An mbs vehicle's definition file of /dev/zero grew to 4 GB; at validate time now, at the
+// vehicle's params, with the value and the fix.
+TEST(CliReliability, MbsDefinitionFileMustBeARegularFile) {
+  nlohmann::json s = small_scenario();
+  s["vehicles"][0]["type"] = "mbs";
+  s["vehicles"][0]["params"] = {{"file", "/dev/zero"}};
+  const CliResult r =
+      run_rumble({"validate", write_scenario(scratch_directory("mbs_dev_zero"), s).string()});
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("error: /vehicles/0/params: "));
+  EXPECT_THAT(r.output, HasSubstr("params/file: \"/dev/zero\" is not a regular file (a directory, "
+                                  "device or pipe), got \"/dev/zero\"; name a vehicle definition "
+                                  "file (JSON)"));
+}
+
+// A results directory that cannot be made was found only when the run began.
+TEST(CliReliability, ResultsDirectoryThatIsAFileIsAValidateError) {
+  const auto dir = scratch_directory("results_is_a_file");
+  std::ofstream(dir / "results") << "not a directory\n";
+  const CliResult r = run_rumble({"validate", write_scenario(dir, small_scenario()).string()});
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("error: /outputs/directory: \"" + (dir / "results").string() +
+                                  "\" is a file, not a directory"));
+  nlohmann::json s = small_scenario();
+  s["outputs"]["directory"] = "results/run1";
+  const CliResult below = run_rumble({"validate", write_scenario(dir, s).string()});
+  EXPECT_EQ(below.exit_code, 1) << below.output;
+  EXPECT_THAT(below.output,
+              HasSubstr("cannot create \"" + (dir / "results" / "run1").string() + "\": \"" +
+                        (dir / "results").string() + "\" is a file, not a directory"));
+}
+
+}  // namespace
+}  // namespace rumble::testing
