@@ -68,6 +68,7 @@ def scenarios(name, soil, f_max, near, work, sleepers=None, radius=None):
         base["track"]["sleepers"]["count"] = sleepers
         base["track"]["unevenness"]["position"] = 0.3 * sleepers
         base["vehicles"][0]["start"] = 0.1 * sleepers
+        base["time"]["end"] = 0.1 * sleepers / base["vehicles"][0]["speed"]  # on the rail
     if radius:
         base["soil"]["params"]["mesh"]["radius"] = radius
     fem = copy.deepcopy(base)
@@ -89,8 +90,9 @@ def scenarios(name, soil, f_max, near, work, sleepers=None, radius=None):
 def run(cmd, env):
     print("$", " ".join(str(c) for c in cmd), flush=True)
     t0 = time.monotonic()
-    out = subprocess.run([str(c) for c in cmd], env=env, check=True, capture_output=True,
-                         text=True)
+    out = subprocess.run([str(c) for c in cmd], env=env, capture_output=True, text=True)
+    if out.returncode != 0:
+        sys.exit(f"failed (exit {out.returncode}):\n{out.stdout}{out.stderr}")
     return out, time.monotonic() - t0
 
 
