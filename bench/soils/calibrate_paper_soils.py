@@ -12,7 +12,8 @@ frequencies (CSV and a plot per soil). The relative RMS misfit of each CLM again
 
 usage: bench/soils/calibrate_paper_soils.py [--rumble PATH] [--work DIR] [--soils soft,medium]
            [--f-max SOIL=HZ ...] [--near SOIL=M ...] [--fmax-fit SOIL=HZ ...] [--points N]
-           [--fit m_f,k_f,...]
+           [--fit m_f,k_f,...] [--tag SUFFIX] [--sleepers N --radius M] [--no-plot]
+           [--check-misfit BOUND --check-ratio FACTOR]   (the last four: the validation test)
 
 Writes WORK/<soil>/ (scenarios, fit.json, soil_frf CSVs and soil_frf.png), WORK/results.json
 and WORK/table.md (the docs table). Default WORK: results/bench/soil_calibration. Meshes are
@@ -150,7 +151,7 @@ def main():
     ap.add_argument("--near", nargs="*", help="SOIL=M: the mesh's near_distance")
     ap.add_argument("--fmax-fit", nargs="*", help="SOIL=HZ: top of the band (default: f_max)")
     ap.add_argument("--fmin", type=float, default=1.0)
-    ap.add_argument("--points", type=int, default=24)
+    ap.add_argument("--points", type=int, default=16)
     ap.add_argument("--fit", default=",".join(FIT))
     ap.add_argument("--tag", default="", help="suffix of the soil's folder (sensitivity runs)")
     ap.add_argument("--sleepers", type=int, help="number of sleepers (default: the scenario's 40)")
