@@ -44,6 +44,14 @@ TEST(Capabilities, TheMonolithicCouplerRefusesASoilWithoutLinearMatrices) {
   expect_error(r, "/soil/type", "linear matrices");
 }
 
+TEST(Capabilities, StabilityAnalysisRefusesASoilWithoutLinearMatrices) {
+  const auto dir = scratch_directory("caps_stability");
+  const nlohmann::json s = fixture_scenario(kForgetful, {{"type", "gauss_seidel"}});
+  const CliResult r = run_rumble({"stability", write_scenario(dir, s).string()});
+  expect_error(r, "/soil/type", "soil type 'forgetful_soil' gives no linear matrices");
+  EXPECT_NE(r.output.find("choose a soil that offers them"), std::string::npos) << r.output;
+}
+
 TEST(Capabilities, TheImplicitCouplerRefusesASoilThatCannotSave) {
   // It takes every macro step several times from checkpoints (declared kSoilNeeds).
   const CliResult r =

@@ -24,9 +24,9 @@ class DivergenceMonitor {
   /// A participant's static footprint displacements [m] (before its first step); returns its
   /// index for check().
   std::size_t watch(const std::string& name, const double* u, std::size_t n);
-  /// Its footprint displacements u [m] at the end of a final step ending at t [s]. Throws
-  /// RunError to stop the run.
-  void check(std::size_t participant, const double* u, std::size_t n, double t);
+  /// Its footprint displacements u [m] and velocities v [m/s] (n each) at the end of a final
+  /// step ending at t [s]. Throws RunError to stop the run.
+  void check(std::size_t participant, const double* u, const double* v, std::size_t n, double t);
 
   bool detected() const { return t_detected_ < kNever; }
   /// summary.json's "divergence": the policy, and when it was detected and began (null: never).

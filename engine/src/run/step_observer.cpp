@@ -104,7 +104,8 @@ void StepObserver::on_soil(const StepOutcome& step, double t) {
 
 void StepObserver::check_soil(const SoilSide& soil, std::size_t participant, double t) {
   soil.get_output(scratch_.data());
-  divergence_.check(participant, scratch_.data(), track_participant_.interface_size(), t);
+  const std::size_t n = track_participant_.interface_size();  // outputs: u, then v
+  divergence_.check(participant, scratch_.data(), scratch_.data() + n, n, t);
 }
 
 }  // namespace rumble

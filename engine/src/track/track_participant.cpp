@@ -323,6 +323,15 @@ int TrackParticipant::solve_static(const SoilStatics& given_soil) {
       const double inv_mass = mobility(w, w) + 1.0 / rail_mass;
       f_max = std::max(f_max, std::sqrt(k_h * inv_mass) / (2.0 * std::numbers::pi));
     }
+    // A wheel mass of 1e-300 kg (or a contact of no stiffness) gives no finite frequency, and no
+    // micro-step follows from it: say which input, not "advance() before solve_static()".
+    if (!(std::isfinite(f_max) && f_max > 0.0)) {
+      std::ostringstream m;
+      m << "track: no finite wheel/rail contact frequency (" << f_max
+        << " Hz) follows from the vehicles' masses and the Hertz contact: check every vehicle's "
+           "masses (e.g. a wheel mass of 1e-300 kg), or set /track/integrator/micro_step";
+      throw RunError(m.str());
+    }
     h_max_ = 1.0 / (kStepsPerContactPeriod * f_max);
   }
   return outer + 1;
