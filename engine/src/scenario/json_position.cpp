@@ -306,17 +306,15 @@ bool starts_character(char c) {
   return (static_cast<unsigned char>(c) & 0xC0) != 0x80;
 }
 
-}  // namespace
-
-PositionIndex::PositionIndex(std::string_view text) : text_(text) {
-  line_starts_.push_back(0);
-  std::size_t chars = 0;
-  for (std::size_t i = 0; i < text.size(); ++i) {
-    if (i % kCheckpointBytes == 0) char_checkpoints_.push_back(chars);
-    if (text[i] == '\n') line_starts_.push_back(i + 1);
-    if (starts_character(text[i])) ++chars;
-  }
-  char_checkpoints_.push_back(chars);
+/// Walks every value of a JSON text in order, with its JSON pointer, telling `visit`:
+///   visit.member(container pointer, name, key span, pointer): an object member's key was read;
+///   visit.value(pointer, key span (empty in arrays), value span): a value starts (a container's
+///     span ends at the text's end until visit.closed);
+///   visit.closed(pointer, end): a container closed at `end`.
+/// Stops quietly at malformed text (the parser reports it). One walk for every user of the text's
+/// structure: the position index, the duplicate keys.
+template <class Visit>
+void walk_values(std::string_view text, Visit& visit) {
   struct Frame {
     std::string pointer;
     bool object;
@@ -339,6 +337,7 @@ PositionIndex::PositionIndex(std::string_view text) : text_(text) {
       if (s.peek() != ':') return false;
       s.advance();
       pointer = frame.pointer + "/" + escape_pointer_token(name);
+      visit.member(frame.pointer, std::move(name), key, pointer);
     } else {
       key = TextSpan{};
       pointer = frame.pointer + "/" + std::to_string(frame.next_index++);
@@ -352,7 +351,7 @@ PositionIndex::PositionIndex(std::string_view text) : text_(text) {
     const std::size_t begin = s.pos();
     const char c = s.peek();
     if (c == '{' || c == '[') {
-      entries_[pointer] = Entry{key, TextSpan{begin, text.size()}};
+      visit.value(pointer, key, TextSpan{begin, text.size()});
       s.advance();
       stack.push_back(Frame{pointer, c == '{', 0});
       s.skip_ws();
@@ -362,7 +361,7 @@ PositionIndex::PositionIndex(std::string_view text) : text_(text) {
       }
     } else {
       if (!s.skip_value()) return;
-      entries_[pointer] = Entry{key, TextSpan{begin, s.pos()}};
+      visit.value(pointer, key, TextSpan{begin, s.pos()});
     }
     // After a value: close finished containers, then move to the next member.
     bool more = false;
@@ -377,11 +376,33 @@ PositionIndex::PositionIndex(std::string_view text) : text_(text) {
       }
       if (d != (stack.back().object ? '}' : ']')) return;
       s.advance();
-      entries_[stack.back().pointer].value.end = s.pos();
+      visit.closed(stack.back().pointer, s.pos());
       stack.pop_back();
     }
     if (!more) return;
   }
+}
+
+}  // namespace
+
+PositionIndex::PositionIndex(std::string_view text) : text_(text) {
+  line_starts_.push_back(0);
+  std::size_t chars = 0;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    if (i % kCheckpointBytes == 0) char_checkpoints_.push_back(chars);
+    if (text[i] == '\n') line_starts_.push_back(i + 1);
+    if (starts_character(text[i])) ++chars;
+  }
+  char_checkpoints_.push_back(chars);
+  struct Record {
+    std::unordered_map<std::string, Entry>& entries;
+    void member(const std::string&, std::string&&, TextSpan, const std::string&) {}
+    void value(const std::string& pointer, TextSpan key, TextSpan value) {
+      entries[pointer] = Entry{key, value};
+    }
+    void closed(const std::string& pointer, std::size_t end) { entries[pointer].value.end = end; }
+  } record{entries_};
+  walk_values(text, record);
 }
 
 std::optional<TextSpan> PositionIndex::value(const std::string& pointer) const {
@@ -450,68 +471,24 @@ LineColumn line_column(std::string_view text, std::size_t offset) {
 }
 
 std::vector<DuplicateKey> find_duplicate_keys(std::string_view text) {
-  struct Frame {
-    std::string pointer;
-    bool object;
-    std::size_t next_index;
-    std::unordered_map<std::string, TextSpan> keys;  // objects: each key's latest position
-  };
-  std::vector<DuplicateKey> out;
-  std::vector<Frame> stack;
-  Scanner s(text);
-  std::string pointer;
-  const auto next_member = [&](Frame& frame) {
-    s.skip_ws();
-    if (!frame.object) {
-      pointer = frame.pointer + "/" + std::to_string(frame.next_index++);
-      return true;
-    }
-    const std::size_t key_begin = s.pos();
-    std::string name;
-    if (!s.read_string(&name)) return false;
-    const TextSpan key{key_begin, s.pos()};
-    s.skip_ws();
-    if (s.peek() != ':') return false;
-    s.advance();
-    pointer = frame.pointer + "/" + escape_pointer_token(name);
-    const auto [it, fresh] = frame.keys.emplace(std::move(name), key);
-    if (!fresh) {
-      out.push_back(DuplicateKey{pointer, it->second, key});
-      it->second = key;
-    }
-    return true;
-  };
-  while (true) {
-    s.skip_ws();
-    if (s.at_end()) return out;
-    const char c = s.peek();
-    if (c == '{' || c == '[') {
-      s.advance();
-      stack.push_back(Frame{pointer, c == '{', 0, {}});
-      s.skip_ws();
-      if (s.peek() != (c == '{' ? '}' : ']')) {
-        if (!next_member(stack.back())) return out;
-        continue;
+  struct Find {
+    std::vector<DuplicateKey> out;
+    // Per open object (by pointer): each key's latest position.
+    std::unordered_map<std::string, std::unordered_map<std::string, TextSpan>> keys;
+    void member(const std::string& object, std::string&& name, TextSpan key,
+                const std::string& pointer) {
+      auto& seen = keys[object];
+      const auto [it, fresh] = seen.emplace(std::move(name), key);
+      if (!fresh) {
+        out.push_back(DuplicateKey{pointer, it->second, key});
+        it->second = key;
       }
-    } else if (!s.skip_value()) {
-      return out;
     }
-    bool more = false;
-    while (!stack.empty()) {
-      s.skip_ws();
-      const char d = s.peek();
-      if (d == ',') {
-        s.advance();
-        if (!next_member(stack.back())) return out;
-        more = true;
-        break;
-      }
-      if (d != (stack.back().object ? '}' : ']')) return out;
-      s.advance();
-      stack.pop_back();
-    }
-    if (!more) return out;
-  }
+    void value(const std::string&, TextSpan, TextSpan) {}
+    void closed(const std::string& pointer, std::size_t) { keys.erase(pointer); }
+  } find;
+  walk_values(text, find);
+  return std::move(find.out);
 }
 
 std::size_t token_start(std::string_view text, std::size_t offset) {
