@@ -140,8 +140,11 @@ TEST(AdaptiveStep, JacobiAdaptsToo) {
   const double error = relative_error(csv(dir / "footprint_displacement.csv"), reference());
   std::cout << "[ measured ] jacobi: " << steps.size() << " steps, error " << error << "\n";
   EXPECT_NEAR(ends.back(), kEnd, 1e-12);
-  EXPECT_LT(*std::min_element(steps.begin(), steps.end() - 1), 0.25 * kMaxStep);
-  EXPECT_LT(error, 0.2);
+  const double shortest = *std::min_element(steps.begin(), steps.end() - 1);
+  EXPECT_LT(shortest, 0.25 * kMaxStep);
+  EXPECT_GT(*std::max_element(steps.begin(), steps.end()), 2.0 * shortest);  // it does vary
+  // Of the order of gauss_seidel's at the same tolerance (0.033); measured 0.0061.
+  EXPECT_LT(error, 0.05);
 }
 
 TEST(AdaptiveStep, InvertedBoundsAreRefusedAtValidate) {

@@ -127,7 +127,7 @@ class GaussSeidel final : public rumble::Coupler {
     if (s.retakes) host.save(s.second, kSlot);
     host.set_input(s.first, order_first, in_first_);
     if (host.advance(s.first, t, h) == RUMBLE_DISCARD) {
-      check_halvings(s, t, h, halvings, s.first);
+      rumble::coupling::require_halving_left(host, t, h, s.first, halvings, max_halvings_);
       return retry(s, t, h, halvings);
     }
     host.get_output(s.first, new_first_);
@@ -136,7 +136,7 @@ class GaussSeidel final : public rumble::Coupler {
     s.to_second.map(wave_second_, order_second, in_second_);
     host.set_input(s.second, order_second, in_second_);
     if (host.advance(s.second, t, h) == RUMBLE_DISCARD) {
-      check_halvings(s, t, h, halvings, s.second);
+      rumble::coupling::require_halving_left(host, t, h, s.second, halvings, max_halvings_);
       if (!s.checkpoints) {
         rumble::coupling::refused_step(host, t, h, s.second,
                                        "the participant that advanced first cannot be restored");
@@ -167,11 +167,6 @@ class GaussSeidel final : public rumble::Coupler {
     report_.H = h;
     host.step_report(report_);
     return true;
-  }
-
-  /// Stops the run when `who` refused [t, t + h] and no halving is left.
-  void check_halvings(const Scheme& s, double t, double h, int halvings, std::uint32_t who) const {
-    rumble::coupling::require_halving_left(s.host, t, h, who, halvings, max_halvings_);
   }
 
   /// Takes [t, t + h] again as two halves.
