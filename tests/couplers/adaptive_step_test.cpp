@@ -40,12 +40,15 @@ nlohmann::json adaptive_coupler(const std::string& type, double tolerance) {
        {{"adaptive", {{"min_step", kMinStep}, {"max_step", kMaxStep}, {"tolerance", tolerance}}}}}};
 }
 
-/// The monolithic reference at H = min_step (run once per test program).
+/// The monolithic reference at H = min_step (run once per test process). ctest runs each test
+/// in its own process, in parallel, so the directory is named after the test that asks first:
+/// two tests sharing one directory wiped each other's results (CI, stop 16).
 const Histories& reference() {
   static const Histories u = [] {
     nlohmann::json s = dip(kMinStep);
     s["coupling"] = {{"type", "monolithic"}, {"params", nlohmann::json::object()}};
-    return csv(run("adaptive_reference", s) / "footprint_displacement.csv");
+    const std::string test = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+    return csv(run("adaptive_reference_" + test, s) / "footprint_displacement.csv");
   }();
   return u;
 }
