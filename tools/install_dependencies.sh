@@ -3,7 +3,7 @@
 set -euo pipefail
 PKGS=(cmake ninja-build g++ pkg-config clang-format
       libeigen3-dev libsuitesparse-dev libboost-dev nlohmann-json3-dev libspdlog-dev
-      libgmsh-dev libfftw3-dev libgtest-dev libgmock-dev libbenchmark-dev libvalijson-dev
+      libgmsh-dev libfftw3-dev libssl-dev libgtest-dev libgmock-dev libbenchmark-dev libvalijson-dev
       libopenblas0-pthread python3-matplotlib python3-numpy
       chromium-headless-shell)  # the study report's test renders it in a headless browser
 missing=()

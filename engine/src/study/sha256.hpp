@@ -1,11 +1,12 @@
-// SHA-256 (FIPS 180-4), for the keys that tell a study's up-to-date runs from the others. Small
-// and dependency-free; not for secrets.
+// SHA-256, for the keys that tell a study's up-to-date runs from the others: OpenSSL's libcrypto
+// (Debian's libssl-dev) behind a small incremental interface. Not for secrets.
 #pragma once
 
-#include <array>
-#include <cstdint>
+#include <memory>
 #include <string>
 #include <string_view>
+
+struct evp_md_ctx_st;
 
 namespace rumble::study {
 
@@ -17,11 +18,10 @@ class Sha256 {
   std::string hex();
 
  private:
-  void block(const unsigned char* p);
-  std::array<std::uint32_t, 8> h_;
-  std::array<unsigned char, 64> buffer_{};
-  std::size_t buffered_ = 0;
-  std::uint64_t length_ = 0;  // bytes
+  struct Free {
+    void operator()(evp_md_ctx_st* c) const;
+  };
+  std::unique_ptr<evp_md_ctx_st, Free> context_;
 };
 
 /// SHA-256 of `bytes` as hex.
