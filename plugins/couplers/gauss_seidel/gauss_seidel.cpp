@@ -188,4 +188,4 @@ class GaussSeidel final : public rumble::Coupler {
 
 }  // namespace
 
-RUMBLE_PLUGIN("gauss_seidel", "0.2.0", GaussSeidel)
+RUMBLE_PLUGIN("gauss_seidel", "0.3.0", GaussSeidel)

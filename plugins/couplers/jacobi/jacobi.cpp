@@ -199,4 +199,4 @@ class Jacobi final : public rumble::Coupler {
 
 }  // namespace
 
-RUMBLE_PLUGIN("jacobi", "0.2.0", Jacobi)
+RUMBLE_PLUGIN("jacobi", "0.3.0", Jacobi)

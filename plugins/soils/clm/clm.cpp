@@ -116,4 +116,4 @@ class Clm final : public rumble::soils::LumpedSoil {
 
 }  // namespace
 
-RUMBLE_PLUGIN("clm", "0.2.0", Clm)
+RUMBLE_PLUGIN("clm", "0.3.0", Clm)

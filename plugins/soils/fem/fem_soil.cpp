@@ -375,4 +375,4 @@ class FemSoil final : public rumble::Soil {
 
 }  // namespace
 
-RUMBLE_PLUGIN("fem", "0.1.0", FemSoil)
+RUMBLE_PLUGIN("fem", "0.2.0", FemSoil)

@@ -99,4 +99,4 @@ class Winkler final : public rumble::soils::LumpedSoil {
 
 }  // namespace
 
-RUMBLE_PLUGIN("winkler", "0.2.0", Winkler)
+RUMBLE_PLUGIN("winkler", "0.3.0", Winkler)
