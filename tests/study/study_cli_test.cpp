@@ -13,6 +13,7 @@
 #include <thread>
 
 #include "cli_runner.hpp"
+#include "core/cpu_affinity.hpp"
 
 namespace rumble::testing {
 namespace {
@@ -79,6 +80,11 @@ TEST(Study, RunsTheProductSkipsWhatIsUpToDateAndRerunsWhatChanged) {
     EXPECT_EQ(fs::path(r["results"].get<std::string>()), fs::absolute(dir / "out" / name));
     const json summary = read_json(dir / "out" / name / "summary.json");
     EXPECT_EQ(summary["status"], "completed") << name;
+    // Two at a time: each run on its half of the CPUs, not on all of them.
+    const auto cpus = summary["process"]["cpus"].get<std::vector<int>>();
+    const std::vector<int> all = usable_cpu_list();
+    EXPECT_TRUE(cpus == cpu_share(all, 0, 2) || cpus == cpu_share(all, 1, 2))
+        << name << ": " << summary["process"]["cpus"];
     EXPECT_TRUE(fs::is_regular_file(dir / "out" / name / "run.log")) << name;
   }
   const auto first_runs = runs_by_name(state);

@@ -9,6 +9,7 @@
 #include "cli/commands.hpp"
 #include "cli/exit_codes.hpp"
 #include "cli/plot_script.hpp"
+#include "core/cpu_affinity.hpp"
 #include "core/interrupt.hpp"
 #include "plugin/registry.hpp"
 #include "scenario/report.hpp"
@@ -85,8 +86,7 @@ int study_command(const std::vector<std::string>& args) {
       r.message = "up to date";
     }
   }
-  const int jobs =
-      cli_jobs > 0 ? cli_jobs : s->jobs.value_or(std::max(1, study::usable_cpus() / 2));
+  const int jobs = cli_jobs > 0 ? cli_jobs : s->jobs.value_or(std::max(1, usable_cpus() / 2));
   const std::size_t to_run = count(records, RunState::kPending);
   const std::size_t invalid = count(records, RunState::kInvalid);
   std::cerr << "study: " << s->name << ": " << records.size() << " runs: " << to_run << " to run, "

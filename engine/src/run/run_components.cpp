@@ -1,25 +1,14 @@
 #include "run/run_components.hpp"
 
-#include <sched.h>
-
 #include <algorithm>
 #include <array>
-#include <thread>
 
+#include "core/cpu_affinity.hpp"
 #include "core/errors.hpp"
 #include "core/logging.hpp"
 
 namespace rumble {
 namespace {
-
-/// Cores this process may run on: its CPU affinity (taskset, a container's cpuset), which
-/// std::thread::hardware_concurrency() ignores; granting more threads than that makes every
-/// barrier of a threaded soil wait for a descheduled thread.
-unsigned usable_cores() {
-  cpu_set_t set;
-  if (sched_getaffinity(0, sizeof set, &set) == 0) return std::max(1, CPU_COUNT(&set));
-  return std::max(1u, std::thread::hardware_concurrency());
-}
 
 const ComponentType& resolve(const PluginRegistry& registry, rumble_kind kind,
                              const scenario::ComponentSpec& c) {
@@ -100,7 +89,7 @@ RunComponents build_components(const scenario::RunSpec& spec, const PluginRegist
 }
 
 void give_run_context(RunComponents& c, const std::filesystem::path& results_dir) {
-  const unsigned cores = usable_cores();
+  const auto cores = static_cast<unsigned>(usable_cpus());
   const unsigned soil_threads =
       c.coupler->capabilities().has(RUMBLE_CAP_THREADS) ? std::max(1u, cores - 1) : cores;
   c.soil->set_run_context(results_dir, soil_threads);

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "core/cpu_affinity.hpp"
 #include "core/errors.hpp"
 #include "plugin/registry.hpp"
 #include "run/new_file.hpp"
@@ -59,7 +60,7 @@ SummaryWriter::SummaryWriter(ResultsDirectory& results, const scenario::RunSpec&
   summary_["status"] = status_name(RunStatus::kRunning);
   char host[256] = {};
   if (::gethostname(host, sizeof host - 1) != 0) host[0] = '\0';
-  summary_["process"] = {{"pid", ::getpid()}, {"host", host}};
+  summary_["process"] = {{"pid", ::getpid()}, {"host", host}, {"cpus", usable_cpu_list()}};
   nlohmann::json plugins = nlohmann::json::array();
   for (const Instance* inst : components.instances()) {
     const auto* d = inst->type().library->descriptor;

@@ -1,7 +1,6 @@
 #include "study/runner.hpp"
 
 #include <fcntl.h>
-#include <sched.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -16,6 +15,7 @@
 #include <ostream>
 #include <thread>
 
+#include "core/cpu_affinity.hpp"
 #include "core/errors.hpp"
 #include "core/interrupt.hpp"
 #include "run/new_file.hpp"
@@ -29,6 +29,7 @@ using Clock = std::chrono::steady_clock;
 struct Child {
   std::size_t record = 0;
   Clock::time_point started;
+  int share = 0;  // which of the study's CPU shares it runs on
 };
 
 /// The last "error:" line of a run's log (what the child said when it failed), or "".
@@ -54,9 +55,11 @@ std::string summary_status(const fs::path& dir) {
 }
 
 /// Starts one child: its own process group (the terminal's Ctrl-C reaches the study only, which
-/// forwards it once), stdin from /dev/null, stdout and stderr into `log`.
+/// forwards it once), on `cpus` (its share of the study's: a run gives its soil as many threads
+/// as it may use CPUs, so runs side by side must not each see all of them), stdin from
+/// /dev/null, stdout and stderr into `log`.
 pid_t start_child(const fs::path& executable, const std::vector<std::string>& command,
-                  const fs::path& log) {
+                  const std::vector<int>& cpus, const fs::path& log) {
   const int log_fd = open_new_file(log);
   std::vector<std::string> args;
   args.push_back(executable.string());
@@ -67,6 +70,7 @@ pid_t start_child(const fs::path& executable, const std::vector<std::string>& co
   const pid_t pid = ::fork();
   if (pid == 0) {
     ::setpgid(0, 0);
+    restrict_to_cpus(cpus);  // where refused, the run shares all of them: slower, still right
     const int null = ::open("/dev/null", O_RDONLY);
     if (null >= 0) ::dup2(null, STDIN_FILENO);
     ::dup2(log_fd, STDOUT_FILENO);
@@ -107,13 +111,6 @@ std::string duration_text(double s) {
   return text;
 }
 
-int usable_cpus() {
-  cpu_set_t set;
-  CPU_ZERO(&set);
-  if (::sched_getaffinity(0, sizeof set, &set) == 0) return std::max(1, CPU_COUNT(&set));
-  return std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
-}
-
 bool run_pending(std::vector<RunRecord>& records, const RunnerOptions& options,
                  const std::function<void()>& on_change) {
   std::vector<std::size_t> queue;
@@ -124,6 +121,9 @@ bool run_pending(std::vector<RunRecord>& records, const RunnerOptions& options,
   double finished_wall = 0.0;  // s, sum over runs that ended by themselves
   std::size_t finished = 0;
   std::map<pid_t, Child> running;
+  const int shares = std::max(1, options.jobs);
+  const std::vector<int> cpus = usable_cpu_list();
+  std::vector<bool> share_busy(static_cast<std::size_t>(shares), false);
   bool stopping = false;
   const auto say = [&](const std::string& line) {
     if (options.progress != nullptr) *options.progress << "study: " << line << std::endl;
@@ -150,8 +150,12 @@ bool run_pending(std::vector<RunRecord>& records, const RunnerOptions& options,
         throw RunError("cannot create the results directory " + r.results.string() + ": " +
                        ec.message() + "; check that the study's output folder is writable");
       }
-      const pid_t pid = start_child(options.executable, r.command, r.results / "run.log");
-      running[pid] = {queue[next], Clock::now()};
+      const auto free_share = std::find(share_busy.begin(), share_busy.end(), false);
+      const int share = static_cast<int>(free_share - share_busy.begin());
+      const pid_t pid = start_child(options.executable, r.command, cpu_share(cpus, share, shares),
+                                    r.results / "run.log");
+      *free_share = true;
+      running[pid] = {queue[next], Clock::now(), share};
       r.state = RunState::kRunning;
       ++next;
       say("started " + r.run.name + " (" + std::to_string(next) + " of " + std::to_string(total) +
@@ -167,6 +171,7 @@ bool run_pending(std::vector<RunRecord>& records, const RunnerOptions& options,
       continue;
     }
     RunRecord& r = records[it->second.record];
+    share_busy[static_cast<std::size_t>(it->second.share)] = false;
     const double wall = std::chrono::duration<double>(Clock::now() - it->second.started).count();
     running.erase(it);
     r.wall_time_s = wall;

@@ -30,7 +30,4 @@ bool run_pending(std::vector<RunRecord>& records, const RunnerOptions& options,
 /// "0.4 s", "12 s", "3 min 05 s", "2 h 04 min".
 std::string duration_text(double seconds);
 
-/// The number of CPUs this process may run on (sched_getaffinity), at least 1.
-int usable_cpus();
-
 }  // namespace rumble::study
