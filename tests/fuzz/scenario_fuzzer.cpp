@@ -1,5 +1,5 @@
 // libFuzzer target over scenario text: see scenario_check.hpp for what it checks and
-// tests/fuzz/README.md for how to build and run it (preset "fuzz", clang-14).
+// docs/fuzzing.md for how to build and run it (preset "fuzz", clang-14).
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
