@@ -3,9 +3,10 @@
 // seeded ways and put through everything `rumble validate` does (read, parse, schema, relations,
 // run size, building the components). For every input the check must return within a bound
 // (no crash, no hang), and every finding must say what (a message) and where (a line in the text,
-// and a JSON pointer unless it is about the whole file). libFuzzer needs clang, which this
-// project's toolchain (GCC 12) lacks; this deterministic campaign is the stand-in, labelled
-// "fuzz". The counts are printed at the end (inputs, findings, refusals by exception).
+// and a JSON pointer unless it is about the whole file). Labelled "fuzz"; unlike the libFuzzer
+// target (tests/fuzz, preset fuzz, docs/fuzzing.md) it is deterministic, runs in every build and
+// loads the in-tree plugins. The counts are printed at the end (inputs, findings, refusals by
+// exception).
 #include <gtest/gtest.h>
 
 #include <chrono>

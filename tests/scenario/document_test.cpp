@@ -66,6 +66,14 @@ INSTANTIATE_TEST_SUITE_P(
         SyntaxCase{"{\"a\": 01}",
                    "1:7: syntax error: numbers must not have leading zeros | "
                    "write 1 (or 0.1)"},
+        // Found by the fuzz target (tests/fuzz/regressions/all_zero_number.json): only zeros
+        // left nothing to suggest, and an std::out_of_range escaped instead of a diagnostic.
+        SyntaxCase{"{\"a\": 00}",
+                   "1:7: syntax error: numbers must not have leading zeros | "
+                   "write 0 (or 0.0)"},
+        SyntaxCase{"{\"a\": -000}",
+                   "1:7: syntax error: numbers must not have leading zeros | "
+                   "write -0 (or -0.0)"},
         SyntaxCase{"{\"a\": 1.}",
                    "1:7: syntax error: invalid number '1.': expected digit after "
                    "'.' | numbers look like 12, -0.5 or 2.1e11"},

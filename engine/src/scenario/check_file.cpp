@@ -67,9 +67,20 @@ bool CheckedScenario::ok() const {
 CheckedScenario check_scenario_file(const std::filesystem::path& path,
                                     std::vector<Override>& overrides, PluginRegistry& registry,
                                     const CheckOptions& options) {
+  std::vector<Diagnostic> diagnostics;
+  std::optional<Document> doc = load_document(path, diagnostics);
+  if (!doc) {
+    CheckedScenario c;
+    c.diagnostics = std::move(diagnostics);
+    return c;
+  }
+  return check_scenario_document(std::move(*doc), overrides, registry, options);
+}
+
+CheckedScenario check_scenario_document(Document document, std::vector<Override>& overrides,
+                                        PluginRegistry& registry, const CheckOptions& options) {
   CheckedScenario c;
-  c.doc = load_document(path, c.diagnostics);
-  if (!c.doc) return c;
+  c.doc = std::move(document);
   Document& doc = *c.doc;
   for (Override& o : overrides) apply_override(doc.json, o);
   if (options.load_plugins) load_scenario_plugins(doc, registry);

@@ -46,4 +46,9 @@ CheckedScenario check_scenario_file(const std::filesystem::path& path,
                                     std::vector<Override>& overrides, PluginRegistry& registry,
                                     const CheckOptions& options = {});
 
+/// The same checks on a document already read and parsed (parse_document): everything after
+/// load_document. The fuzz target (tests/fuzz) checks text from memory this way.
+CheckedScenario check_scenario_document(Document doc, std::vector<Override>& overrides,
+                                        PluginRegistry& registry, const CheckOptions& options = {});
+
 }  // namespace rumble::scenario

@@ -190,7 +190,9 @@ Diagnostic unexpected_token(std::string_view text, std::size_t tok, const std::s
   const std::size_t digits = (!word.empty() && word[0] == '-') ? 1 : 0;
   if (token.find("number literal") != std::string::npos && word.size() > digits + 1 &&
       word[digits] == '0' && word[digits + 1] >= '0' && word[digits + 1] <= '9') {
-    const std::string rest = word.substr(word.find_first_not_of("-0"));
+    // All zeros ("00", "-000") leave no other digit: the number meant is 0.
+    const std::size_t first = word.find_first_not_of("-0");
+    const std::string rest = first == std::string::npos ? "0" : word.substr(first);
     return at(text, tok, "numbers must not have leading zeros",
               "write " + word.substr(0, digits) + rest + " (or " + word.substr(0, digits) + "0." +
                   rest + ")");
