@@ -15,7 +15,10 @@ namespace rumble::fem {
 
 namespace {
 
-/// Physical groups of dimension dim by name.
+/// A physical group without a name is listed as this, with its tag.
+constexpr const char* kUnnamed = "(unnamed, tag ";
+
+/// Physical groups of dimension dim by name (unnamed ones as kUnnamed<tag>)).
 std::map<std::string, int> physical_groups(int dim) {
   gmsh::vectorpair groups;
   gmsh::model::getPhysicalGroups(groups, dim);
@@ -23,9 +26,13 @@ std::map<std::string, int> physical_groups(int dim) {
   for (const auto& [d, tag] : groups) {
     std::string name;
     gmsh::model::getPhysicalName(d, tag, name);
-    named[name] = tag;
+    named[name.empty() ? kUnnamed + std::to_string(tag) + ")" : name] = tag;
   }
   return named;
+}
+
+bool unnamed(const std::string& name) {
+  return name.rfind(kUnnamed, 0) == 0;
 }
 
 std::vector<int> entities_of(int dim, int group) {
@@ -37,7 +44,8 @@ std::vector<int> entities_of(int dim, int group) {
 /// "\"a\", \"b\"" or "none".
 std::string quoted_list(const std::vector<std::string>& names) {
   std::string out;
-  for (const std::string& n : names) out += (out.empty() ? "" : ", ") + ('"' + n + '"');
+  for (const std::string& n : names)
+    out += (out.empty() ? "" : ", ") + (unnamed(n) ? n : '"' + n + '"');
   return out.empty() ? "none" : out;
 }
 
@@ -206,7 +214,7 @@ void layers_from_volumes(const FemSettings& s, const ModelIndex& ix, const std::
   std::vector<char> assigned(mesh.tets.size(), 0), present(s.layers.size() + 1, 0);
   bool named = false;
   for (const auto& [name, group] : physical_groups(3)) {
-    if (name.empty()) continue;
+    if (unnamed(name)) continue;
     const int layer = layer_of_volume(s, name);
     if (layer < 0) {
       unknown.push_back(name);
