@@ -22,17 +22,18 @@ void piece(Sha256& h, std::string_view label, std::string_view bytes) {
   h.update(bytes);
 }
 
-/// Every "type" string of an object and every "file" string of a "params" object, below `v`.
+/// Every "type" string of an object and every "file" string at any depth of a "params" object
+/// (an mbs vehicle's params/file, a FEM soil's params/mesh/file), below `v`.
 void collect(const json& v, bool in_params, std::set<std::string>& types,
              std::set<std::string>& files) {
   if (v.is_object()) {
     for (const auto& [key, child] : v.items()) {
       if (key == "type" && child.is_string()) types.insert(child.get<std::string>());
       if (in_params && key == "file" && child.is_string()) files.insert(child.get<std::string>());
-      collect(child, key == "params", types, files);
+      collect(child, in_params || key == "params", types, files);
     }
   } else if (v.is_array()) {
-    for (const json& child : v) collect(child, false, types, files);
+    for (const json& child : v) collect(child, in_params, types, files);
   }
 }
 

@@ -15,9 +15,9 @@ namespace rumble::study {
 
 /// SHA-256 (hex) over: the rumble version; the resolved scenario (the file with the run's
 /// patches, validated, defaults filled, dumped with sorted keys); the scenario file's bytes; the
-/// bytes of the files that components' params name as "file" (an mbs vehicle's definition),
-/// relative to the scenario's folder; the study file's entry for the run; and every plugin type
-/// the scenario names, with its plugin's name and version.
+/// bytes of the files that components' params name as "file" at any depth (an mbs vehicle's
+/// definition, a FEM soil's mesh.file), relative to the scenario's folder; the study file's entry
+/// for the run; and every plugin type the scenario names, with its plugin's name and version.
 std::string run_key(const PlannedRun& run, const scenario::Document& resolved,
                     const PluginRegistry& registry);
 

@@ -19,8 +19,10 @@ namespace rumble::soils {
 
 /// Schema properties E, nu, rho and layers of a soil given by its properties (a fragment: the
 /// text between the braces of "properties", without the closing brace); layers_description
-/// says what the soil makes of the layers.
-inline std::string soil_properties_schema(const std::string& layers_description) {
+/// says what the soil makes of the layers, extra_layer_properties (",\n" then properties) adds
+/// properties of its own to each layer.
+inline std::string soil_properties_schema(const std::string& layers_description,
+                                          const std::string& extra_layer_properties = "") {
   return R"schema(
     "E": {"type": "number", "exclusiveMinimum": 0, "description": "Young's modulus of the half-space, below any layers [Pa]; with nu and rho it gives G = E / (2 (1 + nu)) [Pa] and c_s = sqrt(G / rho) [m/s], from which every parameter is derived"},
     "nu": {"type": "number", "minimum": 0, "exclusiveMaximum": 0.5, "description": "Poisson ratio of the half-space [-], in [0, 0.5)"},
@@ -37,7 +39,8 @@ inline std::string soil_properties_schema(const std::string& layers_description)
           "thickness": {"type": "number", "exclusiveMinimum": 0, "description": "layer thickness [m]"},
           "E": {"type": "number", "exclusiveMinimum": 0, "description": "Young's modulus of the layer [Pa]"},
           "nu": {"type": "number", "minimum": 0, "exclusiveMaximum": 0.5, "description": "Poisson ratio of the layer [-], in [0, 0.5)"},
-          "rho": {"type": "number", "exclusiveMinimum": 0, "description": "density of the layer [kg/m^3]"}
+          "rho": {"type": "number", "exclusiveMinimum": 0, "description": "density of the layer [kg/m^3]"})schema" +
+         extra_layer_properties + R"schema(
         }
       }
     })schema";

@@ -53,13 +53,15 @@ const char* settings_schema() {
 )schema" +
       soils::soil_properties_schema(
           "horizontal layers over the half-space, top first, meshed as "
-          "they are: element faces follow each interface") +
+          "they are: element faces follow each interface",
+          R"schema(,
+          "name": {"type": "string", "minLength": 1, "pattern": "^[A-Za-z][A-Za-z0-9_.-]*$", "description": "the layer's name: the physical volume of a user's mesh file (mesh.file) that has this layer's material; unique, not half_space"})schema") +
       R"schema(,
     "mesh": {
       "type": "object", "additionalProperties": false, "default": {},
       "description": "the tetrahedral mesh, generated with gmsh when the track announces its footprints (docs/fem-soil.md)",
       "properties": {
-        "file": {"type": "string", "minLength": 1, "description": "a gmsh mesh file (.msh) to use instead of meshing, relative to the scenario's folder: linear tetrahedra, z up with the ground at z = 0, the physical surfaces \"ground\" (the free surface; the footprints lie in it, its faces following their edges) and \"absorbing\" (the truncation surface), optionally physical volumes \"layer_<k>\" (k = 0 the top layer, layers.size() the half-space; by default by depth). The domain must be convex around the footprints. The other mesh keys are then ignored"},
+        "file": {"type": "string", "minLength": 1, "description": "a gmsh mesh file (.msh, formats 2.2 and 4.1) to use instead of meshing, relative to the scenario's folder (docs/fem-soil.md section 2): linear tetrahedra only, z up with the ground at z = 0, and the physical groups: surface \"ground\" (the free surface), surface \"footprints\" (the track's footprint rectangles embedded in the ground, one connected patch each, matching the track's footprints in number, centre and size to 2 % of the smaller side or 1 mm), surface \"absorbing\" (the truncation surface, where the boundary acts); optionally volumes named for the layers (a layer's name, layer_<k> with k = 0 the top layer, half_space below the layers; unnamed: layers by depth). The domain must be convex around the footprints. Refused at validation when a group is missing, with the groups the file has. At most 256 bytes per mesh.max_dofs (64 MiB at least), and at most mesh.max_dofs DOFs. The other mesh keys are then ignored"},
         "shape": {"enum": ["hemisphere", "box"], "default": "hemisphere", "description": "truncation of the half-space: a hemisphere centred under the footprints (waves meet its surface near normal incidence, where the absorbing boundary works best), or a box around them"},
         "radius": {"type": "number", "exclusiveMinimum": 0, "default": 20, "description": "hemisphere radius, or the box's margin beyond the footprints on each side and below [m]; put it at least one Rayleigh wavelength of the lowest frequency of interest beyond the farthest receiver"},
         "f_max": {"type": "number", "exclusiveMinimum": 0, "maximum": 2000, "default": 80, "description": "highest frequency resolved near the track [Hz]"},
@@ -110,6 +112,24 @@ FemSettings read_settings(const std::string& params_json) {
   FemSettings s;
   s.half_space = p.half_space();
   s.layers = p.layers();
+  if (j.contains("layers"))
+    for (std::size_t k = 0; k < j.at("layers").size(); ++k) {
+      const nlohmann::json& layer = j.at("layers").at(k);
+      std::string name = layer.value("name", "");
+      const std::string where = "layers/" + std::to_string(k) + "/name";
+      const bool numbered = name.rfind("layer_", 0) == 0 && name.size() > 6 &&
+                            name.find_first_not_of("0123456789", 6) == std::string::npos;
+      if (name == "half_space" || numbered)
+        throw std::invalid_argument("fem: params/" + where + ": \"" + name +
+                                    "\" is a name the mesh file's volumes have already "
+                                    "(half_space, layer_<k>); choose another");
+      for (std::size_t i = 0; i < k && !name.empty(); ++i)
+        if (s.layer_names[i] == name)
+          throw std::invalid_argument("fem: params/" + where + ": \"" + name +
+                                      "\" names params/layers/" + std::to_string(i) +
+                                      " already; give each layer its own name");
+      s.layer_names.push_back(std::move(name));
+    }
 
   const nlohmann::json mesh = j.value("mesh", nlohmann::json::object());
   MeshRequest& m = s.mesh;

@@ -3,6 +3,7 @@
 // absorbing boundary, material damping and the explicit step's safety factor. SI units.
 #pragma once
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,9 @@ struct MeshRequest {
   double max_dofs = 3e6;                // refused before meshing beyond this estimate
   bool fast_algorithm = false;          // gmsh HXT (fast, not reproducible) instead of Delaunay
   std::string file;  // a user's .msh instead (as given: relative to the scenario)
+  /// The largest mesh file read [bytes]: about 100 B per DOF as ASCII .msh, so 256 B per
+  /// mesh.max_dofs, at least 64 MiB.
+  double max_file_bytes() const { return std::max(64.0 * 1048576.0, 256.0 * max_dofs); }
 };
 
 struct BoundaryRequest {
@@ -48,6 +52,7 @@ struct DampingRequest {
 struct FemSettings {
   soils::SoilProperties half_space;
   std::vector<soils::SoilLayer> layers;  // top first
+  std::vector<std::string> layer_names;  // per layer: its "name", "" when none
   MeshRequest mesh;
   BoundaryRequest boundary;
   DampingRequest damping;

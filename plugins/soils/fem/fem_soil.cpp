@@ -9,7 +9,9 @@
 #include <cmath>
 #include <filesystem>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <optional>
+#include <rumble/params_file.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -56,7 +58,24 @@ class FemSoil final : public rumble::Soil {
   static const char* params_schema() { return rumble::fem::settings_schema(); }
 
   FemSoil(const std::string& params_json, const rumble::Host& host)
-      : settings_(rumble::fem::read_settings(params_json)), host_(host) {}
+      : settings_(rumble::fem::read_settings(params_json)), host_(host) {
+    // A mesh file is found (and sized) at once, so that validation names it at params.
+    if (!settings_.mesh.file.empty()) {
+      const double limit = settings_.mesh.max_file_bytes();
+      mesh_file_ =
+          rumble::checked_params_file(
+              "fem: params/mesh/file", settings_.mesh.file,
+              nlohmann::json(settings_.mesh.file).dump(), host_.scenario_dir(),
+              {.noun = "a mesh file",
+               .file_noun = "a gmsh mesh file (.msh)",
+               .max_bytes = static_cast<std::uintmax_t>(limit),
+               .too_large_fix = "is this the right file? (the limit is 256 bytes per "
+                                "mesh.max_dofs, now " +
+                                format(settings_.mesh.max_dofs) + "; raise it for a larger mesh)"})
+              .lexically_normal()
+              .string();
+    }
+  }
 
   void accept_layout(const std::vector<rumble::Footprint>& footprints) override {
     using namespace rumble::fem;
@@ -70,11 +89,11 @@ class FemSoil final : public rumble::Soil {
                  format(plan_.radius) + " m)");
       mesh_ = cached_or_new_mesh();
     } else {
-      const std::string file =
-          (std::filesystem::path(host_.scenario_dir()) / settings_.mesh.file).lexically_normal();
-      mesh_ = read_mesh_file(settings_, file);
+      MeshFile file = load_mesh_file(settings_, mesh_file_);
+      check_mesh_footprints(file, footprints);
+      mesh_ = std::move(file.mesh);
       plan_ = {.region = TrackRegion::of(footprints)};  // sizes unknown: radius 0
-      host_.info("fem: mesh read from " + file);
+      host_.info("fem: mesh read from " + mesh_file_);
     }
     const double mesh_seconds = seconds_since(start);
     weights_ = footprint_weights(mesh_, footprints);
@@ -354,6 +373,7 @@ class FemSoil final : public rumble::Soil {
 
   rumble::fem::FemSettings settings_;
   rumble::Host host_;
+  std::string mesh_file_;  // mesh.file found from the scenario's folder; "" when meshing
   std::vector<rumble::Footprint> footprints_;
   rumble::fem::MeshPlan plan_;
   rumble::fem::TetMesh mesh_;

@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <rumble/params_file.hpp>
 #include <rumble/plugin.hpp>
 #include <sstream>
 #include <string>
@@ -113,31 +114,15 @@ void refuse_duplicate_keys(const std::string& text, const std::string& where) {
   }
 }
 
-/// The text of the definition file at `path` (as the user wrote it: `name`): a regular file of
-/// at most kMaxDefinitionBytes, else a refusal at params/file naming the value and the fix.
-std::string read_definition_file(const std::filesystem::path& path, const nlohmann::json& name,
-                                 const std::string& dir) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  const fs::file_status status = fs::status(path, ec);
-  if (!fs::exists(status)) {
-    fail("params/file", "no such file \"" + path.string() + "\"", vehicles::shown(name),
-         "give the path of a vehicle definition relative to the scenario file's directory (\"" +
-             dir + "\")");
-  }
-  if (!fs::is_regular_file(status)) {
-    fail("params/file",
-         "\"" + path.string() + "\" is not a regular file (a directory, device or pipe)",
-         vehicles::shown(name), "name a vehicle definition file (JSON)");
-  }
-  const std::uintmax_t size = fs::file_size(path, ec);
-  if (!ec && size > kMaxDefinitionBytes) {
-    fail("params/file",
-         "\"" + path.string() + "\" is too large (" + std::to_string(size) +
-             " bytes; a vehicle definition is at most " + std::to_string(kMaxDefinitionBytes) +
-             " bytes)",
-         vehicles::shown(name), "is this the right file?");
-  }
+/// The text of the definition file `name` (relative to the scenario file's directory `dir`): a
+/// regular file of at most kMaxDefinitionBytes, else a refusal at params/file naming the value
+/// and the fix (rumble/params_file.hpp).
+std::string read_definition_file(const nlohmann::json& name, const std::string& dir) {
+  const std::filesystem::path path = rumble::checked_params_file(
+      "params/file", name.get<std::string>(), vehicles::shown(name), dir,
+      {.noun = "a vehicle definition",
+       .file_noun = "a vehicle definition file (JSON)",
+       .max_bytes = kMaxDefinitionBytes});
   std::ifstream in(path, std::ios::binary);
   if (!in) {
     fail("params/file", "cannot read \"" + path.string() + "\"", vehicles::shown(name),
@@ -172,11 +157,8 @@ Definition load_definition(const std::string& params_json, const rumble::Host& h
     }
   }
   const std::string name = file.get<std::string>();
-  // A scenario given as "x.json" has the directory "": the current one.
-  const std::string dir = host.scenario_dir().empty() ? "." : host.scenario_dir();
-  std::filesystem::path path(name);
-  if (path.is_relative()) path = std::filesystem::path(dir) / path;
-  const std::string text = read_definition_file(path, file, dir);
+  // (a scenario given as "x.json" has the directory "": the current one)
+  const std::string text = read_definition_file(file, host.scenario_dir());
   nlohmann::json definition = parse_json(text, name + "#");
   refuse_duplicate_keys(text, name + "#");
   return parse_definition(definition, name + "#");

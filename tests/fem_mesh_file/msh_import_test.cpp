@@ -1,0 +1,309 @@
+// A user's gmsh mesh file (params/mesh/file): the soil's own mesh written as .msh with its
+// physical groups (write_mesh_file) reads back as the same mesh and runs as the generated one,
+// through the plugin; a file lacking a group, not matching the track's footprints or layers, or
+// holding no tetrahedra is refused with what is wrong, what the file has, and the fix.
+#include <gmsh.h>
+#include <gtest/gtest.h>
+#include <rumble/abi.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "expect_message.hpp"
+#include "fem_settings.hpp"
+#include "gmsh_model.hpp"
+#include "mesh_generator.hpp"
+#include "soil_harness.hpp"
+
+namespace rumble::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// An empty scratch directory named after the running test.
+fs::path scratch() {
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  const fs::path dir = fs::path(RUMBLE_TEST_BINARY_DIR) / "fem_mesh_file_tests" /
+                       (std::string(info->test_suite_name()) + "." + info->name());
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+/// A small two-layer soil (a 1 m named top layer over a stiff half-space) in a 5 m hemisphere:
+/// about 1.5k nodes, meshed in well under a second.
+nlohmann::json small_layered_soil() {
+  return {{"E", 750e6},
+          {"nu", 0.3},
+          {"rho", 1800.0},
+          {"layers",
+           {{{"name", "fill"}, {"thickness", 1.0}, {"E", 300e6}, {"nu", 0.3}, {"rho", 1700.0}}}},
+          {"mesh", {{"radius", 5.0}, {"f_max", 30.0}, {"near_distance", 1.5}}}};
+}
+
+/// The soil's own mesh of params on footprints, written to path as .msh; returns the mesh.
+fem::TetMesh write_generated(const nlohmann::json& params,
+                             const std::vector<rumble_footprint>& footprints,
+                             const fs::path& path) {
+  const fem::FemSettings s = fem::read_settings(params.dump());
+  const fem::TetMesh mesh = fem::generate_mesh(s, footprints, fem::plan_mesh(s, footprints));
+  fem::write_mesh_file(mesh, s, footprints, path.string());
+  return mesh;
+}
+
+nlohmann::json with_file(nlohmann::json params, const fs::path& path) {
+  params["mesh"] = {{"file", path.string()}};
+  return params;
+}
+
+/// Receiver traces (time, then the 6 values of each probe per sample) over 20 steps of 1 ms
+/// after the static state, with the footprint forces swinging by 20 %; and the static
+/// footprint displacements.
+struct Traces {
+  VectorXd u_static;
+  std::vector<double> times, values;
+};
+
+Traces run(const nlohmann::json& params, const std::vector<rumble_footprint>& footprints) {
+  TestSoil soil("fem", params.dump());
+  soil.accept_layout(footprints);
+  const std::vector<rumble_probe> probes = {{"r1", 0.6, 1.5, 0.0}, {"r2", 0.3, 3.0, 1.0}};
+  EXPECT_EQ(soil.api().set_probes(soil.self(), probes.data(), probes.size(), 0.0), RUMBLE_OK);
+  const auto n = static_cast<Eigen::Index>(footprints.size());
+  Traces r;
+  r.u_static = soil.initialize(VectorXd::Constant(n, 5e4));
+  for (int k = 0; k < 20; ++k) {
+    const double t = 1e-3 * k;
+    soil.advance_linear(t, 1e-3, VectorXd::Constant(n, 5e4 * (1.0 + 0.2 * std::sin(300.0 * t))),
+                        VectorXd::Constant(n, 5e4 * (1.0 + 0.2 * std::sin(300.0 * (t + 1e-3)))));
+    std::vector<double> times(1000), values(1000 * probes.size() * RUMBLE_PROBE_VALUES);
+    std::uint64_t got = 0;
+    EXPECT_EQ(soil.api().probe_samples(soil.self(), times.data(), values.data(), 1000, &got),
+              RUMBLE_OK);
+    r.times.insert(r.times.end(), times.begin(), times.begin() + static_cast<std::ptrdiff_t>(got));
+    r.values.insert(
+        r.values.end(), values.begin(),
+        values.begin() + static_cast<std::ptrdiff_t>(got * probes.size() * RUMBLE_PROBE_VALUES));
+  }
+  return r;
+}
+
+TEST(FemMshImport, TheSoilsOwnMeshReadsBackAsTheSameMesh) {
+  const fs::path path = scratch() / "soil.msh";
+  const auto footprints = sleeper_row(3);
+  const fem::TetMesh m = write_generated(small_layered_soil(), footprints, path);
+  const fem::FemSettings s = fem::read_settings(small_layered_soil().dump());
+  const fem::MeshFile f = fem::load_mesh_file(s, path.string());
+  EXPECT_GT(m.tets.size(), 500u);
+  EXPECT_LT(fs::file_size(path), 1u << 20);
+  EXPECT_EQ(f.mesh.nodes, m.nodes);  // binary .msh: exact
+  EXPECT_EQ(f.mesh.tets, m.tets);
+  EXPECT_EQ(f.mesh.layer, m.layer);
+  EXPECT_EQ(f.mesh.ground, m.ground);
+  EXPECT_EQ(f.mesh.truncation, m.truncation);
+  ASSERT_TRUE(f.has_footprints);
+  ASSERT_EQ(f.footprints.size(), 3u);
+  for (std::size_t j = 0; j < 3; ++j) {
+    EXPECT_NEAR(f.footprints[j].centre_x(), footprints[j].x, 1e-12);
+    EXPECT_NEAR(f.footprints[j].area, 2.6 * 0.26, 1e-9);
+  }
+  EXPECT_NO_THROW(fem::check_mesh_footprints(f, footprints));
+}
+
+TEST(FemMshImport, ARunOnTheImportedMeshIsTheRunOnTheGeneratedMesh) {
+  const fs::path path = scratch() / "soil.msh";
+  const auto footprints = sleeper_row(3);
+  write_generated(small_layered_soil(), footprints, path);
+  const Traces generated = run(small_layered_soil(), footprints);
+  const Traces imported = run(with_file(small_layered_soil(), path), footprints);
+  ASSERT_EQ(generated.u_static.size(), 3);
+  for (Eigen::Index j = 0; j < 3; ++j) {
+    EXPECT_GT(generated.u_static[j], 1e-5);
+    EXPECT_NEAR(imported.u_static[j], generated.u_static[j], 1e-13 * generated.u_static[j]);
+  }
+  ASSERT_GT(generated.times.size(), 20u);
+  ASSERT_EQ(imported.times, generated.times);
+  ASSERT_EQ(imported.values.size(), generated.values.size());
+  double scale = 0.0;
+  for (double v : generated.values) scale = std::max(scale, std::abs(v));
+  EXPECT_GT(scale, 0.0);
+  for (std::size_t i = 0; i < generated.values.size(); ++i)
+    EXPECT_NEAR(imported.values[i], generated.values[i], 1e-12 * scale) << "value " << i;
+}
+
+/// path's .msh rewritten to out without the physical group (dim, name), or with it renamed.
+void edit_group(const fs::path& path, const fs::path& out, int dim, const std::string& name,
+                const std::string& rename = "") {
+  fem::GmshSession session(1);
+  fem::gmsh_call("edit a physical group", [&] {
+    gmsh::open(path.string());
+    // Every group taken down, then put back but the one edited.
+    gmsh::vectorpair groups;
+    gmsh::model::getPhysicalGroups(groups);
+    std::vector<std::tuple<int, std::string, std::vector<int>>> kept;
+    for (const auto& [d, tag] : groups) {
+      std::string n;
+      gmsh::model::getPhysicalName(d, tag, n);
+      std::vector<int> entities;
+      gmsh::model::getEntitiesForPhysicalGroup(d, tag, entities);
+      if (d == dim && n == name) {
+        if (rename.empty()) continue;
+        n = rename;
+      }
+      kept.emplace_back(d, n, entities);
+    }
+    // (gmsh 4.8 keeps the names of removed groups: drop them too, and number the new ones apart)
+    for (const auto& [d, tag] : groups) {
+      std::string n;
+      gmsh::model::getPhysicalName(d, tag, n);
+      if (!n.empty()) gmsh::model::removePhysicalName(n);
+    }
+    gmsh::model::removePhysicalGroups();
+    int tag = 1000;
+    for (const auto& [d, n, entities] : kept) {
+      gmsh::model::addPhysicalGroup(d, entities, ++tag);
+      if (!n.empty()) gmsh::model::setPhysicalName(d, tag, n);
+    }
+    gmsh::option::setNumber("Mesh.Binary", 1);
+    gmsh::option::setNumber("Mesh.SaveAll", 1);  // the elements of a removed group too
+    gmsh::write(out.string());
+    return 0;
+  });
+}
+
+/// The message accept_layout gives for params on footprints.
+std::string layout_error(const nlohmann::json& params,
+                         const std::vector<rumble_footprint>& footprints) {
+  TestSoil soil("fem", params.dump());
+  std::string message;
+  EXPECT_NE(soil.try_accept_layout(footprints, &message), RUMBLE_OK);
+  return message;
+}
+
+void expect_parts(const std::string& message, std::initializer_list<std::string> parts) {
+  for (const std::string& part : parts)
+    EXPECT_NE(message.find(part), std::string::npos) << "'" << part << "' not in: " << message;
+}
+
+TEST(FemMshImport, EachMissingGroupIsNamedWithWhatTheFileHasAndTheFix) {
+  const fs::path dir = scratch();
+  const auto footprints = sleeper_row(3);
+  const nlohmann::json soil = small_layered_soil();
+  write_generated(soil, footprints, dir / "soil.msh");
+
+  edit_group(dir / "soil.msh", dir / "no_ground.msh", 2, "ground");
+  expect_parts(layout_error(with_file(soil, dir / "no_ground.msh"), footprints),
+               {"fem: params/mesh/file: '" + (dir / "no_ground.msh").string() + "'",
+                "has no physical surface \"ground\" (it has: \"absorbing\", \"footprints\")",
+                "name the free surface at z = 0 \"ground\""});
+
+  edit_group(dir / "soil.msh", dir / "no_absorbing.msh", 2, "absorbing");
+  expect_parts(layout_error(with_file(soil, dir / "no_absorbing.msh"), footprints),
+               {"has no physical surface \"absorbing\" (it has: \"footprints\", \"ground\")",
+                "the truncation surface \"absorbing\""});
+
+  edit_group(dir / "soil.msh", dir / "no_footprints.msh", 2, "footprints");
+  expect_parts(layout_error(with_file(soil, dir / "no_footprints.msh"), footprints),
+               {"has no physical surface \"footprints\" (it has: \"absorbing\", \"ground\")",
+                "the track has 3 footprint(s), 2.6 m x 0.26 m (across x along), centred at x = 0 "
+                ".. 1.2 m every 0.6 m, y = 0 m",
+                "put them in a physical surface \"footprints\""});
+
+  edit_group(dir / "soil.msh", dir / "no_layer.msh", 3, "fill");
+  expect_parts(layout_error(with_file(soil, dir / "no_layer.msh"), footprints),
+               {"tetrahedra are in no physical volume named for a layer",
+                "\"fill\", \"layer_0\", \"half_space\", \"layer_1\""});
+
+  edit_group(dir / "soil.msh", dir / "wrong_layer.msh", 3, "fill", "clay");
+  expect_parts(layout_error(with_file(soil, dir / "wrong_layer.msh"), footprints),
+               {"has the physical volume(s) \"clay\", which name no layer of params/layers",
+                "name each volume for its layer: \"fill\", \"layer_0\", \"half_space\""});
+}
+
+TEST(FemMshImport, FootprintsNotTheTracksAreRefused) {
+  const fs::path dir = scratch();
+  const auto footprints = sleeper_row(3);
+  const nlohmann::json soil = with_file(small_layered_soil(), dir / "soil.msh");
+  write_generated(small_layered_soil(), footprints, dir / "soil.msh");
+  expect_parts(layout_error(soil, sleeper_row(2)),
+               {"has 3 footprint rectangle(s) in its physical surface \"footprints\" (centred at "
+                "x = 0 .. 1.2 m); the track has 2 footprint(s)",
+                "mesh one rectangle per footprint"});
+  auto moved = footprints;
+  moved[1].x += 0.05;  // 5 cm: beyond 2 % of the 0.26 m width
+  expect_parts(layout_error(soil, moved),
+               {"footprint 1 of the track (centre x 0.65 m, y 0 m, 2.6 m x 0.26 m) has no "
+                "rectangle of the physical surface \"footprints\" within 0.0052 m; the nearest is "
+                "centred at x 0.6 m",
+                "place the mesh's footprints at the track's, or change /track/sleepers"});
+  moved[1].x = 0.6 + 0.004;  // within the tolerance: accepted (the area check passes too)
+  TestSoil within("fem", soil.dump());
+  std::string message;
+  EXPECT_EQ(within.try_accept_layout(moved, &message), RUMBLE_OK) << message;
+}
+
+TEST(FemMshImport, FilesThatAreNoTetrahedralMeshAreRefused) {
+  const fs::path dir = scratch();
+  const auto footprints = sleeper_row(1);
+  // One hexahedron with the groups: no tetrahedra.
+  {
+    fem::GmshSession session(1);
+    namespace gm = gmsh::model;
+    const int volume = gm::addDiscreteEntity(3);
+    gm::mesh::addNodes(3, volume, {1, 2, 3, 4, 5, 6, 7, 8},
+                       {-2, -2, -2, 2, -2, -2, 2, 2, -2, -2, 2, -2,  //
+                        -2, -2, 0,  2, -2, 0,  2, 2, 0,  -2, 2, 0});
+    gm::mesh::addElementsByType(volume, 5, {1}, {1, 2, 3, 4, 5, 6, 7, 8});
+    const int top = gm::addDiscreteEntity(2), bottom = gm::addDiscreteEntity(2);
+    gm::mesh::addElementsByType(top, 2, {2, 3}, {5, 6, 7, 5, 7, 8});
+    gm::mesh::addElementsByType(bottom, 2, {4, 5}, {1, 2, 3, 1, 3, 4});
+    gm::setPhysicalName(2, gm::addPhysicalGroup(2, {top}), "ground");
+    gm::setPhysicalName(2, gm::addPhysicalGroup(2, {bottom}), "absorbing");
+    gm::addPhysicalGroup(3, {volume});
+    gmsh::write((dir / "hex.msh").string());
+  }
+  expect_parts(layout_error(with_file(small_layered_soil(), dir / "hex.msh"), footprints),
+               {"hex.msh' holds no linear tetrahedra (gmsh element type 4): it has 1 "
+                "\"Hexahedron 8\" (gmsh type 5)",
+                "mesh every volume with linear tetrahedra"});
+  // Text that is not a mesh is not handed to gmsh (which would run it as a .geo script).
+  std::ofstream(dir / "notes.msh") << "Point(1) = {0, 0, 0};\n";
+  expect_parts(layout_error(with_file(small_layered_soil(), dir / "notes.msh"), footprints),
+               {"notes.msh' is not a gmsh mesh file: it does not start with $MeshFormat"});
+}
+
+TEST(FemMshImport, TheFileItselfIsCheckedWhenTheSoilIsMade) {
+  const fs::path dir = scratch();
+  const nlohmann::json soil = small_layered_soil();
+  EXPECT_EQ(creation_error("fem", with_file(soil, dir / "none.msh").dump()),
+            "fem: params/mesh/file: no such file \"" + (dir / "none.msh").string() + "\", got \"" +
+                (dir / "none.msh").string() +
+                "\"; give the path of a mesh file relative to the scenario file's directory "
+                "(\".\")");
+  EXPECT_EQ(creation_error("fem", with_file(soil, dir).dump()),
+            "fem: params/mesh/file: \"" + dir.string() +
+                "\" is not a regular file (a directory, device or pipe), got \"" + dir.string() +
+                "\"; name a gmsh mesh file (.msh)");
+  std::ofstream(dir / "big.msh") << "$MeshFormat\n";
+  fs::resize_file(dir / "big.msh", 65u << 20);  // sparse: costs no disk
+  nlohmann::json big = with_file(soil, dir / "big.msh");
+  big["mesh"]["max_dofs"] = 1e5;
+  EXPECT_EQ(creation_error("fem", big.dump()),
+            "fem: params/mesh/file: \"" + (dir / "big.msh").string() +
+                "\" is too large (68157440 bytes; a mesh file is at most 67108864 bytes), got \"" +
+                (dir / "big.msh").string() +
+                "\"; is this the right file? (the limit is 256 bytes per mesh.max_dofs, now "
+                "1e+05; raise it for a larger mesh)");
+  nlohmann::json same_name = soil;
+  same_name["layers"].push_back(soil["layers"][0]);
+  EXPECT_EQ(creation_error("fem", same_name.dump()),
+            "fem: params/layers/1/name: \"fill\" names params/layers/0 already; give each layer "
+            "its own name");
+}
+
+}  // namespace
+}  // namespace rumble::test
