@@ -2,7 +2,7 @@
 
 #include <fstream>
 #include <set>
-#include <sstream>
+#include <vector>
 
 #include "plugin/registry.hpp"
 #include "study/sha256.hpp"
@@ -37,12 +37,18 @@ void collect(const json& v, bool in_params, std::set<std::string>& types,
   }
 }
 
-std::string file_bytes(const fs::path& p) {
+/// The SHA-256 of a file's bytes, read in 1 MiB pieces: a FEM soil's mesh file may be hundreds
+/// of megabytes, which the key need not hold at once.
+std::string file_digest(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
   if (!in) return "(unreadable)";
-  std::ostringstream bytes;
-  bytes << in.rdbuf();
-  return bytes.str();
+  Sha256 h;
+  std::vector<char> chunk(std::size_t{1} << 20);
+  while (in) {
+    in.read(chunk.data(), static_cast<std::streamsize>(chunk.size()));
+    h.update(std::string_view(chunk.data(), static_cast<std::size_t>(in.gcount())));
+  }
+  return h.hex();
 }
 
 }  // namespace
@@ -59,7 +65,7 @@ std::string run_key(const PlannedRun& run, const scenario::Document& resolved,
   for (const std::string& f : files) {
     const fs::path p = fs::path(f).is_absolute() ? fs::path(f) : resolved.path.parent_path() / f;
     std::error_code ec;
-    piece(h, "file " + f, fs::is_regular_file(p, ec) ? file_bytes(p) : "(not a file)");
+    piece(h, "file " + f, fs::is_regular_file(p, ec) ? file_digest(p) : "(not a file)");
   }
   for (const std::string& t : types) {
     for (const rumble_kind kind : {RUMBLE_KIND_VEHICLE, RUMBLE_KIND_SOIL, RUMBLE_KIND_COUPLER}) {
