@@ -83,4 +83,36 @@ inline double observed_order(double p1, double p2, double p3, double r) {
   return std::log(std::abs(p1 - p2) / std::abs(p2 - p3)) / std::log(r);
 }
 
+/// Least-squares fit of p(h) = p_inf + c h^order to solutions on several sizes, the order
+/// scanned over [0.5, 5] in steps of 0.01 (p_inf and c linear for each order).
+struct OrderFit {
+  double order = 0.0, p_inf = 0.0, c = 0.0, rms = 0.0;  // rms of the residuals
+};
+inline OrderFit fit_order(const std::vector<double>& h, const std::vector<double>& p) {
+  OrderFit best;
+  best.rms = INFINITY;
+  const double n = static_cast<double>(h.size());
+  for (int k = 50; k <= 500; ++k) {
+    const double order = 0.01 * k;
+    double sx = 0.0, sy = 0.0, sxx = 0.0, sxy = 0.0;
+    for (std::size_t i = 0; i < h.size(); ++i) {
+      const double x = std::pow(h[i], order);
+      sx += x;
+      sy += p[i];
+      sxx += x * x;
+      sxy += x * p[i];
+    }
+    OrderFit f;
+    f.order = order;
+    f.c = (n * sxy - sx * sy) / (n * sxx - sx * sx);
+    f.p_inf = (sy - f.c * sx) / n;
+    double r2 = 0.0;
+    for (std::size_t i = 0; i < h.size(); ++i)
+      r2 += std::pow(p[i] - f.p_inf - f.c * std::pow(h[i], order), 2);
+    f.rms = std::sqrt(r2 / n);
+    if (f.rms < best.rms) best = f;
+  }
+  return best;
+}
+
 }  // namespace rumble::test
