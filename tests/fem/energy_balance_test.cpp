@@ -8,7 +8,8 @@
 // F(t) and u_footprint(t) (exact for a force held over a step), the dissipated and radiated
 // energies by the trapezoidal rule on v^T C v at the step points. The balance then holds to the
 // accuracy of the scheme, second order: the residual must fall about 4x when dt halves (a check
-// of the order independent of any bound).
+// of the order independent of any bound), except for one first-order term of the explicit
+// step's stiffness-proportional damping, derived and checked below.
 //
 // Both integrators also satisfy a discrete balance exactly (to round-off), checked as well:
 // - central differences (velocity Verlet): with the acceleration's residual force
@@ -41,7 +42,7 @@ namespace {
 
 /// The soil as the plugin builds it in accept_layout (fem_soil.cpp): stiff soil (c_p 749,
 /// c_s 400, c_R 371 m/s), an 8 m hemisphere with h_near 0.5 m, two 1 x 0.3 m footprints 0.6 m
-/// apart, the default 2 % Rayleigh damping (5 and 100 Hz) and the viscous-spring boundary.
+/// apart; Rayleigh damping of `damping_ratio` at 5 and 100 Hz (the default: 2 %).
 struct EnergySoil {
   FemSettings settings;
   FootprintWeights weights;
