@@ -53,22 +53,12 @@ std::vector<Trace> run_lamb(const std::vector<double>& distances, double t_end, 
   EXPECT_EQ(soil.api().set_probes(soil.self(), probes.data(), probes.size(), 0.0), RUMBLE_OK);
   soil.initialize(VectorXd::Zero(1));
   std::vector<Trace> traces(distances.size());
-  std::vector<double> times(4096), values(4096 * probes.size() * RUMBLE_PROBE_VALUES);
-  const auto force = [pulse](double t) { return load(t, pulse); };
-  for (double t = 0.0; t < t_end - 0.5 * kH; t += kH) {
-    VectorXd coeff(2);
-    coeff << force(t), force(t + kH) - force(t);
-    soil.advance(t, kH, 1, coeff);
-    std::uint64_t n = 0;
-    EXPECT_EQ(soil.api().probe_samples(soil.self(), times.data(), values.data(), times.size(), &n),
-              RUMBLE_OK);
-    for (std::uint64_t k = 0; k < n; ++k)
-      for (std::size_t p = 0; p < probes.size(); ++p) {
-        traces[p].t.push_back(times[k]);
-        traces[p].uz.push_back(values[(k * probes.size() + p) * RUMBLE_PROBE_VALUES + 5]);
-        traces[p].vz.push_back(values[(k * probes.size() + p) * RUMBLE_PROBE_VALUES + 2]);
-      }
-  }
+  soil.drive_probes([pulse](double t) { return load(t, pulse); }, kH, t_end, probes.size(),
+                    [&](double t, std::size_t p, const double* v) {
+                      traces[p].t.push_back(t);
+                      traces[p].uz.push_back(v[5]);
+                      traces[p].vz.push_back(v[2]);
+                    });
   return traces;
 }
 

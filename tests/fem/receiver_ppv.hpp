@@ -59,21 +59,9 @@ inline RingPpv ring_ppv(double h_near, double distance, double radius, double ri
   };
   RingPpv ring;
   ring.ppv.assign(probes.size(), 0.0);
-  std::vector<double> times(1024), values(1024 * probes.size() * RUMBLE_PROBE_VALUES);
-  for (int k = 0; k * H < t_end - 0.5 * H; ++k) {
-    const double t = k * H;
-    VectorXd coeff(2);
-    coeff << force(t), force(t + H) - force(t);
-    soil.advance(t, H, 1, coeff);
-    std::uint64_t n = 0;
-    EXPECT_EQ(soil.api().probe_samples(soil.self(), times.data(), values.data(), times.size(), &n),
-              RUMBLE_OK);
-    for (std::uint64_t s = 0; s < n; ++s)
-      for (std::size_t p = 0; p < probes.size(); ++p) {
-        const double vz = values[(s * probes.size() + p) * RUMBLE_PROBE_VALUES + 2];
-        ring.ppv[p] = std::max(ring.ppv[p], std::abs(vz));
-      }
-  }
+  soil.drive_probes(force, H, t_end, probes.size(), [&](double, std::size_t p, const double* v) {
+    ring.ppv[p] = std::max(ring.ppv[p], std::abs(v[2]));
+  });
   return ring;
 }
 

@@ -104,27 +104,16 @@ TEST(FemValidation, RayleighPulseSpeedBetweenFarReceivers) {
   const auto ramp = [](double t) { return t <= 0.0 ? 0.0 : P * std::min(t / T, 1.0); };
   const auto load = [&](double t) { return ramp(t) - ramp(t - T); };  // a triangle
   std::vector<std::vector<double>> fem(r.size()), exact(r.size());
-  std::vector<double> times(4096), values(4096 * probes.size() * RUMBLE_PROBE_VALUES);
   const auto closed_form = [&](double t, double d) {
     const auto u = [&](double s) {
       return s <= 0.0 ? 0.0 : lamb_ramped_surface_displacement(s, d, P, E, nu, rho, T);
     };
     return u(t) - u(t - T);
   };
-  for (int k = 0; k * H < 0.17 - 0.5 * H; ++k) {
-    const double t = k * H;
-    VectorXd coeff(2);
-    coeff << load(t), load(t + H) - load(t);
-    soil.advance(t, H, 1, coeff);
-    std::uint64_t n = 0;
-    ASSERT_EQ(soil.api().probe_samples(soil.self(), times.data(), values.data(), times.size(), &n),
-              RUMBLE_OK);
-    for (std::uint64_t s = 0; s < n; ++s)
-      for (std::size_t p = 0; p < probes.size(); ++p) {
-        fem[p].push_back(values[(s * probes.size() + p) * RUMBLE_PROBE_VALUES + 5]);
-        exact[p].push_back(closed_form(times[s], r[p]));
-      }
-  }
+  soil.drive_probes(load, H, 0.17, probes.size(), [&](double t, std::size_t p, const double* v) {
+    fem[p].push_back(v[5]);
+    exact[p].push_back(closed_form(t, r[p]));
+  });
   const double c_fem = (r[1] - r[0]) / lag_of(fem[0], fem[1], H);
   const double c_exact = (r[1] - r[0]) / lag_of(exact[0], exact[1], H);
   const double c_R = 100.0 * rayleigh_speed_ratio(nu);

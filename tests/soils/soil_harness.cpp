@@ -122,6 +122,26 @@ void TestSoil::advance_linear(double t, double H, const VectorXd& f0, const Vect
   advance(t, H, 1, coeff);
 }
 
+void TestSoil::drive_probes(const std::function<double(double)>& force, double H, double t_end,
+                            std::size_t probes,
+                            const std::function<void(double, std::size_t, const double*)>& sample) {
+  if (n_ != 1) throw std::runtime_error("drive_probes: a soil of one footprint");
+  std::vector<double> times(4096), values(times.size() * probes * RUMBLE_PROBE_VALUES);
+  VectorXd f0(1), f1(1);
+  for (int k = 0; k * H < t_end - 0.5 * H; ++k) {
+    const double t = k * H;
+    f0 << force(t);
+    f1 << force(t + H);
+    advance_linear(t, H, f0, f1);
+    std::uint64_t n = 0;
+    check(api_->probe_samples(self_, times.data(), values.data(), times.size(), &n),
+          "probe_samples");
+    for (std::uint64_t s = 0; s < n; ++s)
+      for (std::size_t p = 0; p < probes; ++p)
+        sample(times[s], p, &values[(s * probes + p) * RUMBLE_PROBE_VALUES]);
+  }
+}
+
 VectorXd TestSoil::displacement() {
   VectorXd u(n_), v(n_);
   check(api_->motion(self_, u.data(), v.data(), n_), "motion");

@@ -5,6 +5,7 @@
 #include <rumble/abi.h>
 
 #include <Eigen/Dense>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -47,6 +48,12 @@ class TestSoil {
   void advance(double t, double H, unsigned order, const VectorXd& coeff);
   /// Advance with the force varying linearly from f0 (at t) to f1 (at t + H).
   void advance_linear(double t, double H, const VectorXd& f0, const VectorXd& f1);
+  /// Drives a soil of one footprint from t = 0 to t_end in steps of H, the force [N] linear in
+  /// each step from force(t) to force(t + H), and hands each probe sample to
+  /// sample(t, probe, values): the RUMBLE_PROBE_VALUES values of probe `probe` at time t.
+  void drive_probes(const std::function<double(double)>& force, double H, double t_end,
+                    std::size_t probes,
+                    const std::function<void(double, std::size_t, const double*)>& sample);
   VectorXd displacement();
   VectorXd velocity();
   /// Receptance H(f) [m/N], n x n.
