@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "correlation_lag.hpp"
 #include "lamb_surface.hpp"
 #include "receiver_ppv.hpp"
 #include "soil_harness.hpp"
@@ -63,19 +64,6 @@ TEST(FemValidation, ReceiverPpvConvergesOnFinerMeshes) {
   EXPECT_LT(std::abs(ppv[3] - fit.p_inf), 0.01 * fit.p_inf);
 }
 
-/// The lag [s] maximizing the cross-correlation of b against a (same sample times, spacing dt),
-/// refined by a parabola through the best three lags.
-double lag_of(const std::vector<double>& a, const std::vector<double>& b, double dt) {
-  const std::size_t n = a.size();
-  std::vector<double> c(n, 0.0);
-  for (std::size_t lag = 0; lag < n; ++lag)
-    for (std::size_t k = 0; k + lag < n; ++k) c[lag] += a[k] * b[k + lag];
-  const std::size_t best = std::max_element(c.begin() + 1, c.end() - 1) - c.begin();
-  const double shift =
-      0.5 * (c[best - 1] - c[best + 1]) / (c[best - 1] - 2.0 * c[best] + c[best + 1]);
-  return (static_cast<double>(best) + shift) * dt;
-}
-
 TEST(FemValidation, RayleighPulseSpeedBetweenFarReceivers) {
   // Lamb's half-space (E 45 MPa, nu 0.25, rho 1800: c_s 100, c_R 91.94 m/s), a 0.3 x 0.3 m
   // footprint loaded by a triangle pulse (10 kN, rising over 40 ms and falling over 40 ms: its
@@ -114,8 +102,8 @@ TEST(FemValidation, RayleighPulseSpeedBetweenFarReceivers) {
     fem[p].push_back(v[5]);
     exact[p].push_back(closed_form(t, r[p]));
   });
-  const double c_fem = (r[1] - r[0]) / lag_of(fem[0], fem[1], H);
-  const double c_exact = (r[1] - r[0]) / lag_of(exact[0], exact[1], H);
+  const double c_fem = (r[1] - r[0]) / correlation_lag(fem[0], fem[1], H);
+  const double c_exact = (r[1] - r[0]) / correlation_lag(exact[0], exact[1], H);
   const double c_R = 100.0 * rayleigh_speed_ratio(nu);
   RecordProperty("c_fem", std::to_string(c_fem));
   RecordProperty("c_closed_form", std::to_string(c_exact));
