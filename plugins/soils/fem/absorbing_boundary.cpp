@@ -47,26 +47,4 @@ std::vector<BoundaryNode> absorbing_boundary(const TetMesh& mesh, const FemSetti
   return nodes;
 }
 
-void add_absorbing_layer(const TetMesh& mesh, const FemSettings& settings, const MeshPlan& plan,
-                         const Eigen::VectorXd& mass, std::vector<BoundaryNode>& boundary) {
-  if (plan.layer <= 0.0) return;
-  std::vector<std::int32_t> index(mesh.node_count(), -1);
-  for (std::size_t k = 0; k < boundary.size(); ++k)
-    index[boundary[k].node] = static_cast<std::int32_t>(k);
-  for (std::int32_t v = 0; v < static_cast<std::int32_t>(mesh.node_count()); ++v) {
-    const Eigen::Vector3d x = mesh.node(v);
-    const double d = plan.depth_into_layer(x[0], x[1], std::max(x[2], 0.0));
-    if (d <= 0.0) continue;
-    const soils::SoilProperties& p = settings.properties_at(std::max(x[2], 0.0));
-    const double c_s = soils::wave_speeds(p.E, p.nu, p.rho).shear;
-    const double dashpot = settings.boundary.layer.damping_at(d, c_s) * mass[v];
-    if (index[v] < 0) {
-      index[v] = static_cast<std::int32_t>(boundary.size());
-      boundary.push_back({.node = v});
-    }
-    boundary[index[v]].dashpot_normal += dashpot;
-    boundary[index[v]].dashpot_tangential += dashpot;
-  }
-}
-
 }  // namespace rumble::fem

@@ -5,9 +5,6 @@
 // area-weighted mean of the adjacent faces' (numerics.md §2.4). Each node gets two 3 x 3 blocks
 //   D = d_t I + (d_n - d_t) n n^T,   S = s_t I + (s_n - s_t) n n^T,
 // lumped on the node: no extra unknowns, the explicit step stays explicit.
-// The absorbing layer (fem_settings.hpp, AbsorbingLayer) is damping of the same form: an
-// isotropic block alpha m I on every node inside it, so every operator that takes the boundary's
-// dashpots (explicit and implicit steps, receptance, linear matrices) takes the layer too.
 #pragma once
 
 #include <Eigen/Core>
@@ -15,7 +12,6 @@
 #include <vector>
 
 #include "fem_settings.hpp"
-#include "mesh_generator.hpp"
 #include "tet_mesh.hpp"
 #include "track_region.hpp"
 
@@ -41,12 +37,5 @@ struct BoundaryNode {
 /// fixed boundary only node and area are meaningful).
 std::vector<BoundaryNode> absorbing_boundary(const TetMesh& mesh, const FemSettings& settings,
                                              const TrackRegion& region);
-
-/// Adds the absorbing layer's damping alpha(d) m I [N s/m] (m the node's lumped mass [kg], d its
-/// depth into the layer) to every node inside the plan's layer: a node of the truncation surface
-/// keeps its blocks and gains it, any other gets a block of its own (no springs, area 0). Nothing
-/// without a layer.
-void add_absorbing_layer(const TetMesh& mesh, const FemSettings& settings, const MeshPlan& plan,
-                         const Eigen::VectorXd& mass, std::vector<BoundaryNode>& boundary);
 
 }  // namespace rumble::fem

@@ -33,15 +33,6 @@ double DampingRequest::stiffness_coefficient() const {
   return 2.0 * ratio / (w1 + w2);
 }
 
-double AbsorbingLayer::peak_damping(double c_s) const {
-  return (order + 1.0) * c_s * std::log(1.0 / attenuation) / thickness;
-}
-
-double AbsorbingLayer::damping_at(double d, double c_s) const {
-  if (thickness <= 0.0 || d <= 0.0) return 0.0;
-  return peak_damping(c_s) * std::pow(std::min(d / thickness, 1.0), order);
-}
-
 const soils::SoilProperties& FemSettings::properties_at(double depth) const {
   double bottom = 0.0;
   for (const soils::SoilLayer& l : layers) {
@@ -89,16 +80,7 @@ const char* settings_schema() {
       "properties": {
         "type": {"enum": ["viscous_spring", "dashpot", "fixed"], "default": "viscous_spring", "description": "viscous_spring: Lysmer-Kuhlemeyer dashpots rho c_p (normal) and rho c_s (tangential) per unit area plus springs alpha G / r (Liu et al. 2006), which hold the static load without drift; dashpot: the dashpots alone (the static state comes from the springs, the dynamics have no static support: a net force drifts); fixed: no motion (reflects every wave, for checks)"},
         "alpha_normal": {"type": "number", "minimum": 0, "default": 1.3333333333333333, "description": "normal spring factor alpha_N [-] of K_N = alpha_N G / r [N/m^3], r the distance from the footprints' centre"},
-        "alpha_tangential": {"type": "number", "minimum": 0, "default": 0.6666666666666666, "description": "tangential spring factor alpha_T [-] of K_T = alpha_T G / r [N/m^3]"},
-        "layer": {
-          "type": "object", "additionalProperties": false, "default": {},
-          "description": "an absorbing layer in front of the truncation surface (a Caughey absorbing layer with mass-proportional damping, docs/fem-soil.md section 3): a shell of the given thickness added outside mesh.radius, meshed like the rest, in which the damping alpha M grows from 0 at its inner face to alpha_max at the truncation surface as (d / thickness)^order; the boundary type still acts on the truncation surface. It takes the Rayleigh wave and grazing waves that the dashpots reflect. Receivers must lie inside mesh.radius. Needs a generated mesh (not mesh.file)",
-          "properties": {
-            "thickness": {"type": "number", "minimum": 0, "default": 0, "description": "[m]; 0: no layer. About one Rayleigh wavelength of the lowest frequency to be absorbed or more: a thinner layer reflects the long waves (its damping changes too fast for them)"},
-            "order": {"type": "number", "minimum": 1, "maximum": 4, "default": 2, "description": "exponent of the grading [-]"},
-            "attenuation": {"type": "number", "exclusiveMinimum": 0, "exclusiveMaximum": 1, "default": 0.001, "description": "amplitude a shear wave keeps after crossing the layer to the truncation surface and back [-]; sets alpha_max = (order + 1) c_s ln(1 / attenuation) / thickness [1/s] with the local shear-wave speed c_s"}
-          }
-        }
+        "alpha_tangential": {"type": "number", "minimum": 0, "default": 0.6666666666666666, "description": "tangential spring factor alpha_T [-] of K_T = alpha_T G / r [N/m^3]"}
       }
     },
     "damping": {
@@ -176,16 +158,6 @@ FemSettings read_settings(const std::string& params_json) {
                                         : BoundaryKind::kViscousSpring;
   s.boundary.alpha_normal = read(boundary, "alpha_normal", s.boundary.alpha_normal);
   s.boundary.alpha_tangential = read(boundary, "alpha_tangential", s.boundary.alpha_tangential);
-  const nlohmann::json layer = boundary.value("layer", nlohmann::json::object());
-  AbsorbingLayer& l = s.boundary.layer;
-  l.thickness = read(layer, "thickness", l.thickness);
-  l.order = read(layer, "order", l.order);
-  l.attenuation = read(layer, "attenuation", l.attenuation);
-  if (l.thickness > 0.0 && !m.file.empty())
-    refuse("boundary/layer/thickness",
-           "an absorbing layer is added to a generated mesh, not to mesh.file (mesh the layer "
-           "into the file and leave boundary.layer out, or leave mesh.file out)",
-           l.thickness);
 
   const nlohmann::json damping = j.value("damping", nlohmann::json::object());
   s.damping.ratio = read(damping, "ratio", s.damping.ratio);

@@ -35,27 +35,10 @@ struct MeshRequest {
   double max_file_bytes() const { return std::max(64.0 * 1048576.0, 256.0 * max_dofs); }
 };
 
-/// An absorbing layer (a Caughey absorbing layer, CALM, with mass-proportional damping only,
-/// numerics.md §2.1): a shell of `thickness` outside mesh.radius in which the damping
-/// alpha(d) M grows as alpha_max (d / thickness)^order with the depth d into it. A wave slow
-/// against alpha keeps exp(-integral alpha / 2c) of its amplitude per crossing, whatever its
-/// frequency, so alpha_max = (order + 1) c_s ln(1 / attenuation) / thickness leaves
-/// `attenuation` of a shear wave that crosses to the truncation surface and back.
-struct AbsorbingLayer {
-  double thickness = 0.0;     // m; 0: no layer
-  double order = 2.0;         // [-] of the grading
-  double attenuation = 1e-3;  // [-] amplitude left after the round trip (before the boundary)
-  /// alpha_max [1/s] for the shear-wave speed c_s [m/s].
-  double peak_damping(double c_s) const;
-  /// alpha [1/s] at depth d [m] into the layer.
-  double damping_at(double d, double c_s) const;
-};
-
 struct BoundaryRequest {
   BoundaryKind kind = BoundaryKind::kViscousSpring;
   double alpha_normal = 4.0 / 3.0;      // spring K_N = alpha_N G / r per unit area [-]
   double alpha_tangential = 2.0 / 3.0;  // spring K_T = alpha_T G / r per unit area [-]
-  AbsorbingLayer layer;
 };
 
 /// Rayleigh damping C = a0 M + a1 K with the ratio `ratio` at f_low and f_high (physics.md §4.4).

@@ -101,9 +101,8 @@ class FemSoil final : public rumble::Soil {
     std::vector<char> fixed(mesh_.node_count(), 0);
     if (settings_.boundary.kind == BoundaryKind::kFixed)
       for (const BoundaryNode& b : boundary) fixed[b.node] = 1;
-    Eigen::VectorXd mass = lumped_mass(mesh_, settings_);
-    add_absorbing_layer(mesh_, settings_, plan_, mass, boundary);
-    op_.emplace(assemble_stiffness(mesh_, settings_), std::move(mass), std::move(boundary), settings_.boundary.kind == BoundaryKind::kViscousSpring,
+    op_.emplace(assemble_stiffness(mesh_, settings_), lumped_mass(mesh_, settings_),
+                std::move(boundary), settings_.boundary.kind == BoundaryKind::kViscousSpring,
                 std::move(fixed), settings_.damping.mass_coefficient(),
                 settings_.damping.stiffness_coefficient(), host_.threads());
     statics_ = std::make_unique<StaticSolver>(*op_);
@@ -199,17 +198,8 @@ class FemSoil final : public rumble::Soil {
   void set_probes(const std::vector<rumble::Probe>& probes, double sample_interval) override {
     require_layout("set_probes");
     probes_.clear();
-    for (const rumble::Probe& p : probes) {
-      if (plan_.depth_into_layer(p.x, p.y, p.depth) > 0.0) {
-        std::ostringstream m;
-        m << "fem: receiver '" << p.name << "' at x " << p.x << " m, y " << p.y << " m, depth "
-          << p.depth << " m lies in the absorbing layer (beyond params/mesh/radius "
-          << settings_.mesh.radius << " m), where the soil is damped on purpose; move it "
-          << "inside or enlarge params/mesh/radius";
-        throw std::invalid_argument(m.str());
-      }
+    for (const rumble::Probe& p : probes)
       probes_.push_back(rumble::fem::locate_probe(mesh_, p.x, p.y, p.depth, p.name));
-    }
     row_.assign(probes.size() * RUMBLE_PROBE_VALUES, 0.0);
     sample_interval_ = sample_interval;
     next_sample_ = -1.0;
@@ -362,13 +352,6 @@ class FemSoil final : public rumble::Soil {
       << format(static_cast<double>(op_->bytes()) / op_->dofs(), 3) << " B per DOF); stable step "
       << format(op_->stable_step()) << " s (" << op_->power_iterations() << " power iterations), "
       << (implicit_ ? "implicit" : "explicit") << " step " << format(max_step()) << " s";
-    if (plan_.layer > 0.0) {
-      const rumble::soils::SoilProperties& p = settings_.half_space;
-      m << "; absorbing layer " << format(plan_.layer) << " m, damping up to "
-        << format(settings_.boundary.layer.peak_damping(
-               rumble::soils::wave_speeds(p.E, p.nu, p.rho).shear))
-        << " 1/s in the half-space";
-    }
     if (plan_.radius > 0.0)  // (0: a user's mesh, whose sizes the soil did not choose)
       m << "; f_max resolved at " << settings_.mesh.elements_per_wavelength
         << " elements per Rayleigh wavelength:";

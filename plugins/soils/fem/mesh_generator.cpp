@@ -46,18 +46,6 @@ double estimate_nodes(const MeshPlan& p) {
 
 }  // namespace
 
-double MeshPlan::depth_into_layer(double x, double y, double depth) const {
-  if (layer <= 0.0) return 0.0;
-  const double inner = radius - layer;
-  double beyond = 0.0;
-  if (shape == MeshShape::kBox)
-    beyond = std::max({region.x0 - inner - x, x - region.x1 - inner, region.y0 - inner - y,
-                       y - region.y1 - inner, depth - inner});
-  else
-    beyond = std::hypot(x - region.centre_x(), y - region.centre_y(), depth) - inner;
-  return std::clamp(beyond, 0.0, layer);
-}
-
 double MeshPlan::size_at(double x, double y, double depth) const {
   const double d = region.distance(x, y, depth);
   return std::min(h_max, d <= near_distance ? h_near : h_near * d / near_distance);
@@ -73,17 +61,16 @@ MeshPlan plan_mesh(const FemSettings& s, const std::vector<Footprint>& footprint
   MeshPlan p;
   p.region = TrackRegion::of(footprints);
   p.shape = s.mesh.shape;
-  p.layer = s.boundary.layer.thickness;
-  p.radius = s.mesh.radius + p.layer;
+  p.radius = s.mesh.radius;
   p.near_distance = s.mesh.near_distance;
   const double c_r = soils::slowest_wave_speeds(s.layers, s.half_space).rayleigh;
   p.h_near =
       s.mesh.h_near > 0.0 ? s.mesh.h_near : c_r / (s.mesh.f_max * s.mesh.elements_per_wavelength);
-  p.h_max = s.mesh.h_max > 0.0 ? s.mesh.h_max : std::max(p.h_near, s.mesh.radius / 4.0);
-  if (p.shape == MeshShape::kHemisphere && p.region.half_diagonal() > 0.8 * s.mesh.radius) {
+  p.h_max = s.mesh.h_max > 0.0 ? s.mesh.h_max : std::max(p.h_near, p.radius / 4.0);
+  if (p.shape == MeshShape::kHemisphere && p.region.half_diagonal() > 0.8 * p.radius) {
     std::ostringstream m;
     m << "fem: params/mesh/radius: the footprints span " << 2.0 * p.region.half_diagonal()
-      << " m (corner to corner), too much for a hemisphere of radius " << s.mesh.radius
+      << " m (corner to corner), too much for a hemisphere of radius " << p.radius
       << " m; give a radius of at least " << std::ceil(p.region.half_diagonal() / 0.8)
       << " m (footprints within 80 % of it) or mesh.shape \"box\"";
     throw std::invalid_argument(m.str());
@@ -94,11 +81,9 @@ MeshPlan plan_mesh(const FemSettings& s, const std::vector<Footprint>& footprint
     m.precision(3);
     m << "fem: params/mesh: the mesh would have about " << 3.0 * p.estimated_nodes
       << " degrees of freedom (h_near " << p.h_near << " m, h_max " << p.h_max << " m, radius "
-      << s.mesh.radius << " m";
-    if (p.layer > 0.0) m << " and an absorbing layer of " << p.layer << " m";
-    m << "), more than mesh.max_dofs = " << s.mesh.max_dofs
-      << "; lower mesh.f_max or mesh.radius" << (p.layer > 0.0 ? ", thin boundary.layer" : "")
-      << ", raise mesh.h_near, or raise mesh.max_dofs (about 1 GB per million DOFs)";
+      << p.radius << " m), more than mesh.max_dofs = " << s.mesh.max_dofs
+      << "; lower mesh.f_max or mesh.radius, raise mesh.h_near, or raise mesh.max_dofs (about "
+      << "1 GB per million DOFs)";
     throw std::invalid_argument(m.str());
   }
   return p;

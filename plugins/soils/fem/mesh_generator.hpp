@@ -20,17 +20,12 @@ namespace rumble::fem {
 struct MeshPlan {
   TrackRegion region;
   MeshShape shape = MeshShape::kHemisphere;
-  double radius = 0.0;         // m: the meshed domain's, the absorbing layer included
-  double layer = 0.0;          // m: thickness of the absorbing layer, the outer part of radius
+  double radius = 0.0;         // m
   double h_near = 0.0;         // m
   double h_max = 0.0;          // m
   double near_distance = 0.0;  // m
   double estimated_nodes = 0;  // 0.8 V / h^3 integrated over the domain (numerics.md §1)
   double depth() const { return radius; }
-  /// How far (x, y, depth) [m] lies inside the absorbing layer [m]: 0 in the domain of
-  /// interest (within radius - layer of the footprints' centre, or of their rectangle for a
-  /// box), `layer` on the truncation surface.
-  double depth_into_layer(double x, double y, double depth) const;
   /// Element size [m] requested at (x, y, depth).
   double size_at(double x, double y, double depth) const;
   /// Frequency [Hz] resolved at `elements_per_wavelength` by the size at distance d [m] from the
