@@ -20,6 +20,6 @@ endif()
 # With -fsanitize=address at -O1, GCC 12 reports -Wmaybe-uninitialized inside libstdc++
 # (std::function in <regex>, used by the JSON Schema validator); the flow analysis is
 # confused by the sanitizer's instrumentation (GCC documents this). The normal build keeps it.
-if(CMAKE_CXX_FLAGS MATCHES "-fsanitize=")
+if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU" AND CMAKE_CXX_FLAGS MATCHES "-fsanitize=")
   add_compile_options($<$<COMPILE_LANGUAGE:CXX>:-Wno-maybe-uninitialized>)
 endif()

@@ -42,6 +42,14 @@ function(rumble_add_plugin name)
   # Refuse symbols left undefined at link time (the loader uses RTLD_NOW anyway, but failing
   # here names the missing symbol at build time), and export the entry point only.
   set(version_script "${CMAKE_CURRENT_FUNCTION_LIST_DIR}/rumble_plugin.map")
-  target_link_options(${name} PRIVATE -Wl,--no-undefined -Wl,--version-script=${version_script})
+  # Clang links the sanitizer runtimes into executables only (its AddressSanitizer docs): a
+  # sanitized plugin's __asan_* symbols come from the host when it is loaded, so a Clang
+  # sanitizer build cannot refuse undefined symbols.
+  set(no_undefined -Wl,--no-undefined)
+  if(CMAKE_CXX_COMPILER_ID MATCHES "Clang" AND "${CMAKE_CXX_FLAGS} ${CMAKE_MODULE_LINKER_FLAGS}"
+                                               MATCHES "-fsanitize=")
+    set(no_undefined)
+  endif()
+  target_link_options(${name} PRIVATE ${no_undefined} -Wl,--version-script=${version_script})
   set_property(TARGET ${name} APPEND PROPERTY LINK_DEPENDS ${version_script})
 endfunction()

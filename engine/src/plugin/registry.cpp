@@ -218,7 +218,11 @@ void PluginRegistry::load_library(const fs::path& requested, const std::string& 
   for (std::uint64_t i = 0; i < d->n_factories; ++i) {
     const auto& f = *reinterpret_cast<const rumble_factory*>(
         reinterpret_cast<const char*>(d->factories) + i * std::max(stride, kFactoryV1_0));
-    const auto kind = static_cast<rumble_kind>(f.kind);
+    // A plugin's kind is an int32_t until it is known to be one of the enum's values: casting
+    // any other number to rumble_kind is undefined behaviour (Clang's UBSan stops there).
+    const bool known_kind = f.kind == RUMBLE_KIND_VEHICLE || f.kind == RUMBLE_KIND_SOIL ||
+                            f.kind == RUMBLE_KIND_COUPLER;
+    const auto kind = known_kind ? static_cast<rumble_kind>(f.kind) : RUMBLE_KIND_VEHICLE;
     std::string defect;
     if (f.struct_size < kFactoryV1_0) {
       defect = "struct_size " + std::to_string(f.struct_size) + " bytes, ABI 1.0 needs " +
@@ -228,7 +232,7 @@ void PluginRegistry::load_library(const fs::path& requested, const std::string& 
                std::to_string(stride) + " (all entries of the array have one size)";
     } else if (f.type_name == nullptr) {
       defect = "no type name";
-    } else if (std::string(kind_name(kind)) == "unknown") {
+    } else if (!known_kind) {
       defect = "unknown kind " + std::to_string(f.kind);
     } else if (f.create == nullptr) {
       defect = "no create function";

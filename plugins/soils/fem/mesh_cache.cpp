@@ -87,10 +87,11 @@ std::optional<TetMesh> read_cached_mesh(const std::filesystem::path& path) {
       !get(in, sum, m.truncation.data(), truncation) ||
       !in.read(reinterpret_cast<char*>(&stored), 8) || stored != sum)
     return std::nullopt;
-  const auto valid = [nodes](const auto& elements) {
+  // (a copy: Clang 14 cannot capture a structured binding)
+  const auto valid = [node_count = nodes](const auto& elements) {
     for (const auto& e : elements)
       for (std::int32_t v : e)
-        if (v < 0 || static_cast<std::uint64_t>(v) >= nodes) return false;
+        if (v < 0 || static_cast<std::uint64_t>(v) >= node_count) return false;
     return true;
   };
   if (!valid(m.tets) || !valid(m.ground) || !valid(m.truncation)) return std::nullopt;
