@@ -13,11 +13,12 @@ struct StaticSolver::Factor {
   Eigen::CholmodSupernodalLLT<LongSparse, Eigen::Lower> llt;
 };
 
-StaticSolver::StaticSolver(const ExplicitSolver& op) : op_(op) {}
+StaticSolver::StaticSolver(const ExplicitSolver& op, Eigen::Index factor_limit)
+    : op_(op), factor_limit_(factor_limit) {}
 StaticSolver::~StaticSolver() = default;
 
 Eigen::VectorXd StaticSolver::solve(const Eigen::VectorXd& f) {
-  if (op_.dofs() > kFactorLimit) return conjugate_gradients(f);
+  if (op_.dofs() > factor_limit_) return conjugate_gradients(f);
   if (!factor_) {
     factor_ = std::make_unique<Factor>();
     factor_->llt.compute(lower_combination(op_, {.stiffness = 1.0, .springs = true}));
@@ -39,24 +40,31 @@ Eigen::VectorXd StaticSolver::solve(const Eigen::VectorXd& f) {
 }
 
 Eigen::VectorXd StaticSolver::conjugate_gradients(const Eigen::VectorXd& f) {
-  // Jacobi preconditioner: the diagonal of K + S.
-  const CsrMatrix& K = op_.stiffness();
   const Eigen::Index n = f.size();
-  Eigen::VectorXd diagonal(n);
-  for (Eigen::Index r = 0; r < n; ++r) {
-    diagonal[r] = 0.0;
-    for (std::int64_t k = K.row_start()[r]; k < K.row_start()[r + 1]; ++k)
-      if (K.column()[k] == r) diagonal[r] = K.value()[k];
+  if (diagonal_.size() != n) {  // Jacobi preconditioner: the diagonal of K + S
+    const CsrMatrix& K = op_.stiffness();
+    diagonal_ = Eigen::VectorXd::Zero(n);
+    for (Eigen::Index r = 0; r < n; ++r)
+      for (std::int64_t k = K.row_start()[r]; k < K.row_start()[r + 1]; ++k)
+        if (K.column()[k] == r) diagonal_[r] = K.value()[k];
+    for (const BoundaryNode& b : op_.boundary())
+      for (int c = 0; c < 3; ++c)
+        diagonal_[3 * b.node + c] += b.spring_tangential + (b.spring_normal - b.spring_tangential) *
+                                                               b.normal[c] * b.normal[c];
+    last_ = Eigen::VectorXd::Zero(n);
   }
-  for (const BoundaryNode& b : op_.boundary())
-    for (int c = 0; c < 3; ++c)
-      diagonal[3 * b.node + c] +=
-          b.spring_tangential + (b.spring_normal - b.spring_tangential) * b.normal[c] * b.normal[c];
-  Eigen::VectorXd x = Eigen::VectorXd::Zero(n), r = f, z(n), p(n), q;
+  Eigen::VectorXd x = last_, r = f, z(n), p(n), q;
   for (Eigen::Index k = 0; k < n; ++k)
     if (op_.fixed()[k / 3]) r[k] = 0.0;
   const double target = 1e-10 * r.norm();
-  z = r.cwiseQuotient(diagonal);
+  if (target == 0.0) {  // no load on a free DOF: at rest
+    cg_iterations_ = 0;
+    last_.setZero();
+    return last_;
+  }
+  op_.stiffness_times(x, q, true);  // (zero on fixed DOFs, as x is)
+  r -= q;
+  z = r.cwiseQuotient(diagonal_);
   p = z;
   double rz = r.dot(z);
   for (cg_iterations_ = 0; cg_iterations_ < 20000 && r.norm() > target; ++cg_iterations_) {
@@ -64,7 +72,7 @@ Eigen::VectorXd StaticSolver::conjugate_gradients(const Eigen::VectorXd& f) {
     const double alpha = rz / p.dot(q);
     x += alpha * p;
     r -= alpha * q;
-    z = r.cwiseQuotient(diagonal);
+    z = r.cwiseQuotient(diagonal_);
     const double rz_next = r.dot(z);
     p = z + (rz_next / rz) * p;
     rz = rz_next;
@@ -75,6 +83,7 @@ Eigen::VectorXd StaticSolver::conjugate_gradients(const Eigen::VectorXd& f) {
       << " iterations (residual " << r.norm() / f.norm() << " of the load)";
     throw std::runtime_error(m.str());
   }
+  last_ = x;
   return x;
 }
 

@@ -18,14 +18,15 @@ class StaticSolver {
   static constexpr Eigen::Index kFactorLimit = 400000;  // DOFs: a factor of about 5 GB
 
   /// Uses the operator's K, boundary springs (always: they carry the static load) and fixed
-  /// nodes. Factors on first use.
-  explicit StaticSolver(const ExplicitSolver& op);
+  /// nodes. Factors on first use when op has at most factor_limit DOFs, else uses CG.
+  explicit StaticSolver(const ExplicitSolver& op, Eigen::Index factor_limit = kFactorLimit);
   ~StaticSolver();
   StaticSolver(const StaticSolver&) = delete;
   StaticSolver& operator=(const StaticSolver&) = delete;
 
   /// u with (K + S) u = f on the free DOFs, 0 on fixed ones. Throws std::runtime_error when the
-  /// matrix is not positive definite (a floating mesh) or CG does not converge.
+  /// matrix is not positive definite (a floating mesh) or CG does not converge. CG starts from
+  /// the last solution (the engine's static iteration asks again with a slightly changed load).
   Eigen::VectorXd solve(const Eigen::VectorXd& f);
   bool factored() const { return factor_ != nullptr; }
   int last_cg_iterations() const { return cg_iterations_; }
@@ -35,7 +36,9 @@ class StaticSolver {
   Eigen::VectorXd conjugate_gradients(const Eigen::VectorXd& f);
 
   const ExplicitSolver& op_;
+  Eigen::Index factor_limit_;
   std::unique_ptr<Factor> factor_;
+  Eigen::VectorXd diagonal_, last_;  // CG: the Jacobi preconditioner; the last solution
   int cg_iterations_ = 0;
 };
 
