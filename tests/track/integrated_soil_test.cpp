@@ -34,12 +34,12 @@ Sparse diagonal(std::initializer_list<double> values) {
   return a;
 }
 
-constexpr double kMass = 600.0, kStiffness = 6e7;  // kg, N/m: omega = 316 rad/s
+constexpr double kOscillatorMass = 600.0, kOscillatorStiffness = 6e7;  // kg, N/m: omega = 316 rad/s
 
 TEST(IntegratedSoil, AMassOnASpringFollowsTheAverageAccelerationRuleExactly) {
-  IntegratedSoil soil("test", diagonal({kMass}), diagonal({0.0}), diagonal({kStiffness}),
-                      diagonal({1.0}));
-  const double force = 5e4, u0 = force / kStiffness;  // N, m
+  IntegratedSoil soil("test", diagonal({kOscillatorMass}), diagonal({0.0}),
+                      diagonal({kOscillatorStiffness}), diagonal({1.0}));
+  const double force = 5e4, u0 = force / kOscillatorStiffness;  // N, m
   double u = 0.0;
   soil.static_displacement(&force, &u);
   EXPECT_NEAR(u, u0, 1e-15 * u0);
@@ -47,9 +47,10 @@ TEST(IntegratedSoil, AMassOnASpringFollowsTheAverageAccelerationRuleExactly) {
   const Newmark newmark;  // beta 1/4, gamma 1/2
   const double h = 2e-3;  // s: omega h = 0.63, a coarse step where the rule's phase error shows
   soil.factorize(newmark, h);
-  EXPECT_NEAR(soil.step_receptance()(0, 0), 1.0 / (kStiffness + newmark.c_a(h) * kMass),
-              1e-15 / kStiffness);
-  const double theta = 2.0 * std::atan(std::sqrt(kStiffness / kMass) * h / 2.0);
+  EXPECT_NEAR(soil.step_receptance()(0, 0),
+              1.0 / (kOscillatorStiffness + newmark.c_a(h) * kOscillatorMass),
+              1e-15 / kOscillatorStiffness);
+  const double theta = 2.0 * std::atan(std::sqrt(kOscillatorStiffness / kOscillatorMass) * h / 2.0);
   Eigen::VectorXd predicted(1), p(1), zero = Eigen::VectorXd::Zero(1);
   std::vector<double> u_n, energy;
   for (int n = 1; n <= 200; ++n) {
@@ -57,13 +58,13 @@ TEST(IntegratedSoil, AMassOnASpringFollowsTheAverageAccelerationRuleExactly) {
     soil.correct(newmark, h, zero);  // released: no force
     const double un = soil.footprint_u(0), vn = soil.footprint_v(0);
     u_n.push_back(un);
-    energy.push_back(0.5 * kMass * vn * vn + 0.5 * kStiffness * un * un);
+    energy.push_back(0.5 * kOscillatorMass * vn * vn + 0.5 * kOscillatorStiffness * un * un);
   }
   // Round-off: ~1e-16 of u0 per step, over 200 steps.
   for (std::size_t n = 1; n + 1 < u_n.size(); ++n)
     ASSERT_NEAR(u_n[n + 1] + u_n[n - 1], 2.0 * std::cos(theta) * u_n[n], 1e-12 * u0) << n;
   for (double e : energy) ASSERT_NEAR(e, energy.front(), 1e-12 * energy.front());
-  EXPECT_GT(energy.front(), 0.1 * 0.5 * kStiffness * u0 * u0);  // it does oscillate
+  EXPECT_GT(energy.front(), 0.1 * 0.5 * kOscillatorStiffness * u0 * u0);  // it does oscillate
 }
 
 /// A chain of n masses on springs to the ground and to their neighbours, mass j numbered
