@@ -3,9 +3,9 @@
 # warnings as errors and run the test suite, then build and run it again under ASan + UBSan,
 # then build the scenario fuzz target (clang) and fuzz for a minute (docs/fuzzing.md).
 #   tools/run_tests.sh            everything (from a clean checkout two full unity builds: dev
-#                                 (GCC) about 23 CPU-minutes, asan (Clang, decision 0009) about
-#                                 38; the fuzz target 4 and 60 s of fuzzing; later runs rebuild
-#                                 only what changed)
+#                                 (GCC) about 23 CPU-minutes, asan (Clang, the tests' own code
+#                                 at -O0, decision 0009) about 15; the fuzz target 4 and 60 s of
+#                                 fuzzing; later runs rebuild only what changed)
 #   tools/run_tests.sh --quick    skip the sanitizer builds (asan and fuzz)
 # Tests labelled "validation" (long physics runs) are left out: ctest --preset dev -L validation.
 # Each phase's wall time is printed at the end and kept in build/run_tests_times.txt, so a slow
