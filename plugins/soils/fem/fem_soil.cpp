@@ -105,7 +105,7 @@ class FemSoil final : public rumble::Soil {
                 std::move(boundary), settings_.boundary.kind == BoundaryKind::kViscousSpring,
                 std::move(fixed), settings_.damping.mass_coefficient(),
                 settings_.damping.stiffness_coefficient(), host_.threads());
-    statics_ = std::make_unique<StaticSolver>(*op_);
+    statics_ = std::make_unique<StaticSolver>(*op_, mesh_.nodes);
     implicit_.reset();
     if (settings_.implicit)
       implicit_ = std::make_unique<ImplicitSolver>(*op_, settings_.damping.mass_coefficient(),

@@ -13,8 +13,9 @@ struct StaticSolver::Factor {
   Eigen::CholmodSupernodalLLT<LongSparse, Eigen::Lower> llt;
 };
 
-StaticSolver::StaticSolver(const ExplicitSolver& op, Eigen::Index factor_limit)
-    : op_(op), factor_limit_(factor_limit) {}
+StaticSolver::StaticSolver(const ExplicitSolver& op, const Eigen::Matrix3Xd& nodes,
+                           Eigen::Index factor_limit, CgPreconditioner preconditioner)
+    : op_(op), nodes_(nodes), factor_limit_(factor_limit), preconditioner_(preconditioner) {}
 StaticSolver::~StaticSolver() = default;
 
 Eigen::VectorXd StaticSolver::solve(const Eigen::VectorXd& f) {
@@ -41,6 +42,9 @@ Eigen::VectorXd StaticSolver::solve(const Eigen::VectorXd& f) {
 
 Eigen::VectorXd StaticSolver::conjugate_gradients(const Eigen::VectorXd& f) {
   const Eigen::Index n = f.size();
+  if (preconditioner_ == CgPreconditioner::kMultigrid && !multigrid_)
+    multigrid_ = std::make_unique<AmgPreconditioner>(
+        lower_combination(op_, {.stiffness = 1.0, .springs = true}), nodes_);
   if (diagonal_.size() != n) {  // Jacobi preconditioner: the diagonal of K + S
     const CsrMatrix& K = op_.stiffness();
     diagonal_ = Eigen::VectorXd::Zero(n);
@@ -64,7 +68,7 @@ Eigen::VectorXd StaticSolver::conjugate_gradients(const Eigen::VectorXd& f) {
   }
   op_.stiffness_times(x, q, true);  // (zero on fixed DOFs, as x is)
   r -= q;
-  z = r.cwiseQuotient(diagonal_);
+  precondition(r, z);
   p = z;
   double rz = r.dot(z);
   for (cg_iterations_ = 0; cg_iterations_ < 20000 && r.norm() > target; ++cg_iterations_) {
@@ -72,7 +76,7 @@ Eigen::VectorXd StaticSolver::conjugate_gradients(const Eigen::VectorXd& f) {
     const double alpha = rz / p.dot(q);
     x += alpha * p;
     r -= alpha * q;
-    z = r.cwiseQuotient(diagonal_);
+    precondition(r, z);
     const double rz_next = r.dot(z);
     p = z + (rz_next / rz) * p;
     rz = rz_next;
@@ -85,6 +89,13 @@ Eigen::VectorXd StaticSolver::conjugate_gradients(const Eigen::VectorXd& f) {
   }
   last_ = x;
   return x;
+}
+
+void StaticSolver::precondition(const Eigen::VectorXd& r, Eigen::VectorXd& z) const {
+  if (multigrid_)
+    multigrid_->apply(r, z);
+  else
+    z = r.cwiseQuotient(diagonal_);
 }
 
 }  // namespace rumble::fem
