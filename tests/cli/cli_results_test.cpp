@@ -19,6 +19,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 /// small_scenario() for 100000 macro steps: several seconds of wall time.
 nlohmann::json long_scenario() {
@@ -253,6 +254,20 @@ TEST(CliResults, ADirectoryLeavingTheScenarioFolderNeedsConsent) {
       run_rumble({"run", path.string(), "--no-progress", "--allow-outside-results"});
   EXPECT_EQ(allowed.exit_code, 0) << allowed.output;
   EXPECT_EQ(csv_rows(dir / "escaped" / "contact.csv"), 51u);
+}
+
+TEST(CliResults, ADirectoryOutsideIsRefusedBeforeTheSoilIsBuilt) {
+  // Building a FEM soil meshes it (minutes on a large mesh): the refusal must come first. Here
+  // the soil's construction would fail (the sleepers do not fit in a 2 m hemisphere), and is not
+  // reached.
+  const auto dir = scratch_directory("results_outside_first");
+  nlohmann::json s = small_fem_scenario();
+  s["soil"]["params"]["mesh"]["radius"] = 2.0;
+  s["outputs"]["directory"] = (dir / "absolute").string();
+  const CliResult refused = run_rumble({"run", write_scenario(dir, s).string(), "--no-progress"});
+  EXPECT_EQ(refused.exit_code, 1) << refused.output;
+  EXPECT_THAT(refused.output, HasSubstr("is an absolute path"));
+  EXPECT_THAT(refused.output, Not(HasSubstr("/soil")));
 }
 
 TEST(CliResults, AnAbsoluteDirectoryNeedsConsent) {

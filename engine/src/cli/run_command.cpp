@@ -32,17 +32,12 @@ int run_command(const std::vector<std::string>& args) {
   scenario::CheckOptions check;
   check.size_confirmed = a.flag("yes");  // a run beyond the size limits (scenario/run_size.hpp)
   check.results_directory = !output;     // --output DIR replaces outputs.directory
+  check.results_inside_folder = !output && !a.flag("allow-outside-results");
   auto doc =
       prepare_scenario(a.positional()[0], registry, scenario::Format::kText, overrides, check);
   if (!doc) return kExitConfig;
-  if (output) {  // overrides outputs.directory: the user's choice
+  if (output)  // overrides outputs.directory: the user's choice
     doc->json["outputs"]["directory"] = std::filesystem::absolute(*output).string();
-  } else if (!a.flag("allow-outside-results")) {
-    if (const auto outside = scenario::results_outside_scenario_folder(doc->json, doc->path)) {
-      scenario::print_diagnostics(std::cerr, &*doc, doc->path, {*outside}, scenario::Format::kText);
-      return kExitConfig;
-    }
-  }
   if (a.flag("no-plots")) doc->json["outputs"]["plots"] = false;
   install_interrupt_handler();
   RunOptions options;

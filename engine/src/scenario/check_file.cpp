@@ -100,10 +100,14 @@ CheckedScenario check_scenario_document(Document document, std::vector<Override>
   }
   // A directory outside the scenario's folder is the command line's to allow (rumble run
   // refuses it, or the user consents and the run reports what it cannot create).
-  if (no_errors(c.diagnostics) && options.results_directory &&
-      !results_outside_scenario_folder(doc.json, doc.path)) {
-    if (auto d = results_directory_unusable(doc))
+  if (no_errors(c.diagnostics) && options.results_directory) {
+    if (auto outside = results_outside_scenario_folder(doc.json, doc.path)) {
+      if (options.results_inside_folder)
+        c.diagnostics.push_back(
+            make_diagnostic(doc, outside->pointer, outside->message, outside->hint));
+    } else if (auto d = results_directory_unusable(doc)) {
       c.diagnostics.push_back(make_diagnostic(doc, d->pointer, d->message, d->hint));
+    }
   }
   if (no_errors(c.diagnostics) && options.load_plugins) {  // built from a scenario that is right
     for (Diagnostic& d : check_components(doc.json, doc.path.parent_path(), registry))

@@ -28,6 +28,10 @@ struct CheckOptions {
   /// false when the command line names another results directory (`run --output DIR`) or the
   /// command writes none: outputs.directory need not be usable then.
   bool results_directory = true;
+  /// true (`rumble run` without --output or --allow-outside-results): outputs.directory outside
+  /// the scenario's folder is an error, found before any component is built (a FEM soil meshes
+  /// in its constructor, for minutes on a large mesh).
+  bool results_inside_folder = false;
 };
 
 struct CheckedScenario {
