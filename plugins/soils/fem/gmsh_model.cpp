@@ -11,6 +11,8 @@
 #include <unordered_map>
 #include <vector>
 
+#include "node_order.hpp"
+
 namespace rumble::fem {
 
 namespace {
@@ -378,6 +380,7 @@ MeshFile load_mesh_file(const FemSettings& s, const std::string& path) {
   file.has_footprints = surfaces.count("footprints") > 0;
   std::vector<Triangle> footprint_faces;
   file.mesh = read_grouped(s, where, &footprint_faces);
+  order_nodes_spatially(file.mesh, &footprint_faces);  // as generated meshes: node_order.hpp
   const TetMesh& mesh = file.mesh;
   for (const Triangle& f : mesh.ground)
     for (std::int32_t v : f)

@@ -53,7 +53,8 @@ std::string mesh_cache_name(const FemSettings& s, const std::vector<Footprint>& 
                             const MeshPlan& p) {
   std::ostringstream key;
   key.precision(17);
-  key << "rumble-fem-mesh-1 gmsh " << GMSH_API_VERSION << " algorithm "
+  // -2: generated meshes have their nodes in Morton order (node_order.hpp) since 2026-12-02.
+  key << "rumble-fem-mesh-2 gmsh " << GMSH_API_VERSION << " algorithm "
       << (s.mesh.fast_algorithm ? "hxt" : "delaunay") << " threads " << s.mesh_threads << " shape "
       << static_cast<int>(p.shape) << " radius " << p.radius << " h " << p.h_near << ' ' << p.h_max
       << ' ' << p.near_distance << " layers";

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "gmsh_model.hpp"
+#include "node_order.hpp"
 #include "wave_speeds.hpp"
 
 namespace rumble::fem {
@@ -147,6 +148,7 @@ TetMesh generate_mesh(const FemSettings& s, const std::vector<Footprint>& footpr
 
   TetMesh mesh = read_model(s, /*by_physical_groups=*/false);
   if (mesh.tets.empty()) throw std::runtime_error("fem: gmsh made no tetrahedra");
+  order_nodes_spatially(mesh);
   return mesh;
 }
 
