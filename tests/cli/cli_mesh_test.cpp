@@ -73,6 +73,45 @@ TEST(CliMesh, TheSoilGetsTheCoresTheProcessMayUse) {
   EXPECT_THAT(r.output, HasSubstr("per macro step of 0.001 s, 1 thread(s)"));
 }
 
+std::size_t occurrences(const std::string& text, const std::string& what) {
+  std::size_t n = 0;
+  for (auto at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+// Validation builds the soil on the footprints to check it; the run and `rumble mesh` take that
+// soil instead of building it again (a FEM soil of 1e6 DOFs costs about 21 s and 6 GB to build).
+// The FEM soil reports "ready in" once per build.
+TEST(CliMesh, TheSoilIsBuiltOncePerCommand) {
+  const auto dir = scratch_directory("mesh_built_once");
+  ::setenv("RUMBLE_MESH_CACHE", (dir / "cache").c_str(), 1);
+  nlohmann::json s = small_fem_scenario();
+  s["time"]["end"] = 0.002;
+  const auto path = write_scenario(dir, s).string();
+  const CliResult mesh = run_rumble({"mesh", path});
+  const CliResult run = run_rumble({"run", path, "--no-progress", "--no-plots"});
+  ::unsetenv("RUMBLE_MESH_CACHE");
+  ASSERT_EQ(mesh.exit_code, 0) << mesh.output;
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_EQ(occurrences(mesh.output, "ready in"), 1u) << mesh.output;
+  EXPECT_EQ(occurrences(run.output, "ready in"), 1u) << run.output;
+}
+
+// `rumble mesh --set` changes the scenario before it is checked, as `rumble run --set` does.
+TEST(CliMesh, SetChangesTheScenarioFirst) {
+  const auto dir = scratch_directory("mesh_set");
+  ::setenv("RUMBLE_MESH_CACHE", (dir / "cache").c_str(), 1);
+  const auto path = write_scenario(dir, small_fem_scenario()).string();
+  const CliResult refused = run_rumble({"mesh", path, "--set", "/soil/params/nu=0.5"});
+  const CliResult coarser = run_rumble({"mesh", path, "--set", "/soil/params/mesh/f_max=20"});
+  ::unsetenv("RUMBLE_MESH_CACHE");
+  EXPECT_EQ(refused.exit_code, 1) << refused.output;
+  EXPECT_THAT(refused.output, HasSubstr("/soil/params/nu"));
+  EXPECT_THAT(refused.output, HasSubstr("(set by --set)"));
+  ASSERT_EQ(coarser.exit_code, 0) << coarser.output;
+  EXPECT_THAT(coarser.output, HasSubstr("20 Hz at 2.5 m"));  // the 40 Hz mesh resolves more
+}
+
 TEST(CliMesh, ASoilWithoutFieldsSaysSo) {
   const auto dir = scratch_directory("mesh_winkler");
   const CliResult r = run_rumble({"mesh", write_scenario(dir, small_scenario()).string()});

@@ -79,6 +79,8 @@ mesh in DIR/mesh.vtu (soils with field output, e.g. fem).
 
 options:
   --output DIR              (default: the scenario's outputs.directory)
+  --set POINTER=VALUE       replace the value at a JSON pointer first; repeatable, e.g.
+                            --set /soil/params/mesh/f_max=50
 )"},
       {"soil-frf", R"(usage: rumble soil-frf FILE [FILE...] [options]
 

@@ -1,7 +1,8 @@
-// `rumble mesh FILE [--output DIR]`: build the scenario's soil on the track's footprints, as a
-// run would, without running: the soil reports its discretisation in the log (a FEM soil: nodes,
-// DOFs, smallest element, stable step, frequency resolved at each distance) and, when it offers
-// field output, writes it to DIR/mesh.vtu to look at in ParaView before spending a run on it.
+// `rumble mesh FILE [--output DIR] [--set POINTER=VALUE ...]`: build the scenario's soil on the
+// track's footprints, as a run would, without running: the soil reports its discretisation in the
+// log (a FEM soil: nodes, DOFs, smallest element, stable step, frequency resolved at each distance)
+// and, when it offers field output, writes it to DIR/mesh.vtu to look at in ParaView before
+// spending a run on it.
 #include <iostream>
 
 #include "cli/arguments.hpp"
@@ -14,14 +15,21 @@
 namespace rumble::cli {
 
 int mesh_command(const std::vector<std::string>& args) {
-  const Arguments a(args, {}, {"output"});
-  if (a.positional().size() != 1) throw UsageError("usage: rumble mesh FILE [--output DIR]");
+  const Arguments a(args, {}, {"output"}, {"set"});
+  if (a.positional().size() != 1)
+    throw UsageError("usage: rumble mesh FILE [--output DIR] [--set POINTER=VALUE ...]");
   const auto output = a.directory("output", "mesh.vtu");  // before a mesh is built
+  std::vector<scenario::Override> overrides;
+  for (const std::string& set : a.values("set"))
+    overrides.push_back(scenario::parse_set_option(set));
   PluginRegistry registry;
+  BuiltSoils built;  // the soil validation builds is the one looked at: meshed once
+  scenario::CheckOptions check = kNotARun;
+  check.keep_soils = &built;
   const auto doc =
-      prepare_scenario(a.positional().front(), registry, scenario::Format::kText, {}, kNotARun);
+      prepare_scenario(a.positional().front(), registry, scenario::Format::kText, overrides, check);
   if (!doc) return kExitConfig;
-  const ScenarioSoil s = soil_on_footprints(*doc, registry);
+  const ScenarioSoil s = soil_on_footprints(*doc, registry, &built);
   const std::filesystem::path out_dir =
       output ? std::filesystem::path(*output) : scenario::results_directory(doc->json, doc->path);
   std::filesystem::create_directories(out_dir);

@@ -33,6 +33,8 @@ int run_command(const std::vector<std::string>& args) {
   check.size_confirmed = a.flag("yes");  // a run beyond the size limits (scenario/run_size.hpp)
   check.results_directory = !output;     // --output DIR replaces outputs.directory
   check.results_inside_folder = !output && !a.flag("allow-outside-results");
+  BuiltSoils built;  // the soils validation builds, for the run (a FEM soil is built once)
+  check.keep_soils = &built;
   auto doc =
       prepare_scenario(a.positional()[0], registry, scenario::Format::kText, overrides, check);
   if (!doc) return kExitConfig;
@@ -41,6 +43,7 @@ int run_command(const std::vector<std::string>& args) {
   if (a.flag("no-plots")) doc->json["outputs"]["plots"] = false;
   install_interrupt_handler();
   RunOptions options;
+  options.built_soils = &built;
   options.progress = !a.flag("no-progress") && isatty(STDERR_FILENO) != 0;
   scenario::RunSpec spec = scenario::make_run_spec(doc->json, doc->path);
   std::vector<std::string> identity;  // the same file with other --set values is another run

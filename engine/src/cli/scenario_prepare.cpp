@@ -26,14 +26,19 @@ std::optional<scenario::Document> prepare_scenario(const std::filesystem::path& 
   return std::move(doc);
 }
 
-ScenarioSoil soil_on_footprints(const scenario::Document& doc, const PluginRegistry& registry) {
+ScenarioSoil soil_on_footprints(const scenario::Document& doc, const PluginRegistry& registry,
+                                BuiltSoils* built) {
   ScenarioSoil s;
   s.layout = footprint_layout(TrackConfig::from_json(doc.json.at("track")));
   const auto& soil = doc.json.at("soil");
-  s.type = registry.find(RUMBLE_KIND_SOIL, soil.at("type").get<std::string>());
-  s.soil = std::make_unique<SoilInstance>(
-      *s.type, "/soil", soil.value("params", nlohmann::json::object()), doc.path.parent_path());
-  s.soil->accept_layout(s.layout);
+  const std::string type = soil.at("type").get<std::string>();
+  const nlohmann::json params = soil.value("params", nlohmann::json::object());
+  s.type = registry.find(RUMBLE_KIND_SOIL, type);
+  if (built != nullptr) s.soil = built->take("/soil", type, params, s.layout);
+  if (!s.soil) {
+    s.soil = std::make_unique<SoilInstance>(*s.type, "/soil", params, doc.path.parent_path());
+    s.soil->accept_layout(s.layout);
+  }
   return s;
 }
 

@@ -7,6 +7,7 @@
 #include <optional>
 #include <vector>
 
+#include "plugin/built_soils.hpp"
 #include "plugin/instance.hpp"
 #include "plugin/registry.hpp"
 #include "scenario/check_file.hpp"
@@ -31,12 +32,14 @@ inline constexpr scenario::CheckOptions kNotARun{
     .load_plugins = true, .size_confirmed = true, .results_directory = false};
 
 /// The scenario's soil (/soil), built and laid on the track's footprints as a run lays it: what
-/// `rumble mesh` and `rumble soil-frf` look at.
+/// `rumble mesh` and `rumble soil-frf` look at. Taken from `built` (the validation's, see
+/// CheckOptions::keep_soils) when it holds it.
 struct ScenarioSoil {
   std::vector<rumble_footprint> layout;
   const ComponentType* type = nullptr;
   std::unique_ptr<SoilInstance> soil;
 };
-ScenarioSoil soil_on_footprints(const scenario::Document& doc, const PluginRegistry& registry);
+ScenarioSoil soil_on_footprints(const scenario::Document& doc, const PluginRegistry& registry,
+                                BuiltSoils* built = nullptr);
 
 }  // namespace rumble::cli

@@ -39,7 +39,10 @@ int soil_frf_command(const std::vector<std::string>& args) {
   std::optional<ResultsDirectory> results;
   PluginRegistry registry;
   for (const std::string& file : a.positional()) {
-    const auto doc = prepare_scenario(file, registry, scenario::Format::kText, {}, kNotARun);
+    BuiltSoils built;  // the soil validation builds is the one measured: built once
+    scenario::CheckOptions check = kNotARun;
+    check.keep_soils = &built;
+    const auto doc = prepare_scenario(file, registry, scenario::Format::kText, {}, check);
     if (!doc) return kExitConfig;
     if (!results) {
       const std::filesystem::path out_dir =
@@ -54,7 +57,7 @@ int soil_frf_command(const std::vector<std::string>& args) {
       }
       results.emplace(out_dir, doc->path, a.flag("overwrite"), others);
     }
-    const ScenarioSoil s = soil_on_footprints(*doc, registry);
+    const ScenarioSoil s = soil_on_footprints(*doc, registry, &built);
     SoilFrf frf;
     frf.label = s.type->type_name + " (" + doc->path.stem().string() + ")";
     if (!soil_frf(*s.soil, s.layout.size(), frequency, static_cast<std::size_t>(terms), frf)) {

@@ -23,7 +23,11 @@ const ComponentType& resolve(const PluginRegistry& registry, rumble_kind kind,
 std::unique_ptr<SoilInstance> make_soil(const scenario::ComponentSpec& c,
                                         const PluginRegistry& registry,
                                         const std::filesystem::path& dir,
-                                        const std::vector<rumble_footprint>& layout) {
+                                        const std::vector<rumble_footprint>& layout,
+                                        BuiltSoils* built) {
+  if (built != nullptr) {
+    if (auto soil = built->take(c.pointer, c.type, c.params, layout)) return soil;
+  }
   auto soil = std::make_unique<SoilInstance>(resolve(registry, RUMBLE_KIND_SOIL, c), c.pointer,
                                              c.params, dir);
   soil->accept_layout(layout);
@@ -66,7 +70,8 @@ std::vector<Instance*> RunComponents::instances() const {
   return all;
 }
 
-RunComponents build_components(const scenario::RunSpec& spec, const PluginRegistry& registry) {
+RunComponents build_components(const scenario::RunSpec& spec, const PluginRegistry& registry,
+                               BuiltSoils* built) {
   const std::filesystem::path dir = spec.path.parent_path();
   RunComponents c;
   VehicleSet vehicles;
@@ -78,12 +83,12 @@ RunComponents build_components(const scenario::RunSpec& spec, const PluginRegist
   }
   c.track = std::make_unique<TrackParticipant>(spec.track, std::move(vehicles));
   const std::vector<rumble_footprint> layout = c.track->footprints();
-  c.soil = make_soil(spec.soil, registry, dir, layout);
+  c.soil = make_soil(spec.soil, registry, dir, layout, built);
   c.coupler =
       std::make_unique<CouplerInstance>(resolve(registry, RUMBLE_KIND_COUPLER, spec.coupling),
                                         spec.coupling.pointer, spec.coupling.params, dir);
   for (const auto& [name, component] : spec.participants)
-    c.extras.emplace_back(name, make_soil(component, registry, dir, layout));
+    c.extras.emplace_back(name, make_soil(component, registry, dir, layout, built));
   c.receivers = attach_receivers(*c.soil, spec);
   return c;
 }

@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "plugin/built_soils.hpp"
 #include "plugin/instance.hpp"
 #include "scenario/run_spec.hpp"
 #include "track/integrated_soil.hpp"
@@ -35,8 +36,10 @@ struct RunComponents {
 };
 
 /// Throws ConfigError for a type no plugin provides (validation has normally caught it) or a
-/// component refusing its params or the layout.
-RunComponents build_components(const scenario::RunSpec& spec, const PluginRegistry& registry);
+/// component refusing its params or the layout. A soil that validation built from the same type,
+/// params and layout is taken from `built` instead of being built again.
+RunComponents build_components(const scenario::RunSpec& spec, const PluginRegistry& registry,
+                               BuiltSoils* built = nullptr);
 
 /// What rumble_host tells the plugins during the run: the results directory, and the threads
 /// each may use (all cores; one less for the soils when the coupler runs participants at once).

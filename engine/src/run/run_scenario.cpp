@@ -179,7 +179,7 @@ RunOutcome run_scenario(const scenario::RunSpec& spec, const PluginRegistry& reg
   const auto log = logger("engine");
   const auto run_start = Clock::now();
   ExitGuard exit_guard;  // from the first plugin call: a constructor may call exit() too
-  RunComponents c = build_components(spec, registry);
+  RunComponents c = build_components(spec, registry, options.built_soils);
   TrackParticipant& track = *c.track;
 
   RunOutcome outcome;

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <string>
 
+#include "plugin/built_soils.hpp"
 #include "plugin/registry.hpp"
 #include "run/results_directory.hpp"
 #include "run/summary_writer.hpp"
@@ -15,8 +16,9 @@
 namespace rumble {
 
 struct RunOptions {
-  bool progress = false;           // progress line with ETA on stderr
-  double heartbeat_seconds = 1.0;  // at most one heartbeat write in summary.json per this time
+  bool progress = false;              // progress line with ETA on stderr
+  double heartbeat_seconds = 1.0;     // at most one heartbeat write in summary.json per this time
+  BuiltSoils* built_soils = nullptr;  // soils the validation built, taken when they match
 };
 
 struct RunOutcome {

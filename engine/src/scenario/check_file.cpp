@@ -110,7 +110,8 @@ CheckedScenario check_scenario_document(Document document, std::vector<Override>
     }
   }
   if (no_errors(c.diagnostics) && options.load_plugins) {  // built from a scenario that is right
-    for (Diagnostic& d : check_components(doc.json, doc.path.parent_path(), registry))
+    for (Diagnostic& d :
+         check_components(doc.json, doc.path.parent_path(), registry, options.keep_soils))
       c.diagnostics.push_back(make_diagnostic(doc, d.pointer, d.message, d.hint, d.severity));
   }
   if (!overrides.empty()) {

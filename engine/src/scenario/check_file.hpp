@@ -13,8 +13,9 @@
 #include "scenario/overrides.hpp"
 
 namespace rumble {
+class BuiltSoils;
 class PluginRegistry;
-}
+}  // namespace rumble
 
 namespace rumble::scenario {
 
@@ -32,6 +33,9 @@ struct CheckOptions {
   /// the scenario's folder is an error, found before any component is built (a FEM soil meshes
   /// in its constructor, for minutes on a large mesh).
   bool results_inside_folder = false;
+  /// When given, the soils built by the check stay here for the run or command that follows in
+  /// the same process (a FEM soil is then meshed and assembled once, not twice).
+  BuiltSoils* keep_soils = nullptr;
 };
 
 struct CheckedScenario {

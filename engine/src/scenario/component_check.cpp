@@ -5,6 +5,7 @@
 #include <sstream>
 #include <string>
 
+#include "plugin/built_soils.hpp"
 #include "plugin/instance.hpp"
 #include "plugin/registry.hpp"
 #include "track/footprint_layout.hpp"
@@ -37,20 +38,23 @@ bool build(const json& component, const std::string& pointer, rumble_kind kind,
 }
 
 /// The soil at pointer accepts the layout; returns its slowest Rayleigh speed [m/s] (0: unknown).
+/// A soil that accepted it goes to `keep` when given.
 double check_soil(const json& component, const std::string& pointer,
                   const std::filesystem::path& dir, const std::vector<rumble_footprint>& layout,
-                  const PluginRegistry& registry, std::vector<Diagnostic>& out) {
+                  const PluginRegistry& registry, std::vector<Diagnostic>& out, BuiltSoils* keep) {
   double c_r = 0.0;
   build(component, pointer, RUMBLE_KIND_SOIL, registry, out,
         [&](const ComponentType& type, const json& params) {
-          SoilInstance soil(type, pointer, params, dir);
+          auto soil = std::make_unique<SoilInstance>(type, pointer, params, dir);
           double c_s = 0.0;
-          if (!soil.wave_speeds(c_s, c_r)) c_r = 0.0;
+          if (!soil->wave_speeds(c_s, c_r)) c_r = 0.0;
           try {
-            soil.accept_layout(layout);
+            soil->accept_layout(layout);
           } catch (const std::exception& e) {
             out.push_back(finding(pointer, e.what()));
+            return;
           }
+          if (keep != nullptr) keep->keep(pointer, type.type_name, params, layout, std::move(soil));
         });
   return c_r;
 }
@@ -59,7 +63,7 @@ double check_soil(const json& component, const std::string& pointer,
 
 std::vector<Diagnostic> check_components(const json& scenario,
                                          const std::filesystem::path& scenario_dir,
-                                         const PluginRegistry& registry) {
+                                         const PluginRegistry& registry, BuiltSoils* keep) {
   std::vector<Diagnostic> out;
   const json& vehicles = scenario.at("vehicles");
   for (std::size_t i = 0; i < vehicles.size(); ++i) {
@@ -70,11 +74,13 @@ std::vector<Diagnostic> check_components(const json& scenario,
   }
   const std::vector<rumble_footprint> layout =
       footprint_layout(TrackConfig::from_json(scenario.at("track")));
-  const double c_r = check_soil(scenario.at("soil"), "/soil", scenario_dir, layout, registry, out);
+  const double c_r =
+      check_soil(scenario.at("soil"), "/soil", scenario_dir, layout, registry, out, keep);
   const json& coupling = scenario.at("coupling");
   const json extras = coupling.value("participants", json::object());
   for (const auto& [name, component] : extras.items())
-    check_soil(component, "/coupling/participants/" + name, scenario_dir, layout, registry, out);
+    check_soil(component, "/coupling/participants/" + name, scenario_dir, layout, registry, out,
+               keep);
   build(coupling, "/coupling", RUMBLE_KIND_COUPLER, registry, out,
         [&](const ComponentType& type, const json& params) {
           CouplerInstance(type, "/coupling", params, scenario_dir);

@@ -14,15 +14,17 @@
 #include "scenario/diagnostic.hpp"
 
 namespace rumble {
+class BuiltSoils;
 class PluginRegistry;
-}
+}  // namespace rumble
 
 namespace rumble::scenario {
 
 /// scenario: valid against the engine's and the plugins' schemas, defaults filled, relations
-/// checked.
+/// checked. The soils that accept the layout go to `keep` when given (for the run that follows).
 std::vector<Diagnostic> check_components(const nlohmann::json& scenario,
                                          const std::filesystem::path& scenario_dir,
-                                         const PluginRegistry& registry);
+                                         const PluginRegistry& registry,
+                                         BuiltSoils* keep = nullptr);
 
 }  // namespace rumble::scenario
