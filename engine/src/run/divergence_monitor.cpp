@@ -21,11 +21,16 @@ constexpr double kDivergedVelocity = 10.0;
 // The onset: a footprint at twice its static settlement (a train alone rarely gets there).
 constexpr double kOnsetFactor = 2.0;
 
+// Two causes, told apart by the soil: a reduced soil without mass (where a shorter macro step
+// makes it worse), or a macro step too long for the scheme (the paper's Jacobi at 1 ms on the
+// soft soil, FEM included).
 const char* const kFix =
-    "If the soil has no participating mass (winkler `m`, clm `m_f`), give it one: a massless soil "
-    "and the ballast dashpots close a loop that explicit coupling does not survive at any "
-    "time.macro_step (docs/decisions/0004); otherwise reduce time.macro_step, or use the "
-    "implicit coupler";
+    "If the soil is a reduced one with no participating mass (winkler `m`, clm `m_f`), give it "
+    "one: a massless soil and the ballast dashpots close a loop that explicit coupling does not "
+    "survive at any time.macro_step (docs/decisions/0004); otherwise (a soil with mass, fem "
+    "included) reduce time.macro_step, couple with gauss_seidel rather than jacobi, or use the "
+    "implicit coupler (`rumble stability FILE` gives the growth per macro step where the soil "
+    "offers its matrices)";
 
 }  // namespace
 
