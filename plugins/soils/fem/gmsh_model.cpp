@@ -293,8 +293,7 @@ TetMesh read_grouped(const FemSettings& s, const std::string& where,
 
 }  // namespace
 
-TetMesh read_model(const FemSettings& s, bool by_physical_groups) {
-  if (by_physical_groups) return read_grouped(s, "fem: the gmsh model", nullptr);
+TetMesh read_model(const FemSettings& s) {
   TetMesh mesh;
   gmsh_call("read the mesh", [&] {
     ModelIndex ix;

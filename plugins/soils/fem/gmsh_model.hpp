@@ -45,12 +45,11 @@ auto gmsh_call(const char* what, F&& f) {
   }
 }
 
-/// The current model's linear tetrahedra, their layers (from the depth of their centroid), and
-/// the faces of its boundary: with by_physical_groups, those of the physical surfaces "ground"
-/// and "footprints" (the ground) and "absorbing" (and layers from the physical volumes named
-/// for them, mesh_layer_names); otherwise the surfaces that bound one volume, on the ground when
-/// all three nodes are at z = 0.
-TetMesh read_model(const FemSettings& settings, bool by_physical_groups);
+/// The current model (a mesh the plugin generated) as linear tetrahedra, their layers (from the
+/// depth of their centroid), and the faces of its boundary: the surfaces that bound one volume,
+/// on the ground when all three nodes are at z = 0. (A user's mesh is read by its physical
+/// groups instead: load_mesh_file.)
+TetMesh read_model(const FemSettings& settings);
 
 /// A footprint rectangle of a mesh file: the extent [m] and area [m^2] of one connected patch
 /// of the physical surface "footprints" (frame of tet_mesh.hpp).

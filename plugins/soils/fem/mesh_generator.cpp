@@ -146,7 +146,7 @@ TetMesh generate_mesh(const FemSettings& s, const std::vector<Footprint>& footpr
     return 0;
   });
 
-  TetMesh mesh = read_model(s, /*by_physical_groups=*/false);
+  TetMesh mesh = read_model(s);
   if (mesh.tets.empty()) throw std::runtime_error("fem: gmsh made no tetrahedra");
   order_nodes_spatially(mesh);
   return mesh;
