@@ -125,7 +125,6 @@ void RunRecorder::record_soil(double t, double residual, std::uint32_t iteration
     peak_fp_v_[i] = std::max(peak_fp_v_[i], std::abs(v_[i]));
   }
   energy_ = soil_work_.add(force_.data(), u_.data());
-  max_residual_ = std::max(max_residual_, residual);
   fp_u_->row(t, u_.data(), n);
   fp_v_->row(t, v_.data(), n);
   const double track_energy = soil_records_ < track_energy_.size() ? track_energy_[soil_records_]

@@ -56,7 +56,6 @@ class RunRecorder {
 
   const std::vector<double>& peak_footprint_velocity() const { return peak_fp_v_; }
   const std::vector<double>& peak_receiver_velocity() const { return peak_rx_v_; }
-  double max_residual() const { return max_residual_; }
   double energy_exchanged() const { return energy_; }
   /// [J]: the energy the track put through the cut; the last recorded energy residual.
   double track_energy() const { return track_energy_.empty() ? 0.0 : track_energy_.back(); }
@@ -85,7 +84,7 @@ class RunRecorder {
   std::unique_ptr<CsvFile> contact_, vehicles_, fp_force_, fp_u_, fp_v_, interface_, receivers_;
   std::vector<ExtraFiles> extras_;
   std::vector<double> force_, u_, v_, wheels_, rx_v_, peak_fp_v_, peak_rx_v_;
-  double energy_ = 0.0, max_residual_ = 0.0;  // J, -
+  double energy_ = 0.0;  // J
   CutWork soil_work_, track_work_;
   // The track's energy [J] at each of its records (the soil's k-th record compares with the
   // track's k-th: the same time).

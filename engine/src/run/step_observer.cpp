@@ -48,12 +48,7 @@ bool StepObserver::Reach::advance(double t, std::size_t every, double t_end) {
 
 void StepObserver::operator()(const StepOutcome& step) {
   const double t = step.t + step.H;
-  for (const rumble_group_residual& g : step.residuals) {
-    const std::string_view name = g.group != nullptr ? g.group : "";
-    auto it = max_residuals_.find(name);  // heterogeneous: no string built once the key exists
-    if (it == max_residuals_.end()) it = max_residuals_.emplace(std::string(name), 0.0).first;
-    it->second = std::max(it->second, g.relative);
-  }
+  for (const rumble_group_residual& g : step.residuals) residuals_.add(g);
   bool all = step.final_for(RUMBLE_PARTICIPANT_TRACK) && step.final_for(RUMBLE_PARTICIPANT_SOIL);
   if (step.final_for(RUMBLE_PARTICIPANT_TRACK)) on_track(t);
   if (step.final_for(RUMBLE_PARTICIPANT_SOIL)) on_soil(step, t);

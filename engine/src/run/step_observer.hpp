@@ -17,6 +17,7 @@
 #include "run/cosim_host.hpp"
 #include "run/divergence_monitor.hpp"
 #include "run/progress_line.hpp"
+#include "run/run_residuals.hpp"
 
 namespace rumble {
 
@@ -49,8 +50,8 @@ class StepObserver {
 
   /// Each participant's steps are recorded when the coupler reports them final: most schemes
   /// finish the track and the soil together, two_step the track (on its reduced soil) first.
-  /// The largest relative residual of each channel group the coupler reported, over the run.
-  const std::map<std::string, double, std::less<>>& max_residuals() const { return max_residuals_; }
+  /// The interface residual of each channel group the coupler reported, over the run.
+  const RunResiduals& residuals() const { return residuals_; }
   /// s: the time up to which both the track and the soil are final
   double t_reached() const { return std::min(track_.reached, soil_.reached); }
   std::size_t steps() const { return soil_.steps; }  // final steps of the soil
@@ -94,8 +95,8 @@ class StepObserver {
   std::uint32_t max_iterations_ = 0;
   double shortest_step_ = std::numeric_limits<double>::infinity(), longest_step_ = 0.0;  // s
   DivergenceMonitor divergence_;
-  std::vector<double> scratch_;                               // soil outputs, sized once
-  std::map<std::string, double, std::less<>> max_residuals_;  // by group; keys made once
+  std::vector<double> scratch_;  // soil outputs, sized once
+  RunResiduals residuals_;
 };
 
 }  // namespace rumble
