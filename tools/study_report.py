@@ -176,7 +176,13 @@ def ppv_figure(runs, axes):
             d = np.array([number(row["distance [m]"]) for row in rows])
             v = np.array([number(row["PPV_z [m/s]"]) for row in rows]) * 1e3
             order = np.argsort(d)
-            ax.semilogy(d[order], v[order], "o-", ms=3, label=line_label(r, axes))
+            label, style = line_label(r, axes), "o-"
+            status = r.summary.get("status", "completed")  # a run skipped as up to date too
+            if status != "completed":  # a diverged run, up to where it got (the paper's Fig. 4)
+                stopped = (r.summary.get("time") or {}).get("reached")
+                label += f" ({status} at {stopped:.3g} s)" if stopped else f" ({status})"
+                style = "x--"
+            ax.semilogy(d[order], v[order], style, ms=3, label=label)
         ax.yaxis.set_major_formatter(matplotlib.ticker.FormatStrFormatter("%g"))
         ax.yaxis.set_minor_formatter(matplotlib.ticker.FormatStrFormatter("%g"))
         ax.set(xlabel="distance from the track [m]", ylabel="vertical PPV [mm/s]",

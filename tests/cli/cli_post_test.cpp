@@ -64,6 +64,27 @@ TEST(CliPost, RefusesADirectoryNoRunWrote) {
   EXPECT_THAT(missing.output, HasSubstr("is not a directory"));
 }
 
+// A run stopped as diverged keeps what it recorded, and its receivers are post-processed up to
+// where it got: the PPV of a diverging run is how the seed paper shows the divergence (its Figure
+// 4), and the study report draws such a run dashed. Here a 5 mm rail dip under the starting wheel
+// and a divergence bound of 2.01 x the static settlement stop the run at its impact.
+TEST(CliPost, ADivergedRunIsPostProcessedUpToWhereItGot) {
+  const auto dir = scratch_directory("post_diverged");
+  ::setenv("RUMBLE_MESH_CACHE", (dir / "cache").c_str(), 1);
+  nlohmann::json s = small_fem_scenario();
+  s["time"]["end"] = 0.03;
+  s["track"]["unevenness"] = {{"type", "dip"}, {"position", 3.2}, {"length", 0.3}, {"depth", 5e-3}};
+  s["coupling"]["divergence"] = {{"displacement_factor", 2.01}};
+  s["outputs"]["receivers"] = {2.5, 5.0};
+  const CliResult r = run_rumble({"run", write_scenario(dir, s).string(), "--no-progress"});
+  ::unsetenv("RUMBLE_MESH_CACHE");
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("simulation diverged at t = "));
+  EXPECT_EQ(read_json(dir / "results" / "summary.json")["status"], "failed");
+  EXPECT_TRUE(std::filesystem::exists(dir / "results" / "post" / "ppv.csv"));
+  EXPECT_THAT(file_text(dir / "results" / "post" / "ppv.csv"), HasSubstr("d=2.5 m"));
+}
+
 TEST(CliPost, ARunWithoutReceiversSaysSo) {
   const auto dir = scratch_directory("post_no_receivers");
   const CliResult run =

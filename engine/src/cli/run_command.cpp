@@ -55,8 +55,10 @@ int run_command(const std::vector<std::string>& args) {
   ResultsDirectory results(spec.outputs.directory, spec.path, a.flag("overwrite"), identity);
   const RunOutcome outcome = run_scenario(spec, registry, results, options);
   const auto log = logger("engine");
-  if (outcome.status == RunStatus::kCompleted &&
-      std::filesystem::exists(outcome.results_dir / "receivers.csv")) {
+  // A failed run (diverged, a participant's error) is post-processed too, up to where it got:
+  // the PPV of a diverging run is how the seed paper shows its divergence. Not after Ctrl-C.
+  const bool post = outcome.status == RunStatus::kCompleted || outcome.status == RunStatus::kFailed;
+  if (post && std::filesystem::exists(outcome.results_dir / "receivers.csv")) {
     try {
       post_process_run(outcome.results_dir, post::PostOptions{});
     } catch (const std::exception& e) {  // the run's own results are complete: say, go on
