@@ -5,9 +5,11 @@
 // perturbation grows by that factor every macro step: the run diverges.
 //
 // The one-step map is the engine's own vehicle/track (its Newmark micro-steps and Hertz
-// contacts) and the soil's equations stepped with Newmark at the same micro-step under the held
-// footprint force, the inputs held over the step as gauss_seidel and jacobi do with
-// extrapolation and interpolation 0. Its spectral radius is found by power iteration on that map
+// contacts) and the soil's equations stepped with Newmark at the same micro-step, the inputs over
+// the step as gauss_seidel and jacobi feed them with the given extrapolation order (0: held,
+// 1-2: from the previous steps' outputs, which then belong to the state) and, for gauss_seidel,
+// interpolation order (0: the track's new forces held, 1: linear from the old ones). Its
+// spectral radius is found by power iteration on that map
 // (a small perturbation of the static state, stepped and renormalised), not by forming the
 // matrix: the map's entries span 20 orders of magnitude (stiff rotational modes of the rail) and
 // a dense eigenvalue solver returned radii of 5 for a track that is stable on its own. Stable
@@ -17,6 +19,7 @@
 // particular); docs/couplers.md compares the analysis with measured runs.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -24,6 +27,13 @@
 #include "scenario/run_spec.hpp"
 
 namespace rumble {
+
+/// How both schemes feed their inputs over a macro step (their params `extrapolation`, 0..2, and
+/// gauss_seidel's `interpolation`, 0..1).
+struct StabilityInputs {
+  std::uint32_t extrapolation = 0;
+  std::uint32_t interpolation = 0;
+};
 
 struct StabilityPoint {
   std::string scheme;            // "gauss_seidel" or "jacobi"
@@ -36,6 +46,7 @@ struct StabilityPoint {
 /// matrices.
 std::vector<StabilityPoint> coupling_stability(scenario::RunSpec spec,
                                                const PluginRegistry& registry,
-                                               const std::vector<double>& macro_steps);
+                                               const std::vector<double>& macro_steps,
+                                               const StabilityInputs& inputs = {});
 
 }  // namespace rumble

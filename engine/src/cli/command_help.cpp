@@ -119,6 +119,10 @@ scenario's track and linear soil (> 1: the run diverges).
 
 options:
   --macro-steps LIST        comma-separated steps [s] (default: 1e-3,5e-4,2e-4,1e-4)
+  --extrapolation P         the schemes' input extrapolation order, 0 to 2 (default: the
+                            scenario's coupling params, else 0)
+  --interpolation Q         gauss_seidel's force interpolation order, 0 or 1 (default: the
+                            scenario's, else 0)
   --output FILE.json        also write the table as JSON
 )"},
       {"post", R"(usage: rumble post RESULTS_DIR [options]

@@ -1,6 +1,8 @@
-// `rumble stability FILE [--macro-steps 1e-3,5e-4,...] [--output FILE]`: the spectral radius of
-// one macro step of gauss_seidel and jacobi for the scenario's track on its soil, linearized at
-// rest (analysis/coupling_stability.hpp), per macro step: a table, and JSON with --output.
+// `rumble stability FILE [--macro-steps 1e-3,5e-4,...] [--extrapolation P] [--interpolation Q]
+// [--output FILE]`: the spectral radius of one macro step of gauss_seidel and jacobi for the
+// scenario's track on its soil, linearized at rest (analysis/coupling_stability.hpp), per macro
+// step: a table, and JSON with --output. The input orders are the scenario's coupling params
+// (gauss_seidel, jacobi; 0 for another coupler) unless the options give them.
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -16,10 +18,11 @@
 namespace rumble::cli {
 
 int stability_command(const std::vector<std::string>& args) {
-  const Arguments a(args, {}, {"macro-steps", "output"});
+  const Arguments a(args, {}, {"macro-steps", "output", "extrapolation", "interpolation"});
   if (a.positional().size() != 1) {
     throw UsageError(
-        "usage: rumble stability FILE [--macro-steps 1e-3,5e-4,2e-4,1e-4] [--output FILE.json]");
+        "usage: rumble stability FILE [--macro-steps 1e-3,5e-4,2e-4,1e-4] [--extrapolation 0..2] "
+        "[--interpolation 0..1] [--output FILE.json]");
   }
   std::vector<double> steps;
   for (const std::string& item :
@@ -40,10 +43,24 @@ int stability_command(const std::vector<std::string>& args) {
   const auto doc =
       prepare_scenario(a.positional()[0], registry, scenario::Format::kText, {}, kNotARun);
   if (!doc) return kExitConfig;
+  // The scenario's explicit scheme feeds its inputs so; the options override.
+  const nlohmann::json& coupling = doc->json.at("coupling");
+  const std::string type = coupling.at("type").get<std::string>();
+  const nlohmann::json params = coupling.value("params", nlohmann::json::object());
+  StabilityInputs inputs;
+  if (type == "gauss_seidel" || type == "jacobi")
+    inputs.extrapolation = params.value("extrapolation", 0u);
+  if (type == "gauss_seidel") inputs.interpolation = params.value("interpolation", 0u);
+  inputs.extrapolation = static_cast<std::uint32_t>(
+      a.integer("extrapolation", static_cast<long long>(inputs.extrapolation), 0, 2));
+  inputs.interpolation = static_cast<std::uint32_t>(
+      a.integer("interpolation", static_cast<long long>(inputs.interpolation), 0, 1));
   const auto points =
-      coupling_stability(scenario::make_run_spec(doc->json, doc->path), registry, steps);
+      coupling_stability(scenario::make_run_spec(doc->json, doc->path), registry, steps, inputs);
   std::cout << "spectral radius of one macro step, linearized at rest (> 1: grows by that factor "
-               "every step, the run diverges)\n"
+               "every step, the run diverges); inputs extrapolated to order "
+            << inputs.extrapolation << ", gauss_seidel's interpolated to order "
+            << inputs.interpolation << "\n"
             << "  H [s]        gauss_seidel  jacobi\n";
   nlohmann::json out = nlohmann::json::array();
   for (std::size_t k = 0; k + 1 < points.size(); k += 2) {
@@ -53,6 +70,8 @@ int stability_command(const std::vector<std::string>& args) {
   for (const StabilityPoint& p : points) {
     out.push_back({{"scheme", p.scheme},
                    {"macro_step_s", p.macro_step},
+                   {"extrapolation", inputs.extrapolation},
+                   {"interpolation", p.scheme == "gauss_seidel" ? inputs.interpolation : 0u},
                    {"spectral_radius", p.spectral_radius},
                    {"state_size", p.state_size}});
   }
