@@ -22,7 +22,7 @@ constexpr double kPerturbation = 1e-7;
 constexpr int kMinIterations = 200;
 constexpr double kMinDuration = 0.2;
 
-/// coeff (order + 1 blocks of y0.size()) of the polynomial in tau through the newest samples at
+/// coeff (order + 1 blocks of now.size()) of the polynomial in tau through the newest samples at
 /// equal steps H, evaluated over the next step: the Newton form of the SDK's
 /// OutputHistory::extrapolate (rumble/coupling.hpp) with t2 = the step's start, t1 = t2 - H.
 /// history[0] is the sample one step back, history[1] two.

@@ -25,8 +25,6 @@ class BuiltSoils {
                                      const nlohmann::json& params,
                                      const std::vector<rumble_footprint>& layout);
 
-  std::size_t size() const { return kept_.size(); }
-
  private:
   struct Kept {
     std::string pointer;
