@@ -49,6 +49,39 @@ TEST(CliPost, ARunWritesTheIndicatorsAndPostRewritesThemWithItsOptions) {
   EXPECT_THAT(file_text(results / "post" / "third_octave.csv"), HasSubstr("dB re 1e-09 m/s"));
 }
 
+// The scenario's outputs.post chooses the run's indicators; `rumble post` keeps them unless its
+// options say otherwise; a bad value is refused at validation with its pointer.
+TEST(CliPost, TheScenarioChoosesTheIndicatorsAndPostKeepsThem) {
+  const auto dir = scratch_directory("post_from_scenario");
+  ::setenv("RUMBLE_MESH_CACHE", (dir / "cache").c_str(), 1);
+  nlohmann::json s = small_fem_scenario();
+  s["time"]["end"] = 0.02;
+  s["outputs"]["receivers"] = {2.5, 5.0};
+  s["outputs"]["post"] = {{"cwt_distances", {5.0}}, {"f_max", 30.0}, {"reference", "vdb"}};
+  const auto file = write_scenario(dir, s).string();
+  const CliResult r = run_rumble({"run", file, "--no-progress"});
+  ::unsetenv("RUMBLE_MESH_CACHE");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto post = dir / "results" / "post";
+  const auto options = [&] { return read_json(post / "post.json")["options"]; };
+  EXPECT_EQ(options()["cwt_f_max_hz"], 30.0);
+  EXPECT_EQ(options()["cwt_distances_m"], nlohmann::json({5.0}));
+  EXPECT_TRUE(std::filesystem::exists(post / "cwt_d=5_m.csv"));
+  EXPECT_FALSE(std::filesystem::exists(post / "cwt_d=2.5_m.csv"));
+  EXPECT_THAT(file_text(post / "third_octave.csv"), HasSubstr("dB re 2.54e-08 m/s"));
+
+  const CliResult again = run_rumble({"post", (dir / "results").string(), "--f-max", "50"});
+  ASSERT_EQ(again.exit_code, 0) << again.output;
+  EXPECT_EQ(options()["cwt_f_max_hz"], 50.0);                      // the option
+  EXPECT_EQ(options()["cwt_distances_m"], nlohmann::json({5.0}));  // the scenario's
+  EXPECT_THAT(file_text(post / "third_octave.csv"), HasSubstr("dB re 2.54e-08 m/s"));
+
+  s["outputs"]["post"]["f_max"] = 0.0;
+  const CliResult bad = run_rumble({"validate", write_scenario(dir, s).string()});
+  EXPECT_EQ(bad.exit_code, 1) << bad.output;
+  EXPECT_THAT(bad.output, HasSubstr("/outputs/post/f_max"));
+}
+
 TEST(CliPost, RefusesADirectoryNoRunWrote) {
   const auto dir = scratch_directory("post_no_run");
   const CliResult r = run_rumble({"post", dir.string()});

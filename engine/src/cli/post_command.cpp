@@ -1,9 +1,11 @@
 // `rumble post RESULTS_DIR [options]`: the vibration indicators of a finished run recomputed from
 // its recorded receiver velocities, without rerunning (post/post_run.hpp, docs/post-processing.md):
 // PPV per receiver and versus distance, spectra, one-third-octave levels, KB_F,max, guide values
-// and wavelet scalograms, into RESULTS_DIR/post/. `rumble run` does the same after every run whose
-// soil recorded receivers. The directory is locked meanwhile and the new files are added to its
-// manifest, so a rerun of the scenario removes them with the rest.
+// and wavelet scalograms, into RESULTS_DIR/post/, with the run's scenario's outputs.post under
+// the command's options. `rumble run` does the same after every run whose soil recorded receivers.
+// The directory is locked meanwhile and the new files are added to its manifest, so a rerun of the
+// scenario removes them with the rest.
+#include <fstream>
 #include <iostream>
 #include <sstream>
 
@@ -22,8 +24,22 @@ constexpr const char* kPostUsage =
     "usage: rumble post RESULTS_DIR [--cwt NAME,NAME...] [--cwt-distances M,M...] "
     "[--f-max HZ] [--reference iso|vdb]";
 
-post::PostOptions options_from(const Arguments& a) {
-  post::PostOptions o;
+/// The run's own outputs.post (the scenario summary.json records), the defaults where there is
+/// none or summary.json cannot be read (post_process names what it lacks).
+post::PostOptions scenario_options(const std::filesystem::path& results_dir) {
+  std::ifstream in(results_dir / "summary.json");
+  if (!in) return {};
+  try {
+    const nlohmann::json summary = nlohmann::json::parse(in);
+    if (const auto s = summary.find("scenario"); s != summary.end() && s->is_object())
+      return post::options_from_scenario(*s);
+  } catch (const std::exception&) {  // a damaged summary: the defaults
+  }
+  return {};
+}
+
+/// The command line's options over `o` (the run's own).
+post::PostOptions options_from(const Arguments& a, post::PostOptions o) {
   if (const auto names = a.value("cwt")) o.cwt_receivers = split_list(*names);
   if (const auto distances = a.value("cwt-distances")) {
     o.cwt_distances.clear();
@@ -40,8 +56,11 @@ post::PostOptions options_from(const Arguments& a) {
   }
   o.cwt_f_max = a.number("f-max", o.cwt_f_max);
   if (!(o.cwt_f_max > 0.0)) throw UsageError("--f-max must be a frequency above 0 Hz");
-  if (a.choice("reference", {"iso", "vdb"}, "iso") == "vdb")
-    o.velocity_reference = post::kVelocityRefVdb;
+  if (a.value("reference")) {
+    o.velocity_reference = a.choice("reference", {"iso", "vdb"}, "iso") == "vdb"
+                               ? post::kVelocityRefVdb
+                               : post::kVelocityRefIso1683;
+  }
   return o;
 }
 
@@ -58,7 +77,8 @@ void post_process_run(const std::filesystem::path& results_dir, const post::Post
 int post_command(const std::vector<std::string>& args) {
   const Arguments a(args, {}, {"cwt", "cwt-distances", "f-max", "reference"});
   if (a.positional().size() != 1) throw UsageError(kPostUsage);
-  const post::PostOptions options = options_from(a);
+  const post::PostOptions options =
+      options_from(a, scenario_options(std::filesystem::path(a.positional().front())));
   ResultsDirectory results(a.positional().front(), ResultsDirectory::Reopen{});
   try {
     post_process_run(results.path(), options);

@@ -60,7 +60,7 @@ int run_command(const std::vector<std::string>& args) {
   const bool post = outcome.status == RunStatus::kCompleted || outcome.status == RunStatus::kFailed;
   if (post && std::filesystem::exists(outcome.results_dir / "receivers.csv")) {
     try {
-      post_process_run(outcome.results_dir, post::PostOptions{});
+      post_process_run(outcome.results_dir, post::options_from_scenario(doc->json));
     } catch (const std::exception& e) {  // the run's own results are complete: say, go on
       log->warn(
           "post-processing failed: {}; the run's results are complete (rumble post {} "

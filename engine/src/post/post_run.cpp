@@ -346,6 +346,18 @@ constexpr Bs7385Line kBsLines[2] = {Bs7385Line::kReinforced, Bs7385Line::kUnrein
 
 }  // namespace
 
+PostOptions options_from_scenario(const nlohmann::json& scenario, PostOptions base) {
+  const auto outputs = scenario.find("outputs");
+  if (outputs == scenario.end() || !outputs->contains("post")) return base;
+  const nlohmann::json& post = outputs->at("post");
+  if (const auto d = post.find("cwt_distances"); d != post.end())
+    base.cwt_distances = d->get<std::vector<double>>();
+  if (const auto f = post.find("f_max"); f != post.end()) base.cwt_f_max = f->get<double>();
+  if (const auto r = post.find("reference"); r != post.end())
+    base.velocity_reference = *r == "vdb" ? kVelocityRefVdb : kVelocityRefIso1683;
+  return base;
+}
+
 PostResult post_process(const fs::path& results_dir, const PostOptions& options) {
   PostResult result;
   RunRecord run = read_run(results_dir);

@@ -53,6 +53,10 @@ struct PostResult {
   nlohmann::json report;                     // the content of post.json
 };
 
+/// The options a scenario's outputs.post gives (schema defaults for what it leaves out), over
+/// `base`; a scenario without outputs.post gives base.
+PostOptions options_from_scenario(const nlohmann::json& scenario, PostOptions base = {});
+
 /// Computes every indicator for the run in results_dir and writes RESULTS_DIR/post/.
 PostResult post_process(const std::filesystem::path& results_dir, const PostOptions& options = {});
 

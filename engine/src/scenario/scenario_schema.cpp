@@ -211,6 +211,17 @@ constexpr std::string_view kSchema = R"json({
             "interval": {"type": "number", "exclusiveMinimum": 0, "description": "time between snapshots, the first at t = 0 [s]"}
           }
         },
+        "post": {
+          "type": "object",
+          "additionalProperties": false,
+          "default": {},
+          "description": "the vibration indicators written to post/ after a run with receivers (docs/post-processing.md); rumble post RESULTS_DIR recomputes them with these, its options overriding",
+          "properties": {
+            "cwt_distances": {"type": "array", "items": {"type": "number", "minimum": 0}, "default": [2.5, 5.0], "description": "distances from the track [m] whose nearest receivers get a wavelet transform of v_z (the seed paper's Figures 6 and 7: 2.5 and 5 m)"},
+            "f_max": {"type": "number", "exclusiveMinimum": 0, "default": 200, "description": "highest frequency of the wavelet transforms [Hz]; give what the soil resolves (a FEM soil: rumble mesh reports it per distance), or the scalograms show what the mesh cannot carry"},
+            "reference": {"enum": ["iso", "vdb"], "default": "iso", "description": "velocity reference of the one-third-octave levels: iso (ISO 1683, 1e-9 m/s) or vdb (VdB, 2.54e-8 m/s = 1 micro-inch/s)"}
+          }
+        },
         "every": {"type": "integer", "minimum": 1, "default": 1, "description": "record every n-th macro step"},
         "plots": {"type": "boolean", "default": true, "description": "run tools/plot_results.py after the run when python3 and matplotlib exist"}
       }
