@@ -61,10 +61,9 @@ int run_command(const std::vector<std::string>& args) {
   if (post && std::filesystem::exists(outcome.results_dir / "receivers.csv")) {
     try {
       post_process_run(outcome.results_dir, post::options_from_scenario(doc->json));
-    } catch (const std::exception& e) {  // the run's own results are complete: say, go on
+    } catch (const std::exception& e) {  // the run's own results are on disk: say, go on
       log->warn(
-          "post-processing failed: {}; the run's results are complete (rumble post {} "
-          "retries)",
+          "post-processing failed: {}; the run's results are on disk (rumble post {} retries)",
           e.what(), outcome.results_dir.lexically_normal().string());
     }
   }
