@@ -79,9 +79,9 @@ std::size_t occurrences(const std::string& text, const std::string& what) {
   return n;
 }
 
-// Validation builds the soil on the footprints to check it; the run and `rumble mesh` take that
-// soil instead of building it again (a FEM soil of 1e6 DOFs costs about 21 s and 6 GB to build).
-// The FEM soil reports "ready in" once per build.
+// Validation builds the soil on the footprints to check it; run, mesh, soil-frf and calibrate take
+// that soil instead of building it again (a FEM soil of 1e6 DOFs costs about 21 s and 6 GB to
+// build). The FEM soil reports "ready in" once per build.
 TEST(CliMesh, TheSoilIsBuiltOncePerCommand) {
   const auto dir = scratch_directory("mesh_built_once");
   ::setenv("RUMBLE_MESH_CACHE", (dir / "cache").c_str(), 1);
@@ -90,11 +90,14 @@ TEST(CliMesh, TheSoilIsBuiltOncePerCommand) {
   const auto path = write_scenario(dir, s).string();
   const CliResult mesh = run_rumble({"mesh", path});
   const CliResult run = run_rumble({"run", path, "--no-progress", "--no-plots"});
+  const CliResult frf = run_rumble({"soil-frf", path, "--points", "2", "--no-plot"});
+  const CliResult fit = run_rumble({"calibrate", path, "--model", "winkler", "--params",
+                                    R"({"k": 1e8, "c": 1e5})", "--points", "3", "--fmax", "20"});
   ::unsetenv("RUMBLE_MESH_CACHE");
-  ASSERT_EQ(mesh.exit_code, 0) << mesh.output;
-  ASSERT_EQ(run.exit_code, 0) << run.output;
-  EXPECT_EQ(occurrences(mesh.output, "ready in"), 1u) << mesh.output;
-  EXPECT_EQ(occurrences(run.output, "ready in"), 1u) << run.output;
+  for (const CliResult* r : {&mesh, &run, &frf, &fit}) {
+    ASSERT_EQ(r->exit_code, 0) << r->output;
+    EXPECT_EQ(occurrences(r->output, "ready in"), 1u) << r->output;
+  }
 }
 
 // `rumble mesh --set` changes the scenario before it is checked, as `rumble run --set` does.

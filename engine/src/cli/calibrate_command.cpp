@@ -13,7 +13,6 @@
 #include "core/errors.hpp"
 #include "plugin/instance.hpp"
 #include "run/new_file.hpp"
-#include "track/footprint_layout.hpp"
 
 namespace rumble::cli {
 int calibrate_command(const std::vector<std::string>& args) {
@@ -25,8 +24,11 @@ int calibrate_command(const std::vector<std::string>& args) {
         "[--fmin 1] [--fmax 100] [--points 40] [--terms 2] [--output FILE]");
   }
   PluginRegistry registry;
+  BuiltSoils built;  // the target soil validation builds is the one measured: built once
+  scenario::CheckOptions check = kNotARun;
+  check.keep_soils = &built;
   const auto doc =
-      prepare_scenario(a.positional()[0], registry, scenario::Format::kText, {}, kNotARun);
+      prepare_scenario(a.positional()[0], registry, scenario::Format::kText, {}, check);
   if (!doc) return kExitConfig;
   const std::string model_name = *a.value("model");
   const ComponentType* model = registry.find(RUMBLE_KIND_SOIL, model_name);
@@ -55,24 +57,22 @@ int calibrate_command(const std::vector<std::string>& args) {
   problem.model = model;
   problem.base_params = start;
   problem.scenario_dir = doc->path.parent_path();
-  problem.layout = footprint_layout(TrackConfig::from_json(doc->json.at("track")));
+  const ScenarioSoil target = soil_on_footprints(*doc, registry, &built);
+  problem.layout = target.layout;
   problem.fit = a.value("fit") ? split_list(*a.value("fit")) : std::vector<std::string>{};
   if (problem.fit.empty()) {  // every positive number given
     for (const auto& [key, value] : start.items())
       if (value.is_number() && value.get<double>() > 0.0) problem.fit.push_back(key);
   }
-  SoilInstance target(*registry.find(RUMBLE_KIND_SOIL, target_soil.at("type").get<std::string>()),
-                      "/soil", target_soil.value("params", nlohmann::json::object()),
-                      problem.scenario_dir);
-  target.accept_layout(problem.layout);
   const double f_min = a.number("fmin", 1.0), f_max = a.number("fmax", 100.0);
   if (!(f_min > 0.0) || !(f_max > f_min) || !std::isfinite(f_max))
     throw UsageError("need 0 < --fmin < --fmax (finite frequencies in Hz)");
   const auto frequency =
       log_frequencies(f_min, f_max, static_cast<int>(a.integer("points", 40, 2, 100000)));
-  if (!soil_frf(target, problem.layout.size(), frequency,
+  if (!soil_frf(*target.soil, problem.layout.size(), frequency,
                 static_cast<std::size_t>(a.integer("terms", 2, 0, 1000)), problem.target)) {
-    throw ConfigError("target soil '" + target.type_name() + "' offers no frequency response");
+    throw ConfigError("target soil '" + target.soil->type_name() +
+                      "' offers no frequency response");
   }
   const CalibrationResult result = calibrate(problem);
   nlohmann::json report = {{"model", model_name},
