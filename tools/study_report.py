@@ -162,6 +162,16 @@ def line_label(run, axes):
 FIRST_AXIS_VALUES = set()
 
 
+def stopped_note(run):
+    """" (failed at 0.475 s)" for a run that did not complete (its indicators cover what it
+    recorded), "" for one that did; from summary.json, so a run skipped as up to date too."""
+    status = run.summary.get("status", "completed")
+    if status == "completed":
+        return ""
+    stopped = (run.summary.get("time") or {}).get("reached")
+    return f" ({status} at {stopped:.3g} s)" if stopped else f" ({status})"
+
+
 def ppv_figure(runs, axes):
     groups = {}
     for r in runs:
@@ -176,13 +186,9 @@ def ppv_figure(runs, axes):
             d = np.array([number(row["distance [m]"]) for row in rows])
             v = np.array([number(row["PPV_z [m/s]"]) for row in rows]) * 1e3
             order = np.argsort(d)
-            label, style = line_label(r, axes), "o-"
-            status = r.summary.get("status", "completed")  # a run skipped as up to date too
-            if status != "completed":  # a diverged run, up to where it got (the paper's Fig. 4)
-                stopped = (r.summary.get("time") or {}).get("reached")
-                label += f" ({status} at {stopped:.3g} s)" if stopped else f" ({status})"
-                style = "x--"
-            ax.semilogy(d[order], v[order], style, ms=3, label=label)
+            # A diverged run, up to where it got (the seed paper's Figure 4), drawn dashed.
+            style = "o-" if not stopped_note(r) else "x--"
+            ax.semilogy(d[order], v[order], style, ms=3, label=line_label(r, axes) + stopped_note(r))
         ax.yaxis.set_major_formatter(matplotlib.ticker.FormatStrFormatter("%g"))
         ax.yaxis.set_minor_formatter(matplotlib.ticker.FormatStrFormatter("%g"))
         ax.set(xlabel="distance from the track [m]", ylabel="vertical PPV [mm/s]",
@@ -329,7 +335,7 @@ def ppv_table(runs):
                         if not math.isnan(number(row.get("distance [m]")))})
     if not distances:
         return "<p>No run recorded receivers.</p>"
-    head = "".join(f"<th>{html.escape(r.name)}</th>" for r in runs)
+    head = "".join(f"<th>{html.escape(r.name + stopped_note(r))}</th>" for r in runs)
     body = []
     for d in distances:
         cells = []
@@ -355,7 +361,8 @@ def indicators_table(runs):
             ratio = number(row.get("PPV / DIN 4150-3 line 3 [-]"))
             css = " class='bad'" if not math.isnan(ratio) and ratio >= 1.0 else ""
             rows.append(
-                f"<tr{css}><th>{html.escape(r.name)}</th><td>{html.escape(row.get('receiver', ''))}</td>"
+                f"<tr{css}><th>{html.escape(r.name + stopped_note(r))}</th>"
+                f"<td>{html.escape(row.get('receiver', ''))}</td>"
                 + cell("PPV_z [m/s]", 1e3) + cell("PPV_3c [m/s]", 1e3) + cell("f_dom [Hz]")
                 + cell("KB_F,max [m/s]", 1e3) + cell("PPV / DIN 4150-3 line 3 [-]")
                 + cell("PPV / BS 7385-2 line 2 [-]") + "</tr>")

@@ -85,6 +85,38 @@ TEST(StudyReport, RendersInABrowserWithEveryImageAndEveryRun) {
   }
 }
 
+// A run stopped as diverged is in the report with what it recorded, marked with when it stopped
+// (the seed paper shows its unstable Jacobi run so, Figure 4): in the PPV table and figure.
+TEST(StudyReport, ADivergedRunIsShownUpToWhereItGot) {
+  const auto dir = scratch_directory("study_report_diverged");
+  ::setenv("RUMBLE_MESH_CACHE", (dir / "cache").c_str(), 1);
+  nlohmann::json base = small_fem_scenario();
+  base["time"]["end"] = 0.03;
+  base["outputs"]["receivers"] = {2.5, 5.0};
+  write_scenario(dir, base);
+  // A 5 mm dip under the starting wheel and a bound of 2.01 x the static settlement stop "stops"
+  // at its impact (tests/cli/cli_post_test.cpp).
+  const nlohmann::json study = {
+      {"study_version", 1},
+      {"scenario", "scenario.json"},
+      {"output", "out"},
+      {"runs",
+       {{{"name", "gs"}},
+        {{"name", "stops"},
+         {"set",
+          {{"/track/unevenness",
+            {{"type", "dip"}, {"position", 3.2}, {"length", 0.3}, {"depth", 5e-3}}},
+           {"/coupling/divergence", {{"displacement_factor", 2.01}}}}}}}}};
+  std::ofstream(dir / "diverged.study.json") << study.dump(2);
+  const CliResult r = run_rumble({"study", (dir / "diverged.study.json").string(), "--jobs", "1"});
+  ::unsetenv("RUMBLE_MESH_CACHE");
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  const std::string page = file_text(dir / "out" / "report.html");
+  EXPECT_THAT(page, HasSubstr("stops (failed at 0.01"));  // the PPV table's column
+  EXPECT_TRUE(fs::exists(dir / "out" / "stops" / "post" / "ppv.csv"));
+  EXPECT_TRUE(fs::exists(dir / "out" / "figures" / "ppv_vs_distance.png"));
+}
+
 // The quick study (the README's main job) here; the full paper study meshes a soft soil of
 // 3.7e5 DOFs to validate, so its check is in the validation label (tests/scenarios).
 TEST(StudyReport, TheQuickPaperStudyIsValid) {
