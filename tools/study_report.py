@@ -242,7 +242,7 @@ def scalogram_figure(runs, distance):
         ax.plot(t, coi, "w--", lw=0.8)
         ax.set_yscale("log")
         ax.set_ylim(freqs.min(), freqs.max())
-        ax.set(xlabel="t [s]", ylabel="f [Hz]", title=f"{r.name}: {name}")
+        ax.set(xlabel="t [s]", ylabel="f [Hz]", title=f"{r.name}{stopped_note(r)}: {name}")
         fig.colorbar(mesh, ax=ax, label="|W| [mm/s]")
     fig.tight_layout()
     return fig
