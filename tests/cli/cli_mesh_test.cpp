@@ -79,9 +79,10 @@ std::size_t occurrences(const std::string& text, const std::string& what) {
   return n;
 }
 
-// Validation builds the soil on the footprints to check it; run, mesh, soil-frf and calibrate take
-// that soil instead of building it again (a FEM soil of 1e6 DOFs costs about 21 s and 6 GB to
-// build). The FEM soil reports "ready in" once per build.
+// Validation builds the soil on the footprints to check it; run, mesh, soil-frf, calibrate (and
+// stability, not timed here: its analysis takes seconds) take that soil instead of building it
+// again (a FEM soil of 1e6 DOFs costs about 21 s
+// and 6 GB to build). The FEM soil reports "ready in" once per build.
 TEST(CliMesh, TheSoilIsBuiltOncePerCommand) {
   const auto dir = scratch_directory("mesh_built_once");
   ::setenv("RUMBLE_MESH_CACHE", (dir / "cache").c_str(), 1);

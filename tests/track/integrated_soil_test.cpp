@@ -6,6 +6,7 @@
 //   - statics are K^-1 B F; the step receptance G is B^T (K + c_a M)^-1 B;
 //   - a chain numbered in a scrambled order is held in its narrow band (reverse Cuthill-McKee)
 //     and moves exactly as the same chain numbered in order;
+//   - a soil whose band would not fit is held sparse and moves as the banded one does;
 //   - matrices it cannot use are refused with what is wrong.
 #include "track/integrated_soil.hpp"
 
@@ -126,6 +127,40 @@ TEST(IntegratedSoil, AScrambledNumberingIsHeldInItsNarrowBandAndMovesTheSame) {
   }
 }
 
+// A band too wide for the band storage (a 3D mesh's) is held sparse: the same statics, step
+// receptance and motion as the banded storage of the same soil, to round-off.
+TEST(IntegratedSoil, ASoilWhoseBandWouldNotFitIsHeldSparseAndMovesTheSame) {
+  const Chain c = chain({7, 2, 9, 0, 5, 3, 8, 1, 6, 4});
+  IntegratedSoil banded("banded", c.M, c.C, c.K, c.B);
+  IntegratedSoil sparse("sparse", c.M, c.C, c.K, c.B, /*max_band_storage=*/1.0);
+  EXPECT_FALSE(banded.sparse());
+  EXPECT_TRUE(sparse.sparse());
+  const double force[2] = {5e4, 2e4};  // N
+  double u_banded[2], u_sparse[2];
+  banded.static_displacement(force, u_banded);
+  sparse.static_displacement(force, u_sparse);
+  for (int i = 0; i < 2; ++i) EXPECT_NEAR(u_sparse[i], u_banded[i], 1e-12 * 5e4 / 3e7) << i;
+  banded.start_static(force);
+  sparse.start_static(force);
+  const Newmark newmark;
+  const double h = 1e-3;  // s
+  banded.factorize(newmark, h);
+  sparse.factorize(newmark, h);
+  EXPECT_LT((sparse.step_receptance() - banded.step_receptance()).cwiseAbs().maxCoeff(),
+            1e-12 * banded.step_receptance().cwiseAbs().maxCoeff());
+  Eigen::VectorXd u0(2), p(2), released = Eigen::VectorXd::Zero(2);
+  for (int n = 0; n < 50; ++n) {
+    for (IntegratedSoil* soil : {&banded, &sparse}) {
+      soil->predict(newmark, h, u0, p);
+      soil->correct(newmark, h, released);
+    }
+  }
+  for (std::size_t i = 0; i < 2; ++i) {
+    EXPECT_NEAR(sparse.footprint_u(i), banded.footprint_u(i), 1e-12 * 5e4 / 3e7) << i;
+    EXPECT_NEAR(sparse.footprint_v(i), banded.footprint_v(i), 1e-9) << i;
+  }
+}
+
 TEST(IntegratedSoil, MatricesItCannotUseAreRefusedWithWhatIsWrong) {
   Sparse asymmetric(2, 2);
   asymmetric.insert(0, 0) = 1e8;
@@ -148,6 +183,25 @@ TEST(IntegratedSoil, MatricesItCannotUseAreRefusedWithWhatIsWrong) {
               ::testing::HasSubstr("M is 1 x 1, K is 2 x 2"));
   EXPECT_THAT(refusal(zero, diagonal({1e8, 0.0})),
               ::testing::HasSubstr("its stiffness K is not positive definite"));
+  // Held sparse (a band that would not fit): the same refusal; and a soil too large to factor.
+  try {
+    IntegratedSoil("fem", zero, zero, diagonal({1e8, 0.0}), input, /*max_band_storage=*/1.0);
+    ADD_FAILURE() << "a singular K held sparse was accepted";
+  } catch (const RunError& e) {
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("its stiffness K is not positive definite"));
+  }
+  const auto n = static_cast<Eigen::Index>(IntegratedSoil::kMaxSparseDofs) + 1;
+  Sparse large(n, n), large_input(n, 1);
+  large.setIdentity();
+  large_input.insert(0, 0) = 1.0;
+  try {
+    IntegratedSoil("fem", large, large, large, large_input, /*max_band_storage=*/1.0);
+    ADD_FAILURE() << "a soil beyond kMaxSparseDofs was accepted";
+  } catch (const RunError& e) {
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("300001 DOFs with a half bandwidth of 0 are too "
+                                               "many to factor at every micro-step"));
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("co-simulation scheme"));
+  }
 }
 
 }  // namespace

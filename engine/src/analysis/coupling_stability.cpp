@@ -238,9 +238,9 @@ double growth_factor(CoupledStep& coupled, const std::string& scheme, double H, 
 std::vector<StabilityPoint> coupling_stability(scenario::RunSpec spec,
                                                const PluginRegistry& registry,
                                                const std::vector<double>& macro_steps,
-                                               const StabilityInputs& inputs) {
+                                               const StabilityInputs& inputs, BuiltSoils* built) {
   for (scenario::VehicleSpec& v : spec.vehicles) v.speed = 0.0;  // linearized at rest
-  RunComponents c = build_components(spec, registry);
+  RunComponents c = build_components(spec, registry, built);
   std::unique_ptr<IntegratedSoil> soil = linear_soil(*c.soil, "a stability analysis");
   TrackParticipant& track = *c.track;
   track.solve_static([&](const std::vector<double>& force, std::vector<double>& u) {

@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "plugin/built_soils.hpp"
 #include "plugin/registry.hpp"
 #include "scenario/run_spec.hpp"
 
@@ -43,10 +44,11 @@ struct StabilityPoint {
 };
 
 /// For every macro step H [s] and both schemes. Throws ConfigError for a soil without linear
-/// matrices.
+/// matrices. The soil is taken from `built` when validation built it (plugin/built_soils.hpp).
 std::vector<StabilityPoint> coupling_stability(scenario::RunSpec spec,
                                                const PluginRegistry& registry,
                                                const std::vector<double>& macro_steps,
-                                               const StabilityInputs& inputs = {});
+                                               const StabilityInputs& inputs = {},
+                                               BuiltSoils* built = nullptr);
 
 }  // namespace rumble

@@ -40,8 +40,11 @@ int stability_command(const std::vector<std::string>& args) {
     steps.push_back(H);
   }
   PluginRegistry registry;
+  BuiltSoils built;  // the soil validation builds is the one analysed: built once
+  scenario::CheckOptions check = kNotARun;
+  check.keep_soils = &built;
   const auto doc =
-      prepare_scenario(a.positional()[0], registry, scenario::Format::kText, {}, kNotARun);
+      prepare_scenario(a.positional()[0], registry, scenario::Format::kText, {}, check);
   if (!doc) return kExitConfig;
   // The scenario's explicit scheme feeds its inputs so; the options override.
   const nlohmann::json& coupling = doc->json.at("coupling");
@@ -55,8 +58,8 @@ int stability_command(const std::vector<std::string>& args) {
       a.integer("extrapolation", static_cast<long long>(inputs.extrapolation), 0, 2));
   inputs.interpolation = static_cast<std::uint32_t>(
       a.integer("interpolation", static_cast<long long>(inputs.interpolation), 0, 1));
-  const auto points =
-      coupling_stability(scenario::make_run_spec(doc->json, doc->path), registry, steps, inputs);
+  const auto points = coupling_stability(scenario::make_run_spec(doc->json, doc->path), registry,
+                                         steps, inputs, &built);
   std::cout << "spectral radius of one macro step, linearized at rest (> 1: grows by that factor "
                "every step, the run diverges); inputs extrapolated to order "
             << inputs.extrapolation << ", gauss_seidel's interpolated to order "

@@ -41,7 +41,7 @@ BandedSymmetric banded(const Sparse& a, std::size_t band) {
 }  // namespace
 
 IntegratedSoil::IntegratedSoil(const std::string& name, const Sparse& M, const Sparse& C,
-                               const Sparse& K, const Sparse& B)
+                               const Sparse& K, const Sparse& B, double max_band_storage)
     : n_x_(static_cast<std::size_t>(K.rows())), n_f_(static_cast<std::size_t>(B.cols())) {
   const auto refuse = [&](const std::string& what) {
     return RunError("soil '" + name +
@@ -77,26 +77,71 @@ IntegratedSoil::IntegratedSoil(const std::string& name, const Sparse& M, const S
         order.indices()[rcm[k]] = static_cast<Sparse::StorageIndex>(k);  // unknown rcm[k] -> k
     }
   }
-  if (static_cast<double>(band_ + 1) * static_cast<double>(n_x_) > kMaxBandStorage) {
+  sparse_ = static_cast<double>(band_ + 1) * static_cast<double>(n_x_) > max_band_storage;
+  if (sparse_ && static_cast<double>(n_x_) > kMaxSparseDofs) {
     std::ostringstream text;
-    text << n_x_ << " DOFs with a half bandwidth of " << band_ << " need "
-         << static_cast<double>(band_ + 1) * static_cast<double>(n_x_)
-         << " doubles per banded matrix, more than " << kMaxBandStorage
-         << "; use a smaller soil (or a co-simulation scheme: gauss_seidel, implicit)";
+    text << n_x_ << " DOFs with a half bandwidth of " << band_
+         << " are too many to factor at every micro-step (at most " << kMaxSparseDofs
+         << " held sparse); use a smaller soil (or a co-simulation scheme: gauss_seidel, "
+            "implicit)";
     throw refuse(text.str());
   }
-  mass_ = banded(Sparse(order * M * order.transpose()), band_);
-  damping_ = banded(Sparse(order * C * order.transpose()), band_);
-  stiffness_ = banded(Sparse(order * K * order.transpose()), band_);
-  input_ = order * B;
-  input_.makeCompressed();
-  static_factor_ = stiffness_;
-  if (!static_factor_.factorize())
-    throw refuse("its stiffness K is not positive definite (a soil with no static stiffness)");
-  dynamic_ = BandedSymmetric(n_x_, band_);
+  if (sparse_) {  // the soil's own order: the factorization chooses its fill-reducing one
+    sparse_mass_ = M;
+    sparse_damping_ = C;
+    sparse_stiffness_ = K;
+    for (Sparse* m : {&sparse_mass_, &sparse_damping_, &sparse_stiffness_}) m->makeCompressed();
+    input_ = B;
+    input_.makeCompressed();
+    sparse_static_.compute(sparse_stiffness_);
+    if (sparse_static_.info() != Eigen::Success)
+      throw refuse("its stiffness K is not positive definite (a soil with no static stiffness)");
+    sparse_dynamic_.analyzePattern(
+        Sparse(sparse_stiffness_ + sparse_damping_ + sparse_mass_));  // A's pattern
+    solved_.setZero(static_cast<Eigen::Index>(n_x_));
+  } else {
+    mass_ = banded(Sparse(order * M * order.transpose()), band_);
+    damping_ = banded(Sparse(order * C * order.transpose()), band_);
+    stiffness_ = banded(Sparse(order * K * order.transpose()), band_);
+    input_ = order * B;
+    input_.makeCompressed();
+    static_factor_ = stiffness_;
+    if (!static_factor_.factorize())
+      throw refuse("its stiffness K is not positive definite (a soil with no static stiffness)");
+    dynamic_ = BandedSymmetric(n_x_, band_);
+  }
   G_.setZero(static_cast<Eigen::Index>(n_f_), static_cast<Eigen::Index>(n_f_));
   for (Eigen::VectorXd* v : {&x_, &v_, &a_, &pa_, &pv_, &rhs_, &free_, &x_old_})
     v->setZero(static_cast<Eigen::Index>(n_x_));
+}
+
+void IntegratedSoil::solve_static(Eigen::VectorXd& x) const {
+  if (!sparse_) {
+    static_factor_.solve(x.data());
+    return;
+  }
+  solved_ = sparse_static_.solve(x);
+  x.swap(solved_);
+}
+
+void IntegratedSoil::solve_dynamic(Eigen::VectorXd& x) const {
+  if (!sparse_) {
+    dynamic_.solve(x.data());
+    return;
+  }
+  solved_ = sparse_dynamic_.solve(x);
+  x.swap(solved_);
+}
+
+void IntegratedSoil::inertia_and_damping(const Eigen::VectorXd& a, const Eigen::VectorXd& v,
+                                         Eigen::VectorXd& y) const {
+  if (!sparse_) {
+    mass_.multiply(a.data(), y.data());
+    damping_.multiply_add(1.0, v.data(), y.data());
+    return;
+  }
+  y.noalias() = sparse_mass_ * a;
+  y.noalias() += sparse_damping_ * v;
 }
 
 double IntegratedSoil::footprint_dot(std::size_t i, const Eigen::VectorXd& x) const {
@@ -115,22 +160,30 @@ void IntegratedSoil::add_input(const double* force, Eigen::VectorXd& y) const {
 void IntegratedSoil::static_displacement(const double* force, double* u) {
   rhs_.setZero();
   add_input(force, rhs_);
-  static_factor_.solve(rhs_.data());
+  solve_static(rhs_);
   for (std::size_t i = 0; i < n_f_; ++i) u[i] = footprint_dot(i, rhs_);
 }
 
 void IntegratedSoil::start_static(const double* force) {
   x_.setZero();
   add_input(force, x_);
-  static_factor_.solve(x_.data());
+  solve_static(x_);
   v_.setZero();
   a_.setZero();
 }
 
 void IntegratedSoil::factorize(const Newmark& newmark, double h) {
   if (h == h_factored_) return;
-  dynamic_.set_combination(1.0, stiffness_, newmark.c_v(h), damping_, newmark.c_a(h), mass_);
-  if (!dynamic_.factorize()) {
+  bool factored = false;
+  if (sparse_) {
+    sparse_dynamic_.factorize(Sparse(sparse_stiffness_ + newmark.c_v(h) * sparse_damping_ +
+                                     newmark.c_a(h) * sparse_mass_));
+    factored = sparse_dynamic_.info() == Eigen::Success;
+  } else {
+    dynamic_.set_combination(1.0, stiffness_, newmark.c_v(h), damping_, newmark.c_a(h), mass_);
+    factored = dynamic_.factorize();
+  }
+  if (!factored) {
     throw RunError(
         "integrated soil: K + c_v C + c_a M is not positive definite at the micro-step " +
         std::to_string(h) + " s");
@@ -140,7 +193,7 @@ void IntegratedSoil::factorize(const Newmark& newmark, double h) {
     column.setZero();
     for (Sparse::InnerIterator it(input_, static_cast<Eigen::Index>(j)); it; ++it)
       column[it.row()] = it.value();
-    dynamic_.solve(column.data());
+    solve_dynamic(column);
     for (std::size_t i = 0; i < n_f_; ++i)
       G_(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = footprint_dot(i, column);
   }
@@ -151,10 +204,9 @@ void IntegratedSoil::factorize(const Newmark& newmark, double h) {
 void IntegratedSoil::predict(const Newmark& newmark, double h, Eigen::VectorXd& u0,
                              Eigen::VectorXd& p) {
   newmark.predictors(h, x_, v_, a_, pa_, pv_);
-  mass_.multiply(pa_.data(), rhs_.data());
-  damping_.multiply_add(1.0, pv_.data(), rhs_.data());
+  inertia_and_damping(pa_, pv_, rhs_);
   free_ = rhs_;
-  dynamic_.solve(free_.data());
+  solve_dynamic(free_);
   for (std::size_t i = 0; i < n_f_; ++i) {
     u0[static_cast<Eigen::Index>(i)] = footprint_dot(i, free_);
     p[static_cast<Eigen::Index>(i)] = footprint_dot(i, pv_);
@@ -165,7 +217,7 @@ void IntegratedSoil::correct(const Newmark& newmark, double h, const Eigen::Vect
   x_old_ = x_;
   x_ = rhs_;
   add_input(force.data(), x_);
-  dynamic_.solve(x_.data());
+  solve_dynamic(x_);
   newmark.correct(h, x_old_, x_, v_, a_);
 }
 

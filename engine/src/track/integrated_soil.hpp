@@ -9,11 +9,14 @@
 // The track condenses the soil onto its sleepers with G (TrackParticipant, "integrated soil").
 //
 // Storage is banded, in the soil's own DOF order (tridiagonal for the lumped soils) or in a
-// reverse Cuthill-McKee order where that is narrower (a FEM mesh): a soil whose band would not
-// fit is refused with a message, not solved slowly. The state x is held in that order.
+// reverse Cuthill-McKee order where that is narrower (a FEM mesh); the state x is held in that
+// order. A soil whose band would not fit (a 3D mesh: a band of 2000 on 4.5e4 DOFs) is held
+// sparse instead and factored by a sparse Cholesky (Eigen's simplicial LL^T, fill-reducing
+// order), up to kMaxSparseDofs; beyond that it is refused with a message.
 #pragma once
 
 #include <Eigen/Dense>
+#include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 #include <cstddef>
 #include <rumble/newmark.hpp>
@@ -29,15 +32,20 @@ class IntegratedSoil {
   /// RunError for matrices of the wrong shape, not symmetric, too wide a band, or a singular K.
   IntegratedSoil(const std::string& name, const Eigen::SparseMatrix<double>& M,
                  const Eigen::SparseMatrix<double>& C, const Eigen::SparseMatrix<double>& K,
-                 const Eigen::SparseMatrix<double>& B);
+                 const Eigen::SparseMatrix<double>& B, double max_band_storage = kMaxBandStorage);
 
   std::size_t dof_count() const { return n_x_; }
-  /// Half bandwidth of the band storage (after reordering where that narrowed it).
+  /// Half bandwidth of the matrices (after reordering where that narrowed it).
   std::size_t half_bandwidth() const { return band_; }
+  /// True when held sparse (the band would not fit in max_band_storage).
+  bool sparse() const { return sparse_; }
   std::size_t footprint_count() const { return n_f_; }
-  /// Band storage above which a soil is refused [doubles]: 4e7 (320 MB for each of the three
+  /// Band storage above which a soil is held sparse [doubles]: 4e7 (320 MB for each of the three
   /// matrices and the factor).
   static constexpr double kMaxBandStorage = 4e7;
+  /// DOFs above which a soil that is held sparse is refused: a 3D mesh's Cholesky factor grows
+  /// about as n^(4/3) (3e5 DOFs: about 2 GB), and each micro-step solves with it twice.
+  static constexpr double kMaxSparseDofs = 3e5;
 
   /// Static footprint displacements u = B^T K^-1 B F [m] under footprint forces F [N].
   void static_displacement(const double* force, double* u);
@@ -62,14 +70,24 @@ class IntegratedSoil {
   const double* restore_state(const double* buffer);
 
  private:
+  /// x = K^-1 x, x = A^-1 x (A = K + c_v C + c_a M of the last factorize), in place.
+  void solve_static(Eigen::VectorXd& x) const;
+  void solve_dynamic(Eigen::VectorXd& x) const;
+  /// y = M a + C v.
+  void inertia_and_damping(const Eigen::VectorXd& a, const Eigen::VectorXd& v,
+                           Eigen::VectorXd& y) const;
   /// y = B^T x (n_footprints values) for a soil vector x.
   double footprint_dot(std::size_t i, const Eigen::VectorXd& x) const;
   void add_input(const double* force, Eigen::VectorXd& y) const;  // y += B F
 
   std::size_t n_x_ = 0, n_f_ = 0, band_ = 0;
-  BandedSymmetric mass_, damping_, stiffness_;
-  BandedSymmetric static_factor_;      // K, factored
-  BandedSymmetric dynamic_;            // A = K + c_v C + c_a M, factored
+  bool sparse_ = false;
+  BandedSymmetric mass_, damping_, stiffness_;  // banded storage
+  BandedSymmetric static_factor_;               // K, factored
+  BandedSymmetric dynamic_;                     // A = K + c_v C + c_a M, factored
+  Eigen::SparseMatrix<double> sparse_mass_, sparse_damping_, sparse_stiffness_;  // sparse storage
+  Eigen::SimplicialLLT<Eigen::SparseMatrix<double>> sparse_static_, sparse_dynamic_;
+  mutable Eigen::VectorXd solved_;     // the sparse solves' result
   Eigen::SparseMatrix<double> input_;  // B (column i: footprint i)
   double h_factored_ = -1.0;
   Eigen::MatrixXd G_;
