@@ -26,7 +26,6 @@
 #include "linear_matrices.hpp"
 #include "mesh_cache.hpp"
 #include "mesh_generator.hpp"
-#include "pml.hpp"
 #include "probe_locator.hpp"
 #include "receptance.hpp"
 #include "static_solver.hpp"
@@ -103,18 +102,16 @@ class FemSoil final : public rumble::Soil {
     if (settings_.boundary.kind == BoundaryKind::kFixed)
       for (const BoundaryNode& b : boundary) fixed[b.node] = 1;
     op_.emplace(assemble_stiffness(mesh_, settings_), lumped_mass(mesh_, settings_),
-                std::move(boundary), settings_.boundary.springs(), std::move(fixed),
-                settings_.damping.mass_coefficient(), settings_.damping.stiffness_coefficient(),
-                host_.threads());
-    if (settings_.boundary.kind == BoundaryKind::kPml)
-      op_->set_pml(PmlLayer(mesh_, settings_, pml_profile()));
+                std::move(boundary), settings_.boundary.kind == BoundaryKind::kViscousSpring,
+                std::move(fixed), settings_.damping.mass_coefficient(),
+                settings_.damping.stiffness_coefficient(), host_.threads());
     statics_ = std::make_unique<StaticSolver>(*op_, mesh_.nodes);
     implicit_.reset();
     if (settings_.implicit)
       implicit_ = std::make_unique<ImplicitSolver>(*op_, settings_.damping.mass_coefficient(),
                                                    settings_.damping.stiffness_coefficient());
     const Eigen::Index n = op_->dofs();
-    state_ = op_->rest_state();
+    state_ = {Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n)};
     u_static_ = Eigen::VectorXd::Zero(n);
     f_ = Eigen::VectorXd::Zero(n);
     df_ = Eigen::VectorXd::Zero(n);
@@ -134,7 +131,6 @@ class FemSoil final : public rumble::Soil {
     state_.w.setZero();
     state_.v.setZero();
     state_.a.setZero();
-    state_.pml.resize(0);  // at rest
     for (std::size_t j = 0; j < footprints_.size(); ++j) static_u[j] = average(j, u_static_);
   }
 
@@ -202,18 +198,8 @@ class FemSoil final : public rumble::Soil {
   void set_probes(const std::vector<rumble::Probe>& probes, double sample_interval) override {
     require_layout("set_probes");
     probes_.clear();
-    for (const rumble::Probe& p : probes) {
-      if (op_->pml() && !pml_profile().inside_physical_box({p.x, p.y, p.depth})) {
-        std::ostringstream m;
-        m << "fem: probe \"" << p.name << "\" at (" << p.x << ", " << p.y << ", " << p.depth
-          << ") m lies in the perfectly matched layer, whose motion is not physical; move it into "
-             "the box (within params/mesh/radius = "
-          << plan_.radius << " m of the footprints, depth at most " << plan_.radius
-          << " m) or raise mesh.radius";
-        throw std::invalid_argument(m.str());
-      }
+    for (const rumble::Probe& p : probes)
       probes_.push_back(rumble::fem::locate_probe(mesh_, p.x, p.y, p.depth, p.name));
-    }
     row_.assign(probes.size() * RUMBLE_PROBE_VALUES, 0.0);
     sample_interval_ = sample_interval;
     next_sample_ = -1.0;
@@ -226,7 +212,6 @@ class FemSoil final : public rumble::Soil {
 
   bool frequency_response(double f_hz, std::complex<double>* receptance) override {
     require_layout("frequency_response");
-    refuse_with_pml("its receptance (rumble soil-frf, calibrate, two-step)");
     if (!receptance_)
       receptance_ = std::make_unique<rumble::fem::Receptance>(
           *op_, weights_, settings_.damping.mass_coefficient(),
@@ -237,7 +222,6 @@ class FemSoil final : public rumble::Soil {
 
   void linear_matrix(rumble_matrix which, rumble::CscMatrix& out) override {
     require_layout("linear_matrix");
-    refuse_with_pml("its matrices (the monolithic coupler, rumble stability)");
     rumble::fem::linear_matrix(*op_, weights_, settings_.damping.mass_coefficient(),
                                settings_.damping.stiffness_coefficient(), which, out);
   }
@@ -280,18 +264,6 @@ class FemSoil final : public rumble::Soil {
 
   void require_layout(const char* call) const {
     if (!op_) throw std::logic_error(std::string("fem: ") + call + "() before accept_layout()");
-  }
-
-  rumble::fem::PmlProfile pml_profile() const {
-    return plan_.physical_box(settings_.boundary.pml_reflection, settings_.boundary.pml_shift());
-  }
-
-  /// The layer's memory variables have no place in M, C, K nor in one frequency's solve yet.
-  void refuse_with_pml(const std::string& what) const {
-    if (op_->pml())
-      throw std::invalid_argument(
-          "fem: params/boundary/type: the perfectly matched layer has no form for " + what +
-          " yet; use boundary.type \"viscous_spring\" for it");
   }
 
   double max_step() const {
@@ -403,9 +375,6 @@ class FemSoil final : public rumble::Soil {
       if (d < plan_.radius)
         m << ' ' << format(plan_.resolved_frequency(d, c_r, settings_.mesh.elements_per_wavelength))
           << " Hz at " << d << " m;";
-    if (const rumble::fem::PmlLayer* pml = op_->pml())
-      m << " perfectly matched layer " << format(plan_.pml) << " m thick (elements up to "
-        << format(plan_.h_pml) << " m): " << pml->tetrahedra() << " tetrahedra;";
     host_.info(m.str());
     const double epw = c_r / (settings_.mesh.f_max * plan_.h_near);
     if (plan_.h_near > 0.0 && epw < 8.0)

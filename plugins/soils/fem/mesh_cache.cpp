@@ -57,9 +57,7 @@ std::string mesh_cache_name(const FemSettings& s, const std::vector<Footprint>& 
   key << "rumble-fem-mesh-2 gmsh " << GMSH_API_VERSION << " algorithm "
       << (s.mesh.fast_algorithm ? "hxt" : "delaunay") << " threads " << s.mesh_threads << " shape "
       << static_cast<int>(p.shape) << " radius " << p.radius << " h " << p.h_near << ' ' << p.h_max
-      << ' ' << p.near_distance;
-  if (p.pml > 0.0) key << " pml " << p.pml << ' ' << p.h_pml;  // (absent: older keys still hold)
-  key << " layers";
+      << ' ' << p.near_distance << " layers";
   for (const soils::SoilLayer& l : s.layers) key << ' ' << l.thickness;
   key << " footprints";
   for (const Footprint& f : footprints)
