@@ -66,6 +66,9 @@ TEST(FemMeshCache, NameChangesWithWhatMakesTheMesh) {
   FemSettings layered = s;
   layered.layers.push_back({2.0, {50e6, 0.3, 1800.0}});
   EXPECT_NE(name, mesh_cache_name(layered, fp, p));
+  FemSettings optimized = s;  // gmsh moves nodes of the tetrahedra below the quality threshold
+  optimized.mesh.quality_threshold = 0.6;
+  EXPECT_NE(name, mesh_cache_name(optimized, fp, p));
   FemSettings stiffer = s;  // a material alone does not change the mesh (h_near is in the plan)
   stiffer.half_space.E *= 2.0;
   EXPECT_EQ(name, mesh_cache_name(stiffer, fp, p));

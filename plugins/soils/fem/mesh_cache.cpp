@@ -57,7 +57,10 @@ std::string mesh_cache_name(const FemSettings& s, const std::vector<Footprint>& 
   key << "rumble-fem-mesh-2 gmsh " << GMSH_API_VERSION << " algorithm "
       << (s.mesh.fast_algorithm ? "hxt" : "delaunay") << " threads " << s.mesh_threads << " shape "
       << static_cast<int>(p.shape) << " radius " << p.radius << " h " << p.h_near << ' ' << p.h_max
-      << ' ' << p.near_distance << " layers";
+      << ' ' << p.near_distance;
+  if (s.mesh.quality_threshold != 0.3)  // (gmsh's default: the keys of older meshes still hold)
+    key << " quality " << s.mesh.quality_threshold;
+  key << " layers";
   for (const soils::SoilLayer& l : s.layers) key << ' ' << l.thickness;
   key << " footprints";
   for (const Footprint& f : footprints)

@@ -140,6 +140,7 @@ TetMesh generate_mesh(const FemSettings& s, const std::vector<Footprint>& footpr
     // Delaunay gives the same mesh for the same input; HXT is 2-5x faster but not reproducible
     // from run to run (measured with gmsh 4.8, even on one thread).
     gmsh::option::setNumber("Mesh.Algorithm3D", s.mesh.fast_algorithm ? 10 : 1);
+    gmsh::option::setNumber("Mesh.OptimizeThreshold", s.mesh.quality_threshold);
     gmsh::model::mesh::setSizeCallback(
         [&p](int, int, double x, double y, double z) { return p.size_at(x, y, -z); });
     gmsh::model::mesh::generate(3);
