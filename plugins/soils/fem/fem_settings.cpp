@@ -101,6 +101,14 @@ const char* settings_schema() {
         "max_step": {"type": "number", "exclusiveMinimum": 0, "description": "implicit: longest sub-step [s]; default 1 / (20 mesh.f_max), 20 steps per period at f_max (period error about 0.8 %)"}
       }
     },
+    "receptance": {
+      "type": "object", "additionalProperties": false, "default": {},
+      "description": "the footprint receptance H(f) (rumble soil-frf, rumble calibrate; docs/fem-soil.md section 5)",
+      "properties": {
+        "method": {"enum": ["lu", "impulse"], "default": "lu", "description": "lu: one complex sparse LU of the whole mesh per frequency (exact for the mesh; 3.5 s at 2e4 DOFs, 13 minutes at 1.6e5); impulse: one explicit run per footprint, loaded by a short pulse, gives every frequency at once (from about 1e5 DOFs or a dozen frequencies on, far cheaper; its band ends near 3 mesh.f_max, and what the record cuts off is its error at low frequency)"},
+        "duration": {"type": "number", "exclusiveMinimum": 0, "maximum": 60, "default": 2, "description": "impulse: the record of each run [s]; it must outlast the response (warned when the motion in its last tenth exceeds 1 % of its peak)"}
+      }
+    },
     "courant": {"type": "number", "exclusiveMinimum": 0, "maximum": 1, "default": 0.8, "description": "the explicit step as a fraction of the stable step 2 / omega_max, omega_max the largest eigenfrequency of the mesh (power iteration) [-]"}
   }
 })schema";
@@ -169,6 +177,9 @@ FemSettings read_settings(const std::string& params_json) {
     refuse("damping/f_high",
            "must exceed damping/f_low (" + std::to_string(s.damping.f_low) + " Hz)",
            s.damping.f_high);
+  const nlohmann::json receptance = j.value("receptance", nlohmann::json::object());
+  s.receptance.impulse = receptance.value("method", "lu") == "impulse";
+  s.receptance.duration = read(receptance, "duration", s.receptance.duration);
   s.courant = read(j, "courant", s.courant);
   const nlohmann::json integrator = j.value("integrator", nlohmann::json::object());
   s.implicit = integrator.value("scheme", "explicit") == "implicit";

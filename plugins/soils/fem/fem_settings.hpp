@@ -52,6 +52,13 @@ struct DampingRequest {
   double stiffness_coefficient() const;  // a1 [s]
 };
 
+/// How the footprint receptance is computed: one complex LU per frequency (exact for the mesh),
+/// or one explicit run per footprint (impulse_receptance.hpp: all frequencies at once).
+struct ReceptanceRequest {
+  bool impulse = false;
+  double duration = 2.0;  // s: the impulse responses' record
+};
+
 struct FemSettings {
   soils::SoilProperties half_space;
   std::vector<soils::SoilLayer> layers;  // top first
@@ -59,6 +66,7 @@ struct FemSettings {
   MeshRequest mesh;
   BoundaryRequest boundary;
   DampingRequest damping;
+  ReceptanceRequest receptance;
   double courant = 0.8;        // explicit step = courant x the stable step from the mesh
   bool implicit = false;       // Newmark average acceleration instead of central differences
   double implicit_step = 0.0;  // s, longest implicit sub-step; 0 = 1 / (20 f_max)

@@ -23,11 +23,13 @@
 #include "footprint_loads.hpp"
 #include "gmsh_model.hpp"
 #include "implicit_solver.hpp"
+#include "impulse_receptance.hpp"
 #include "linear_matrices.hpp"
 #include "mesh_cache.hpp"
 #include "mesh_generator.hpp"
 #include "probe_locator.hpp"
 #include "receptance.hpp"
+#include "receptance_cache.hpp"
 #include "static_solver.hpp"
 #include "vtu_writer.hpp"
 #include "wave_speeds.hpp"
@@ -58,7 +60,9 @@ class FemSoil final : public rumble::Soil {
   static const char* params_schema() { return rumble::fem::settings_schema(); }
 
   FemSoil(const std::string& params_json, const rumble::Host& host)
-      : settings_(rumble::fem::read_settings(params_json)), host_(host) {
+      : settings_(rumble::fem::read_settings(params_json)),
+        params_(nlohmann::json::parse(params_json).dump()),
+        host_(host) {
     // A mesh file is found (and sized) at once, so that validation names it at params.
     if (!settings_.mesh.file.empty()) {
       const double limit = settings_.mesh.max_file_bytes();
@@ -81,6 +85,8 @@ class FemSoil final : public rumble::Soil {
     using namespace rumble::fem;
     const auto start = std::chrono::steady_clock::now();
     receptance_.reset();  // it refers to the operators of the previous layout
+    impulse_.reset();
+    receptance_key_.reset();
     footprints_ = footprints;
     if (settings_.mesh.file.empty()) {
       plan_ = plan_mesh(settings_, footprints);
@@ -212,11 +218,35 @@ class FemSoil final : public rumble::Soil {
 
   bool frequency_response(double f_hz, std::complex<double>* receptance) override {
     require_layout("frequency_response");
-    if (!receptance_)
-      receptance_ = std::make_unique<rumble::fem::Receptance>(
-          *op_, weights_, settings_.damping.mass_coefficient(),
-          settings_.damping.stiffness_coefficient());
-    receptance_->at(f_hz, receptance);
+    using namespace rumble::fem;
+    const auto dir = mesh_cache_directory();
+    std::filesystem::path cached;
+    if (dir) {
+      if (!receptance_key_) receptance_key_ = receptance_soil_key(mesh_, params_, weights_);
+      cached = *dir / receptance_cache_name(*receptance_key_, f_hz);
+      if (read_cached_receptance(cached, f_hz, footprints_.size(), receptance)) {
+        host_.log(RUMBLE_LOG_DEBUG,
+                  "fem: receptance at " + format(f_hz) + " Hz from the cache " + cached.string());
+        return true;
+      }
+    }
+    if (settings_.receptance.impulse) {
+      op_->set_threads(host_.threads());
+      if (!impulse_) impulse_ = impulse_responses();
+      impulse_->at(f_hz, receptance);
+    } else {
+      if (!receptance_)
+        receptance_ =
+            std::make_unique<Receptance>(*op_, weights_, settings_.damping.mass_coefficient(),
+                                         settings_.damping.stiffness_coefficient());
+      receptance_->at(f_hz, receptance);
+    }
+    if (dir && !write_cached_receptance(cached, f_hz, footprints_.size(), receptance) &&
+        !receptance_cache_warned_) {
+      host_.warn("fem: could not keep the receptance in " + cached.string() +
+                 " (set RUMBLE_MESH_CACHE to a writable directory, or to off)");
+      receptance_cache_warned_ = true;
+    }
     return true;
   }
 
@@ -264,6 +294,34 @@ class FemSoil final : public rumble::Soil {
 
   void require_layout(const char* call) const {
     if (!op_) throw std::logic_error(std::string("fem: ") + call + "() before accept_layout()");
+  }
+
+  /// One explicit run per footprint (impulse_receptance.hpp), with progress and Ctrl-C.
+  std::unique_ptr<rumble::fem::ImpulseReceptance> impulse_responses() const {
+    const double dt = settings_.courant * op_->stable_step();
+    const double duration = settings_.receptance.duration;
+    const std::size_t n = footprints_.size();
+    host_.info("fem: receptance from " + std::to_string(n) + " impulse responses of " +
+               format(duration) + " s (" + format(std::ceil(duration / dt)) + " steps of " +
+               format(dt) + " s each)");
+    const auto start = std::chrono::steady_clock::now();
+    auto responses = std::make_unique<rumble::fem::ImpulseReceptance>(
+        *op_, weights_, dt, duration, settings_.mesh.f_max, [&](std::size_t j) {
+          host_.check_stop(static_cast<double>(j) / n);
+          if (j == 0) return;
+          const double elapsed = seconds_since(start);
+          host_.info("fem: impulse response " + std::to_string(j + 1) + " of " + std::to_string(n) +
+                     ", about " + format(elapsed / j * static_cast<double>(n - j), 2) + " s left");
+        });
+    host_.info("fem: impulse responses done in " + format(seconds_since(start), 3) +
+               " s; the motion in the records' last tenth is " +
+               format(responses->decay_ratio(), 2) + " of its peak");
+    constexpr double kCutOff = 0.01;  // beyond, the low frequencies carry the truncation
+    if (responses->decay_ratio() > kCutOff)
+      host_.warn("fem: params/receptance/duration " + format(duration) +
+                 " s: the footprints still move at " + format(responses->decay_ratio(), 2) +
+                 " of their peak when the records end; the low frequencies are cut off: raise it");
+    return responses;
   }
 
   double max_step() const {
@@ -388,6 +446,7 @@ class FemSoil final : public rumble::Soil {
   }
 
   rumble::fem::FemSettings settings_;
+  std::string params_;  // the params as validated, one line (part of the receptance cache key)
   rumble::Host host_;
   std::string mesh_file_;  // mesh.file found from the scenario's folder; "" when meshing
   std::vector<rumble::Footprint> footprints_;
@@ -398,6 +457,9 @@ class FemSoil final : public rumble::Soil {
   std::unique_ptr<rumble::fem::StaticSolver> statics_;
   std::unique_ptr<rumble::fem::ImplicitSolver> implicit_;
   std::unique_ptr<rumble::fem::Receptance> receptance_;
+  std::unique_ptr<rumble::fem::ImpulseReceptance> impulse_;
+  std::optional<std::uint64_t> receptance_key_;  // receptance_cache.hpp, once per layout
+  bool receptance_cache_warned_ = false;
   ExplicitState state_;
   Eigen::VectorXd u_static_;                       // [m] under force_static_
   Eigen::VectorXd f_, df_;                         // scratch: nodal forces [N]

@@ -1,38 +1,23 @@
 #include "mesh_cache.hpp"
 
 #include <gmsh.h>
-#include <unistd.h>
 
 #include <cstdint>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
 
+#include "cache_file.hpp"
+
 namespace rumble::fem {
 
 namespace {
 
+using cache::fnv1a;
+using cache::get;
+using cache::put;
+
 constexpr char kMagic[8] = {'R', 'M', 'B', 'M', 'E', 'S', 'H', '1'};
-
-/// FNV-1a, 64 bit: enough to tell meshes apart and to detect a damaged file.
-std::uint64_t fnv1a(const void* data, std::size_t bytes, std::uint64_t h = 1469598103934665603ull) {
-  const auto* p = static_cast<const unsigned char*>(data);
-  for (std::size_t i = 0; i < bytes; ++i) h = (h ^ p[i]) * 1099511628211ull;
-  return h;
-}
-
-template <class T>
-void put(std::ostream& out, std::uint64_t& sum, const T* data, std::size_t n) {
-  out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(n * sizeof(T)));
-  sum = fnv1a(data, n * sizeof(T), sum);
-}
-
-template <class T>
-bool get(std::istream& in, std::uint64_t& sum, T* data, std::size_t n) {
-  in.read(reinterpret_cast<char*>(data), static_cast<std::streamsize>(n * sizeof(T)));
-  sum = fnv1a(data, n * sizeof(T), sum);
-  return static_cast<bool>(in);
-}
 
 }  // namespace
 
@@ -74,9 +59,8 @@ std::string mesh_cache_name(const FemSettings& s, const std::vector<Footprint>& 
 std::optional<TetMesh> read_cached_mesh(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) return std::nullopt;
-  char magic[8];
-  std::uint64_t counts[4], sum = 0, stored = 0;
-  if (!in.read(magic, 8) || std::string(magic, 8) != std::string(kMagic, 8)) return std::nullopt;
+  std::uint64_t counts[4], sum = 0;
+  if (!cache::read_magic(in, kMagic)) return std::nullopt;
   if (!get(in, sum, counts, 4)) return std::nullopt;
   const auto [nodes, tets, ground, truncation] = counts;
   if (nodes == 0 || tets == 0 || nodes > (1ull << 31) || tets > (1ull << 33)) return std::nullopt;
@@ -88,8 +72,7 @@ std::optional<TetMesh> read_cached_mesh(const std::filesystem::path& path) {
   m.truncation.resize(truncation);
   if (!get(in, sum, m.nodes.data(), 3 * nodes) || !get(in, sum, m.tets.data(), tets) ||
       !get(in, sum, m.layer.data(), tets) || !get(in, sum, m.ground.data(), ground) ||
-      !get(in, sum, m.truncation.data(), truncation) ||
-      !in.read(reinterpret_cast<char*>(&stored), 8) || stored != sum)
+      !get(in, sum, m.truncation.data(), truncation) || !cache::read_checksum(in, sum))
     return std::nullopt;
   // (a copy: Clang 14 cannot capture a structured binding)
   const auto valid = [node_count = nodes](const auto& elements) {
@@ -103,15 +86,7 @@ std::optional<TetMesh> read_cached_mesh(const std::filesystem::path& path) {
 }
 
 bool write_cached_mesh(const std::filesystem::path& path, const TetMesh& m) {
-  std::error_code ec;
-  std::filesystem::create_directories(path.parent_path(), ec);
-  const std::filesystem::path partial =
-      path.string() + ".partial." + std::to_string(static_cast<long>(::getpid()));
-  {
-    std::ofstream out(partial, std::ios::binary | std::ios::trunc);
-    if (!out) return false;
-    out.write(kMagic, 8);
-    std::uint64_t sum = 0;
+  return cache::write_whole(path, kMagic, [&m](std::ostream& out, std::uint64_t& sum) {
     const std::uint64_t counts[4] = {static_cast<std::uint64_t>(m.node_count()), m.tets.size(),
                                      m.ground.size(), m.truncation.size()};
     put(out, sum, counts, 4);
@@ -120,16 +95,7 @@ bool write_cached_mesh(const std::filesystem::path& path, const TetMesh& m) {
     put(out, sum, m.layer.data(), m.layer.size());
     put(out, sum, m.ground.data(), m.ground.size());
     put(out, sum, m.truncation.data(), m.truncation.size());
-    out.write(reinterpret_cast<const char*>(&sum), 8);
-    if (!out) {
-      out.close();
-      std::filesystem::remove(partial, ec);
-      return false;
-    }
-  }
-  std::filesystem::rename(partial, path, ec);
-  if (ec) std::filesystem::remove(partial, ec);
-  return !ec;
+  });
 }
 
 }  // namespace rumble::fem
