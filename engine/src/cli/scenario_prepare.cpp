@@ -2,6 +2,7 @@
 
 #include <iostream>
 
+#include "core/cpu_affinity.hpp"
 #include "scenario/check_file.hpp"
 #include "track/footprint_layout.hpp"
 
@@ -39,6 +40,9 @@ ScenarioSoil soil_on_footprints(const scenario::Document& doc, const PluginRegis
     s.soil = std::make_unique<SoilInstance>(*s.type, "/soil", params, doc.path.parent_path());
     s.soil->accept_layout(s.layout);
   }
+  // The soil runs alone in these commands (its receptance, its impulse responses, its stable
+  // step): the machine's cores are its.
+  s.soil->grant_threads(static_cast<unsigned>(usable_cpus()));
   return s;
 }
 

@@ -115,8 +115,10 @@ int32_t Instance::progress_callback(void* /*host_data*/, double /*fraction*/) {
 void Instance::set_run_context(const std::filesystem::path& results_dir, unsigned threads) {
   results_dir_ = results_dir.string();
   host_.results_dir = results_dir_.c_str();
-  host_.threads = std::max(1u, threads);
+  grant_threads(threads);
 }
+
+void Instance::grant_threads(unsigned threads) { host_.threads = std::max(1u, threads); }
 
 void Instance::finalize() {
   if (lifecycle_ != nullptr && lifecycle_->finalize != nullptr)
