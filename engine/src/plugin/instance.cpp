@@ -118,7 +118,9 @@ void Instance::set_run_context(const std::filesystem::path& results_dir, unsigne
   grant_threads(threads);
 }
 
-void Instance::grant_threads(unsigned threads) { host_.threads = std::max(1u, threads); }
+void Instance::grant_threads(unsigned threads) {
+  host_.threads = std::max(1u, threads);
+}
 
 void Instance::finalize() {
   if (lifecycle_ != nullptr && lifecycle_->finalize != nullptr)
