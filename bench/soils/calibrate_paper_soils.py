@@ -98,7 +98,7 @@ def run(cmd, env):
     out = subprocess.run([str(c) for c in cmd], env=env, capture_output=True, text=True)
     if out.returncode != 0:
         sys.exit(f"failed (exit {out.returncode}):\n{out.stdout}{out.stderr}")
-    for line in out.stderr.splitlines():  # the impulse responses' cost and cut-off, warnings
+    for line in (out.stdout + out.stderr).splitlines():  # impulse responses' cut-off, warnings
         if "impulse responses done" in line or "[warning]" in line:
             print("  " + line, flush=True)
     return out, time.monotonic() - t0
