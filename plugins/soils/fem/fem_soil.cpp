@@ -305,10 +305,15 @@ class FemSoil final : public rumble::Soil {
                format(duration) + " s (" + format(std::ceil(duration / dt)) + " steps of " +
                format(dt) + " s each, " + std::to_string(op_->threads()) + " thread(s))");
     const auto start = std::chrono::steady_clock::now();
+    auto last_check = start;
     auto responses = std::make_unique<rumble::fem::ImpulseReceptance>(
-        *op_, weights_, dt, duration, settings_.mesh.f_max, [&](std::size_t j) {
-          host_.check_stop(static_cast<double>(j) / n);
-          if (j == 0 || j % std::max<std::size_t>(1, n / 10) != 0) return;  // about every 10 %
+        *op_, weights_, dt, duration, settings_.mesh.f_max, [&](std::size_t j, std::size_t k) {
+          const auto now = std::chrono::steady_clock::now();
+          if (now - last_check > std::chrono::milliseconds(100)) {  // Ctrl-C, as in advance()
+            host_.check_stop(static_cast<double>(j) / n);
+            last_check = now;
+          }
+          if (k != 0 || j == 0 || j % std::max<std::size_t>(1, n / 10) != 0) return;  // ~10 %
           const double elapsed = seconds_since(start);
           host_.info("fem: impulse response " + std::to_string(j + 1) + " of " + std::to_string(n) +
                      ", about " + format(elapsed / j * static_cast<double>(n - j), 2) + " s left");

@@ -10,7 +10,7 @@ namespace rumble::fem {
 
 ImpulseReceptance::ImpulseReceptance(const ExplicitSolver& op, const FootprintWeights& weights,
                                      double dt, double duration, double f_top,
-                                     const std::function<void(std::size_t)>& progress)
+                                     const std::function<void(std::size_t, std::size_t)>& progress)
     : n_(weights.size()), dt_(dt), f_top_(3.0 * f_top) {
   const std::size_t steps = static_cast<std::size_t>(std::ceil(duration / dt));
   const double pulse = 0.5 / f_top;  // s: a Hann pulse's spectrum is half its peak at 1 / length
@@ -25,10 +25,10 @@ ImpulseReceptance::ImpulseReceptance(const ExplicitSolver& op, const FootprintWe
   const std::size_t tail = steps - steps / 10;
   double peak = 0.0, late = 0.0;
   for (std::size_t j = 0; j < n_; ++j) {
-    progress(j);
     ExplicitState s{Eigen::VectorXd::Zero(dofs), Eigen::VectorXd::Zero(dofs),
                     Eigen::VectorXd::Zero(dofs)};
     for (std::size_t k = 0; k < steps; ++k) {
+      if (k % 64 == 0) progress(j, k);
       for (const NodalWeight& w : weights[j]) f[3 * w.node + 2] = w.weight * force_[k];
       op.step(s, f, dt);
       for (std::size_t i = 0; i < n_; ++i) {

@@ -24,10 +24,11 @@ class ImpulseReceptance {
  public:
   /// Runs the n impulse responses at once (n = weights.size()) with steps of dt [s] over
   /// duration [s]; the pulse (0.5 / f_top long) carries energy to 4 f_top, half its peak at
-  /// 2 f_top [Hz]. progress(j) is called before footprint j's run (and may throw to stop).
+  /// 2 f_top [Hz]. progress(j, k) is called before step k of footprint j's run, every 64 steps (and
+  /// may throw to stop).
   ImpulseReceptance(const ExplicitSolver& op, const FootprintWeights& weights, double dt,
                     double duration, double f_top,
-                    const std::function<void(std::size_t)>& progress);
+                    const std::function<void(std::size_t, std::size_t)>& progress);
 
   /// H(f), n x n column-major [m/N]. Throws std::invalid_argument beyond the pulse's band.
   void at(double f_hz, std::complex<double>* H) const;
