@@ -324,6 +324,14 @@ TEST(FemBadInput, ImpossibleMaterialAndStepAreRefusedAtCreation) {
   p["layers"] = {{{"thickness", 1.0}, {"E", -1.0}, {"nu", 0.3}, {"rho", 1800.0}}};
   EXPECT_EQ(creation_error("fem", p.dump()),
             "fem: params/layers/0/E: Young's modulus must be > 0 Pa, got -1");
+  p = small_stiff_soil();  // f_max 40 Hz: the pulse is 12.5 ms, the record at least 50 ms
+  p["receptance"] = {{"method", "impulse"}, {"duration", 0.01}};
+  const std::string short_record = creation_error("fem", p.dump());
+  EXPECT_NE(short_record.find("fem: params/receptance/duration: must be at least 4 times the "
+                              "impulse's pulse 0.5 / mesh.f_max (0.05"),
+            std::string::npos)
+      << short_record;
+  EXPECT_NE(short_record.find("got 0.01"), std::string::npos) << short_record;
 }
 
 }  // namespace

@@ -180,6 +180,15 @@ FemSettings read_settings(const std::string& params_json) {
   const nlohmann::json receptance = j.value("receptance", nlohmann::json::object());
   s.receptance.impulse = receptance.value("method", "lu") == "impulse";
   s.receptance.duration = read(receptance, "duration", s.receptance.duration);
+  // The impulse responses' pulse is 0.5 / mesh.f_max long (impulse_receptance.hpp); a record
+  // shorter than a few pulses holds no decay.
+  if (s.receptance.impulse && s.receptance.duration < 2.0 / m.f_max)
+    refuse("receptance/duration",
+           "must be at least 4 times the impulse's pulse 0.5 / mesh.f_max (" +
+               std::to_string(2.0 / m.f_max) +
+               " s), and long enough for the motion to die out "
+               "(2 s by default)",
+           s.receptance.duration);
   s.courant = read(j, "courant", s.courant);
   const nlohmann::json integrator = j.value("integrator", nlohmann::json::object());
   s.implicit = integrator.value("scheme", "explicit") == "implicit";

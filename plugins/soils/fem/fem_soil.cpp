@@ -385,9 +385,7 @@ class FemSoil final : public rumble::Soil {
 
   /// Area average of the vertical component of x over footprint j.
   double average(std::size_t j, const Eigen::VectorXd& x) const {
-    double s = 0.0;
-    for (const rumble::fem::NodalWeight& w : weights_[j]) s += w.weight * x[3 * w.node + 2];
-    return s;
+    return rumble::fem::footprint_average(weights_[j], x.data());
   }
 
   void record_probes(double t) {

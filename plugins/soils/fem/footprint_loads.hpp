@@ -26,4 +26,11 @@ using FootprintWeights = std::vector<std::vector<NodalWeight>>;  // per footprin
 /// mesh that does not follow the footprints), with both areas.
 FootprintWeights footprint_weights(const TetMesh& mesh, const std::vector<Footprint>& footprints);
 
+/// The footprint's area-averaged vertical component of x (3 per node): one row of B^T.
+inline double footprint_average(const std::vector<NodalWeight>& footprint, const double* x) {
+  double s = 0.0;
+  for (const NodalWeight& w : footprint) s += w.weight * x[3 * w.node + 2];
+  return s;
+}
+
 }  // namespace rumble::fem

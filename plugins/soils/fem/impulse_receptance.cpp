@@ -32,8 +32,7 @@ ImpulseReceptance::ImpulseReceptance(const ExplicitSolver& op, const FootprintWe
       for (const NodalWeight& w : weights[j]) f[3 * w.node + 2] = w.weight * force_[k];
       op.step(s, f, dt);
       for (std::size_t i = 0; i < n_; ++i) {
-        double u = 0.0;
-        for (const NodalWeight& w : weights[i]) u += w.weight * s.w[3 * w.node + 2];
+        const double u = footprint_average(weights[i], s.w.data());
         motion_[(j * n_ + i) * steps + k] = u;
         peak = std::max(peak, std::abs(u));
         if (k >= tail) late = std::max(late, std::abs(u));
