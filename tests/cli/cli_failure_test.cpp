@@ -199,5 +199,25 @@ TEST(CliFailure, SigtermKeepsResultsAndSaysSigterm) {
   expect_interrupted_run("interrupt_sigterm", SIGTERM, "SIGTERM");
 }
 
+// Ctrl-C inside a long receptance (the FEM soil's impulse runs, which look for it every 100 ms):
+// the command says where it stopped and what is kept, and exits 3 as an interrupted run does.
+TEST(CliFailure, InterruptedReceptanceSaysWhereItStopped) {
+  const auto dir = scratch_directory("interrupt_frf");
+  nlohmann::json s = small_fem_scenario();
+  s["soil"]["params"]["receptance"] = {{"method", "impulse"}, {"duration", 10.0}};  // ~30 s
+  const auto path = write_scenario(dir, s);
+  const auto output = dir / "output.txt";
+  const pid_t pid = start_rumble({"soil-frf", path.string(), "--points", "3", "--no-plot"}, output);
+  for (int i = 0; i < 1200 && file_text(output).find("fem: receptance from") == std::string::npos;
+       ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  kill(pid, SIGINT);
+  EXPECT_EQ(wait_rumble(pid), 3) << file_text(output);
+  EXPECT_THAT(file_text(output),
+              HasSubstr("rumble: error: interrupted (Ctrl-C) while soil 'fem' computed its "
+                        "receptance at 1 Hz, 0 of 3 frequencies done; files already written "
+                        "stay"));
+}
+
 }  // namespace
 }  // namespace rumble::testing

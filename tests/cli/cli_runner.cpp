@@ -56,12 +56,13 @@ CliResult run_rumble(const std::vector<std::string>& args, const RunSetup& setup
   return result;
 }
 
-pid_t start_rumble(const std::vector<std::string>& args) {
+pid_t start_rumble(const std::vector<std::string>& args, const std::filesystem::path& output) {
   const pid_t pid = fork();
   if (pid == 0) {
-    const int null = open("/dev/null", O_WRONLY);
-    dup2(null, STDOUT_FILENO);
-    dup2(null, STDERR_FILENO);
+    const int sink = output.empty() ? open("/dev/null", O_WRONLY)
+                                    : open(output.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    dup2(sink, STDOUT_FILENO);
+    dup2(sink, STDERR_FILENO);
     std::string exe = RUMBLE_TEST_EXE;
     std::vector<std::string> copy = args;
     std::vector<char*> argv{exe.data()};

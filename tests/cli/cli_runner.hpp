@@ -28,8 +28,9 @@ struct RunSetup {
 /// Runs `rumble <args>` (arguments are passed as they are, no shell) and waits.
 CliResult run_rumble(const std::vector<std::string>& args, const RunSetup& setup = {});
 
-/// Starts `rumble <args>` without waiting (its output discarded); returns its process id.
-pid_t start_rumble(const std::vector<std::string>& args);
+/// Starts `rumble <args>` without waiting; returns its process id. Its stdout and stderr go to
+/// `output` (created), or are discarded when it is empty.
+pid_t start_rumble(const std::vector<std::string>& args, const std::filesystem::path& output = {});
 
 /// Waits for a process started by start_rumble: its exit code, or 128 + the signal that ended it.
 int wait_rumble(pid_t pid);

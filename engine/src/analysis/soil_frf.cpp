@@ -3,6 +3,9 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/errors.hpp"
+#include "core/interrupt.hpp"
+#include "core/number_text.hpp"
 #include "plugin/instance.hpp"
 #include "run/csv_file.hpp"
 
@@ -23,10 +26,27 @@ bool soil_frf(SoilInstance& soil, std::size_t n, const std::vector<double>& freq
   frf.frequency = frequency;
   frf.receptance.assign(terms, std::vector<std::complex<double>>(frequency.size()));
   std::vector<std::complex<double>> h;
+  // Ctrl-C is looked for between frequencies and honoured inside one by soils that check for it
+  // (the FEM soil's impulse runs): either way the user learns where it stopped.
+  const auto interrupted = [&](std::size_t j) {
+    return Interrupted("interrupted (" + std::string(interrupt_cause()) + ") while soil '" +
+                       soil.type_name() + "' computed its receptance at " +
+                       number_text(frequency[j]) + " Hz, " + std::to_string(j) + " of " +
+                       std::to_string(frequency.size()) +
+                       " frequencies done; files already written stay, and a soil that caches "
+                       "its receptance (fem) keeps each frequency it finished, so the same "
+                       "command picks up from there");
+  };
   for (std::size_t j = 0; j < frequency.size(); ++j) {
-    if (!soil.frequency_response(frequency[j], n, h)) {
-      frf.receptance.clear();
-      return false;
+    if (interrupt_requested()) throw interrupted(j);
+    try {
+      if (!soil.frequency_response(frequency[j], n, h)) {
+        frf.receptance.clear();
+        return false;
+      }
+    } catch (const RunError&) {
+      if (interrupt_requested()) throw interrupted(j);  // the plugin stopped at the request
+      throw;
     }
     for (std::size_t k = 0; k < terms; ++k)
       frf.receptance[k][j] = h[(frf.centre + k) + n * frf.centre];  // column-major (row, col)

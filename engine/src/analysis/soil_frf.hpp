@@ -23,7 +23,10 @@ struct SoilFrf {
 /// n_points frequencies from f_min to f_max [Hz], equally spaced in log(f).
 std::vector<double> log_frequencies(double f_min, double f_max, int n_points);
 
-/// Returns false (and leaves frf empty) when the soil offers no frequency response.
+/// Returns false (and leaves frf empty) when the soil offers no frequency response. Throws
+/// Interrupted (where it stopped, what is kept) when Ctrl-C or SIGTERM came: the commands that
+/// call it install the interrupt handler once their soil is built (a first Ctrl-C while gmsh
+/// meshes is honoured only after it).
 bool soil_frf(SoilInstance& soil, std::size_t n_footprints, const std::vector<double>& frequency,
               std::size_t transfer_terms, SoilFrf& frf);
 

@@ -11,6 +11,7 @@
 #include "cli/exit_codes.hpp"
 #include "cli/scenario_prepare.hpp"
 #include "core/errors.hpp"
+#include "core/interrupt.hpp"
 #include "plugin/instance.hpp"
 #include "run/new_file.hpp"
 
@@ -58,6 +59,7 @@ int calibrate_command(const std::vector<std::string>& args) {
   problem.base_params = start;
   problem.scenario_dir = doc->path.parent_path();
   const ScenarioSoil target = soil_on_footprints(*doc, registry, &built);
+  install_interrupt_handler();  // soil_frf() honours it: says where it stopped
   problem.layout = target.layout;
   problem.fit = a.value("fit") ? split_list(*a.value("fit")) : std::vector<std::string>{};
   if (problem.fit.empty()) {  // every positive number given

@@ -13,6 +13,7 @@
 #include "cli/plot_script.hpp"
 #include "cli/scenario_prepare.hpp"
 #include "core/errors.hpp"
+#include "core/interrupt.hpp"
 #include "core/number_text.hpp"
 #include "plugin/instance.hpp"
 #include "run/results_directory.hpp"
@@ -58,6 +59,7 @@ int soil_frf_command(const std::vector<std::string>& args) {
       results.emplace(out_dir, doc->path, a.flag("overwrite"), others);
     }
     const ScenarioSoil s = soil_on_footprints(*doc, registry, &built);
+    install_interrupt_handler();  // soil_frf() honours it: says where it stopped
     SoilFrf frf;
     frf.label = s.type->type_name + " (" + doc->path.stem().string() + ")";
     if (!soil_frf(*s.soil, s.layout.size(), frequency, static_cast<std::size_t>(terms), frf)) {
