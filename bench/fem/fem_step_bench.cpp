@@ -52,8 +52,10 @@ void BM_ExplicitStep(benchmark::State& state) {
                           std::vector<char>(mesh.node_count(), 0), s.damping.mass_coefficient(),
                           s.damping.stiffness_coefficient(), static_cast<unsigned>(threads));
   const Eigen::Index dofs = op.dofs();
-  ExplicitState st{Eigen::VectorXd::Random(dofs) * 1e-6, Eigen::VectorXd::Zero(dofs),
-                   Eigen::VectorXd::Zero(dofs)};
+  ExplicitState st{Eigen::VectorXd::Random(dofs) * 1e-6,
+                   Eigen::VectorXd::Zero(dofs),
+                   Eigen::VectorXd::Zero(dofs),
+                   {}};
   const Eigen::VectorXd f = Eigen::VectorXd::Zero(dofs);
   const double dt = 0.8 * op.stable_step();
   // K (values, columns, row starts) once, w v a y read and w v a y written: 8 vectors.

@@ -42,7 +42,7 @@ double energy_left(BoundaryKind kind, double t_end) {
   const ExplicitSolver op(assemble_stiffness(mesh, s), lumped_mass(mesh, s), std::move(boundary),
                           kind == BoundaryKind::kViscousSpring, std::move(fixed), 0.0, 0.0, 1);
   const Eigen::Index n = op.dofs();
-  ExplicitState st{Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n)};
+  ExplicitState st = op.rest_state();
   Eigen::VectorXd f = Eigen::VectorXd::Zero(n);
   const double dt = 0.8 * op.stable_step(), duration = 0.02, P = 1e4;
   double injected = 0.0, energy = 0.0;

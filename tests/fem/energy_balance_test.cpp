@@ -197,7 +197,7 @@ EnergyRun run_energy(const EnergySoil& soil, const Loading& loading, int sub_ste
   EnergyMeter meter(soil);
   std::unique_ptr<ImplicitSolver> newmark;
   if (implicit) newmark = std::make_unique<ImplicitSolver>(op, soil.a0, soil.a1);
-  ExplicitState s{Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n)};
+  ExplicitState s = op.rest_state();
   Eigen::VectorXd f = Eigen::VectorXd::Zero(n), f_new(n), df(n), d_old = Eigen::VectorXd::Zero(n),
                   d_new(n), d_doc(n), w_old(n), v_old(n), v_half(n), dw(n), v_mid(n);
   const double H = loading.macro_step, dt = H / sub_steps;

@@ -118,7 +118,9 @@ double energy_growth(double ratio, int steps) {
   const TetMesh m = kuhn_box(4, 0.5);
   const ExplicitSolver op = free_solver(m, medium_soil());
   ExplicitState s{Eigen::VectorXd::Random(m.dof_count()) * 1e-6,
-                  Eigen::VectorXd::Zero(m.dof_count()), Eigen::VectorXd::Zero(m.dof_count())};
+                  Eigen::VectorXd::Zero(m.dof_count()),
+                  Eigen::VectorXd::Zero(m.dof_count()),
+                  {}};
   const Eigen::VectorXd no_force = Eigen::VectorXd::Zero(m.dof_count());
   const double dt = ratio * op.stable_step();
   double first = 0.0, last = 0.0;
@@ -147,7 +149,9 @@ TEST(FemExplicit, ConservesItsShadowEnergyExactlyWithoutDamping) {
   const TetMesh m = kuhn_box(4, 0.5);
   const ExplicitSolver op = free_solver(m, medium_soil());
   ExplicitState s{Eigen::VectorXd::Random(m.dof_count()) * 1e-6,
-                  Eigen::VectorXd::Zero(m.dof_count()), Eigen::VectorXd::Zero(m.dof_count())};
+                  Eigen::VectorXd::Zero(m.dof_count()),
+                  Eigen::VectorXd::Zero(m.dof_count()),
+                  {}};
   const Eigen::VectorXd no_force = Eigen::VectorXd::Zero(m.dof_count());
   const double dt = 0.9 * op.stable_step();
   const auto shadow = [&] {
@@ -169,7 +173,9 @@ TEST(FemExplicit, BoundaryDashpotsTakeEnergyOut) {
                           absorbing_boundary(m, s, centre), true,
                           std::vector<char>(m.node_count(), 0), 0.0, 0.0, 1);
   ExplicitState st{Eigen::VectorXd::Random(m.dof_count()) * 1e-6,
-                   Eigen::VectorXd::Zero(m.dof_count()), Eigen::VectorXd::Zero(m.dof_count())};
+                   Eigen::VectorXd::Zero(m.dof_count()),
+                   Eigen::VectorXd::Zero(m.dof_count()),
+                   {}};
   const Eigen::VectorXd no_force = Eigen::VectorXd::Zero(m.dof_count());
   const double dt = 0.8 * op.stable_step();
   op.step(st, no_force, dt);

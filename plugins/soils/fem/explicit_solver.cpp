@@ -25,7 +25,20 @@ ExplicitSolver::ExplicitSolver(CsrMatrix K, Eigen::VectorXd mass,
 
 std::size_t ExplicitSolver::bytes() const {
   return K_.bytes() + static_cast<std::size_t>(mass_.size()) * (8 + 4 + 1 + 3 * 8) +
-         boundary_.size() * sizeof(BoundaryNode);
+         boundary_.size() * sizeof(BoundaryNode) + (pml_ ? pml_->bytes() : 0);
+}
+
+ExplicitState ExplicitSolver::rest_state() const {
+  const Eigen::Index n = dofs();
+  return {Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n),
+          Eigen::VectorXd::Zero(pml_ ? pml_->memory_size() : 0)};
+}
+
+void ExplicitSolver::set_pml(PmlLayer layer) {
+  pml_.emplace(std::move(layer));
+  pml_forces_.assign(12 * pml_->tetrahedra(), 0.0);
+  if (pml_->max_damping() > 0.0)
+    stable_step_ = std::min(stable_step_, PmlLayer::kStableDampingStep / pml_->max_damping());
 }
 
 void ExplicitSolver::stiffness_times(const Eigen::VectorXd& x, Eigen::VectorXd& y,
@@ -85,6 +98,9 @@ void ExplicitSolver::step(ExplicitState& s, const Eigen::VectorXd& f, double dt)
   double* a = s.a.data();
   double* y = y_.data();
   const double half = 0.5 * dt;
+  if (pml_ && s.pml.size() != pml_->memory_size())
+    s.pml = Eigen::VectorXd::Zero(pml_->memory_size());
+  double* memory = pml_ ? s.pml.data() : nullptr;
 #pragma omp parallel num_threads(threads_)
   {
 #pragma omp for schedule(static)
@@ -97,13 +113,23 @@ void ExplicitSolver::step(ExplicitState& s, const Eigen::VectorXd& f, double dt)
       }
     }
     // (the implicit barrier of omp for: every w and y is updated before K reads them)
+    if (pml_) pml_->update_tetrahedra(w, dt, memory, pml_forces_.data());  // (omp for: barrier)
 #pragma omp for schedule(static)
     for (std::int64_t i = 0; i < n; ++i) {
       if (fixed_[i]) continue;
       double r[3], rhs[3];
       for (int c = 0; c < 3; ++c) r[c] = f[3 * i + c] - K_.row_dot(3 * i + c, y);
       const double m = mass_[i];
-      const double inertia = m * (1.0 + half * a0_);
+      double inertia = m * (1.0 + half * a0_);
+      if (const std::int32_t p = pml_ ? pml_->layer_node(i) : -1; p >= 0) {
+        double stretched[3] = {0.0, 0.0, 0.0};
+        pml_->gather(p, pml_forces_.data(), stretched);
+        double w_old[3];
+        for (int c = 0; c < 3; ++c) w_old[c] = w[3 * i + c] - dt * v[3 * i + c];  // v is v+ here
+        pml_->add_node_forces(p, w_old, w + 3 * i, dt, memory, stretched);
+        for (int c = 0; c < 3; ++c) r[c] -= stretched[c];
+        inertia += half * pml_->damping(p);
+      }
       const std::int32_t b = boundary_of_[i];
       if (b < 0) {
         for (int c = 0; c < 3; ++c) {

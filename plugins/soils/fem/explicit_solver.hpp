@@ -7,22 +7,27 @@
 // Every operator is diagonal or block-diagonal except one K product per step, so a step is one
 // pass over K (memory-bound) plus vector updates, split over the threads. The damping terms
 // a0 M and D are taken at the new velocity (unconditionally stable); a1 K v+ lags half a step,
-// which shortens the stable step as stable_step() says. Fixed nodes never move.
+// which shortens the stable step as stable_step() says. Fixed nodes never move. With a perfectly
+// matched layer (pml.hpp), its tetrahedra add their stretched-minus-elastic forces to K w and its
+// nodes their lumped damping (at the new velocity, with a0 M) and springs.
 // This class is the soil's operator back end: a distributed (MPI) or matrix-free kernel
 // replaces it behind the same calls (docs/decisions/0006-fem-soil.md).
 #pragma once
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "absorbing_boundary.hpp"
 #include "csr_matrix.hpp"
+#include "pml.hpp"
 
 namespace rumble::fem {
 
 struct ExplicitState {
   Eigen::VectorXd w, v, a;  // displacement from the static state [m], velocity, acceleration
+  Eigen::VectorXd pml;      // the matched layer's memory variables (pml.hpp); empty: at rest
 };
 
 class ExplicitSolver {
@@ -38,6 +43,13 @@ class ExplicitSolver {
   double stable_step() const { return stable_step_; }
   double omega_max() const { return omega_max_; }
   int power_iterations() const { return power_iterations_; }
+
+  /// Adds a perfectly matched layer on the mesh's outer tetrahedra.
+  void set_pml(PmlLayer layer);
+  const PmlLayer* pml() const { return pml_ ? &*pml_ : nullptr; }
+
+  /// Zero displacement, velocity, acceleration and memory.
+  ExplicitState rest_state() const;
 
   /// One step of dt [s] with the external force f [N] at its end (size dofs()).
   void step(ExplicitState& s, const Eigen::VectorXd& f, double dt) const;
@@ -73,6 +85,8 @@ class ExplicitSolver {
   double omega_max_ = 0.0, stable_step_ = 0.0;
   int power_iterations_ = 0;
   mutable Eigen::VectorXd y_;  // scratch: w + a1 v+
+  std::optional<PmlLayer> pml_;
+  mutable std::vector<double> pml_forces_;  // scratch: 12 per layer tetrahedron [N]
 };
 
 }  // namespace rumble::fem

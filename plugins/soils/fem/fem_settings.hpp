@@ -16,8 +16,9 @@ enum class MeshShape { kHemisphere, kBox };
 
 /// Lysmer-Kuhlemeyer dashpots with springs (viscous-spring boundary, Liu et al. 2006: static
 /// support, no drift), dashpots only (the static state then comes from the springs and the
-/// dynamics see no static support), or a fixed truncation surface (reflects everything).
-enum class BoundaryKind { kViscousSpring, kDashpot, kFixed };
+/// dynamics see no static support), a fixed truncation surface (reflects everything), or a
+/// perfectly matched layer around a box (pml.hpp) with a fixed surface behind it.
+enum class BoundaryKind { kViscousSpring, kDashpot, kFixed, kPml };
 
 struct MeshRequest {
   MeshShape shape = MeshShape::kHemisphere;
@@ -42,6 +43,14 @@ struct BoundaryRequest {
   BoundaryKind kind = BoundaryKind::kViscousSpring;
   double alpha_normal = 4.0 / 3.0;      // spring K_N = alpha_N G / r per unit area [-]
   double alpha_tangential = 2.0 / 3.0;  // spring K_T = alpha_T G / r per unit area [-]
+  // kPml: the layer beyond the box's sides and bottom.
+  double pml_thickness = 0.0;        // m; 0 = mesh.radius / 2
+  double pml_reflection = 1e-2;      // [-] continuum reflection of a normally incident P wave
+  double pml_elements = 8;           // tetrahedra across the layer, at least (sizes its mesh)
+  double pml_shift_frequency = 5.0;  // Hz: alpha = 2 pi f, the stretching's frequency shift
+  double pml_shift() const;          // alpha [1/s]
+  /// Whether the truncation surface has the viscous-spring blocks (springs included).
+  bool springs() const { return kind == BoundaryKind::kViscousSpring; }
 };
 
 /// Rayleigh damping C = a0 M + a1 K with the ratio `ratio` at f_low and f_high (physics.md §4.4).

@@ -27,6 +27,7 @@
 #include "linear_matrices.hpp"
 #include "mesh_cache.hpp"
 #include "mesh_generator.hpp"
+#include "pml.hpp"
 #include "probe_locator.hpp"
 #include "receptance.hpp"
 #include "receptance_cache.hpp"
@@ -105,19 +106,24 @@ class FemSoil final : public rumble::Soil {
     weights_ = footprint_weights(mesh_, footprints);
     std::vector<BoundaryNode> boundary = absorbing_boundary(mesh_, settings_, plan_.region);
     std::vector<char> fixed(mesh_.node_count(), 0);
-    if (settings_.boundary.kind == BoundaryKind::kFixed)
+    // Behind a matched layer the surface is fixed: with the viscous-spring blocks there the
+    // discrete layer grows at any step (measured, docs/fem-soil.md section 3).
+    if (settings_.boundary.kind == BoundaryKind::kFixed ||
+        settings_.boundary.kind == BoundaryKind::kPml)
       for (const BoundaryNode& b : boundary) fixed[b.node] = 1;
     op_.emplace(assemble_stiffness(mesh_, settings_), lumped_mass(mesh_, settings_),
-                std::move(boundary), settings_.boundary.kind == BoundaryKind::kViscousSpring,
-                std::move(fixed), settings_.damping.mass_coefficient(),
-                settings_.damping.stiffness_coefficient(), host_.threads());
+                std::move(boundary), settings_.boundary.springs(), std::move(fixed),
+                settings_.damping.mass_coefficient(), settings_.damping.stiffness_coefficient(),
+                host_.threads());
+    if (settings_.boundary.kind == BoundaryKind::kPml)
+      op_->set_pml(PmlLayer(mesh_, settings_, pml_profile()));
     statics_ = std::make_unique<StaticSolver>(*op_, mesh_.nodes);
     implicit_.reset();
     if (settings_.implicit)
       implicit_ = std::make_unique<ImplicitSolver>(*op_, settings_.damping.mass_coefficient(),
                                                    settings_.damping.stiffness_coefficient());
     const Eigen::Index n = op_->dofs();
-    state_ = {Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n)};
+    state_ = op_->rest_state();
     u_static_ = Eigen::VectorXd::Zero(n);
     f_ = Eigen::VectorXd::Zero(n);
     df_ = Eigen::VectorXd::Zero(n);
@@ -137,6 +143,7 @@ class FemSoil final : public rumble::Soil {
     state_.w.setZero();
     state_.v.setZero();
     state_.a.setZero();
+    state_.pml.resize(0);  // at rest
     for (std::size_t j = 0; j < footprints_.size(); ++j) static_u[j] = average(j, u_static_);
   }
 
@@ -204,8 +211,18 @@ class FemSoil final : public rumble::Soil {
   void set_probes(const std::vector<rumble::Probe>& probes, double sample_interval) override {
     require_layout("set_probes");
     probes_.clear();
-    for (const rumble::Probe& p : probes)
+    for (const rumble::Probe& p : probes) {
+      if (op_->pml() && !pml_profile().inside_physical_box({p.x, p.y, p.depth})) {
+        std::ostringstream m;
+        m << "fem: probe \"" << p.name << "\" at (" << p.x << ", " << p.y << ", " << p.depth
+          << ") m lies in the perfectly matched layer, whose motion is not physical; move it into "
+             "the box (within params/mesh/radius = "
+          << plan_.radius << " m of the footprints, depth at most " << plan_.radius
+          << " m) or raise mesh.radius";
+        throw std::invalid_argument(m.str());
+      }
       probes_.push_back(rumble::fem::locate_probe(mesh_, p.x, p.y, p.depth, p.name));
+    }
     row_.assign(probes.size() * RUMBLE_PROBE_VALUES, 0.0);
     sample_interval_ = sample_interval;
     next_sample_ = -1.0;
@@ -218,6 +235,7 @@ class FemSoil final : public rumble::Soil {
 
   bool frequency_response(double f_hz, std::complex<double>* receptance) override {
     require_layout("frequency_response");
+    refuse_with_pml("its receptance (rumble soil-frf, calibrate, two-step)");
     using namespace rumble::fem;
     const auto dir = mesh_cache_directory();
     std::filesystem::path cached;
@@ -252,6 +270,7 @@ class FemSoil final : public rumble::Soil {
 
   void linear_matrix(rumble_matrix which, rumble::CscMatrix& out) override {
     require_layout("linear_matrix");
+    refuse_with_pml("its matrices (the monolithic coupler, rumble stability)");
     rumble::fem::linear_matrix(*op_, weights_, settings_.damping.mass_coefficient(),
                                settings_.damping.stiffness_coefficient(), which, out);
   }
@@ -327,6 +346,18 @@ class FemSoil final : public rumble::Soil {
                  " s: the footprints still move at " + format(responses->decay_ratio(), 2) +
                  " of their peak when the records end; the low frequencies are cut off: raise it");
     return responses;
+  }
+
+  rumble::fem::PmlProfile pml_profile() const {
+    return plan_.physical_box(settings_.boundary.pml_reflection, settings_.boundary.pml_shift());
+  }
+
+  /// The layer's memory variables have no place in M, C, K nor in one frequency's solve yet.
+  void refuse_with_pml(const std::string& what) const {
+    if (op_->pml())
+      throw std::invalid_argument(
+          "fem: params/boundary/type: the perfectly matched layer has no form for " + what +
+          " yet; use boundary.type \"viscous_spring\" for it");
   }
 
   double max_step() const {
@@ -436,6 +467,12 @@ class FemSoil final : public rumble::Soil {
       if (d < plan_.radius)
         m << ' ' << format(plan_.resolved_frequency(d, c_r, settings_.mesh.elements_per_wavelength))
           << " Hz at " << d << " m;";
+    if (const rumble::fem::PmlLayer* pml = op_->pml())
+      m << " perfectly matched layer " << format(plan_.pml) << " m thick (elements up to "
+        << format(plan_.h_pml) << " m): " << pml->tetrahedra() << " tetrahedra, damping up to "
+        << format(pml->max_damping()) << " 1/s, which bounds the stable step to "
+        << format(rumble::fem::PmlLayer::kStableDampingStep / pml->max_damping())
+        << " s (a thicker layer or a higher boundary.pml.reflection lowers it);";
     host_.info(m.str());
     const double epw = c_r / (settings_.mesh.f_max * plan_.h_near);
     if (plan_.h_near > 0.0 && epw < 8.0)

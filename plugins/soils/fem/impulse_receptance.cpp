@@ -25,8 +25,7 @@ ImpulseReceptance::ImpulseReceptance(const ExplicitSolver& op, const FootprintWe
   const std::size_t tail = steps - steps / 10;
   double peak = 0.0, late = 0.0;
   for (std::size_t j = 0; j < n_; ++j) {
-    ExplicitState s{Eigen::VectorXd::Zero(dofs), Eigen::VectorXd::Zero(dofs),
-                    Eigen::VectorXd::Zero(dofs)};
+    ExplicitState s = op.rest_state();
     for (std::size_t k = 0; k < steps; ++k) {
       if (k % 64 == 0) progress(j, k);
       for (const NodalWeight& w : weights[j]) f[3 * w.node + 2] = w.weight * force_[k];

@@ -18,9 +18,10 @@ namespace {
 
 bool inside_domain(const MeshPlan& p, double x, double y, double depth) {
   if (depth < 0.0 || depth > p.depth()) return false;
+  const double margin = p.radius + p.pml;
   if (p.shape == MeshShape::kBox)
-    return x >= p.region.x0 - p.radius && x <= p.region.x1 + p.radius &&
-           y >= p.region.y0 - p.radius && y <= p.region.y1 + p.radius;
+    return x >= p.region.x0 - margin && x <= p.region.x1 + margin && y >= p.region.y0 - margin &&
+           y <= p.region.y1 + margin;
   const double dx = x - p.region.centre_x(), dy = y - p.region.centre_y();
   return dx * dx + dy * dy + depth * depth <= p.radius * p.radius;
 }
@@ -29,8 +30,9 @@ bool inside_domain(const MeshPlan& p, double x, double y, double depth) {
 /// h, numerics.md §1), on a 64 x 64 x 32 midpoint grid: a few per cent, enough to refuse a mesh
 /// that would not fit before spending minutes on it.
 double estimate_nodes(const MeshPlan& p) {
-  const double x0 = p.region.x0 - p.radius, x1 = p.region.x1 + p.radius;
-  const double y0 = p.region.y0 - p.radius, y1 = p.region.y1 + p.radius;
+  const double margin = p.radius + p.pml;
+  const double x0 = p.region.x0 - margin, x1 = p.region.x1 + margin;
+  const double y0 = p.region.y0 - margin, y1 = p.region.y1 + margin;
   constexpr int kN = 64, kNz = 32;
   const double dx = (x1 - x0) / kN, dy = (y1 - y0) / kN, dz = p.depth() / kNz;
   double sum = 0.0;
@@ -49,7 +51,18 @@ double estimate_nodes(const MeshPlan& p) {
 
 double MeshPlan::size_at(double x, double y, double depth) const {
   const double d = region.distance(x, y, depth);
-  return std::min(h_max, d <= near_distance ? h_near : h_near * d / near_distance);
+  const double h = std::min(h_max, d <= near_distance ? h_near : h_near * d / near_distance);
+  if (pml > 0.0 && !physical_box(0.5, 0.0).inside_physical_box({x, y, depth}))
+    return std::min(h, h_pml);
+  return h;
+}
+
+PmlProfile MeshPlan::physical_box(double reflection, double shift) const {
+  return {.low = {region.x0 - radius, region.y0 - radius, 0.0},
+          .high = {region.x1 + radius, region.y1 + radius, radius},
+          .thickness = pml,
+          .reflection = reflection,
+          .shift = shift};
 }
 
 double MeshPlan::resolved_frequency(double d, double c_r, double elements_per_wavelength) const {
@@ -68,6 +81,10 @@ MeshPlan plan_mesh(const FemSettings& s, const std::vector<Footprint>& footprint
   p.h_near =
       s.mesh.h_near > 0.0 ? s.mesh.h_near : c_r / (s.mesh.f_max * s.mesh.elements_per_wavelength);
   p.h_max = s.mesh.h_max > 0.0 ? s.mesh.h_max : std::max(p.h_near, p.radius / 4.0);
+  if (s.boundary.kind == BoundaryKind::kPml) {
+    p.pml = s.boundary.pml_thickness;
+    p.h_pml = p.pml / s.boundary.pml_elements;
+  }
   if (p.shape == MeshShape::kHemisphere && p.region.half_diagonal() > 0.8 * p.radius) {
     std::ostringstream m;
     m << "fem: params/mesh/radius: the footprints span " << 2.0 * p.region.half_diagonal()
@@ -96,13 +113,15 @@ TetMesh generate_mesh(const FemSettings& s, const std::vector<Footprint>& footpr
   GmshSession session(s.mesh_threads);
   // gmsh's frame has z up (ground at z = 0, soil below); the mesh is returned with z down.
   const double xc = p.region.centre_x(), yc = p.region.centre_y(), R = p.radius;
-  const double bx0 = p.region.x0 - R, by0 = p.region.y0 - R;
-  const double bdx = p.region.x1 - p.region.x0 + 2.0 * R, bdy = p.region.y1 - p.region.y0 + 2.0 * R;
+  const double margin = R + p.pml;  // the box's, with its matched layer
+  const double bx0 = p.region.x0 - margin, by0 = p.region.y0 - margin;
+  const double bdx = p.region.x1 - p.region.x0 + 2.0 * margin;
+  const double bdy = p.region.y1 - p.region.y0 + 2.0 * margin;
   gmsh_call("build the geometry", [&] {
     const int volume = p.shape == MeshShape::kHemisphere
                            ? occ::addSphere(xc, yc, 0.0, R, -1, -std::numbers::pi / 2.0, 0.0,
                                             2.0 * std::numbers::pi)
-                           : occ::addBox(bx0, by0, -R, bdx, bdy, R);
+                           : occ::addBox(bx0, by0, -p.depth(), bdx, bdy, p.depth());
     gmsh::vectorpair tools;
     for (const Footprint& f : footprints)
       tools.emplace_back(
@@ -110,7 +129,7 @@ TetMesh generate_mesh(const FemSettings& s, const std::vector<Footprint>& footpr
     double bottom = 0.0;
     for (const soils::SoilLayer& l : s.layers) {
       bottom += l.thickness;
-      if (bottom >= R) break;
+      if (bottom >= p.depth()) break;
       tools.emplace_back(2, occ::addRectangle(bx0 - 1.0, by0 - 1.0, -bottom, bdx + 2.0, bdy + 2.0));
     }
     gmsh::vectorpair out;

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "fem_settings.hpp"
+#include "pml.hpp"
 #include "tet_mesh.hpp"
 #include "track_region.hpp"
 
@@ -25,7 +26,11 @@ struct MeshPlan {
   double h_max = 0.0;          // m
   double near_distance = 0.0;  // m
   double estimated_nodes = 0;  // 0.8 V / h^3 integrated over the domain (numerics.md §1)
-  double depth() const { return radius; }
+  double pml = 0.0;            // m: a matched layer's thickness beyond the box (sides, bottom)
+  double h_pml = 0.0;          // m: the largest element size in the layer
+  double depth() const { return radius + pml; }
+  /// The box without its matched layer (box shape only).
+  PmlProfile physical_box(double reflection, double shift) const;
   /// Element size [m] requested at (x, y, depth).
   double size_at(double x, double y, double depth) const;
   /// Frequency [Hz] resolved at `elements_per_wavelength` by the size at distance d [m] from the
