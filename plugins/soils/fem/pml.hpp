@@ -3,10 +3,9 @@
 // reflection (in the continuum) and decays there. Unsplit displacement formulation with the
 // complex-frequency-shifted stretching s_i = 1 + d_i / (alpha + i omega) (CFS-PML: alpha > 0
 // gives every memory term a decay, where the classical PML's pure time integrals keep the strain
-// of a passed wave for ever and grow under a static one), derived for the explicit step in
-// docs/fem-soil.md §3.1. With q = 1 / (alpha + i omega), the weak form
-//   integral rho S (i omega)^2 u . w  +  integral sum_ik (S / (s_i s_k)) C_ijkm d_k u_m d_i w_j =
-//   0,
+// of a passed wave for ever and grow under a static one); what it measures and costs is in
+// docs/fem-soil.md §3.1. With q = 1 / (alpha + i omega), the weak form (= 0)
+//   integral rho S (i omega)^2 u . w  +  integral sum_ik (S / (s_i s_k)) C_ijkm d_k u_m d_i w_j,
 // S = s_x s_y s_z, becomes in time (phi = q applied: phi' = -alpha phi + input)
 //   mass side:      rho (u'' + D1 u' + (D2 - alpha D1) u + (alpha^2 D1 - 2 alpha D2 + D3) phi u
 //                        + (alpha^2 D2 - 2 alpha D3) phi^2 u + alpha^2 D3 phi^3 u),
