@@ -14,6 +14,7 @@
 #include "elasticity.hpp"
 #include "explicit_solver.hpp"
 #include "kuhn_box.hpp"
+#include "pml.hpp"
 
 namespace {
 
@@ -87,6 +88,62 @@ BENCHMARK(BM_ExplicitStep)
     ->Args({32, 1})
     ->Args({32, 2})
     ->Args({46, 2})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+/// The matched layer's cost (pml.hpp): a box of 2n x 2n x n cubes (stiff soil, h 0.5 m) whose
+/// outer `layer` cells are the layer (R 1e-2, fixed behind), against the same box without it
+/// (layer 0: the fixed box). Reports the time per layer tetrahedron on top of the plain step.
+void BM_ExplicitStepWithLayer(benchmark::State& state) {
+  const int half = static_cast<int>(state.range(0)), layer = static_cast<int>(state.range(1));
+  const int threads = static_cast<int>(state.range(2));
+  rumble::fem::FemSettings s;
+  s.half_space = {750e6, 0.3, 1800.0};
+  const double h = 0.5;
+  const rumble::fem::TetMesh mesh =
+      rumble::fem::kuhn_box(2 * half, 2 * half, half, h, -half * h, -half * h);
+  std::vector<rumble::fem::BoundaryNode> boundary =
+      rumble::fem::absorbing_boundary(mesh, s, rumble::fem::TrackRegion{});
+  std::vector<char> fixed(mesh.node_count(), 0);
+  for (const rumble::fem::BoundaryNode& b : boundary) fixed[b.node] = 1;
+  ExplicitSolver op(rumble::fem::assemble_stiffness(mesh, s), rumble::fem::lumped_mass(mesh, s),
+                    std::move(boundary), false, std::move(fixed), 0.0, 0.0,
+                    static_cast<unsigned>(threads));
+  if (layer > 0) {
+    const double inner = (half - layer) * h;
+    op.set_pml(rumble::fem::PmlLayer(mesh, s,
+                                     {.low = {-inner, -inner, 0.0},
+                                      .high = {inner, inner, inner},
+                                      .thickness = layer * h,
+                                      .reflection = 1e-2,
+                                      .shift = 2.0 * 3.141592653589793 * 5.0}));
+  }
+  ExplicitState st = op.rest_state();
+  st.w = Eigen::VectorXd::Random(op.dofs()) * 1e-6;
+  const Eigen::VectorXd f = Eigen::VectorXd::Zero(op.dofs());
+  const double dt = 0.8 * op.stable_step();
+  const auto start = std::chrono::steady_clock::now();
+  for (auto _ : state) {
+    op.step(st, f, dt);
+    benchmark::ClobberMemory();
+  }
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double steps = static_cast<double>(state.iterations());
+  const double tets = layer > 0 ? static_cast<double>(op.pml()->tetrahedra()) : 0.0;
+  state.counters["DOFs"] = static_cast<double>(op.dofs());
+  state.counters["layer_tets"] = tets;
+  state.counters["MDOF/s"] =
+      benchmark::Counter(steps * static_cast<double>(op.dofs()) * 1e-6, benchmark::Counter::kIsRate);
+  state.counters["B_per_DOF"] = static_cast<double>(op.bytes()) / static_cast<double>(op.dofs());
+  state.counters["stable_step_us"] = op.stable_step() * 1e6;
+  state.counters["ms_per_step"] = seconds / steps * 1e3;
+}
+BENCHMARK(BM_ExplicitStepWithLayer)
+    ->ArgNames({"half", "layer", "threads"})
+    ->Args({16, 0, 2})
+    ->Args({16, 8, 2})
+    ->Args({16, 8, 1})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
