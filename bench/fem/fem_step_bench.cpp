@@ -133,8 +133,8 @@ void BM_ExplicitStepWithLayer(benchmark::State& state) {
   const double tets = layer > 0 ? static_cast<double>(op.pml()->tetrahedra()) : 0.0;
   state.counters["DOFs"] = static_cast<double>(op.dofs());
   state.counters["layer_tets"] = tets;
-  state.counters["MDOF/s"] =
-      benchmark::Counter(steps * static_cast<double>(op.dofs()) * 1e-6, benchmark::Counter::kIsRate);
+  state.counters["MDOF/s"] = benchmark::Counter(steps * static_cast<double>(op.dofs()) * 1e-6,
+                                                benchmark::Counter::kIsRate);
   state.counters["B_per_DOF"] = static_cast<double>(op.bytes()) / static_cast<double>(op.dofs());
   state.counters["stable_step_us"] = op.stable_step() * 1e6;
   state.counters["ms_per_step"] = seconds / steps * 1e3;
