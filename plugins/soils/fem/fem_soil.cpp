@@ -106,8 +106,8 @@ class FemSoil final : public rumble::Soil {
     weights_ = footprint_weights(mesh_, footprints);
     std::vector<BoundaryNode> boundary = absorbing_boundary(mesh_, settings_, plan_.region);
     std::vector<char> fixed(mesh_.node_count(), 0);
-    // Behind a matched layer the surface is fixed: with the viscous-spring blocks there the
-    // discrete layer grows at any step (measured, docs/fem-soil.md section 3).
+    // Behind a matched layer the surface is fixed: with the viscous-spring blocks or dashpots
+    // there the discrete layer grew at every step tried (docs/fem-soil.md section 3.1).
     if (settings_.boundary.kind == BoundaryKind::kFixed ||
         settings_.boundary.kind == BoundaryKind::kPml)
       for (const BoundaryNode& b : boundary) fixed[b.node] = 1;
@@ -472,7 +472,8 @@ class FemSoil final : public rumble::Soil {
         << format(plan_.h_pml) << " m): " << pml->tetrahedra() << " tetrahedra, damping up to "
         << format(pml->max_damping()) << " 1/s, which bounds the stable step to "
         << format(rumble::fem::PmlLayer::kStableDampingStep / pml->max_damping())
-        << " s (a thicker layer or a higher boundary.pml.reflection lowers it);";
+        << " s (a thicker layer or a higher boundary.pml.reflection lowers the damping and lifts "
+           "the bound);";
     host_.info(m.str());
     const double epw = c_r / (settings_.mesh.f_max * plan_.h_near);
     if (plan_.h_near > 0.0 && epw < 8.0)
