@@ -137,6 +137,8 @@ TEST(FemPml, ReflectsFarLessThanTheViscousSpringBoundary) {
   RecordProperty("error_viscous_spring_4m", std::to_string(e_4m));
   RecordProperty("error_viscous_spring_8m", std::to_string(e_8m));
   RecordProperty("error_pml_4m_plus_4m", std::to_string(e_pml));
+  // Bounds with room (the runs are deterministic, but a change of the layer's discretisation
+  // should not need new numbers): measured ratios 0.057 and 0.23 against a quarter and a half.
   EXPECT_GT(e_4m, 0.1);  // the measurement sees a reflection
   EXPECT_LT(e_pml, 0.25 * e_4m);
   EXPECT_LT(e_pml, 0.5 * e_8m);
@@ -144,9 +146,11 @@ TEST(FemPml, ReflectsFarLessThanTheViscousSpringBoundary) {
 
 TEST(FemPml, StaysBoundedAtItsStepAndGrowsBeyond) {
   // The layer's step bound (PmlLayer::kStableDampingStep, measured): over 0.4 s at 0.8 of it the
-  // kinetic energy decays to a millionth of the pulse's; at twice that step (still within the
-  // mesh's own stable step) the discrete layer grows: a thousandfold from its least, what the
-  // bound is for (over 1 s it passes the pulse's peak).
+  // kinetic energy decays to a millionth of the pulse's; at 1.8 times that step (still within
+  // the mesh's own stable step, which is twice the layer's here) the discrete layer grows: its
+  // energy ends 575 times its least (15 600 at twice the step; a decaying run ends within a few
+  // times its least: the bounded run ends 4 times its least, as waves come and go). What the
+  // bound is for.
   const BoxSoil b = box_soil(10, Truncation::kPml, 8, 1e-3);
   const double mesh_step = box_soil(10, Truncation::kViscousSpring).op->stable_step();
   ASSERT_LT(b.op->stable_step(), 0.6 * mesh_step) << "the layer's bound sets the step here";
@@ -154,12 +158,16 @@ TEST(FemPml, StaysBoundedAtItsStepAndGrowsBeyond) {
   const Record bounded = run(b, 0, dt, 0.4);
   const double peak = *std::max_element(bounded.kinetic.begin(), bounded.kinetic.end());
   EXPECT_LT(bounded.kinetic.back(), 1e-6 * peak);
-  EXPECT_LT(2.0 * dt, 0.8 * mesh_step);
-  const Record beyond = run(b, 0, 2.0 * dt, 0.4);
+  EXPECT_LT(1.8 * dt, 0.8 * mesh_step);
+  const Record beyond = run(b, 0, 1.8 * dt, 0.4);
   const double least = *std::min_element(beyond.kinetic.begin(), beyond.kinetic.end());
+  RecordProperty("layer_step_over_mesh_step", std::to_string(b.op->stable_step() / mesh_step));
   RecordProperty("energy_left_at_the_step", std::to_string(bounded.kinetic.back() / peak));
-  RecordProperty("growth_at_twice_the_step", std::to_string(beyond.kinetic.back() / least));
-  EXPECT_GT(beyond.kinetic.back(), 1e3 * least);
+  RecordProperty("end_over_least_at_the_step",
+                 std::to_string(bounded.kinetic.back() /
+                                *std::min_element(bounded.kinetic.begin(), bounded.kinetic.end())));
+  RecordProperty("growth_at_1.8_times_the_step", std::to_string(beyond.kinetic.back() / least));
+  EXPECT_GT(beyond.kinetic.back(), 100.0 * least);
 }
 
 }  // namespace
