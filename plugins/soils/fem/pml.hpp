@@ -81,7 +81,7 @@ class PmlLayer {
   /// The largest damping d_i [1/s] of the layer.
   double max_damping() const { return max_damping_; }
   /// The explicit step's bound from the layer: d_max dt at most this. Measured, not derived
-  /// (docs/fem-soil.md section 3): with alpha = 2 pi 5 Hz the discrete layer stays bounded over
+  /// (docs/fem-soil.md section 3.1): with alpha = 2 pi 5 Hz the discrete layer stays bounded over
   /// 2 s at d_max dt = 0.46 and grows slowly at 0.51 (structured meshes, R 1e-3 and 1e-2, 8 and
   /// 12 elements across, d_max at the outer edge); a larger alpha is more stable, alpha = 0
   /// grows at any step. 0.4 of the centroids' largest d leaves room for courant 1.
