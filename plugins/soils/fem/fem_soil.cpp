@@ -143,7 +143,7 @@ class FemSoil final : public rumble::Soil {
     state_.w.setZero();
     state_.v.setZero();
     state_.a.setZero();
-    state_.pml.resize(0);  // at rest
+    state_.pml.setZero();  // the layer at rest
     for (std::size_t j = 0; j < footprints_.size(); ++j) static_u[j] = average(j, u_static_);
   }
 

@@ -66,8 +66,7 @@ PmlLayer::PmlLayer(const TetMesh& mesh, const FemSettings& settings, const PmlPr
         share * (alpha2 * D2 - 2.0 * alpha * D3), share * alpha2 * D3};
     for (std::int32_t a : t) {
       if (local_[a] < 0) {
-        local_[a] = static_cast<std::int32_t>(node_.size());
-        node_.push_back(a);
+        local_[a] = static_cast<std::int32_t>(mass_terms_.size());
         mass_terms_.push_back({});
       }
       for (int k = 0; k < 5; ++k) mass_terms_[local_[a]][k] += terms[k];
@@ -76,10 +75,11 @@ PmlLayer::PmlLayer(const TetMesh& mesh, const FemSettings& settings, const PmlPr
     tets_.push_back(tet);
   }
   // Incidence lists (layer node -> tetrahedron x 4 + corner), for the gather.
-  incidence_offset_.assign(node_.size() + 1, 0);
+  incidence_offset_.assign(mass_terms_.size() + 1, 0);
   for (const Tet& t : tets_)
     for (std::int32_t a : t.nodes) ++incidence_offset_[local_[a] + 1];
-  for (std::size_t k = 0; k < node_.size(); ++k) incidence_offset_[k + 1] += incidence_offset_[k];
+  for (std::size_t k = 0; k < mass_terms_.size(); ++k)
+    incidence_offset_[k + 1] += incidence_offset_[k];
   incidence_.resize(incidence_offset_.back());
   std::vector<std::int64_t> fill(incidence_offset_.begin(), incidence_offset_.end() - 1);
   for (std::size_t e = 0; e < tets_.size(); ++e)
@@ -168,8 +168,10 @@ void PmlLayer::add_node_forces(std::int32_t local, const double* w_old, const do
 }
 
 std::size_t PmlLayer::bytes() const {
-  return tets_.size() * (sizeof(Tet) + 12 * 8) + local_.size() * 4 + node_.size() * (4 + 40 + 8) +
-         incidence_.size() * 4;
+  // Geometry and forces per tetrahedron, mass terms and incidence offsets per node, and the
+  // memory variables the state holds for it (ExplicitState::pml).
+  return tets_.size() * (sizeof(Tet) + 12 * 8) + local_.size() * 4 + mass_terms_.size() * (40 + 8) +
+         incidence_.size() * 4 + static_cast<std::size_t>(memory_size()) * 8;
 }
 
 }  // namespace rumble::fem

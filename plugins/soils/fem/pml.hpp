@@ -55,10 +55,11 @@ class PmlLayer {
 
   std::size_t tetrahedra() const { return tets_.size(); }
   /// Doubles of state the layer keeps (its memory variables), zero at rest.
-  Eigen::Index memory_size() const { return kPerTet * tets_.size() + kPerNode * node_.size(); }
+  Eigen::Index memory_size() const {
+    return kPerTet * tets_.size() + kPerNode * mass_terms_.size();
+  }
   /// Per node: index into the layer's nodes, or -1 outside the layer.
   std::int32_t layer_node(Eigen::Index node) const { return local_[node]; }
-  std::int32_t node_of(std::int32_t local) const { return node_[local]; }
   /// The lumped mass-side damping of a layer node [N s/m]: rho V / 4 D1 summed.
   double damping(std::int32_t local) const { return mass_terms_[local][0]; }
   /// The mass side's springs and filtered-displacement terms on layer node `local`: adds them
@@ -98,7 +99,6 @@ class PmlLayer {
   double max_damping_ = 0.0;  // the largest d_i of any tetrahedron [1/s]
   std::vector<Tet> tets_;
   std::vector<std::int32_t> local_;                // per mesh node
-  std::vector<std::int32_t> node_;                 // per layer node: the mesh node
   std::vector<std::array<double, 5>> mass_terms_;  // per layer node: the 5 coefficients [SI]
   std::vector<std::int64_t> incidence_offset_;     // per layer node, into incidence_
   std::vector<std::int32_t> incidence_;            // 4 tet + corner, per incidence
