@@ -6,18 +6,18 @@
 #include <sstream>
 
 #include "core/errors.hpp"
+#include "track/footprint_flexibility.hpp"
 #include "track/footprint_layout.hpp"
 #include "track/hertz.hpp"
+#include "track/static_interface.hpp"
 
 namespace rumble {
 namespace {
 
 constexpr int kMaxNewtonIterations = 30;
-constexpr int kMaxStaticIterations = 50;
 // Newton (dynamics: residual forces; statics: updates) stops below this fraction of its scale:
 // far below any physical effect, far above round-off (~1e-16 relative).
 constexpr double kRelativeTolerance = 1e-10;
-constexpr double kAbsoluteTolerance = 1e-15;  // m, soil/track static consistency
 // Micro-steps per period of the highest resolved resonance (wheel/rail contact, P1).
 constexpr double kStepsPerContactPeriod = 20.0;
 
@@ -191,11 +191,11 @@ int TrackParticipant::solve_static(const SoilStatics& given_soil) {
   const double weight = std::max(F.cwiseAbs().maxCoeff(), 1.0);  // N, scale only
   for (Eigen::Index w = 0; w < nwi; ++w) F[w] = std::max(F[w], 1e-3 * weight);
 
-  std::vector<double> u(n, 0.0), u_new(n, 0.0), fb(n, 0.0), residual_old(n, 0.0);
-  double relaxation = 0.5;  // Aitken factor of the track/soil static iteration
   Eigen::VectorXd sol0(nt), x(nt);
-  int outer = 0;
-  for (; outer < kMaxStaticIterations; ++outer) {
+  // The track's side of the static problem: the footprint forces fb [N] (both rails) for the
+  // footprint settlements u [m], with the vehicles in equilibrium on the rail (q, F, x follow
+  // the last call).
+  const InterfaceMap track_forces = [&](const std::vector<double>& u, std::vector<double>& fb) {
     sol0.setZero();
     for (std::size_t i = 0; i < n; ++i)
       sol0[static_cast<Eigen::Index>(structure_.sleeper_dof(i))] = c.ballast_k * u[i];
@@ -203,7 +203,6 @@ int TrackParticipant::solve_static(const SoilStatics& given_soil) {
     Eigen::VectorXd w0(nwi);
     for (std::size_t w = 0; w < nw; ++w)
       w0[static_cast<Eigen::Index>(w)] = dot_rail(contact_point_[w], sol0);
-
     // Newton on r1 = f(q) - J^T F = 0 (vehicle equilibrium), r2 = z(q) - w(F) - r - (F/C)^(2/3)
     // = 0 (Hertz compatibility). d/dq by central differences (statics run once).
     const auto residual = [&](const Eigen::VectorXd& qq, const Eigen::VectorXd& FF,
@@ -260,34 +259,18 @@ int TrackParticipant::solve_static(const SoilStatics& given_soil) {
       }
     }
     x = sol0 + g * F;
+    fb.resize(n);
     for (std::size_t i = 0; i < n; ++i)
       fb[i] = 2.0 * c.ballast_k * (x[static_cast<Eigen::Index>(structure_.sleeper_dof(i))] - u[i]);
-    if (!soil) break;
-    soil(fb, u_new);
-    // Fixed point u = S(F(u)) with Aitken's dynamic relaxation (Irons & Tuck): the plain
-    // iteration converges slowly, or not at all, on soft soils, where the soil's settlement
-    // redistributes the sleeper loads strongly.
-    double change = 0.0, scale = 0.0, num = 0.0, den = 0.0;
-    for (std::size_t i = 0; i < n; ++i) {
-      const double d = u_new[i] - u[i];
-      change = std::max(change, std::abs(d));
-      scale = std::max(scale, std::abs(u_new[i]));
-      if (outer > 0) {
-        num += residual_old[i] * (d - residual_old[i]);
-        den += (d - residual_old[i]) * (d - residual_old[i]);
-      }
-      residual_old[i] = d;
-    }
-    if (change <= 1e-9 * scale + kAbsoluteTolerance) {
-      u = u_new;
-      break;
-    }
-    relaxation = outer == 0 || den == 0.0 ? 0.5 : -relaxation * num / den;
-    for (std::size_t i = 0; i < n; ++i) u[i] += relaxation * residual_old[i];
-  }
-  if (outer == kMaxStaticIterations) {
-    throw RunError("track statics: track and soil did not reach a consistent static state in " +
-                   std::to_string(kMaxStaticIterations) + " iterations");
+  };
+  std::vector<double> u(n, 0.0), fb(n, 0.0);
+  int soil_solves = 0;
+  if (soil) {
+    soil_solves = solve_interface_statics(track_forces, soil,
+                                          half_space_flexibility_shape(footprints()), u, fb)
+                      .soil_solves;
+  } else {
+    track_forces(u, fb);  // footprints fixed: the track alone
   }
 
   x_ = x;
@@ -334,7 +317,7 @@ int TrackParticipant::solve_static(const SoilStatics& given_soil) {
     }
     h_max_ = 1.0 / (kStepsPerContactPeriod * f_max);
   }
-  return outer + 1;
+  return soil ? soil_solves : 1;
 }
 
 // --------------------------------------------------------------------------- dynamics
