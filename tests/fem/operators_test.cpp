@@ -99,6 +99,26 @@ TEST(FemElasticity, StiffnessIsSymmetricAndMassIsTheBodysMass) {
   EXPECT_NEAR(lumped_mass(m, s).sum(), 1800.0 * std::pow(1.2, 3), 1e-9 * 1800.0);
 }
 
+// The explicit step's product (node_rows_dot: one node index per 3 x 3 block) is the compressed
+// rows' product (row_dot: one column index per value), row by row, to round-off: the same
+// products summed in another order, so within a few ulps of the sum of their magnitudes.
+TEST(FemElasticity, TheBlockProductIsTheRowProduct) {
+  const TetMesh m = kuhn_box(3, 0.4);
+  const CsrMatrix K = assemble_stiffness(m, medium_soil());
+  const Eigen::VectorXd x = Eigen::VectorXd::Random(K.rows());
+  for (std::int32_t i = 0; i < m.node_count(); ++i) {
+    double block[3];
+    K.node_rows_dot(i, x.data(), block);
+    for (int c = 0; c < 3; ++c) {
+      const std::int64_t r = 3 * i + c;
+      double magnitude = 0.0;
+      for (std::int64_t k = K.row_start()[r]; k < K.row_start()[r + 1]; ++k)
+        magnitude += std::abs(K.value()[k] * x[K.column()[k]]);
+      EXPECT_NEAR(block[c], K.row_dot(r, x.data()), 1e-14 * magnitude) << "row " << r;
+    }
+  }
+}
+
 TEST(FemExplicit, StableStepOfTheKuhnBoxIs0671HOverCp) {
   const double h = 0.5;
   const FemSettings s = medium_soil();

@@ -30,6 +30,28 @@ class CsrMatrix {
     return s;
   }
 
+  /// Node i's three rows times x: out[c] = row 3 i + c . x. Reads one index per 3 x 3 block
+  /// (the node graph's) instead of one per value: 4 B per 9 nonzeros, not 36, which is a quarter
+  /// of the explicit step's memory traffic (numerics.md §5: 12 B/nnz becomes 8.4).
+  void node_rows_dot(std::int32_t i, const double* x, double out[3]) const {
+    const std::int64_t first = neighbour_start_[i], deg = neighbour_start_[i + 1] - first;
+    const double* r0 = value_.data() + 9 * first;  // row 3 i (layout: the constructor's)
+    const double* r1 = r0 + 3 * deg;
+    const double* r2 = r1 + 3 * deg;
+    const std::int32_t* node = neighbour_.data() + first;
+    double s0 = 0.0, s1 = 0.0, s2 = 0.0;
+    for (std::int64_t p = 0; p < deg; ++p) {
+      const double* xj = x + 3 * static_cast<std::int64_t>(node[p]);
+      const std::int64_t t = 3 * p;
+      s0 += r0[t] * xj[0] + r0[t + 1] * xj[1] + r0[t + 2] * xj[2];
+      s1 += r1[t] * xj[0] + r1[t + 1] * xj[1] + r1[t + 2] * xj[2];
+      s2 += r2[t] * xj[0] + r2[t + 1] * xj[1] + r2[t + 2] * xj[2];
+    }
+    out[0] = s0;
+    out[1] = s1;
+    out[2] = s2;
+  }
+
   const std::vector<std::int64_t>& row_start() const { return row_start_; }
   const std::vector<std::int32_t>& column() const { return column_; }
   const std::vector<double>& value() const { return value_; }

@@ -118,7 +118,8 @@ void ExplicitSolver::step(ExplicitState& s, const Eigen::VectorXd& f, double dt)
     for (std::int64_t i = 0; i < n; ++i) {
       if (fixed_[i]) continue;
       double r[3], rhs[3];
-      for (int c = 0; c < 3; ++c) r[c] = f[3 * i + c] - K_.row_dot(3 * i + c, y);
+      K_.node_rows_dot(static_cast<std::int32_t>(i), y, r);
+      for (int c = 0; c < 3; ++c) r[c] = f[3 * i + c] - r[c];
       const double m = mass_[i];
       double inertia = m * (1.0 + half * a0_);
       if (const std::int32_t p = pml_ ? pml_->layer_node(i) : -1; p >= 0) {
