@@ -13,8 +13,8 @@ namespace {
 
 // Finite-difference step of the track's Jacobian [m]: settlements are 1e-5..1e-2 m and the track
 // is linear in them but for the Hertz contacts (approach ~1e-4 m), so 1e-6 m is in the linear
-// range, and gives force changes (2 k_ballast 1e-6 m, >= 2 N for any ballast here) far above the
-// Newton noise of the track's own solve (1e-10 of the wheel load, ~1e-5 N).
+// range, and gives force changes (2 k_ballast 1e-6 m: 80 N for the paper's 4e7 N/m) far above
+// the Newton noise of the track's own solve (1e-10 of the wheel load, ~1e-5 N).
 constexpr double kJacobianStep = 1e-6;
 // Chord-Newton iterations on the surrogate problem (track evaluations only); it converges
 // linearly at the rate of the track's non-linearity over one outer step: a few iterations.
@@ -48,8 +48,8 @@ class SoilSurrogate {
   Eigen::VectorXd operator()(const Eigen::VectorXd& f) const { return linear_ * f + offset_; }
 
  private:
-  /// prior_ = a I + b shape_ with a, b >= 0 [m/N] from the first solve by least squares: a local
-  /// (Winkler-like) flexibility and a half-space one, so that either kind of soil is met.
+  /// prior_ = a I + b shape_, a [m/N] and b [m^2/N] >= 0, from the first solve by least squares: a
+  /// local (Winkler-like) flexibility and a half-space one, so that either kind of soil is met.
   void fit_prior(const Eigen::VectorXd& f, const Eigen::VectorXd& u) {
     const Eigen::VectorXd g = shape_ * f;
     Eigen::Matrix2d normal;

@@ -14,8 +14,8 @@
 //   S~ x = u_k + dU c + P (x - f_k - dF c),   c = argmin |dF c - (x - f_k)|,
 //
 // (f_k, u_k) the latest soil solve, dF and dU the differences of the earlier ones from it (each
-// scaled to a unit force difference). The prior P = a I + b G, a, b >= 0 [m/N] fitted to the
-// first solve, mixes a local flexibility (a Winkler soil: exact at once) with the half-space
+// scaled to a unit force difference). The prior P = a I + b G, a [m/N] and b [m^2/N] >= 0 fitted
+// to the first solve, mixes a local flexibility (a Winkler soil: exact at once) with the half-space
 // shape G between the footprints (footprint_flexibility.hpp), which halves the solves on a
 // continuum soil. Each outer step solves the surrogate coupled problem x = S~(T(x)) to
 // convergence (chord Newton with I - S~ J_T: track evaluations only), then asks the soil once.
