@@ -162,7 +162,8 @@ TEST(StaticInterface, ASoilThatCannotBeMetSaysWhy) {
   const Eigen::MatrixXd a = Eigen::MatrixXd::Random(kSleepers, kSleepers);
   const Eigen::MatrixXd hard = kSoftFlexibility * (a * a.transpose());
   EXPECT_NE(run_error(linear_soil(hard), 3)
-                .find("did not reach a consistent static state in 3 soil solves"),
+                .find("did not reach a consistent static state in 3 soil solves; this iteration "
+                      "needs a linear soil statics"),
             std::string::npos);
 }
 

@@ -181,7 +181,10 @@ InterfaceStatics solve_interface_statics(const InterfaceMap& track, const Interf
   }
   std::ostringstream m;
   m << "track/soil statics: track and soil did not reach a consistent static state in "
-    << tol.max_soil_solves << " soil solves";
+    << tol.max_soil_solves
+    << " soil solves; this iteration needs a linear soil statics (the same footprint forces "
+       "always give the same settlements, proportional to them) and wheels that stay on the "
+       "rail at rest: check the soil plugin's initialize and the vehicles' static loads";
   throw RunError(m.str());
 }
 
