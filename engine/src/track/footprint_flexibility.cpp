@@ -15,8 +15,8 @@ constexpr double kSquareSelfPotential = 2.97320;
 constexpr int kCellsAcrossShortSide = 2;
 
 // Footprints whose centres are further apart than this many times their larger extent interact
-// through 1/r between their centres: the cell sum differs from it by about (extent / 5 d)^2 / 6,
-// under 1 %.
+// through 1/r between their centres: the mean of 1/r over the two differs from it by about
+// (extent / d)^2 / 6, under 1 % there.
 constexpr double kFarApart = 5.0;
 
 struct Cell {

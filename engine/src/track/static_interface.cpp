@@ -63,7 +63,10 @@ class SoilSurrogate {
     if (!(ab.maxCoeff() > 0.0) || !ab.allFinite()) {
       std::ostringstream m;
       m << "track/soil statics: the soil settles against its load (mean flexibility "
-        << f.dot(u) / f.dot(f) << " m/N under the track's footprint forces)";
+        << f.dot(u) / f.dot(f)
+        << " m/N under the track's footprint forces): a soil must move with the load that "
+           "presses it; check the sign of the soil plugin's initialize and its stiffness "
+           "parameters";
       throw RunError(m.str());
     }
     prior_ = ab[1] * shape_;
