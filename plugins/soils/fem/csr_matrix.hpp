@@ -52,6 +52,18 @@ class CsrMatrix {
     out[2] = s2;
   }
 
+  /// Node i's neighbours (sorted, i included) and its block with the p-th of them: entry
+  /// (3 i + c, 3 neighbours(i)[p] + d).
+  std::int64_t degree(std::int32_t i) const {
+    return neighbour_start_[i + 1] - neighbour_start_[i];
+  }
+  const std::int32_t* neighbours(std::int32_t i) const {
+    return neighbour_.data() + neighbour_start_[i];
+  }
+  double block_entry(std::int32_t i, std::int64_t p, int c, int d) const {
+    return value_[9 * neighbour_start_[i] + 3 * (c * degree(i) + p) + d];
+  }
+
   const std::vector<std::int64_t>& row_start() const { return row_start_; }
   const std::vector<std::int32_t>& column() const { return column_; }
   const std::vector<double>& value() const { return value_; }

@@ -16,11 +16,13 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <vector>
 
 #include "absorbing_boundary.hpp"
 #include "csr_matrix.hpp"
+#include "local_time_stepping.hpp"
 #include "pml.hpp"
 
 namespace rumble::fem {
@@ -39,10 +41,23 @@ class ExplicitSolver {
 
   Eigen::Index dofs() const { return 3 * mass_.size(); }
   /// Largest stable step [s]: 2 / omega_max (sqrt(1 + xi^2) - xi), xi = a1 omega_max / 2,
-  /// omega_max^2 the largest eigenvalue of M^-1 K from power iteration (to 1e-6, 2 % margin).
-  double stable_step() const { return stable_step_; }
+  /// omega_max^2 the largest eigenvalue of M^-1 K from Lanczos iterations (to 1e-9, 2 % margin);
+  /// with local time stepping, the longer step it verified (enable_local_steps).
+  double stable_step() const {
+    return std::min(local_step_ > 0.0 ? local_step_ : single_rate_step_, pml_step_);
+  }
+  /// The stable step of one rate everywhere [s].
+  double single_rate_step() const { return single_rate_step_; }
   double omega_max() const { return omega_max_; }
-  int power_iterations() const { return power_iterations_; }
+  int eigen_iterations() const { return eigen_iterations_; }
+
+  /// Local time stepping (local_time_stepping.hpp): the stiffest nodes take `substeps` steps
+  /// per soil step. Chooses them from each node's Gershgorin bound, the soil step for the least
+  /// work per simulated second, and verifies that step by the largest eigenvalue of M^-1 (K_p + S).
+  /// Steps at or below single_rate_step() stay single-rate. Returns false (and stays single
+  /// rate) when no longer step was found; substeps < 2 switches it off.
+  bool enable_local_steps(int substeps);
+  const LocalTimeStepping* local_steps() const { return lts_ ? &*lts_ : nullptr; }
 
   /// Adds a perfectly matched layer on the mesh's outer tetrahedra.
   void set_pml(PmlLayer layer);
@@ -56,6 +71,8 @@ class ExplicitSolver {
   /// Adds M^-1 df to the acceleration: the external force changed by df at the current time.
   void force_jump(ExplicitState& s, const Eigen::VectorXd& df) const;
 
+  /// y = K_p x + S x at step dt [s] (local time stepping on; else K x + S x).
+  void effective_stiffness_times(const Eigen::VectorXd& x, Eigen::VectorXd& y, double dt) const;
   /// y = K x + S x (the boundary springs when they act): the static operator.
   void stiffness_times(const Eigen::VectorXd& x, Eigen::VectorXd& y, bool with_springs) const;
   const CsrMatrix& stiffness() const { return K_; }
@@ -73,6 +90,15 @@ class ExplicitSolver {
 
  private:
   void estimate_stable_step();
+  /// The largest eigenvalue of M^-1 op over the free DOFs (Lanczos, to 1e-9), from a fixed
+  /// pseudo-random start.
+  double largest_eigenvalue(const std::function<void(const Eigen::VectorXd&, Eigen::VectorXd&)>& op,
+                            int& iterations) const;
+  /// The local steps' coefficients for a step of dt [s] (once per distinct dt).
+  void prepare_local_steps(double dt) const;
+  /// Node i's velocity and acceleration update from r = K y (or K_p y) [N].
+  void finish_node(std::int64_t i, const double ky[3], const Eigen::VectorXd& f, double dt,
+                   ExplicitState& s, double* memory) const;
 
   CsrMatrix K_;
   Eigen::VectorXd mass_;  // per node [kg]
@@ -82,11 +108,17 @@ class ExplicitSolver {
   std::vector<char> fixed_;  // per node
   double a0_, a1_;
   unsigned threads_;
-  double omega_max_ = 0.0, stable_step_ = 0.0;
-  int power_iterations_ = 0;
+  double omega_max_ = 0.0, single_rate_step_ = 0.0;
+  double local_step_ = 0.0;  // verified with local time stepping [s]; 0: off
+  double pml_step_ = 1e300;  // the matched layer's own limit [s]
+  int eigen_iterations_ = 0;
   mutable Eigen::VectorXd y_;  // scratch: w + a1 v+
   std::optional<PmlLayer> pml_;
   mutable std::vector<double> pml_forces_;  // scratch: 12 per layer tetrahedron [N]
+  // Local time stepping; mutable: its coefficients follow the step size the caller asks for.
+  mutable std::optional<LocalTimeStepping> lts_;
+  std::vector<std::int32_t> halo_of_;        // per node: its place in lts_->halo(), or -1
+  mutable std::vector<double> halo_forces_;  // scratch: K y at the halo [N]
 };
 
 }  // namespace rumble::fem

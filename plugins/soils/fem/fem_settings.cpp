@@ -111,7 +111,8 @@ const char* settings_schema() {
       "description": "time stepping inside each macro step",
       "properties": {
         "scheme": {"enum": ["explicit", "implicit"], "default": "explicit", "description": "explicit: central differences at courant x the stable step (one pass over K per step; the right choice on wave-resolving meshes, numerics.md 3.3); implicit: Newmark average acceleration (unconditionally stable, one CHOLMOD factor per step size; pays only when a few elements are far smaller than the waves need)"},
-        "max_step": {"type": "number", "exclusiveMinimum": 0, "description": "implicit: longest sub-step [s]; default 1 / (20 mesh.f_max), 20 steps per period at f_max (period error about 0.8 %)"}
+        "max_step": {"type": "number", "exclusiveMinimum": 0, "description": "implicit: longest sub-step [s]; default 1 / (20 mesh.f_max), 20 steps per period at f_max (period error about 0.8 %)"},
+        "local_steps": {"type": "integer", "minimum": 1, "maximum": 8, "default": 1, "description": "explicit: local time stepping; the stiffest nodes (where a few short elements set the stable step) take this many steps per soil step, the rest one, so the soil step can be longer (docs/fem-soil.md section 4.1); the soil chooses those nodes and the step, verifies the step by power iteration and logs the gain, and stays on one rate where none pays; 1: one rate everywhere; 2-3 suit most meshes"}
       }
     },
     "receptance": {
@@ -211,6 +212,11 @@ FemSettings read_settings(const std::string& params_json) {
   const nlohmann::json integrator = j.value("integrator", nlohmann::json::object());
   s.implicit = integrator.value("scheme", "explicit") == "implicit";
   s.implicit_step = read(integrator, "max_step", 1.0 / (20.0 * m.f_max));
+  s.local_steps = integrator.value("local_steps", 1);
+  if (s.implicit && s.local_steps > 1)
+    refuse("integrator/local_steps",
+           "needs integrator/scheme explicit (the implicit step has no stable-step limit to lift)",
+           s.local_steps);
   if (!(s.courant > 0.0 && s.courant <= 1.0)) refuse("courant", "must be in (0, 1]", s.courant);
   if (s.boundary.kind == BoundaryKind::kPml) {
     const auto pml_needs = [](const std::string& key, const std::string& what) {

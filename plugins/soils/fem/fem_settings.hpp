@@ -79,6 +79,7 @@ struct FemSettings {
   double courant = 0.8;        // explicit step = courant x the stable step from the mesh
   bool implicit = false;       // Newmark average acceleration instead of central differences
   double implicit_step = 0.0;  // s, longest implicit sub-step; 0 = 1 / (20 f_max)
+  int local_steps = 1;         // explicit: sub-steps of the stiffest nodes per step; 1 = one rate
   unsigned mesh_threads = 1;
 
   /// The properties at depth z [m] (>= 0).

@@ -117,6 +117,7 @@ class FemSoil final : public rumble::Soil {
                 host_.threads());
     if (settings_.boundary.kind == BoundaryKind::kPml)
       op_->set_pml(PmlLayer(mesh_, settings_, pml_profile()));
+    if (settings_.local_steps > 1) enable_local_steps();
     statics_ = std::make_unique<StaticSolver>(*op_, mesh_.nodes);
     implicit_.reset();
     if (settings_.implicit)
@@ -442,6 +443,29 @@ class FemSoil final : public rumble::Soil {
     samples().push(t, row_.data());
   }
 
+  void enable_local_steps() {
+    const double single = op_->stable_step();
+    std::ostringstream m;
+    m << "fem: local time stepping (integrator.local_steps " << settings_.local_steps << "): ";
+    const rumble::fem::LocalTimeStepping* lts =
+        op_->enable_local_steps(settings_.local_steps) ? op_->local_steps() : nullptr;
+    if (lts == nullptr) {
+      m << "no longer step pays or verifies on this mesh (the stiff nodes are too many, or the "
+           "damping's half-step lag leaves no room: damping a1 "
+        << format(settings_.damping.stiffness_coefficient()) << " s against the step "
+        << format(single) << " s); the soil steps on one rate";
+      host_.warn(m.str());
+      return;
+    }
+    m << lts->fine_nodes() << " fine nodes ("
+      << format(100.0 * static_cast<double>(lts->fine_nodes()) / mesh_.node_count(), 2) << " % of "
+      << mesh_.node_count() << "; " << lts->halo().size() << " with their neighbours) take "
+      << lts->substeps() << " steps per soil step; stable step " << format(op_->stable_step())
+      << " s against " << format(single) << " s on one rate (x"
+      << format(op_->stable_step() / single, 3) << ")";
+    host_.info(m.str());
+  }
+
   void report(double mesh_seconds, double setup_seconds) const {
     using rumble::fem::BoundaryKind;
     double shortest_edge = 1e300;
@@ -458,7 +482,7 @@ class FemSoil final : public rumble::Soil {
       << format(mesh_seconds, 2) << " s, ready in " << format(setup_seconds, 2) << " s; "
       << format(op_->bytes() / 1048576.0) << " MiB ("
       << format(static_cast<double>(op_->bytes()) / op_->dofs(), 3) << " B per DOF); stable step "
-      << format(op_->stable_step()) << " s (" << op_->power_iterations() << " power iterations), "
+      << format(op_->stable_step()) << " s (" << op_->eigen_iterations() << " Lanczos iterations), "
       << (implicit_ ? "implicit" : "explicit") << " step " << format(max_step()) << " s";
     if (plan_.radius > 0.0)  // (0: a user's mesh, whose sizes the soil did not choose)
       m << "; f_max resolved at " << settings_.mesh.elements_per_wavelength
