@@ -61,6 +61,10 @@ std::vector<rumble_footprint> sleeper_row(std::size_t n, double spacing, double 
 }
 
 TestSoil::TestSoil(const std::string& type, const std::string& params_json) : host_(make_host()) {
+  host_.host_data = &logs_;
+  host_.log = [](void* data, int32_t /*level*/, const char* message) {
+    static_cast<std::vector<std::string>*>(data)->emplace_back(message);
+  };
   const rumble_factory& f = soil_factory(type);
   api_ = static_cast<const rumble_soil_api*>(f.api);
   const char* error = nullptr;

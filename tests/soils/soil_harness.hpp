@@ -67,12 +67,15 @@ class TestSoil {
 
   const rumble_soil_api& api() const { return *api_; }
   rumble_instance* self() const { return self_; }
+  /// The messages the soil logged through the host, in order.
+  const std::vector<std::string>& logs() const { return logs_; }
 
  private:
   void check(rumble_status status, const char* call) const;
   const rumble_soil_api* api_ = nullptr;
   rumble_instance* self_ = nullptr;
   rumble_host host_{};
+  std::vector<std::string> logs_;
   Eigen::Index n_ = 0;
 };
 

@@ -143,20 +143,22 @@ void ExplicitSolver::effective_stiffness_times(const Eigen::VectorXd& x, Eigen::
   stiffness_times(x, y, springs_);
   if (!lts_ || dt <= single_rate_step_) return;
   prepare_local_steps(dt);
+  filter_halo(y.data());
+}
+
+void ExplicitSolver::filter_halo(double* forces) const {
   const std::vector<std::int32_t>& halo = lts_->halo();
   const auto count = static_cast<std::int64_t>(halo.size());
-  double* forces = halo_forces_.data();
+  double* buffer = halo_forces_.data();
 #pragma omp parallel num_threads(threads_)
   {
 #pragma omp for schedule(static)
-    for (std::int64_t h = 0; h < count; ++h) {  // y keeps the springs' part at the halo
-      K_.node_rows_dot(halo[h], x.data(), forces + 3 * h);
-      for (int c = 0; c < 3; ++c) y[3 * halo[h] + c] -= forces[3 * h + c];
-    }
-    lts_->apply(forces);  // (orphaned omp for loops)
+    for (std::int64_t h = 0; h < count; ++h)
+      for (int c = 0; c < 3; ++c) buffer[3 * h + c] = forces[3 * halo[h] + c];
+    lts_->apply(buffer);  // (orphaned omp for loops)
 #pragma omp for schedule(static)
     for (std::int64_t h = 0; h < count; ++h)
-      for (int c = 0; c < 3; ++c) y[3 * halo[h] + c] += forces[3 * h + c];
+      for (int c = 0; c < 3; ++c) forces[3 * halo[h] + c] = buffer[3 * h + c];
   }
 }
 
@@ -196,14 +198,25 @@ bool ExplicitSolver::enable_local_steps(int substeps) {
   double largest_bound = 0.0;
   for (const double b : bound) largest_bound = std::max(largest_bound, b);
   const double scale = lambda_max / largest_bound;
+  // Never fine: fixed nodes, the truncation surface's (its springs and dashpots stay outside the
+  // recurrence, which keeps K_p symmetric), and the matched layer's and their neighbours (the
+  // layer's forces stay outside too).
+  std::vector<char> may_be_fine(n, 1);
+  for (std::int64_t i = 0; i < n; ++i) {
+    const auto node = static_cast<std::int32_t>(i);
+    if (fixed_[i] || boundary_of_[i] >= 0) may_be_fine[i] = 0;
+    if (!pml_) continue;
+    const std::int32_t* nb = K_.neighbours(node);
+    for (std::int64_t q = 0; q < K_.degree(node); ++q)
+      if (pml_->layer_node(nb[q]) >= 0) may_be_fine[i] = 0;
+  }
   constexpr double kSafety = 0.7;  // a node is fine above this share of the coarse limit
   const auto fine_at = [&](double dt) {
     // The coarse nodes' limit: c = dt^2 l / 4 <= 0.9 / (1 + 2 a1 / dt) (tau_for's margin).
     const double coarse_limit = 4.0 / (dt * dt) * 0.9 / (1.0 + 2.0 * a1_ / dt);
     std::vector<char> fine(n, 0);
     for (std::int64_t i = 0; i < n; ++i)
-      fine[i] = !fixed_[i] && !(pml_ && pml_->layer_node(i) >= 0) &&
-                scale * bound[i] > kSafety * coarse_limit;
+      fine[i] = may_be_fine[i] && scale * bound[i] > kSafety * coarse_limit;
     return fine;
   };
   // The work of one extra sub-step relative to a pass over K: its product reads K's blocks at
@@ -294,13 +307,13 @@ void ExplicitSolver::step(ExplicitState& s, const Eigen::VectorXd& f, double dt)
 #pragma omp for schedule(static)
     for (std::int64_t i = 0; i < n; ++i) {
       if (fixed_[i]) continue;
-      if (local && halo_of_[i] >= 0) {  // finished below, once K_p y is known
-        K_.node_rows_dot(static_cast<std::int32_t>(i), y, halo_forces_.data() + 3 * halo_of_[i]);
+      if (local && halo_of_[i] >= 0) {  // finished below, once the residual is filtered
+        residual(i, y, w, f, halo_forces_.data() + 3 * halo_of_[i]);
         continue;
       }
-      double ky[3];
-      K_.node_rows_dot(static_cast<std::int32_t>(i), y, ky);
-      finish_node(i, ky, f, dt, s, memory);
+      double r[3];
+      residual(i, y, w, f, r);
+      finish_node(i, r, dt, s, memory);
     }
     if (local) {
       lts_->apply(halo_forces_.data());  // (orphaned omp for loops: barriers)
@@ -308,19 +321,29 @@ void ExplicitSolver::step(ExplicitState& s, const Eigen::VectorXd& f, double dt)
       const auto count = static_cast<std::int64_t>(halo.size());
 #pragma omp for schedule(static)
       for (std::int64_t h = 0; h < count; ++h)
-        finish_node(halo[h], halo_forces_.data() + 3 * h, f, dt, s, memory);
+        finish_node(halo[h], halo_forces_.data() + 3 * h, dt, s, memory);
     }
   }
 }
 
-void ExplicitSolver::finish_node(std::int64_t i, const double ky[3], const Eigen::VectorXd& f,
-                                 double dt, ExplicitState& s, double* memory) const {
+void ExplicitSolver::residual(std::int64_t i, const double* y, const double* w,
+                              const Eigen::VectorXd& f, double out[3]) const {
+  K_.node_rows_dot(static_cast<std::int32_t>(i), y, out);
+  if (const std::int32_t b = springs_ ? boundary_of_[i] : -1; b >= 0) {
+    const BoundaryNode& node = boundary_[b];
+    BoundaryNode::apply(node.normal, node.spring_normal, node.spring_tangential, w + 3 * i, out);
+  }
+  for (int c = 0; c < 3; ++c) out[c] -= f[3 * i + c];
+}
+
+void ExplicitSolver::finish_node(std::int64_t i, const double residual[3], double dt,
+                                 ExplicitState& s, double* memory) const {
   double* w = s.w.data();
   double* v = s.v.data();
   double* a = s.a.data();
   const double half = 0.5 * dt;
   double r[3], rhs[3];
-  for (int c = 0; c < 3; ++c) r[c] = f[3 * i + c] - ky[c];
+  for (int c = 0; c < 3; ++c) r[c] = -residual[c];
   const double m = mass_[i];
   double inertia = m * (1.0 + half * a0_);
   if (const std::int32_t p = pml_ ? pml_->layer_node(i) : -1; p >= 0) {
@@ -343,11 +366,6 @@ void ExplicitSolver::finish_node(std::int64_t i, const double ky[3], const Eigen
     return;
   }
   const BoundaryNode& node = boundary_[b];
-  if (springs_) {
-    double spring[3] = {0.0, 0.0, 0.0};
-    BoundaryNode::apply(node.normal, node.spring_normal, node.spring_tangential, w + 3 * i, spring);
-    for (int c = 0; c < 3; ++c) r[c] -= spring[c];
-  }
   for (int c = 0; c < 3; ++c) rhs[c] = m * v[3 * i + c] + half * r[c];
   // (inertia I + dt/2 D)^-1 = nn^T / (inertia + dt/2 d_n) + (I - nn^T) / (inertia + dt/2 d_t)
   const Eigen::Vector3d& nrm = node.normal;
@@ -363,8 +381,16 @@ void ExplicitSolver::finish_node(std::int64_t i, const double ky[3], const Eigen
 }
 
 void ExplicitSolver::force_jump(ExplicitState& s, const Eigen::VectorXd& df) const {
-  for (Eigen::Index k = 0; k < df.size(); ++k)
-    if (df[k] != 0.0 && !fixed_[k / 3]) s.a[k] += df[k] / mass_[k / 3];
+  // Under local time stepping the halo's accelerations are filtered residuals, so is the jump
+  // (with the coefficients of the last step, whose acceleration this is).
+  const bool local = lts_ && lts_->step() > single_rate_step_;
+  if (local) {
+    jump_ = df;
+    filter_halo(jump_.data());
+  }
+  const Eigen::VectorXd& jump = local ? jump_ : df;
+  for (Eigen::Index k = 0; k < jump.size(); ++k)
+    if (jump[k] != 0.0 && !fixed_[k / 3]) s.a[k] += jump[k] / mass_[k / 3];
 }
 
 double ExplicitSolver::kinetic_energy(const ExplicitState& s) const {

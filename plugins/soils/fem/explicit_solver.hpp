@@ -71,7 +71,8 @@ class ExplicitSolver {
   /// Adds M^-1 df to the acceleration: the external force changed by df at the current time.
   void force_jump(ExplicitState& s, const Eigen::VectorXd& df) const;
 
-  /// y = K_p x + S x at step dt [s] (local time stepping on; else K x + S x).
+  /// y = (K + S) x, filtered by the local steps at the halo at step dt [s] when they act there:
+  /// the effective stiffness K_p of local_time_stepping.hpp (S is zero at the fine nodes).
   void effective_stiffness_times(const Eigen::VectorXd& x, Eigen::VectorXd& y, double dt) const;
   /// y = K x + S x (the boundary springs when they act): the static operator.
   void stiffness_times(const Eigen::VectorXd& x, Eigen::VectorXd& y, bool with_springs) const;
@@ -96,9 +97,16 @@ class ExplicitSolver {
                             int& iterations) const;
   /// The local steps' coefficients for a step of dt [s] (once per distinct dt).
   void prepare_local_steps(double dt) const;
-  /// Node i's velocity and acceleration update from r = K y (or K_p y) [N].
-  void finish_node(std::int64_t i, const double ky[3], const Eigen::VectorXd& f, double dt,
-                   ExplicitState& s, double* memory) const;
+  /// Replaces forces [N] (size dofs()) at the halo by their filtered form
+  /// (local_time_stepping.hpp).
+  void filter_halo(double* forces) const;
+  /// Node i's residual force K y + S w - f [N] (y = w + a1 v+).
+  void residual(std::int64_t i, const double* y, const double* w, const Eigen::VectorXd& f,
+                double out[3]) const;
+  /// Node i's velocity and acceleration update from its residual (filtered by the local steps
+  /// at the halo) [N], with the matched layer's forces and the implicit diagonal damping.
+  void finish_node(std::int64_t i, const double residual[3], double dt, ExplicitState& s,
+                   double* memory) const;
 
   CsrMatrix K_;
   Eigen::VectorXd mass_;  // per node [kg]
@@ -118,7 +126,8 @@ class ExplicitSolver {
   // Local time stepping; mutable: its coefficients follow the step size the caller asks for.
   mutable std::optional<LocalTimeStepping> lts_;
   std::vector<std::int32_t> halo_of_;        // per node: its place in lts_->halo(), or -1
-  mutable std::vector<double> halo_forces_;  // scratch: K y at the halo [N]
+  mutable std::vector<double> halo_forces_;  // scratch: the residual at the halo [N]
+  mutable Eigen::VectorXd jump_;             // scratch: a filtered force jump [N]
 };
 
 }  // namespace rumble::fem
