@@ -435,6 +435,36 @@ TEST(FemPml, APulseLeavesTheBoxAndCheckpointsKeepTheLayer) {
   EXPECT_LT(std::abs(soil.velocity()[0]), 1e-3 * peak);
 }
 
+TEST(FemBadInput, LocalStepsWithTheImplicitSchemeAreRefusedWithTheFix) {
+  nlohmann::json p = small_stiff_soil();
+  p["integrator"] = {{"scheme", "implicit"}, {"local_steps", 2}};
+  EXPECT_EQ(creation_error("fem", p.dump()),
+            "fem: params/integrator/local_steps: local time stepping lifts the explicit step's "
+            "limit and the implicit scheme has none; use integrator.scheme \"explicit\" or drop "
+            "local_steps, got 2");
+}
+
+TEST(FemBadInput, LocalStepsThatCannotHelpSayWhy) {
+  // With 10 % damping at 5 and 100 Hz, a1 K (a1 = 3e-4 s), half a step late, leaves no room for
+  // a step longer than the small stiff soil's 2.5e-4 s: the soil steps on one rate and says
+  // what to change (at the default 2 % the same mesh takes 1.8 times longer steps).
+  nlohmann::json p = small_stiff_soil();
+  p["integrator"] = {{"local_steps", 2}};
+  p["damping"] = {{"ratio", 0.1}};
+  TestSoil soil("fem", p.dump());
+  soil.accept_layout(sleeper_row(3));
+  std::string said;
+  for (const std::string& line : soil.logs())
+    if (line.find("local time stepping") != std::string::npos) said = line;
+  EXPECT_NE(said.find("the damping a1 K, taken half a step late, limits the step here"),
+            std::string::npos)
+      << said;
+  EXPECT_NE(said.find("raise damping.f_high or lower damping.ratio to lower a1, or set "
+                      "local_steps 1"),
+            std::string::npos)
+      << said;
+}
+
 TEST(FemBadInput, AMatchedLayerSaysWhatItNeedsAndWhatItCannotDo) {
   nlohmann::json p = small_box_with_layer();
   p["mesh"]["shape"] = "hemisphere";

@@ -215,7 +215,8 @@ FemSettings read_settings(const std::string& params_json) {
   s.local_steps = integrator.value("local_steps", 1);
   if (s.implicit && s.local_steps > 1)
     refuse("integrator/local_steps",
-           "needs integrator/scheme explicit (the implicit step has no stable-step limit to lift)",
+           "local time stepping lifts the explicit step's limit and the implicit scheme has none; "
+           "use integrator.scheme \"explicit\" or drop local_steps",
            s.local_steps);
   if (!(s.courant > 0.0 && s.courant <= 1.0)) refuse("courant", "must be in (0, 1]", s.courant);
   if (s.boundary.kind == BoundaryKind::kPml) {

@@ -450,10 +450,16 @@ class FemSoil final : public rumble::Soil {
     const rumble::fem::LocalTimeStepping* lts =
         op_->enable_local_steps(settings_.local_steps) ? op_->local_steps() : nullptr;
     if (lts == nullptr) {
-      m << "no longer step pays or verifies on this mesh (the stiff nodes are too many, or the "
-           "damping's half-step lag leaves no room: damping a1 "
-        << format(settings_.damping.stiffness_coefficient()) << " s against the step "
-        << format(single) << " s); the soil steps on one rate";
+      const double a1 = settings_.damping.stiffness_coefficient();
+      if (rumble::fem::LocalTimeStepping::tau_for(single, a1) == 0.0)
+        m << "the damping a1 K, taken half a step late, limits the step here (a1 = " << format(a1)
+          << " s is " << format(a1 / single, 2) << " of the step " << format(single)
+          << " s; local steps need below 0.4): raise damping.f_high or lower damping.ratio to "
+             "lower a1, or set local_steps 1";
+      else
+        m << "no step longer than one rate's " << format(single)
+          << " s pays on this mesh (too many nodes would have to be fine); the soil steps on one "
+             "rate (set local_steps 1 to skip this search)";
       host_.warn(m.str());
       return;
     }
