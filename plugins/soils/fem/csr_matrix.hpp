@@ -39,14 +39,31 @@ class CsrMatrix {
     const double* r1 = r0 + 3 * deg;
     const double* r2 = r1 + 3 * deg;
     const std::int32_t* node = neighbour_.data() + first;
-    double s0 = 0.0, s1 = 0.0, s2 = 0.0;
-    for (std::int64_t p = 0; p < deg; ++p) {
+    // Two partial sums per row (even and odd blocks): twice the independent additions in flight,
+    // 4-13 % faster on this machine (fem_bench, 1 and 2 threads).
+    double s0 = 0.0, s1 = 0.0, s2 = 0.0, t0 = 0.0, t1 = 0.0, t2 = 0.0;
+    std::int64_t p = 0;
+    for (; p + 1 < deg; p += 2) {
+      const double* xj = x + 3 * static_cast<std::int64_t>(node[p]);
+      const double* xk = x + 3 * static_cast<std::int64_t>(node[p + 1]);
+      const std::int64_t t = 3 * p;
+      s0 += r0[t] * xj[0] + r0[t + 1] * xj[1] + r0[t + 2] * xj[2];
+      s1 += r1[t] * xj[0] + r1[t + 1] * xj[1] + r1[t + 2] * xj[2];
+      s2 += r2[t] * xj[0] + r2[t + 1] * xj[1] + r2[t + 2] * xj[2];
+      t0 += r0[t + 3] * xk[0] + r0[t + 4] * xk[1] + r0[t + 5] * xk[2];
+      t1 += r1[t + 3] * xk[0] + r1[t + 4] * xk[1] + r1[t + 5] * xk[2];
+      t2 += r2[t + 3] * xk[0] + r2[t + 4] * xk[1] + r2[t + 5] * xk[2];
+    }
+    if (p < deg) {
       const double* xj = x + 3 * static_cast<std::int64_t>(node[p]);
       const std::int64_t t = 3 * p;
       s0 += r0[t] * xj[0] + r0[t + 1] * xj[1] + r0[t + 2] * xj[2];
       s1 += r1[t] * xj[0] + r1[t + 1] * xj[1] + r1[t + 2] * xj[2];
       s2 += r2[t] * xj[0] + r2[t + 1] * xj[1] + r2[t + 2] * xj[2];
     }
+    s0 += t0;
+    s1 += t1;
+    s2 += t2;
     out[0] = s0;
     out[1] = s1;
     out[2] = s2;
