@@ -189,6 +189,43 @@ void expect_parts(const std::string& message, std::initializer_list<std::string>
     EXPECT_NE(message.find(part), std::string::npos) << "'" << part << "' not in: " << message;
 }
 
+TEST(FemMshImport, MeshExportWritesTheSoilsOwnMeshForMeshFile) {
+  // params/mesh/export through the plugin (what `rumble mesh ... --set
+  // /soil/params/mesh/export=...` does): the file it writes, given as mesh.file, is the same
+  // mesh, so the static footprint displacements agree to round-off (as above: 1e-13).
+  const fs::path path = scratch() / "sub" / "soil.msh";  // its folder is made
+  const auto footprints = sleeper_row(3);
+  nlohmann::json exporting = small_layered_soil();
+  exporting["mesh"]["export"] = path.string();
+  const Traces generated = run(exporting, footprints);
+  ASSERT_TRUE(fs::is_regular_file(path));
+  const Traces imported = run(with_file(small_layered_soil(), path), footprints);
+  for (Eigen::Index j = 0; j < 3; ++j)
+    EXPECT_NEAR(imported.u_static[j], generated.u_static[j], 1e-13 * generated.u_static[j]);
+}
+
+TEST(FemMshImport, MeshExportSaysWhenItCannotWrite) {
+  nlohmann::json both = with_file(small_layered_soil(), "a.msh");
+  both["mesh"]["export"] = "b.msh";
+  EXPECT_EQ(creation_error("fem", both.dump()),
+            "fem: params/mesh/export: \"b.msh\" would write the soil's own mesh, but mesh.file "
+            "\"a.msh\" is the mesh here; drop one of them");
+  const fs::path blocker = scratch() / "a_file";
+  std::ofstream(blocker) << "not a folder\n";
+  nlohmann::json unwritable = small_layered_soil();
+  unwritable["mesh"]["export"] = (blocker / "soil.msh").string();
+  TestSoil soil("fem", unwritable.dump());
+  std::string message;
+  ASSERT_EQ(soil.try_accept_layout(sleeper_row(3), &message), RUMBLE_ERROR);
+  EXPECT_NE(message.find("fem: params/mesh/export: could not write the mesh to " +
+                         (blocker / "soil.msh").string()),
+            std::string::npos)
+      << message;
+  EXPECT_NE(message.find("; check that its folder can be written, or give another path"),
+            std::string::npos)
+      << message;
+}
+
 TEST(FemMshImport, EachMissingGroupIsNamedWithWhatTheFileHasAndTheFix) {
   const fs::path dir = scratch();
   const auto footprints = sleeper_row(3);

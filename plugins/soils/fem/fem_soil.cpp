@@ -95,6 +95,7 @@ class FemSoil final : public rumble::Soil {
                  format(plan_.h_near) + " m, h_max " + format(plan_.h_max) + " m, radius " +
                  format(plan_.radius) + " m)");
       mesh_ = cached_or_new_mesh();
+      if (!settings_.mesh.export_file.empty()) export_mesh(footprints);
     } else {
       MeshFile file = load_mesh_file(settings_, mesh_file_);
       check_mesh_footprints(file, footprints);
@@ -441,6 +442,29 @@ class FemSoil final : public rumble::Soil {
       }
     }
     samples().push(t, row_.data());
+  }
+
+  /// mesh.export: the generated mesh as a .msh that mesh.file reads back.
+  void export_mesh(const std::vector<rumble::Footprint>& footprints) const {
+    std::filesystem::path path(settings_.mesh.export_file);
+    if (path.is_relative()) path = std::filesystem::path(host_.scenario_dir()) / path;
+    path = path.lexically_normal();
+    std::error_code ignored;
+    if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path(), ignored);
+    std::filesystem::remove(path, ignored);  // a file left from before must not pass for this one
+    std::string why;
+    try {
+      rumble::fem::write_mesh_file(mesh_, settings_, footprints, path.string());
+    } catch (const std::exception& e) {
+      why = std::string(" (") + e.what() + ")";
+    }
+    std::error_code error;
+    if (!why.empty() || !std::filesystem::is_regular_file(path, error) ||
+        std::filesystem::file_size(path, error) == 0)
+      throw std::runtime_error("fem: params/mesh/export: could not write the mesh to " +
+                               path.string() + why +
+                               "; check that its folder can be written, or give another path");
+    host_.info("fem: mesh written to " + path.string() + " (mesh.file reads it back)");
   }
 
   void enable_local_steps() {
