@@ -180,8 +180,8 @@ bool ExplicitSolver::enable_local_steps(int substeps) {
   // From the single-rate step up, the damping's lag must leave room for a stabilization
   // (tau_for > 0), so that every step between it and the verified one can be taken.
   if (substeps < 2 || LocalTimeStepping::tau_for(single_rate_step_, a1_) == 0.0) return false;
-  // Each node's Gershgorin bound of M^-1 K, scaled so that the largest is the power
-  // iteration's eigenvalue: a node whose scaled bound exceeds the coarse step's limit is fine.
+  // Each node's Gershgorin bound of M^-1 K, scaled so that the largest is the mesh's largest
+  // eigenvalue: a node whose scaled bound exceeds the coarse step's limit is fine.
   const std::int64_t n = mass_.size();
   std::vector<double> bound(n, 0.0);
   const std::vector<std::int64_t>& start = K_.row_start();

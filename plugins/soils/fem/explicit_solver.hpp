@@ -55,7 +55,8 @@ class ExplicitSolver {
   /// per soil step. Chooses them from each node's Gershgorin bound, the soil step for the least
   /// work per simulated second, and verifies that step by the largest eigenvalue of M^-1 (K_p + S).
   /// Steps at or below single_rate_step() stay single-rate. Returns false (and stays single
-  /// rate) when no longer step was found; substeps < 2 switches it off.
+  /// rate) when no longer step was found; substeps < 2 switches it off. After set_pml (the
+  /// layer's nodes and their neighbours are never fine).
   bool enable_local_steps(int substeps);
   const LocalTimeStepping* local_steps() const { return lts_ ? &*lts_ : nullptr; }
 

@@ -136,6 +136,7 @@ class FemSoil final : public rumble::Soil {
 
   void initialize(double /*t0*/, const double* static_force, double* static_u) override {
     require_layout("initialize");
+    op_->set_threads(host_.threads());  // the statics' products and multigrid set-up use them
     force_static_.assign(static_force, static_force + footprints_.size());
     force_last_ = force_static_;
     spread(force_static_.data(), f_);

@@ -10,7 +10,7 @@
 // - K_p = K on every row that no fine node touches (R(0) = -dt^2 / 2); elsewhere K_p - K is
 //   O(dt^2), so the scheme stays second order;
 // - K_p is symmetric (M (A P)^j A = K (P M^-1 K)^j), so the step keeps a shadow energy and its
-//   stable step comes from the largest eigenvalue of M^-1 K_p, by the same power iteration;
+//   stable step comes from the largest eigenvalue of M^-1 K_p, by the same eigenvalue iteration;
 // - with every node fine, K_p = (2 / dt^2) M (I - Q(A)): while w0 - w1 l >= -1 (l up to
 //   fine_range()), |Q| <= 1 / tau, so dt^2 l(M^-1 K_p) <= 2 (1 + 1 / tau). tau = 1 is the
 //   original LTS, whose resonant modes sit exactly at the stability limit dt^2 l = 4; tau > 1

@@ -16,7 +16,7 @@
 // The mass side is lumped per node (d taken at each tetrahedron's centroid, like the stiffness
 // side): damping and springs on the diagonal, so the step stays explicit. The stiffness side is
 // computed element by element on the PML's tetrahedra (linear tetrahedra: one gradient each), as
-// a correction to K w, so K (the static operator, the stable step's power iteration) stays the
+// a correction to K w, so K (the static operator, the stable step's eigenvalue iteration) stays the
 // elastic one. Memory per PML tetrahedron: 54 doubles; per PML node: 9. Each filter is
 // integrated by the trapezoidal rule with the exact decay (second order).
 // The damping profile is d_i = d0 (distance into the layer along i / thickness)^2 with
