@@ -179,7 +179,10 @@ bool ExplicitSolver::enable_local_steps(int substeps) {
   local_step_ = 0.0;
   // From the single-rate step up, the damping's lag must leave room for a stabilization
   // (tau_for > 0), so that every step between it and the verified one can be taken.
-  if (substeps < 2 || LocalTimeStepping::tau_for(single_rate_step_, a1_) == 0.0) return false;
+  // A matched layer whose own limit is below 1.1 times one rate's leaves nothing to gain.
+  if (substeps < 2 || LocalTimeStepping::tau_for(single_rate_step_, a1_) == 0.0 ||
+      pml_step_ < 1.1 * single_rate_step_)
+    return false;
   // Each node's Gershgorin bound of M^-1 K, scaled so that the largest is the mesh's largest
   // eigenvalue: a node whose scaled bound exceeds the coarse step's limit is fine.
   const std::int64_t n = mass_.size();
@@ -240,7 +243,9 @@ bool ExplicitSolver::enable_local_steps(int substeps) {
   for (double ratio = 1.1; ratio <= substeps + 1e-9; ratio += 0.05) {
     const double dt = ratio * single_rate_step_;
     const double tau = LocalTimeStepping::tau_for(dt, a1_);
-    if (tau == 0.0 || lambda_max > 0.9 * LocalTimeStepping::fine_range(dt, tau, substeps)) break;
+    if (tau == 0.0 || lambda_max > 0.9 * LocalTimeStepping::fine_range(dt, tau, substeps) ||
+        dt > pml_step_)
+      break;
     const double work = (1.0 + (substeps - 1) * extra_work(fine_at(dt))) / dt;
     if (work < 0.95 / single_rate_step_) candidates.emplace_back(work, dt);
   }
