@@ -465,6 +465,22 @@ TEST(FemBadInput, LocalStepsThatCannotHelpSayWhy) {
       << said;
 }
 
+TEST(FemBadInput, LocalStepsUnderAMatchedLayersLimitSayWhy) {
+  // The small box's layer limits the step to 3.4e-4 s, one rate's is 3.1e-4 s: nothing to gain.
+  nlohmann::json p = small_box_with_layer();
+  p["integrator"] = {{"local_steps", 2}};
+  TestSoil soil("fem", p.dump());
+  soil.accept_layout({{0.0, 0.0, 1.0, 1.0}});
+  std::string said;
+  for (const std::string& line : soil.logs())
+    if (line.find("local time stepping") != std::string::npos) said = line;
+  EXPECT_NE(said.find("the matched layer's own limit on the step ("), std::string::npos) << said;
+  EXPECT_NE(said.find("so there is nothing to gain; the soil steps on one rate (a thicker layer "
+                      "or a higher boundary.pml.reflection lifts that limit)"),
+            std::string::npos)
+      << said;
+}
+
 TEST(FemBadInput, AMatchedLayerSaysWhatItNeedsAndWhatItCannotDo) {
   nlohmann::json p = small_box_with_layer();
   p["mesh"]["shape"] = "hemisphere";

@@ -48,6 +48,8 @@ class ExplicitSolver {
   }
   /// The stable step of one rate everywhere [s].
   double single_rate_step() const { return single_rate_step_; }
+  /// The matched layer's own limit on the step [s] (its damping; huge without a layer).
+  double layer_step_limit() const { return pml_step_; }
   double omega_max() const { return omega_max_; }
   int eigen_iterations() const { return eigen_iterations_; }
 

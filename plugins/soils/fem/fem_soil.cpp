@@ -469,14 +469,19 @@ class FemSoil final : public rumble::Soil {
   }
 
   void enable_local_steps() {
-    const double single = op_->stable_step();
+    const double single = op_->single_rate_step(), layer_limit = op_->layer_step_limit();
     std::ostringstream m;
     m << "fem: local time stepping (integrator.local_steps " << settings_.local_steps << "): ";
     const rumble::fem::LocalTimeStepping* lts =
         op_->enable_local_steps(settings_.local_steps) ? op_->local_steps() : nullptr;
     if (lts == nullptr) {
       const double a1 = settings_.damping.stiffness_coefficient();
-      if (rumble::fem::LocalTimeStepping::tau_for(single, a1) == 0.0)
+      if (layer_limit < 1.1 * single)
+        m << "the matched layer's own limit on the step (" << format(layer_limit)
+          << " s) is below 1.1 times one rate's (" << format(single)
+          << " s), so there is nothing to gain; the soil steps on one rate (a thicker layer or a "
+             "higher boundary.pml.reflection lifts that limit)";
+      else if (rumble::fem::LocalTimeStepping::tau_for(single, a1) == 0.0)
         m << "the damping a1 K, taken half a step late, limits the step here (a1 = " << format(a1)
           << " s is " << format(a1 / single, 2) << " of the step " << format(single)
           << " s; local steps need below 0.4): raise damping.f_high or lower damping.ratio to "
