@@ -85,10 +85,11 @@ void LocalTimeStepping::set_step(double dt, double tau) {
   for (int k = 0; k <= p_; ++k) t_[k] = std::cosh(k * c.theta);
 }
 
-void LocalTimeStepping::apply(double* ky) const {
+void LocalTimeStepping::apply(double* forces) const {
   // S_k = s_k(A P) A y with T_k(w0 - w1 l) = T_k(w0) + l s_k(l):
   //   S_0 = 0, S_1 = -w1 g, S_(k+1) = 2 w0 S_k - 2 w1 A P S_k - S_(k-1) - 2 w1 T_k(w0) g,
-  // g = A y; then R(A P) A y = S_p / tau and K_p y = -(2 / dt^2) M S_p / tau.
+  // g = M^-1 forces (A y for K y); then R(A P) g = S_p / tau, and the result is
+  // -(2 / dt^2) M S_p / tau (K_p y for K y).
   const auto halo = static_cast<std::int64_t>(halo_.size());
   double* buffer[3] = {s_prev_.data(), s_cur_.data(), s_next_.data()};
   double* g = g_.data();
@@ -96,7 +97,7 @@ void LocalTimeStepping::apply(double* ky) const {
   for (std::int64_t h = 0; h < halo; ++h)
     for (int c = 0; c < 3; ++c) {
       const std::int64_t k = 3 * h + c;
-      g[k] = inv_mass_[h] * ky[k];
+      g[k] = inv_mass_[h] * forces[k];
       buffer[0][k] = 0.0;
       buffer[1][k] = -w1_ * g[k];
     }
@@ -124,7 +125,7 @@ void LocalTimeStepping::apply(double* ky) const {
   const double scale = -2.0 / (dt_ * dt_ * tau_);
 #pragma omp for schedule(static)
   for (std::int64_t h = 0; h < halo; ++h)
-    for (int c = 0; c < 3; ++c) ky[3 * h + c] = scale * last[3 * h + c] / inv_mass_[h];
+    for (int c = 0; c < 3; ++c) forces[3 * h + c] = scale * last[3 * h + c] / inv_mass_[h];
 }
 
 std::size_t LocalTimeStepping::bytes() const {

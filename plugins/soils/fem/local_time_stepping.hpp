@@ -1,8 +1,9 @@
 // Local time stepping for the explicit step: the stiffest nodes, where a few short elements set
 // the stable step, take p steps of a Chebyshev recurrence inside each soil step, the rest one.
 // This is the leapfrog LTS of Diaz & Grote (SIAM J. Sci. Comput. 31, 2009) in its stabilized
-// form (Grote, Mehlin & Sauter, SIAM J. Numer. Anal. 56, 2018). In operator form the soil step
-// stays the central difference of explicit_solver.hpp with K replaced by
+// form (Grote, Mehlin & Sauter, SIAM J. Numer. Anal. 56, 2018). The soil step stays the central
+// difference of explicit_solver.hpp, its residual K y + S w - f at the fine nodes' halo filtered
+// by apply(), so that in operator form K is replaced by
 //   K_p = -(2 / dt^2) M R(A P) A,   A = M^-1 K,   P the projector on the fine nodes,
 //   R(l) = (Q(l) - 1) / l,   Q(l) = T_p(w0 - w1 l) / tau,   tau = T_p(w0),
 //   w1 = dt^2 tau / (2 T_p'(w0))   (so that Q(l) = 1 - dt^2 l / 2 + O(l^2)).
@@ -53,9 +54,11 @@ class LocalTimeStepping {
   /// A mode with c = dt^2 l / 4 is stable under that lag when c <= 1 / (1 + 2 a1 / dt).
   static double tau_for(double dt, double a1, double margin = 0.9);
 
-  /// ky: K y at the halo nodes (3 per node, in halo() order), replaced by K_p y. Uses orphaned
+  /// forces: a force at the halo nodes [N] (3 per node, in halo() order), replaced by its
+  /// filtered form -(2 / dt^2) M R(A P) M^-1 forces; for K y that is K_p y. The step passes its
+  /// whole residual K y + S w - f, so that a held load settles where K u = f. Uses orphaned
   /// OpenMP loops: inside a parallel region its threads share the work, outside it runs alone.
-  void apply(double* ky) const;
+  void apply(double* forces) const;
 
   std::size_t bytes() const;
 
