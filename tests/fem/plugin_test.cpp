@@ -315,9 +315,7 @@ TEST(FemReceptance, LocalTimeSteppingAgreesWithTheFrequencyDomain) {
   const double f = 25.0, H = 5e-4;
   TestSoil soil("fem", p.dump());
   soil.accept_layout(sleeper_row(3));
-  std::string engaged;
-  for (const std::string& line : soil.logs())
-    if (line.find("local time stepping") != std::string::npos) engaged = line;
+  const std::string engaged = soil.last_log("local time stepping");
   const std::size_t at = engaged.find("take 2 steps per soil step; stable step ");
   ASSERT_NE(at, std::string::npos) << engaged;
   double local_step = 0.0, single_step = 0.0;
@@ -453,9 +451,7 @@ TEST(FemBadInput, LocalStepsThatCannotHelpSayWhy) {
   p["damping"] = {{"ratio", 0.1}};
   TestSoil soil("fem", p.dump());
   soil.accept_layout(sleeper_row(3));
-  std::string said;
-  for (const std::string& line : soil.logs())
-    if (line.find("local time stepping") != std::string::npos) said = line;
+  const std::string said = soil.last_log("local time stepping");
   EXPECT_NE(said.find("the damping a1 K, taken half a step late, limits the step here"),
             std::string::npos)
       << said;
@@ -471,9 +467,7 @@ TEST(FemBadInput, LocalStepsUnderAMatchedLayersLimitSayWhy) {
   p["integrator"] = {{"local_steps", 2}};
   TestSoil soil("fem", p.dump());
   soil.accept_layout({{0.0, 0.0, 1.0, 1.0}});
-  std::string said;
-  for (const std::string& line : soil.logs())
-    if (line.find("local time stepping") != std::string::npos) said = line;
+  const std::string said = soil.last_log("local time stepping");
   EXPECT_NE(said.find("the matched layer's own limit on the step ("), std::string::npos) << said;
   EXPECT_NE(said.find("so there is nothing to gain; the soil steps on one rate (a thicker layer "
                       "or a higher boundary.pml.reflection lifts that limit)"),

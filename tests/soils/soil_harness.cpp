@@ -72,6 +72,12 @@ TestSoil::TestSoil(const std::string& type, const std::string& params_json) : ho
     throw std::runtime_error(std::string("create failed: ") + (error ? error : ""));
 }
 
+std::string TestSoil::last_log(const std::string& text) const {
+  for (auto line = logs_.rbegin(); line != logs_.rend(); ++line)
+    if (line->find(text) != std::string::npos) return *line;
+  return "";
+}
+
 TestSoil::~TestSoil() {
   if (self_ != nullptr) api_->common.destroy(self_);
 }

@@ -69,6 +69,8 @@ class TestSoil {
   rumble_instance* self() const { return self_; }
   /// The messages the soil logged through the host, in order.
   const std::vector<std::string>& logs() const { return logs_; }
+  /// The last logged message containing `text`, or "".
+  std::string last_log(const std::string& text) const;
 
  private:
   void check(rumble_status status, const char* call) const;

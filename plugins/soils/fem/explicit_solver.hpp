@@ -131,6 +131,7 @@ class ExplicitSolver {
   std::vector<std::int32_t> halo_of_;        // per node: its place in lts_->halo(), or -1
   mutable std::vector<double> halo_forces_;  // scratch: the residual at the halo [N]
   mutable Eigen::VectorXd jump_;             // scratch: a filtered force jump [N]
+  mutable bool last_step_local_ = false;     // the last step filtered the halo (force_jump)
 };
 
 }  // namespace rumble::fem
