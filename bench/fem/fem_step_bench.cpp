@@ -52,19 +52,22 @@ double timed_steps(benchmark::State& state, const ExplicitSolver& op, ExplicitSt
 }
 
 /// Medium soil (physics.md §4.1) on a Kuhn box of n^3 cubes; LK dashpots and springs on five
-/// sides, 2 % Rayleigh damping: the step the plugin takes.
+/// sides, 2 % Rayleigh damping: the step the plugin takes, with K read in double (single 0) or
+/// single precision (single 1).
 void BM_ExplicitStep(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
   const int threads = static_cast<int>(state.range(1));
+  const bool single = state.range(2) != 0;
   rumble::fem::FemSettings s;
   s.half_space = {155e6, 0.3, 1800.0};
   const rumble::fem::TetMesh mesh = rumble::fem::kuhn_box(n, 0.164);
   const rumble::fem::TrackRegion centre{0.082 * n, 0.082 * n, 0.082 * n, 0.082 * n};
-  const ExplicitSolver op(rumble::fem::assemble_stiffness(mesh, s),
-                          rumble::fem::lumped_mass(mesh, s),
-                          rumble::fem::absorbing_boundary(mesh, s, centre), true,
-                          std::vector<char>(mesh.node_count(), 0), s.damping.mass_coefficient(),
-                          s.damping.stiffness_coefficient(), static_cast<unsigned>(threads));
+  const ExplicitSolver op(
+      rumble::fem::assemble_stiffness(mesh, s), rumble::fem::lumped_mass(mesh, s),
+      rumble::fem::absorbing_boundary(mesh, s, centre), true,
+      std::vector<char>(mesh.node_count(), 0), s.damping.mass_coefficient(),
+      s.damping.stiffness_coefficient(), static_cast<unsigned>(threads),
+      single ? rumble::fem::StepPrecision::kSingle : rumble::fem::StepPrecision::kDouble);
   const Eigen::Index dofs = op.dofs();
   ExplicitState st{Eigen::VectorXd::Random(dofs) * 1e-6,
                    Eigen::VectorXd::Zero(dofs),
@@ -76,8 +79,8 @@ void BM_ExplicitStep(benchmark::State& state) {
   // written: 8 vectors.
   const auto nnz = static_cast<double>(op.stiffness().nonzeros());
   const auto nodes = static_cast<double>(dofs) / 3.0;
-  const double bytes =
-      8.0 * nnz + 4.0 * nnz / 9.0 + 8.0 * nodes + 8.0 * 8.0 * static_cast<double>(dofs);
+  const double bytes = (single ? 4.0 : 8.0) * nnz + 4.0 * nnz / 9.0 + 8.0 * nodes +
+                       8.0 * 8.0 * static_cast<double>(dofs);
   const double bandwidth = triad_bandwidth(std::max<std::int64_t>(dofs * 8, 1 << 24), threads);
   const double seconds = timed_steps(state, op, st, f, dt);
   const double steps = static_cast<double>(state.iterations());
@@ -92,12 +95,16 @@ void BM_ExplicitStep(benchmark::State& state) {
   state.counters["roofline_fraction"] = steps * bytes / seconds / bandwidth;
 }
 BENCHMARK(BM_ExplicitStep)
-    ->ArgNames({"n", "threads"})
-    ->Args({20, 1})
-    ->Args({20, 2})
-    ->Args({32, 1})
-    ->Args({32, 2})
-    ->Args({46, 2})
+    ->ArgNames({"n", "threads", "single"})
+    ->Args({20, 1, 0})
+    ->Args({20, 2, 0})
+    ->Args({32, 1, 0})
+    ->Args({32, 2, 0})
+    ->Args({46, 2, 0})
+    ->Args({20, 2, 1})
+    ->Args({32, 1, 1})
+    ->Args({32, 2, 1})
+    ->Args({46, 2, 1})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 

@@ -11,7 +11,8 @@ namespace rumble::fem {
 
 ExplicitSolver::ExplicitSolver(CsrMatrix K, Eigen::VectorXd mass,
                                std::vector<BoundaryNode> boundary, bool springs,
-                               std::vector<char> fixed, double a0, double a1, unsigned threads)
+                               std::vector<char> fixed, double a0, double a1, unsigned threads,
+                               StepPrecision precision)
     : K_(std::move(K)),
       mass_(std::move(mass)),
       boundary_(std::move(boundary)),
@@ -24,11 +25,14 @@ ExplicitSolver::ExplicitSolver(CsrMatrix K, Eigen::VectorXd mass,
       y_(Eigen::VectorXd::Zero(3 * mass_.size())) {
   for (std::size_t k = 0; k < boundary_.size(); ++k)
     boundary_of_[boundary_[k].node] = static_cast<std::int32_t>(k);
+  if (precision == StepPrecision::kSingle)
+    single_values_.assign(K_.value().begin(), K_.value().end());  // (rounded to nearest)
   estimate_stable_step();
 }
 
 std::size_t ExplicitSolver::bytes() const {
-  return K_.bytes() + static_cast<std::size_t>(mass_.size()) * (8 + 4 + 1 + 3 * 8) +
+  return K_.bytes() + single_values_.size() * 4 +
+         static_cast<std::size_t>(mass_.size()) * (8 + 4 + 1 + 3 * 8) +
          boundary_.size() * sizeof(BoundaryNode) + (pml_ ? pml_->bytes() : 0) +
          (lts_ ? lts_->bytes() + halo_of_.size() * 4 + halo_forces_.size() * 8 : 0);
 }
@@ -47,12 +51,19 @@ void ExplicitSolver::set_pml(PmlLayer layer) {
 
 void ExplicitSolver::stiffness_times(const Eigen::VectorXd& x, Eigen::VectorXd& y,
                                      bool with_springs) const {
+  times(x, y, with_springs, false);
+}
+
+void ExplicitSolver::times(const Eigen::VectorXd& x, Eigen::VectorXd& y, bool with_springs,
+                           bool stepped) const {
   const std::int64_t n = mass_.size();
   y.resize(x.size());
 #pragma omp parallel for num_threads(threads_) schedule(static)
   for (std::int64_t i = 0; i < n; ++i) {
     if (fixed_[i])
       y[3 * i] = y[3 * i + 1] = y[3 * i + 2] = 0.0;
+    else if (stepped)
+      stepped_rows_dot(i, x.data(), y.data() + 3 * i);
     else
       K_.node_rows_dot(static_cast<std::int32_t>(i), x.data(), y.data() + 3 * i);
     const std::int32_t b = boundary_of_[i];
@@ -130,7 +141,7 @@ double ExplicitSolver::largest_eigenvalue(
 
 void ExplicitSolver::estimate_stable_step() {
   const double lambda = largest_eigenvalue(
-      [this](const Eigen::VectorXd& x, Eigen::VectorXd& y) { stiffness_times(x, y, springs_); },
+      [this](const Eigen::VectorXd& x, Eigen::VectorXd& y) { times(x, y, springs_, true); },
       eigen_iterations_);
   omega_max_ = std::sqrt(1.02 * lambda);  // 2 % margin for what the iteration has not reached
   single_rate_step_ = damped_step(omega_max_, a1_);
@@ -138,7 +149,7 @@ void ExplicitSolver::estimate_stable_step() {
 
 void ExplicitSolver::effective_stiffness_times(const Eigen::VectorXd& x, Eigen::VectorXd& y,
                                                double dt) const {
-  stiffness_times(x, y, springs_);
+  times(x, y, springs_, true);
   if (!lts_ || dt <= single_rate_step_) return;
   prepare_local_steps(dt);
   filter_halo(y.data());
@@ -262,7 +273,7 @@ bool ExplicitSolver::enable_local_steps(int substeps) {
       dt = candidates[next++].second;
       fine = fine_at(dt);
     }
-    lts_.emplace(K_, mass_, fine, fixed_, substeps);
+    lts_.emplace(K_, mass_, fine, fixed_, substeps, precision() == StepPrecision::kSingle);
     halo_of_.assign(n, -1);
     for (std::size_t h = 0; h < lts_->halo().size(); ++h)
       halo_of_[lts_->halo()[h]] = static_cast<std::int32_t>(h);
@@ -333,7 +344,7 @@ void ExplicitSolver::step(ExplicitState& s, const Eigen::VectorXd& f, double dt)
 
 void ExplicitSolver::residual(std::int64_t i, const double* y, const double* w,
                               const Eigen::VectorXd& f, double out[3]) const {
-  K_.node_rows_dot(static_cast<std::int32_t>(i), y, out);
+  stepped_rows_dot(i, y, out);
   if (const std::int32_t b = springs_ ? boundary_of_[i] : -1; b >= 0) {
     const BoundaryNode& node = boundary_[b];
     BoundaryNode::apply(node.normal, node.spring_normal, node.spring_tangential, w + 3 * i, out);
@@ -406,7 +417,7 @@ double ExplicitSolver::kinetic_energy(const ExplicitState& s) const {
 
 double ExplicitSolver::strain_energy(const ExplicitState& s) const {
   Eigen::VectorXd y;
-  stiffness_times(s.w, y, springs_);
+  times(s.w, y, springs_, true);
   return 0.5 * s.w.dot(y);
 }
 

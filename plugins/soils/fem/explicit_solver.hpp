@@ -27,6 +27,11 @@
 
 namespace rumble::fem {
 
+/// How the step streams K: its values rounded to single precision (4 B each, the sums in double)
+/// or in double. Rounding moves each entry by at most 6e-8 of itself, far below the step's
+/// O(dt^2) error; K stays symmetric, so the step keeps its energy (docs/fem-soil.md §4.2).
+enum class StepPrecision { kDouble, kSingle };
+
 struct ExplicitState {
   Eigen::VectorXd w, v, a;  // displacement from the static state [m], velocity, acceleration
   Eigen::VectorXd pml;      // the matched layer's memory variables (pml.hpp); empty: at rest
@@ -35,9 +40,11 @@ struct ExplicitState {
 class ExplicitSolver {
  public:
   /// K: elastic stiffness; mass per node [kg]; boundary blocks (springs used when
-  /// `springs`); fixed: per node, never moves; a0 [1/s], a1 [s]: Rayleigh coefficients.
+  /// `springs`); fixed: per node, never moves; a0 [1/s], a1 [s]: Rayleigh coefficients;
+  /// precision: how the step reads K (the statics and the implicit step read it in double).
   ExplicitSolver(CsrMatrix K, Eigen::VectorXd mass, std::vector<BoundaryNode> boundary,
-                 bool springs, std::vector<char> fixed, double a0, double a1, unsigned threads);
+                 bool springs, std::vector<char> fixed, double a0, double a1, unsigned threads,
+                 StepPrecision precision = StepPrecision::kDouble);
 
   Eigen::Index dofs() const { return 3 * mass_.size(); }
   /// Largest stable step [s]: 2 / omega_max (sqrt(1 + xi^2) - xi), xi = a1 omega_max / 2,
@@ -74,11 +81,15 @@ class ExplicitSolver {
   /// Adds M^-1 df to the acceleration: the external force changed by df at the current time.
   void force_jump(ExplicitState& s, const Eigen::VectorXd& df) const;
 
-  /// y = (K + S) x, filtered by the local steps at the halo at step dt [s] when they act there:
-  /// the effective stiffness K_p of local_time_stepping.hpp (S is zero at the fine nodes).
+  /// y = (K + S) x as the step reads K (its precision), filtered by the local steps at the halo
+  /// at step dt [s] when they act there: the effective stiffness K_p of local_time_stepping.hpp
+  /// (S is zero at the fine nodes).
   void effective_stiffness_times(const Eigen::VectorXd& x, Eigen::VectorXd& y, double dt) const;
-  /// y = K x + S x (the boundary springs when they act): the static operator.
+  /// y = K x + S x (the boundary springs when they act), K in double: the static operator.
   void stiffness_times(const Eigen::VectorXd& x, Eigen::VectorXd& y, bool with_springs) const;
+  StepPrecision precision() const {
+    return single_values_.empty() ? StepPrecision::kDouble : StepPrecision::kSingle;
+  }
   const CsrMatrix& stiffness() const { return K_; }
   const std::vector<BoundaryNode>& boundary() const { return boundary_; }
   const std::vector<char>& fixed() const { return fixed_; }
@@ -88,12 +99,22 @@ class ExplicitSolver {
   /// Threads for the step's loops (the host grants them per run, after the layout).
   void set_threads(unsigned threads) { threads_ = threads < 1 ? 1 : threads; }
   unsigned threads() const { return threads_; }
-  /// Energies of a state [J]: kinetic 1/2 v^T M v and strain 1/2 w^T (K + S) w.
+  /// Energies of a state [J]: kinetic 1/2 v^T M v and strain 1/2 w^T (K + S) w (K as the step
+  /// reads it).
   double kinetic_energy(const ExplicitState& s) const;
   double strain_energy(const ExplicitState& s) const;
 
  private:
   void estimate_stable_step();
+  /// y = K x + S x with K read as the step reads it (stepped) or in double.
+  void times(const Eigen::VectorXd& x, Eigen::VectorXd& y, bool with_springs, bool stepped) const;
+  /// Node i's rows of K times x as the step reads K.
+  void stepped_rows_dot(std::int64_t i, const double* x, double out[3]) const {
+    if (single_values_.empty())
+      K_.node_rows_dot(static_cast<std::int32_t>(i), x, out);
+    else
+      K_.node_rows_dot(static_cast<std::int32_t>(i), single_values_.data(), x, out);
+  }
   /// The largest eigenvalue of M^-1 op over the free DOFs (Lanczos, to 1e-9), from a fixed
   /// pseudo-random start.
   double largest_eigenvalue(const std::function<void(const Eigen::VectorXd&, Eigen::VectorXd&)>& op,
@@ -112,7 +133,8 @@ class ExplicitSolver {
                    double* memory) const;
 
   CsrMatrix K_;
-  Eigen::VectorXd mass_;  // per node [kg]
+  std::vector<float> single_values_;  // K's values rounded, in its layout; empty: double
+  Eigen::VectorXd mass_;              // per node [kg]
   std::vector<BoundaryNode> boundary_;
   std::vector<std::int32_t> boundary_of_;  // per node: index into boundary_, or -1
   bool springs_;

@@ -81,6 +81,7 @@ struct FemSettings {
   bool implicit = false;       // Newmark average acceleration instead of central differences
   double implicit_step = 0.0;  // s, longest implicit sub-step; 0 = 1 / (20 f_max)
   int local_steps = 1;         // explicit: sub-steps of the stiffest nodes per step; 1 = one rate
+  bool single_precision_step = true;  // explicit: the step reads K's values as float
   unsigned mesh_threads = 1;
 
   /// The properties at depth z [m] (>= 0).

@@ -38,6 +38,7 @@
 namespace {
 
 using rumble::fem::ExplicitState;
+using rumble::fem::StepPrecision;
 
 /// Sub-steps in one macro step, at most (as the lumped soils): beyond, a macro step is a mistake.
 constexpr double kMaxSubSteps = 1e9;
@@ -115,7 +116,8 @@ class FemSoil final : public rumble::Soil {
     op_.emplace(assemble_stiffness(mesh_, settings_), lumped_mass(mesh_, settings_),
                 std::move(boundary), settings_.boundary.springs(), std::move(fixed),
                 settings_.damping.mass_coefficient(), settings_.damping.stiffness_coefficient(),
-                host_.threads());
+                host_.threads(),
+                settings_.single_precision_step ? StepPrecision::kSingle : StepPrecision::kDouble);
     if (settings_.boundary.kind == BoundaryKind::kPml)
       op_->set_pml(PmlLayer(mesh_, settings_, pml_profile()));
     if (settings_.local_steps > 1) enable_local_steps();
@@ -519,7 +521,8 @@ class FemSoil final : public rumble::Soil {
       << format(op_->bytes() / 1048576.0) << " MiB ("
       << format(static_cast<double>(op_->bytes()) / op_->dofs(), 3) << " B per DOF); stable step "
       << format(op_->stable_step()) << " s (" << op_->eigen_iterations() << " Lanczos iterations), "
-      << (implicit_ ? "implicit" : "explicit") << " step " << format(max_step()) << " s";
+      << (implicit_ ? "implicit" : "explicit") << " step " << format(max_step()) << " s"
+      << (op_->precision() == StepPrecision::kSingle ? " (K read in single precision)" : "");
     if (plan_.radius > 0.0)  // (0: a user's mesh, whose sizes the soil did not choose)
       m << "; f_max resolved at " << settings_.mesh.elements_per_wavelength
         << " elements per Rayleigh wavelength:";

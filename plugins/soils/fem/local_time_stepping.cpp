@@ -7,7 +7,7 @@ namespace rumble::fem {
 
 LocalTimeStepping::LocalTimeStepping(const CsrMatrix& K, const Eigen::VectorXd& mass,
                                      const std::vector<char>& fine, const std::vector<char>& fixed,
-                                     int substeps)
+                                     int substeps, bool single_precision)
     : p_(substeps), t_(static_cast<std::size_t>(substeps) + 1, 1.0) {
   if (p_ < 2) throw std::invalid_argument("local time stepping needs at least 2 sub-steps");
   const auto n = static_cast<std::int32_t>(mass.size());
@@ -37,7 +37,10 @@ LocalTimeStepping::LocalTimeStepping(const CsrMatrix& K, const Eigen::VectorXd& 
       if (f < 0 || f >= fine_count_) continue;
       column_.push_back(f);
       for (int c = 0; c < 3; ++c)
-        for (int d = 0; d < 3; ++d) block_.push_back(K.block_entry(i, q, c, d));
+        for (int d = 0; d < 3; ++d) {
+          const double k = K.block_entry(i, q, c, d);
+          block_.push_back(single_precision ? static_cast<double>(static_cast<float>(k)) : k);
+        }
     }
     start_.push_back(static_cast<std::int64_t>(column_.size()));
   }

@@ -32,8 +32,10 @@ namespace rumble::fem {
 class LocalTimeStepping {
  public:
   /// fine: per node, takes the p sub-steps (fixed nodes never do). substeps p >= 2.
+  /// single_precision: K's blocks rounded to float, as the step reads them (StepPrecision), so
+  /// that K_p stays symmetric.
   LocalTimeStepping(const CsrMatrix& K, const Eigen::VectorXd& mass, const std::vector<char>& fine,
-                    const std::vector<char>& fixed, int substeps);
+                    const std::vector<char>& fixed, int substeps, bool single_precision = false);
 
   int substeps() const { return p_; }
   std::int64_t fine_nodes() const { return fine_count_; }
