@@ -125,7 +125,7 @@ const char* settings_schema() {
         "duration": {"type": "number", "exclusiveMinimum": 0, "maximum": 60, "default": 2, "description": "impulse: the record of each run [s]; it must outlast the response (warned when the motion in its last tenth exceeds 1 % of its peak)"}
       }
     },
-    "courant": {"type": "number", "exclusiveMinimum": 0, "maximum": 1, "default": 0.8, "description": "the explicit step as a fraction of the stable step 2 / omega_max, omega_max the largest eigenfrequency of the mesh (Lanczos iterations) [-]"}
+    "courant": {"type": "number", "exclusiveMinimum": 0, "maximum": 1, "default": 0.9, "description": "the explicit step as a fraction of the stable step 2 / omega_max, omega_max the largest eigenfrequency of the mesh (Lanczos iterations) [-]"}
   }
 })schema";
   return schema.c_str();

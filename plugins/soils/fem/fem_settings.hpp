@@ -77,7 +77,7 @@ struct FemSettings {
   BoundaryRequest boundary;
   DampingRequest damping;
   ReceptanceRequest receptance;
-  double courant = 0.8;        // explicit step = courant x the stable step from the mesh
+  double courant = 0.9;        // explicit step = courant x the stable step from the mesh
   bool implicit = false;       // Newmark average acceleration instead of central differences
   double implicit_step = 0.0;  // s, longest implicit sub-step; 0 = 1 / (20 f_max)
   int local_steps = 1;         // explicit: sub-steps of the stiffest nodes per step; 1 = one rate
