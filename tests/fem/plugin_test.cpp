@@ -503,6 +503,20 @@ TEST(FemBadInput, LocalStepsUnderAMatchedLayersLimitSayWhy) {
       << said;
 }
 
+TEST(FemBadInput, AMatchedLayersSettingsUnderAnotherBoundaryAreRefused) {
+  // They would be ignored. The layer's defaults themselves (which the engine fills in) pass.
+  nlohmann::json p = small_stiff_soil();
+  p["boundary"]["pml"] = {{"thickness", 2.0}};
+  EXPECT_EQ(creation_error("fem", p.dump()),
+            "fem: params/boundary/pml: sets the perfectly matched layer, but boundary.type is "
+            "\"viscous_spring\"; set boundary.type \"pml\" or drop boundary.pml, got "
+            "{\"thickness\":2.0}");
+  p["boundary"]["pml"] = {{"reflection", 0.01}, {"elements", 12}};
+  EXPECT_NE(creation_error("fem", p.dump()), "");
+  p["boundary"]["pml"] = {{"reflection", 0.01}, {"elements", 8}};
+  EXPECT_EQ(creation_error("fem", p.dump()), "");
+}
+
 TEST(FemBadInput, AMatchedLayerSaysWhatItNeedsAndWhatItCannotDo) {
   nlohmann::json p = small_box_with_layer();
   p["mesh"]["shape"] = "hemisphere";

@@ -189,9 +189,20 @@ FemSettings read_settings(const std::string& params_json) {
                     : kind == "pml"     ? BoundaryKind::kPml
                                         : BoundaryKind::kViscousSpring;
   const nlohmann::json pml = boundary.value("pml", nlohmann::json::object());
+  const BoundaryRequest defaults;
   s.boundary.pml_thickness = read(pml, "thickness", 0.5 * m.radius);
-  s.boundary.pml_reflection = read(pml, "reflection", s.boundary.pml_reflection);
-  s.boundary.pml_elements = read(pml, "elements", s.boundary.pml_elements);
+  s.boundary.pml_reflection = read(pml, "reflection", defaults.pml_reflection);
+  s.boundary.pml_elements = read(pml, "elements", defaults.pml_elements);
+  // A layer's settings under another boundary would be ignored: refused. (The engine fills in
+  // reflection's and elements' defaults, so only values other than those tell that they were
+  // set; thickness has none.)
+  if (s.boundary.kind != BoundaryKind::kPml &&
+      (pml.contains("thickness") || s.boundary.pml_reflection != defaults.pml_reflection ||
+       s.boundary.pml_elements != defaults.pml_elements))
+    throw std::invalid_argument(
+        "fem: params/boundary/pml: sets the perfectly matched layer, but "
+        "boundary.type is \"" +
+        kind + "\"; set boundary.type \"pml\" or drop boundary.pml, got " + pml.dump());
   s.boundary.alpha_normal = read(boundary, "alpha_normal", s.boundary.alpha_normal);
   s.boundary.alpha_tangential = read(boundary, "alpha_tangential", s.boundary.alpha_tangential);
 
