@@ -126,8 +126,9 @@ struct AmgPreconditioner::Coarse {
   Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> llt;
 };
 
-AmgPreconditioner::AmgPreconditioner(const LongSparse& a, const Eigen::Matrix3Xd& nodes)
-    : coarse_(std::make_unique<Coarse>()) {
+AmgPreconditioner::AmgPreconditioner(const LongSparse& a, const Eigen::Matrix3Xd& nodes,
+                                     Product fine_product)
+    : coarse_(std::make_unique<Coarse>()), fine_product_(std::move(fine_product)) {
   if (a.rows() != 3 * nodes.cols())
     throw std::invalid_argument("AmgPreconditioner: the matrix is not 3 DOFs per node");
   RowSparse A = full_from_lower(a);
@@ -202,18 +203,22 @@ AmgPreconditioner::AmgPreconditioner(const LongSparse& a, const Eigen::Matrix3Xd
     throw std::runtime_error(
         "fem: the static stiffness is not positive definite (multigrid's coarsest level); the "
         "mesh floats: give the boundary springs or a fixed boundary");
+  fine_rows_ = levels_.front().A.rows();
+  fine_nonzeros_ = levels_.front().A.nonZeros();
+  if (fine_product_ && levels_.size() > 1) levels_.front().A = RowSparse();  // (the product's)
 }
 
 AmgPreconditioner::~AmgPreconditioner() = default;
 
 Eigen::Index AmgPreconditioner::dofs(int level) const {
-  return levels_.at(static_cast<std::size_t>(level)).A.rows();
+  return level == 0 ? fine_rows_ : levels_.at(static_cast<std::size_t>(level)).A.rows();
 }
 
 double AmgPreconditioner::operator_complexity() const {
-  double total = 0.0;
-  for (const Level& L : levels_) total += static_cast<double>(L.A.nonZeros());
-  return total / static_cast<double>(levels_.front().A.nonZeros());
+  double total = static_cast<double>(fine_nonzeros_);
+  for (std::size_t l = 1; l < levels_.size(); ++l)
+    total += static_cast<double>(levels_[l].A.nonZeros());
+  return total / static_cast<double>(fine_nonzeros_);
 }
 
 void AmgPreconditioner::cycle(std::size_t l) const {
@@ -222,13 +227,19 @@ void AmgPreconditioner::cycle(std::size_t l) const {
     L.x = coarse_->llt.solve(L.b);
     return;
   }
-  const auto smooth = [&L] {
-    L.r.noalias() = L.A * L.x;
+  const auto residual_product = [&] {  // L.r = A x
+    if (l == 0 && fine_product_)
+      fine_product_(L.x, L.r);
+    else
+      L.r.noalias() = L.A * L.x;
+  };
+  const auto smooth = [&] {
+    residual_product();
     L.x.array() += L.scaled_inverse_diagonal.array() * (L.b - L.r).array();
   };
   L.x = L.scaled_inverse_diagonal.cwiseProduct(L.b);  // the first sweep, from x = 0
   for (int s = 1; s < kSweeps; ++s) smooth();
-  L.r.noalias() = L.A * L.x;
+  residual_product();
   const Level& C = levels_[l + 1];
   L.r = L.b - L.r;
   C.b.noalias() = L.R * L.r;

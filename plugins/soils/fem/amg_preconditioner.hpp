@@ -18,6 +18,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -27,10 +28,18 @@ namespace rumble::fem {
 
 class AmgPreconditioner {
  public:
+  /// y = A x on the mesh's level, by another kernel than Eigen's scalar rows.
+  using Product = std::function<void(const Eigen::VectorXd&, Eigen::VectorXd&)>;
+
   /// a: the lower triangle of a symmetric positive definite matrix over 3 DOFs per node (as
   /// lower_combination gives); nodes: their coordinates [m] (3 x nodes). Rows that are
-  /// identity (fixed DOFs) are handled: the rigid-body modes vanish there.
-  AmgPreconditioner(const LongSparse& a, const Eigen::Matrix3Xd& nodes);
+  /// identity (fixed DOFs) are handled: the rigid-body modes vanish there. fine_product, when
+  /// given, takes the V-cycle's products on the mesh's level (ExplicitSolver's threaded block
+  /// rows, with K in the step's precision: a symmetric operator within 6e-8 of A, which keeps
+  /// the V-cycle a fixed symmetric preconditioner); that level's own copy of A is then freed
+  /// after the set-up. It must agree with A on the free DOFs and give 0 or x on fixed ones
+  /// (their residual, and so their correction, is 0 either way).
+  AmgPreconditioner(const LongSparse& a, const Eigen::Matrix3Xd& nodes, Product fine_product = {});
   ~AmgPreconditioner();
   AmgPreconditioner(const AmgPreconditioner&) = delete;
   AmgPreconditioner& operator=(const AmgPreconditioner&) = delete;
@@ -57,6 +66,8 @@ class AmgPreconditioner {
 
   std::vector<Level> levels_;
   std::unique_ptr<Coarse> coarse_;
+  Product fine_product_;                            // empty: level 0 uses its A
+  Eigen::Index fine_rows_ = 0, fine_nonzeros_ = 0;  // level 0's A, kept when A is freed
 };
 
 }  // namespace rumble::fem

@@ -87,6 +87,12 @@ class ExplicitSolver {
   void effective_stiffness_times(const Eigen::VectorXd& x, Eigen::VectorXd& y, double dt) const;
   /// y = K x + S x (the boundary springs when they act), K in double: the static operator.
   void stiffness_times(const Eigen::VectorXd& x, Eigen::VectorXd& y, bool with_springs) const;
+  /// The same with K in the step's precision (no local steps' filter): the multigrid smoother's
+  /// product on the mesh (static_solver.cpp), threaded and reading half the bytes.
+  void stepped_stiffness_times(const Eigen::VectorXd& x, Eigen::VectorXd& y,
+                               bool with_springs) const {
+    times(x, y, with_springs, true);
+  }
   StepPrecision precision() const {
     return single_values_.empty() ? StepPrecision::kDouble : StepPrecision::kSingle;
   }

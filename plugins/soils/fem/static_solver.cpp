@@ -44,7 +44,10 @@ Eigen::VectorXd StaticSolver::conjugate_gradients(const Eigen::VectorXd& f) {
   const Eigen::Index n = f.size();
   if (preconditioner_ == CgPreconditioner::kMultigrid && !multigrid_)
     multigrid_ = std::make_unique<AmgPreconditioner>(
-        lower_combination(op_, {.stiffness = 1.0, .springs = true}), nodes_);
+        lower_combination(op_, {.stiffness = 1.0, .springs = true}), nodes_,
+        [this](const Eigen::VectorXd& x, Eigen::VectorXd& y) {
+          op_.stepped_stiffness_times(x, y, true);
+        });
   if (diagonal_.size() != n) {  // Jacobi preconditioner: the diagonal of K + S
     const CsrMatrix& K = op_.stiffness();
     diagonal_ = Eigen::VectorXd::Zero(n);
