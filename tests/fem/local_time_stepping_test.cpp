@@ -10,6 +10,7 @@
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
 #include "absorbing_boundary.hpp"
@@ -174,6 +175,24 @@ INSTANTIATE_TEST_SUITE_P(BothPrecisions, LocalTimeSteppingPrecision,
                          [](const auto& param_info) {
                            return param_info.param == StepPrecision::kSingle ? "single" : "double";
                          });
+
+TEST(LocalTimeStepping, FitsItsStepToTheMacroStep) {
+  // With a macro step H the soil takes whole sub-steps of at most courant x the stable step; the
+  // local steps' candidates are the steps that make fewer of them. H here makes 4 on one rate
+  // (3.996 x courant x one rate's step), so the chosen step must give 3 or 2 (1 would need 4
+  // times one rate's step, beyond p = 3), exactly: courant x step x count = H. Stable at H /
+  // count with the damping (as the test below).
+  const TetMesh m = box_with_inclusion();
+  ExplicitSolver op = solver(m, 6.06e-5);
+  const double single = op.single_rate_step(), courant = 0.9, H = 3.996 * courant * single;
+  ASSERT_TRUE(op.enable_local_steps(3, H, courant));
+  const double count = std::ceil(H / (courant * op.stable_step()) - 1e-9);
+  EXPECT_LE(count, 3.0);
+  EXPECT_NEAR(courant * op.stable_step() * count, H, 1e-12 * H);
+  EXPECT_LT(test::growth_from_random_state(op, H / count, 2000), 1.05);
+  std::printf("[ measured ] %g sub-steps per macro step instead of 4 (step x%.3f)\n", count,
+              op.stable_step() / single);
+}
 
 TEST(LocalTimeStepping, ALongerStepThatStaysStableWithAndWithoutDamping) {
   // The inclusion's c_p is 2.45 times the box's, so one rate is limited by it; with 3 sub-steps

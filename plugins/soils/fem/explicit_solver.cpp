@@ -182,7 +182,7 @@ void ExplicitSolver::prepare_local_steps(double dt) const {
   lts_->set_step(dt, tau);
 }
 
-bool ExplicitSolver::enable_local_steps(int substeps) {
+bool ExplicitSolver::enable_local_steps(int substeps, double macro_step, double courant) {
   lts_.reset();
   halo_of_.clear();
   local_step_ = 0.0;
@@ -224,12 +224,12 @@ bool ExplicitSolver::enable_local_steps(int substeps) {
       if (pml_->layer_node(nb[q]) >= 0) may_be_fine[i] = 0;
   }
   constexpr double kSafety = 0.7;  // a node is fine above this share of the coarse limit
-  const auto fine_at = [&](double dt) {
+  const auto fine_at = [&](double dt, double safety) {
     // The coarse nodes' limit: c = dt^2 l / 4 <= 0.9 / (1 + 2 a1 / dt) (tau_for's margin).
     const double coarse_limit = 4.0 / (dt * dt) * 0.9 / (1.0 + 2.0 * a1_ / dt);
     std::vector<char> fine(n, 0);
     for (std::int64_t i = 0; i < n; ++i)
-      fine[i] = may_be_fine[i] && scale * bound[i] > kSafety * coarse_limit;
+      fine[i] = may_be_fine[i] && scale * bound[i] > safety * coarse_limit;
     return fine;
   };
   // The work of one extra sub-step relative to a pass over K: its product reads K's blocks at
@@ -248,30 +248,56 @@ bool ExplicitSolver::enable_local_steps(int substeps) {
     }
     return static_cast<double>(halo_blocks) / static_cast<double>(blocks);
   };
-  // Candidate steps by their estimated work per simulated second.
-  std::vector<std::pair<double, double>> candidates;  // (work, step)
-  for (double ratio = 1.1; ratio <= substeps + 1e-9; ratio += 0.05) {
-    const double dt = ratio * single_rate_step_;
+  // A step the local steps can take: its stabilization exists, the fine nodes' spectrum fits
+  // the recurrence, and the matched layer allows it.
+  const auto feasible = [&](double dt) {
     const double tau = LocalTimeStepping::tau_for(dt, a1_);
-    if (tau == 0.0 || lambda_max > 0.9 * LocalTimeStepping::fine_range(dt, tau, substeps) ||
-        dt > pml_step_)
-      break;
-    const double work = (1.0 + (substeps - 1) * extra_work(fine_at(dt))) / dt;
-    if (work < 0.95 / single_rate_step_) candidates.emplace_back(work, dt);
+    return tau > 0.0 && lambda_max <= 0.9 * LocalTimeStepping::fine_range(dt, tau, substeps) &&
+           dt <= pml_step_;
+  };
+  struct Candidate {
+    double work, step, safety;
+  };
+  std::vector<Candidate> candidates;
+  if (macro_step > 0.0) {
+    // Work per macro step: n sub-steps, each a pass over K plus the extra sub-steps' share,
+    // against one rate's count. Each n is tried with the usual guess of the fine nodes and with
+    // a wider one (nodes above half their limit), which a step just above what the usual guess
+    // verifies may need.
+    const auto single_count = std::ceil(macro_step / (courant * single_rate_step_) - 1e-9);
+    for (double count = single_count - 1.0; count >= 1.0; count -= 1.0) {
+      const double dt = macro_step / (count * courant);  // (grows as count falls)
+      if (dt < 1.1 * single_rate_step_) continue;
+      if (!feasible(dt)) break;
+      for (const double safety : {kSafety, 0.5}) {
+        const double work = count * (1.0 + (substeps - 1) * extra_work(fine_at(dt, safety)));
+        if (work < 0.95 * single_count) candidates.push_back({work, dt, safety});
+      }
+    }
+  } else {  // work per simulated second, for steps from 1.1 to p times one rate's
+    for (double ratio = 1.1; ratio <= substeps + 1e-9; ratio += 0.05) {
+      const double dt = ratio * single_rate_step_;
+      if (!feasible(dt)) break;
+      const double work = (1.0 + (substeps - 1) * extra_work(fine_at(dt, kSafety))) / dt;
+      if (work < 0.95 / single_rate_step_) candidates.push_back({work, dt, kSafety});
+    }
   }
-  std::sort(candidates.begin(), candidates.end());
+  std::sort(candidates.begin(), candidates.end(),
+            [](const Candidate& a, const Candidate& b) { return a.work < b.work; });
   // Verify by the largest eigenvalue of M^-1 (K_p + S): the bound only guesses which nodes are
   // stiff. When a step fails by a little (a coarse node a little too stiff for it), the same fine
-  // nodes are verified again at 97 % of the step the iteration allows; else the next candidate.
-  constexpr int kTries = 3;
+  // nodes are verified again at 97 % of the step the iteration allows (not for a macro step's
+  // candidates, whose steps are exact: the next one is tried); else the next candidate.
+  const int tries = macro_step > 0.0 ? 4 : 3;
   std::size_t next = 0;
   double dt = 0.0;
   std::vector<char> fine;
-  for (int t = 0; t < kTries; ++t) {
+  for (int t = 0; t < tries; ++t) {
     if (dt == 0.0) {
       if (next == candidates.size()) break;
-      dt = candidates[next++].second;
-      fine = fine_at(dt);
+      dt = candidates[next].step;
+      fine = fine_at(dt, candidates[next].safety);
+      ++next;
     }
     lts_.emplace(K_, mass_, fine, fixed_, substeps, precision() == StepPrecision::kSingle);
     halo_of_.assign(n, -1);
@@ -286,7 +312,7 @@ bool ExplicitSolver::enable_local_steps(int substeps) {
     eigen_iterations_ += iterations;
     const double allowed = damped_step(std::sqrt(1.02 * mu), a1_);
     if (dt <= allowed) return true;
-    dt = 0.97 * allowed > 1.05 * single_rate_step_ ? 0.97 * allowed : 0.0;
+    dt = macro_step == 0.0 && 0.97 * allowed > 1.05 * single_rate_step_ ? 0.97 * allowed : 0.0;
   }
   lts_.reset();
   halo_of_.clear();

@@ -63,10 +63,13 @@ class ExplicitSolver {
   /// Local time stepping (local_time_stepping.hpp): the stiffest nodes take `substeps` steps
   /// per soil step. Chooses them from each node's Gershgorin bound, the soil step for the least
   /// work per simulated second, and verifies that step by the largest eigenvalue of M^-1 (K_p + S).
+  /// With macro_step H > 0 [s] the soil steps H in whole sub-steps of at most courant x the
+  /// stable step: the candidates are then the steps that make n sub-steps, H / (n courant), for
+  /// each n below one rate's count, ranked by their work per macro step.
   /// Steps at or below single_rate_step() stay single-rate. Returns false (and stays single
   /// rate) when no longer step was found; substeps < 2 switches it off. After set_pml (the
   /// layer's nodes and their neighbours are never fine).
-  bool enable_local_steps(int substeps);
+  bool enable_local_steps(int substeps, double macro_step = 0.0, double courant = 1.0);
   const LocalTimeStepping* local_steps() const { return lts_ ? &*lts_ : nullptr; }
 
   /// Adds a perfectly matched layer on the mesh's outer tetrahedra.

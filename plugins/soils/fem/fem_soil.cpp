@@ -120,7 +120,7 @@ class FemSoil final : public rumble::Soil {
                 settings_.single_precision_step ? StepPrecision::kSingle : StepPrecision::kDouble);
     if (settings_.boundary.kind == BoundaryKind::kPml)
       op_->set_pml(PmlLayer(mesh_, settings_, pml_profile()));
-    if (settings_.local_steps > 1) enable_local_steps();
+    local_steps_chosen_ = false;  // (at the first macro step, whose length they are fitted to)
     statics_ = std::make_unique<StaticSolver>(*op_, mesh_.nodes);
     implicit_.reset();
     if (settings_.implicit)
@@ -155,6 +155,10 @@ class FemSoil final : public rumble::Soil {
   void advance(double t, double H, const rumble::Waveform& force) override {
     require_layout("advance");
     op_->set_threads(host_.threads());  // granted with the run context, after the layout
+    if (settings_.local_steps > 1 && !implicit_ && !local_steps_chosen_) {
+      enable_local_steps(H);
+      local_steps_chosen_ = true;
+    }
     // Counted in floating point first: a macro step far beyond the soil's step must not overflow
     // the count (any H is cut into equal sub-steps; only their number is bounded).
     const double count = std::ceil(H / max_step() - 1e-9);
@@ -470,12 +474,17 @@ class FemSoil final : public rumble::Soil {
     host_.info("fem: mesh written to " + path.string() + " (mesh.file reads it back)");
   }
 
-  void enable_local_steps() {
+  /// Chooses the local steps for macro steps of H [s] (the first one's: later changes of H keep
+  /// them, stable at any shorter step) and logs the choice or why there is none.
+  void enable_local_steps(double H) {
     const double single = op_->single_rate_step(), layer_limit = op_->layer_step_limit();
     std::ostringstream m;
     m << "fem: local time stepping (integrator.local_steps " << settings_.local_steps << "): ";
+    const auto start = std::chrono::steady_clock::now();
     const rumble::fem::LocalTimeStepping* lts =
-        op_->enable_local_steps(settings_.local_steps) ? op_->local_steps() : nullptr;
+        op_->enable_local_steps(settings_.local_steps, H, settings_.courant) ? op_->local_steps()
+                                                                             : nullptr;
+    const double seconds = seconds_since(start);
     if (lts == nullptr) {
       const double a1 = settings_.damping.stiffness_coefficient();
       if (layer_limit < 1.1 * single)
@@ -490,8 +499,10 @@ class FemSoil final : public rumble::Soil {
              "lower a1, or set local_steps 1";
       else
         m << "no step longer than one rate's " << format(single)
-          << " s pays on this mesh (too many nodes would have to be fine); the soil steps on one "
-             "rate (set local_steps 1 to skip this search)";
+          << " s that makes fewer sub-steps of the macro step " << format(H)
+          << " s pays on this mesh (too many nodes would have to be fine, or the step needed is "
+             "beyond local_steps times one rate's); the soil steps on one rate (set local_steps 1 "
+             "to skip this search)";
       host_.warn(m.str());
       return;
     }
@@ -500,7 +511,10 @@ class FemSoil final : public rumble::Soil {
       << mesh_.node_count() << "; " << lts->halo().size() << " with their neighbours) take "
       << lts->substeps() << " steps per soil step; stable step " << format(op_->stable_step())
       << " s against " << format(single) << " s on one rate (x"
-      << format(op_->stable_step() / single, 3) << ")";
+      << format(op_->stable_step() / single, 3) << "): " << std::ceil(H / max_step() - 1e-9)
+      << " sub-steps per macro step of " << format(H) << " s instead of "
+      << std::ceil(H / (settings_.courant * single) - 1e-9) << " (chosen in " << format(seconds, 2)
+      << " s)";
     host_.info(m.str());
   }
 
@@ -572,6 +586,7 @@ class FemSoil final : public rumble::Soil {
   std::vector<double> row_;
   double sample_interval_ = 0.0, next_sample_ = -1.0;  // s
   double reported_macro_step_ = -1.0;                  // s: the stepping is logged per H
+  bool local_steps_chosen_ = false;                    // integrator.local_steps: at the first H
   std::array<Checkpoint, RUMBLE_CHECKPOINT_SLOTS> checkpoints_;
 };
 
