@@ -86,6 +86,8 @@ void expect_multigrid_agrees_and_beats_jacobi(bool fixed_bottom,
   jacobi.solve(f);
   ASSERT_NE(multigrid.multigrid(), nullptr);
   EXPECT_GE(multigrid.multigrid()->levels(), 2);
+  EXPECT_GT(multigrid.multigrid_setup_seconds(), 0.0);  // (the soil logs it)
+  EXPECT_EQ(factor.multigrid_setup_seconds(), 0.0);
   testing::Test::RecordProperty("multigrid_levels", multigrid.multigrid()->levels());
   testing::Test::RecordProperty("cg_iterations_multigrid", multigrid.last_cg_iterations());
   testing::Test::RecordProperty("cg_iterations_jacobi", jacobi.last_cg_iterations());

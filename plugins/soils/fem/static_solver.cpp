@@ -1,5 +1,6 @@
 #include "static_solver.hpp"
 
+#include <chrono>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -42,12 +43,16 @@ Eigen::VectorXd StaticSolver::solve(const Eigen::VectorXd& f) {
 
 Eigen::VectorXd StaticSolver::conjugate_gradients(const Eigen::VectorXd& f) {
   const Eigen::Index n = f.size();
-  if (preconditioner_ == CgPreconditioner::kMultigrid && !multigrid_)
+  if (preconditioner_ == CgPreconditioner::kMultigrid && !multigrid_) {
+    const auto start = std::chrono::steady_clock::now();
     multigrid_ = std::make_unique<AmgPreconditioner>(
         lower_combination(op_, {.stiffness = 1.0, .springs = true}), nodes_,
         [this](const Eigen::VectorXd& x, Eigen::VectorXd& y) {
           op_.stepped_stiffness_times(x, y, true);
         });
+    multigrid_seconds_ =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
   if (diagonal_.size() != n) {  // Jacobi preconditioner: the diagonal of K + S
     const CsrMatrix& K = op_.stiffness();
     diagonal_ = Eigen::VectorXd::Zero(n);

@@ -37,6 +37,8 @@ class StaticSolver {
   Eigen::VectorXd solve(const Eigen::VectorXd& f);
   bool factored() const { return factor_ != nullptr; }
   int last_cg_iterations() const { return cg_iterations_; }
+  /// Seconds the multigrid hierarchy took to build (0 before, or with the factor or Jacobi).
+  double multigrid_setup_seconds() const { return multigrid_seconds_; }
   /// The multigrid hierarchy once CG has built it, else null.
   const AmgPreconditioner* multigrid() const { return multigrid_.get(); }
 
@@ -54,6 +56,7 @@ class StaticSolver {
   std::unique_ptr<AmgPreconditioner> multigrid_;
   Eigen::VectorXd diagonal_, last_;  // CG: the Jacobi preconditioner; the last solution
   int cg_iterations_ = 0;
+  double multigrid_seconds_ = 0.0;
 };
 
 }  // namespace rumble::fem
