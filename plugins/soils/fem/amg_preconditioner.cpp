@@ -107,12 +107,16 @@ std::pair<std::vector<std::int32_t>, std::int32_t> aggregate(
 
 /// Largest eigenvalue of D^-1 A by power iteration, with a 10 % margin (an underestimate would
 /// make the damped Jacobi steps amplify the top of the spectrum).
-double largest_eigenvalue(const RowSparse& A, const Eigen::VectorXd& inverse_diagonal) {
-  Eigen::VectorXd x = Eigen::VectorXd::Ones(A.rows()), y(A.rows());
+/// times: y = A x.
+double largest_eigenvalue(
+    const std::function<void(const Eigen::VectorXd&, Eigen::VectorXd&)>& times,
+    const Eigen::VectorXd& inverse_diagonal) {
+  const Eigen::Index n = inverse_diagonal.size();
+  Eigen::VectorXd x = Eigen::VectorXd::Ones(n), y(n);
   for (Eigen::Index i = 0; i < x.size(); i += 7) x[i] = -0.5;  // not an eigenvector by chance
   double lambda = 0.0;
   for (int k = 0; k < 20; ++k) {
-    y.noalias() = A * x;
+    times(x, y);
     y.array() *= inverse_diagonal.array();
     lambda = y.norm() / x.norm();
     x = y / y.norm();
@@ -180,7 +184,16 @@ AmgPreconditioner::AmgPreconditioner(const LongSparse& a, const Eigen::Matrix3Xd
     if (nc == 0 || nc > n * 7 / 10) break;  // no coarsening left: factor this level
 
     Eigen::VectorXd inverse_diagonal = L.A.diagonal().cwiseInverse();
-    const double lambda = largest_eigenvalue(L.A, inverse_diagonal);
+    // (On the mesh's level by the fine product where there is one: the same operator as the
+    // smoother's, threaded.)
+    const double lambda = largest_eigenvalue(
+        [&](const Eigen::VectorXd& x, Eigen::VectorXd& y) {
+          if (levels_.size() == 1 && fine_product_)
+            fine_product_(x, y);
+          else
+            y.noalias() = L.A * x;
+        },
+        inverse_diagonal);
     L.scaled_inverse_diagonal = (4.0 / 3.0 / lambda) * inverse_diagonal;
     RowSparse P0(n, nc);
     P0.setFromTriplets(p0.begin(), p0.end());
