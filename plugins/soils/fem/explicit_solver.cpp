@@ -150,7 +150,7 @@ void ExplicitSolver::estimate_stable_step() {
 void ExplicitSolver::effective_stiffness_times(const Eigen::VectorXd& x, Eigen::VectorXd& y,
                                                double dt) const {
   times(x, y, springs_, true);
-  if (!lts_ || dt <= single_rate_step_) return;
+  if (!lts_ || dt <= one_rate_limit_) return;
   prepare_local_steps(dt);
   filter_halo(y.data());
 }
@@ -187,10 +187,13 @@ bool ExplicitSolver::enable_local_steps(int substeps, double macro_step, double 
   halo_of_.clear();
   local_step_ = 0.0;
   last_step_local_ = false;
-  // From the single-rate step up, the damping's lag must leave room for a stabilization
-  // (tau_for > 0), so that every step between it and the verified one can be taken.
+  // Steps up to courant x one rate's stable step are taken on one rate, within the caller's
+  // margin; longer ones with the local steps, within the same margin of the verified step.
+  one_rate_limit_ = courant * single_rate_step_;
+  // From there up, the damping's lag must leave room for a stabilization (tau_for > 0), so that
+  // every step between it and the verified one can be taken.
   // A matched layer whose own limit is below 1.1 times one rate's leaves nothing to gain.
-  if (substeps < 2 || LocalTimeStepping::tau_for(single_rate_step_, a1_) == 0.0 ||
+  if (substeps < 2 || LocalTimeStepping::tau_for(one_rate_limit_, a1_) == 0.0 ||
       pml_step_ < 1.1 * single_rate_step_)
     return false;
   // Each node's Gershgorin bound of M^-1 K, scaled so that the largest is the mesh's largest
@@ -330,7 +333,7 @@ void ExplicitSolver::step(ExplicitState& s, const Eigen::VectorXd& f, double dt)
   if (pml_ && s.pml.size() != pml_->memory_size())
     s.pml = Eigen::VectorXd::Zero(pml_->memory_size());
   double* memory = pml_ ? s.pml.data() : nullptr;
-  const bool local = lts_ && dt > single_rate_step_;
+  const bool local = lts_ && dt > one_rate_limit_;
   if (local) prepare_local_steps(dt);
   last_step_local_ = local;
 #pragma omp parallel num_threads(threads_)

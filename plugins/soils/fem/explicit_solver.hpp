@@ -66,7 +66,8 @@ class ExplicitSolver {
   /// With macro_step H > 0 [s] the soil steps H in whole sub-steps of at most courant x the
   /// stable step: the candidates are then the steps that make n sub-steps, H / (n courant), for
   /// each n below one rate's count, ranked by their work per macro step.
-  /// Steps at or below single_rate_step() stay single-rate. Returns false (and stays single
+  /// Steps at or below courant x single_rate_step() stay single-rate (so a step between that
+  /// and one rate's limit keeps the caller's margin). Returns false (and stays single
   /// rate) when no longer step was found; substeps < 2 switches it off. After set_pml (the
   /// layer's nodes and their neighbours are never fine).
   bool enable_local_steps(int substeps, double macro_step = 0.0, double courant = 1.0);
@@ -151,8 +152,9 @@ class ExplicitSolver {
   double a0_, a1_;
   unsigned threads_;
   double omega_max_ = 0.0, single_rate_step_ = 0.0;
-  double local_step_ = 0.0;  // verified with local time stepping [s]; 0: off
-  double pml_step_ = 1e300;  // the matched layer's own limit [s]
+  double local_step_ = 0.0;      // verified with local time stepping [s]; 0: off
+  double one_rate_limit_ = 0.0;  // [s] longer steps are local ones (enable_local_steps)
+  double pml_step_ = 1e300;      // the matched layer's own limit [s]
   int eigen_iterations_ = 0;
   mutable Eigen::VectorXd y_;  // scratch: w + a1 v+
   std::optional<PmlLayer> pml_;
