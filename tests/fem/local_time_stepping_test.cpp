@@ -190,6 +190,15 @@ TEST(LocalTimeStepping, FitsItsStepToTheMacroStep) {
   EXPECT_LE(count, 3.0);
   EXPECT_NEAR(courant * op.stable_step() * count, H, 1e-12 * H);
   EXPECT_LT(test::growth_from_random_state(op, H / count, 2000), 1.05);
+  // Steps above courant x one rate's are local (filtered at the halo), so that one between it
+  // and one rate's limit keeps the caller's margin; below it, K itself.
+  const Eigen::VectorXd x = random_field(m.dof_count(), 8);
+  Eigen::VectorXd plain, below, above;
+  op.effective_stiffness_times(x, plain, 0.5 * single);
+  op.effective_stiffness_times(x, below, 0.85 * single);
+  op.effective_stiffness_times(x, above, 0.95 * single);
+  EXPECT_EQ(below, plain);
+  EXPECT_GT((above - plain).norm(), 1e-6 * plain.norm());
   std::printf("[ measured ] %g sub-steps per macro step instead of 4 (step x%.3f)\n", count,
               op.stable_step() / single);
 }

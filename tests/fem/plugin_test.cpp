@@ -106,9 +106,9 @@ TEST(FemDynamics, TheStepReadsKInSinglePrecisionUnlessAskedForDouble) {
   // their largest velocity; bound 1e-4, the operator test's bound for 1000 steps (these are
   // 100 to 200).
   const VectorXd F0 = VectorXd::Constant(3, 5e4), F1 = VectorXd::Constant(3, 8e4);
-  nlohmann::json single = small_stiff_soil(), twice = small_stiff_soil();
-  twice["integrator"] = {{"precision", "double"}};
-  for (const auto& [params, said] : {std::pair{single, true}, std::pair{twice, false}}) {
+  nlohmann::json single = small_stiff_soil(), in_double = small_stiff_soil();
+  in_double["integrator"] = {{"precision", "double"}};
+  for (const auto& [params, said] : {std::pair{single, true}, std::pair{in_double, false}}) {
     TestSoil soil("fem", params.dump());
     soil.accept_layout(sleeper_row(3));
     const std::string report = soil.last_log("stable step");
@@ -118,7 +118,7 @@ TEST(FemDynamics, TheStepReadsKInSinglePrecisionUnlessAskedForDouble) {
   reference.accept_layout(sleeper_row(3));
   const VectorXd u0 = reference.initialize(F0);
   const auto [u_single, v_single] = after_load_step(single, F0, F1, 0.02);
-  const auto [u_double, v_double] = after_load_step(twice, F0, F1, 0.02);
+  const auto [u_double, v_double] = after_load_step(in_double, F0, F1, 0.02);
   EXPECT_LT((u_single - u_double).norm(), 1e-4 * (u_double - u0).norm());
   EXPECT_LT((v_single - v_double).norm(), 1e-4 * v_double.norm());
   EXPECT_GT(v_double.norm(), 0.0);  // still moving: the comparison sees the transient
