@@ -6,6 +6,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include "sparse_product.hpp"
+
 namespace rumble::fem {
 
 namespace {
@@ -16,22 +18,7 @@ constexpr std::size_t kMaxLevels = 12;
 // of 50 on the 68k-DOF mesh of bench/fem/fem_static_bench.cpp, in the same time.
 constexpr int kSweeps = 1;
 
-using RowSparse = Eigen::SparseMatrix<double, Eigen::RowMajor, int>;
 using Triplet = Eigen::Triplet<double, int>;
-
-/// The full symmetric matrix of a lower triangle, with 32-bit indices: 12 B per nonzero in the
-/// V-cycle's products instead of 16 (nonzeros stay below 2^31 up to about 5e7 DOFs).
-RowSparse full_from_lower(const LongSparse& lower) {
-  const LongSparse full = lower.selfadjointView<Eigen::Lower>();  // symmetric: CSC = CSR
-  if (full.nonZeros() > std::numeric_limits<int>::max())
-    throw std::length_error("fem: the static stiffness has too many nonzeros for multigrid");
-  RowSparse A(full.rows(), full.cols());
-  A.resizeNonZeros(full.nonZeros());
-  std::copy_n(full.outerIndexPtr(), full.outerSize() + 1, A.outerIndexPtr());
-  std::copy_n(full.innerIndexPtr(), full.nonZeros(), A.innerIndexPtr());
-  std::copy_n(full.valuePtr(), full.nonZeros(), A.valuePtr());
-  return A;
-}
 
 /// The six rigid-body modes (3 translations, 3 rotations about the centroid) at each DOF.
 /// Rows of DOFs that are decoupled identities (fixed) are zero.
@@ -124,18 +111,40 @@ double largest_eigenvalue(
   return 1.1 * lambda;
 }
 
+/// P = P0 - W A P0 (W: the scaled inverse diagonal), built in the storage of A P0: P0's pattern
+/// lies within A P0's, as A's diagonal is nonzero.
+RowSparse smoothed_prolongator(const RowSparse& A, const RowSparse& P0, const Eigen::VectorXd& w,
+                               unsigned threads) {
+  RowSparse P = sparse_product(A, P0, threads);
+  for (int i = 0; i < P.rows(); ++i) {
+    int* first = P.innerIndexPtr() + P.outerIndexPtr()[i];
+    int* last = P.innerIndexPtr() + P.outerIndexPtr()[i + 1];
+    double* value = P.valuePtr() + P.outerIndexPtr()[i];
+    for (int* k = first; k != last; ++k) value[k - first] *= -w[i];
+    for (RowSparse::InnerIterator it(P0, i); it; ++it) {
+      int* k = std::lower_bound(first, last, static_cast<int>(it.col()));
+      if (k == last || *k != it.col())
+        throw std::logic_error("multigrid: a zero on the stiffness' diagonal");
+      value[k - first] += it.value();
+    }
+  }
+  return P;
+}
+
 }  // namespace
 
 struct AmgPreconditioner::Coarse {
   Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> llt;
 };
 
-AmgPreconditioner::AmgPreconditioner(const LongSparse& a, const Eigen::Matrix3Xd& nodes,
-                                     Product fine_product)
+AmgPreconditioner::AmgPreconditioner(RowSparse a, const Eigen::Matrix3Xd& nodes,
+                                     Product fine_product, unsigned threads)
     : coarse_(std::make_unique<Coarse>()), fine_product_(std::move(fine_product)) {
   if (a.rows() != 3 * nodes.cols())
     throw std::invalid_argument("AmgPreconditioner: the matrix is not 3 DOFs per node");
-  RowSparse A = full_from_lower(a);
+  levels_.reserve(kMaxLevels);  // (a reallocation would copy the levels' matrices)
+  if (!a.isCompressed()) a.makeCompressed();
+  RowSparse A = std::move(a);
   Eigen::MatrixXd B = rigid_body_modes(A, nodes);
   std::vector<Eigen::Index> start(static_cast<std::size_t>(nodes.cols()) + 1);
   for (std::size_t k = 0; k < start.size(); ++k) start[k] = 3 * static_cast<Eigen::Index>(k);
@@ -197,11 +206,9 @@ AmgPreconditioner::AmgPreconditioner(const LongSparse& a, const Eigen::Matrix3Xd
     L.scaled_inverse_diagonal = (4.0 / 3.0 / lambda) * inverse_diagonal;
     RowSparse P0(n, nc);
     P0.setFromTriplets(p0.begin(), p0.end());
-    RowSparse AP0 = L.A * P0;
-    L.P = P0 - L.scaled_inverse_diagonal.asDiagonal() * AP0;
+    L.P = smoothed_prolongator(L.A, P0, L.scaled_inverse_diagonal, threads);
     L.R = L.P.transpose();
-    RowSparse AP = L.A * L.P;
-    A = L.R * AP;
+    A = sparse_product(L.R, sparse_product(L.A, L.P, threads), threads);
 
     B.resize(nc, B.cols());
     for (std::size_t g = 0; g < coarse_modes.size(); ++g)

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "effective_matrix.hpp"
+#include "sparse_product.hpp"
 
 namespace rumble::fem {
 
@@ -31,15 +32,17 @@ class AmgPreconditioner {
   /// y = A x on the mesh's level, by another kernel than Eigen's scalar rows.
   using Product = std::function<void(const Eigen::VectorXd&, Eigen::VectorXd&)>;
 
-  /// a: the lower triangle of a symmetric positive definite matrix over 3 DOFs per node (as
-  /// lower_combination gives); nodes: their coordinates [m] (3 x nodes). Rows that are
+  /// a: a symmetric positive definite matrix over 3 DOFs per node, whole (as full_combination
+  /// gives); nodes: their coordinates [m] (3 x nodes). Rows that are
   /// identity (fixed DOFs) are handled: the rigid-body modes vanish there. fine_product, when
   /// given, takes the V-cycle's products on the mesh's level (ExplicitSolver's threaded block
   /// rows, with K in the step's precision: a symmetric operator within 6e-8 of A, which keeps
   /// the V-cycle a fixed symmetric preconditioner); that level's own copy of A is then freed
   /// after the set-up. It must agree with A on the free DOFs and give 0 or x on fixed ones
   /// (their residual, and so their correction, is 0 either way).
-  AmgPreconditioner(const LongSparse& a, const Eigen::Matrix3Xd& nodes, Product fine_product = {});
+  /// threads: the set-up's Galerkin products (sparse_product.hpp) share them.
+  AmgPreconditioner(RowSparse a, const Eigen::Matrix3Xd& nodes, Product fine_product = {},
+                    unsigned threads = 1);
   ~AmgPreconditioner();
   AmgPreconditioner(const AmgPreconditioner&) = delete;
   AmgPreconditioner& operator=(const AmgPreconditioner&) = delete;
@@ -54,7 +57,6 @@ class AmgPreconditioner {
   double operator_complexity() const;
 
  private:
-  using RowSparse = Eigen::SparseMatrix<double, Eigen::RowMajor, int>;
   struct Level {
     RowSparse A;     // this level's matrix (full, symmetric)
     RowSparse P, R;  // prolongator to this level from the next, and its transpose

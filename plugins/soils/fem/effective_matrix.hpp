@@ -15,6 +15,7 @@
 #include <SuiteSparse_config.h>
 
 #include "explicit_solver.hpp"
+#include "sparse_product.hpp"
 
 namespace rumble::fem {
 
@@ -28,7 +29,10 @@ struct Combination {
   double dashpots = 0.0;   // d [1/s]
 };
 
-/// The lower triangle of the combination, CSC.
+/// The lower triangle of the combination, CSC (for CHOLMOD).
 LongSparse lower_combination(const ExplicitSolver& op, const Combination& c);
+/// The whole combination, compressed rows with 32-bit indices (for multigrid, whose products
+/// read rows): built directly, without the lower triangle's 16 B per nonzero on the way.
+RowSparse full_combination(const ExplicitSolver& op, const Combination& c);
 
 }  // namespace rumble::fem

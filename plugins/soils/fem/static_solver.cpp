@@ -46,10 +46,11 @@ Eigen::VectorXd StaticSolver::conjugate_gradients(const Eigen::VectorXd& f) {
   if (preconditioner_ == CgPreconditioner::kMultigrid && !multigrid_) {
     const auto start = std::chrono::steady_clock::now();
     multigrid_ = std::make_unique<AmgPreconditioner>(
-        lower_combination(op_, {.stiffness = 1.0, .springs = true}), nodes_,
+        full_combination(op_, {.stiffness = 1.0, .springs = true}), nodes_,
         [this](const Eigen::VectorXd& x, Eigen::VectorXd& y) {
           op_.stepped_stiffness_times(x, y, true);
-        });
+        },
+        op_.threads());
     multigrid_seconds_ =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
