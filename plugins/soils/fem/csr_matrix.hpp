@@ -32,19 +32,12 @@ class CsrMatrix {
 
   /// Node i's three rows times x: out[c] = row 3 i + c . x. Reads one index per 3 x 3 block
   /// (the node graph's) instead of one per value: 4 B per 9 nonzeros, not 36, which is a quarter
-  /// of the explicit step's memory traffic (numerics.md §5: 12 B/nnz becomes 8.4).
+  /// of the memory traffic of a product (numerics.md §5: 12 B/nnz becomes 8.4).
   void node_rows_dot(std::int32_t i, const double* x, double out[3]) const {
-    node_rows_dot(i, value_.data(), x, out);
-  }
-  /// The same product with the values read from `values`, this matrix's values in this layout
-  /// in another type: the explicit step streams them in single precision (4.4 B/nnz, not 8.4),
-  /// summing in double.
-  template <class Value>
-  void node_rows_dot(std::int32_t i, const Value* values, const double* x, double out[3]) const {
     const std::int64_t first = neighbour_start_[i], deg = neighbour_start_[i + 1] - first;
-    const Value* r0 = values + 9 * first;  // row 3 i (layout: the constructor's)
-    const Value* r1 = r0 + 3 * deg;
-    const Value* r2 = r1 + 3 * deg;
+    const double* r0 = value_.data() + 9 * first;  // row 3 i (layout: the constructor's)
+    const double* r1 = r0 + 3 * deg;
+    const double* r2 = r1 + 3 * deg;
     const std::int32_t* node = neighbour_.data() + first;
     // Two partial sums per row (even and odd blocks): twice the independent additions in flight,
     // 4-13 % faster on this machine (fem_bench, 1 and 2 threads).
@@ -54,26 +47,23 @@ class CsrMatrix {
       const double* xj = x + 3 * static_cast<std::int64_t>(node[p]);
       const double* xk = x + 3 * static_cast<std::int64_t>(node[p + 1]);
       const std::int64_t t = 3 * p;
-      s0 += double(r0[t]) * xj[0] + double(r0[t + 1]) * xj[1] + double(r0[t + 2]) * xj[2];
-      s1 += double(r1[t]) * xj[0] + double(r1[t + 1]) * xj[1] + double(r1[t + 2]) * xj[2];
-      s2 += double(r2[t]) * xj[0] + double(r2[t + 1]) * xj[1] + double(r2[t + 2]) * xj[2];
-      t0 += double(r0[t + 3]) * xk[0] + double(r0[t + 4]) * xk[1] + double(r0[t + 5]) * xk[2];
-      t1 += double(r1[t + 3]) * xk[0] + double(r1[t + 4]) * xk[1] + double(r1[t + 5]) * xk[2];
-      t2 += double(r2[t + 3]) * xk[0] + double(r2[t + 4]) * xk[1] + double(r2[t + 5]) * xk[2];
+      s0 += r0[t] * xj[0] + r0[t + 1] * xj[1] + r0[t + 2] * xj[2];
+      s1 += r1[t] * xj[0] + r1[t + 1] * xj[1] + r1[t + 2] * xj[2];
+      s2 += r2[t] * xj[0] + r2[t + 1] * xj[1] + r2[t + 2] * xj[2];
+      t0 += r0[t + 3] * xk[0] + r0[t + 4] * xk[1] + r0[t + 5] * xk[2];
+      t1 += r1[t + 3] * xk[0] + r1[t + 4] * xk[1] + r1[t + 5] * xk[2];
+      t2 += r2[t + 3] * xk[0] + r2[t + 4] * xk[1] + r2[t + 5] * xk[2];
     }
     if (p < deg) {
       const double* xj = x + 3 * static_cast<std::int64_t>(node[p]);
       const std::int64_t t = 3 * p;
-      s0 += double(r0[t]) * xj[0] + double(r0[t + 1]) * xj[1] + double(r0[t + 2]) * xj[2];
-      s1 += double(r1[t]) * xj[0] + double(r1[t + 1]) * xj[1] + double(r1[t + 2]) * xj[2];
-      s2 += double(r2[t]) * xj[0] + double(r2[t + 1]) * xj[1] + double(r2[t + 2]) * xj[2];
+      s0 += r0[t] * xj[0] + r0[t + 1] * xj[1] + r0[t + 2] * xj[2];
+      s1 += r1[t] * xj[0] + r1[t + 1] * xj[1] + r1[t + 2] * xj[2];
+      s2 += r2[t] * xj[0] + r2[t + 1] * xj[1] + r2[t + 2] * xj[2];
     }
-    s0 += t0;
-    s1 += t1;
-    s2 += t2;
-    out[0] = s0;
-    out[1] = s1;
-    out[2] = s2;
+    out[0] = s0 + t0;
+    out[1] = s1 + t1;
+    out[2] = s2 + t2;
   }
 
   /// Node i's neighbours (sorted, i included) and its block with the p-th of them: entry

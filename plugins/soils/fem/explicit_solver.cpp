@@ -26,12 +26,22 @@ ExplicitSolver::ExplicitSolver(CsrMatrix K, Eigen::VectorXd mass,
   for (std::size_t k = 0; k < boundary_.size(); ++k)
     boundary_of_[boundary_[k].node] = static_cast<std::int32_t>(k);
   if (precision == StepPrecision::kSingle)
-    single_values_.assign(K_.value().begin(), K_.value().end());  // (rounded to nearest)
+    single_blocks_.emplace(K_, threads_);
+  else
+    double_blocks_.emplace(K_, threads_);
+  product_scratch_.assign(3 * static_cast<std::size_t>(mass_.size()), 0.0);
   estimate_stable_step();
 }
 
+void ExplicitSolver::set_threads(unsigned threads) {
+  threads_ = threads < 1 ? 1 : threads;
+  if (single_blocks_) single_blocks_->set_parts(threads_);
+  if (double_blocks_) double_blocks_->set_parts(threads_);
+}
+
 std::size_t ExplicitSolver::bytes() const {
-  return K_.bytes() + single_values_.size() * 4 +
+  return K_.bytes() + (single_blocks_ ? single_blocks_->bytes() : double_blocks_->bytes()) +
+         product_scratch_.size() * 8 +
          static_cast<std::size_t>(mass_.size()) * (8 + 4 + 1 + 3 * 8) +
          boundary_.size() * sizeof(BoundaryNode) + (pml_ ? pml_->bytes() : 0) +
          (lts_ ? lts_->bytes() + halo_of_.size() * 4 + halo_forces_.size() * 8 : 0);
@@ -58,20 +68,30 @@ void ExplicitSolver::times(const Eigen::VectorXd& x, Eigen::VectorXd& y, bool wi
                            bool stepped) const {
   const std::int64_t n = mass_.size();
   y.resize(x.size());
-#pragma omp parallel for num_threads(threads_) schedule(static)
-  for (std::int64_t i = 0; i < n; ++i) {
-    if (fixed_[i])
-      y[3 * i] = y[3 * i + 1] = y[3 * i + 2] = 0.0;
-    else if (stepped)
-      stepped_rows_dot(i, x.data(), y.data() + 3 * i);
-    else
-      K_.node_rows_dot(static_cast<std::int32_t>(i), x.data(), y.data() + 3 * i);
+  const auto finish = [&](std::int64_t i, const double* product) {
+    double* out = y.data() + 3 * i;
+    if (fixed_[i]) {
+      out[0] = out[1] = out[2] = 0.0;
+      return;
+    }
+    std::copy_n(product, 3, out);
     const std::int32_t b = boundary_of_[i];
-    if (with_springs && b >= 0 && !fixed_[i]) {
+    if (with_springs && b >= 0) {
       const BoundaryNode& node = boundary_[b];
       BoundaryNode::apply(node.normal, node.spring_normal, node.spring_tangential, x.data() + 3 * i,
-                          y.data() + 3 * i);
+                          out);
     }
+  };
+  if (stepped) {
+#pragma omp parallel num_threads(threads_)
+    stepped_product(x.data(), finish);
+    return;
+  }
+#pragma omp parallel for num_threads(threads_) schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) {
+    double product[3];
+    K_.node_rows_dot(static_cast<std::int32_t>(i), x.data(), product);
+    finish(i, product);
   }
 }
 
@@ -349,17 +369,16 @@ void ExplicitSolver::step(ExplicitState& s, const Eigen::VectorXd& f, double dt)
     }
     // (the implicit barrier of omp for: every w and y is updated before K reads them)
     if (pml_) pml_->update_tetrahedra(w, dt, memory, pml_forces_.data());  // (omp for: barrier)
-#pragma omp for schedule(static)
-    for (std::int64_t i = 0; i < n; ++i) {
-      if (fixed_[i]) continue;
-      if (local && halo_of_[i] >= 0) {  // finished below, once the residual is filtered
-        residual(i, y, w, f, halo_forces_.data() + 3 * halo_of_[i]);
-        continue;
-      }
-      double r[3];
-      residual(i, y, w, f, r);
-      finish_node(i, r, dt, s, memory);
-    }
+    stepped_product(y, [&](std::int64_t i, const double* product) {
+      if (fixed_[i]) return;
+      double r[3] = {product[0], product[1], product[2]};
+      residual(i, w, f, r);
+      if (local && halo_of_[i] >= 0)  // finished below, once the residual is filtered
+        std::copy_n(r, 3, halo_forces_.data() + 3 * halo_of_[i]);
+      else
+        finish_node(i, r, dt, s, memory);
+    });
+#pragma omp barrier
     if (local) {
       lts_->apply(halo_forces_.data());  // (orphaned omp for loops: barriers)
       const std::vector<std::int32_t>& halo = lts_->halo();
@@ -371,9 +390,8 @@ void ExplicitSolver::step(ExplicitState& s, const Eigen::VectorXd& f, double dt)
   }
 }
 
-void ExplicitSolver::residual(std::int64_t i, const double* y, const double* w,
-                              const Eigen::VectorXd& f, double out[3]) const {
-  stepped_rows_dot(i, y, out);
+void ExplicitSolver::residual(std::int64_t i, const double* w, const Eigen::VectorXd& f,
+                              double out[3]) const {
   if (const std::int32_t b = springs_ ? boundary_of_[i] : -1; b >= 0) {
     const BoundaryNode& node = boundary_[b];
     BoundaryNode::apply(node.normal, node.spring_normal, node.spring_tangential, w + 3 * i, out);

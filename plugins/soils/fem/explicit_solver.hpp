@@ -24,6 +24,7 @@
 #include "csr_matrix.hpp"
 #include "local_time_stepping.hpp"
 #include "pml.hpp"
+#include "symmetric_blocks.hpp"
 
 namespace rumble::fem {
 
@@ -98,7 +99,7 @@ class ExplicitSolver {
     times(x, y, with_springs, true);
   }
   StepPrecision precision() const {
-    return single_values_.empty() ? StepPrecision::kDouble : StepPrecision::kSingle;
+    return single_blocks_ ? StepPrecision::kSingle : StepPrecision::kDouble;
   }
   const CsrMatrix& stiffness() const { return K_; }
   const std::vector<BoundaryNode>& boundary() const { return boundary_; }
@@ -107,7 +108,7 @@ class ExplicitSolver {
   const Eigen::VectorXd& mass() const { return mass_; }
   std::size_t bytes() const;
   /// Threads for the step's loops (the host grants them per run, after the layout).
-  void set_threads(unsigned threads) { threads_ = threads < 1 ? 1 : threads; }
+  void set_threads(unsigned threads);
   unsigned threads() const { return threads_; }
   /// Energies of a state [J]: kinetic 1/2 v^T M v and strain 1/2 w^T (K + S) w (K as the step
   /// reads it).
@@ -118,12 +119,15 @@ class ExplicitSolver {
   void estimate_stable_step();
   /// y = K x + S x with K read as the step reads it (stepped) or in double.
   void times(const Eigen::VectorXd& x, Eigen::VectorXd& y, bool with_springs, bool stepped) const;
-  /// Node i's rows of K times x as the step reads K.
-  void stepped_rows_dot(std::int64_t i, const double* x, double out[3]) const {
-    if (single_values_.empty())
-      K_.node_rows_dot(static_cast<std::int32_t>(i), x, out);
+  /// For each node i, finish(i, out) with out = (K x) at node i, K as the step reads it (its
+  /// upper blocks in the step's precision): called by every thread of a team; no barrier at
+  /// the end (symmetric_blocks.hpp).
+  template <class Finish>
+  void stepped_product(const double* x, Finish&& finish) const {
+    if (single_blocks_)
+      single_blocks_->multiply(x, product_scratch_.data(), finish);
     else
-      K_.node_rows_dot(static_cast<std::int32_t>(i), single_values_.data(), x, out);
+      double_blocks_->multiply(x, product_scratch_.data(), finish);
   }
   /// The largest eigenvalue of M^-1 op over the free DOFs (Lanczos, to 1e-9), from a fixed
   /// pseudo-random start.
@@ -134,17 +138,19 @@ class ExplicitSolver {
   /// Replaces forces [N] (size dofs()) at the halo by their filtered form
   /// (local_time_stepping.hpp).
   void filter_halo(double* forces) const;
-  /// Node i's residual force K y + S w - f [N] (y = w + a1 v+).
-  void residual(std::int64_t i, const double* y, const double* w, const Eigen::VectorXd& f,
-                double out[3]) const;
+  /// Node i's residual force K y + S w - f [N] (y = w + a1 v+) from its K y in `out`.
+  void residual(std::int64_t i, const double* w, const Eigen::VectorXd& f, double out[3]) const;
   /// Node i's velocity and acceleration update from its residual (filtered by the local steps
   /// at the halo) [N], with the matched layer's forces and the implicit diagonal damping.
   void finish_node(std::int64_t i, const double residual[3], double dt, ExplicitState& s,
                    double* memory) const;
 
   CsrMatrix K_;
-  std::vector<float> single_values_;  // K's values rounded, in its layout; empty: double
-  Eigen::VectorXd mass_;              // per node [kg]
+  // K's upper blocks as the step reads them: rounded to float, or in double (one of the two).
+  std::optional<SymmetricBlocks<float>> single_blocks_;
+  std::optional<SymmetricBlocks<double>> double_blocks_;
+  mutable std::vector<double> product_scratch_;  // the blocks' product's; zero between products
+  Eigen::VectorXd mass_;                         // per node [kg]
   std::vector<BoundaryNode> boundary_;
   std::vector<std::int32_t> boundary_of_;  // per node: index into boundary_, or -1
   bool springs_;
