@@ -42,6 +42,8 @@ template <class Value>
 void SymmetricBlocks<Value>::set_parts(unsigned parts) {
   const std::int64_t n = nodes();
   const std::int64_t count = std::max<std::int64_t>(1, parts);
+  // (The plugin sets the threads at every macro step: the lists are rebuilt only on a change.)
+  if (part_start_.size() == static_cast<std::size_t>(count) + 1) return;
   part_start_.resize(static_cast<std::size_t>(count) + 1);
   for (std::int64_t p = 0; p <= count; ++p) part_start_[p] = n * p / count;
   // The cross blocks, grouped by the part of their column node.
