@@ -151,5 +151,12 @@ TEST(FemMesh, BoxShape) {
   EXPECT_NO_THROW(footprint_weights(m, fp));
 }
 
+// The nodes where the footprints' forces act, each once even where two footprints share it (a
+// force jump adds there: a node twice would take its jump twice).
+TEST(FemMesh, LoadedNodesAreEveryFootprintNodeOnce) {
+  const FootprintWeights weights = {{{5, 0.5}, {2, 0.5}}, {{2, 0.3}, {9, 0.7}}, {}};
+  EXPECT_EQ(loaded_nodes(weights), (std::vector<std::int32_t>{2, 5, 9}));
+}
+
 }  // namespace
 }  // namespace rumble::fem

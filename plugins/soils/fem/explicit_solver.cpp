@@ -443,17 +443,23 @@ void ExplicitSolver::finish_node(std::int64_t i, const double residual[3], doubl
   }
 }
 
-void ExplicitSolver::force_jump(ExplicitState& s, const Eigen::VectorXd& df) const {
+void ExplicitSolver::force_jump(ExplicitState& s, const Eigen::VectorXd& df,
+                                const std::vector<std::int32_t>& nodes) const {
   // Under local time stepping the halo's accelerations are filtered residuals, so is the jump
-  // (with the coefficients of the last step, whose acceleration this is).
+  // (with the coefficients of the last step, whose acceleration this is): there the whole halo
+  // takes its filtered share, elsewhere only the loaded nodes change.
   const bool local = last_step_local_;
-  if (local) {
-    jump_ = df;
-    filter_halo(jump_.data());
+  for (const std::int32_t i : nodes) {
+    if (fixed_[i] || (local && halo_of_[i] >= 0)) continue;
+    for (int c = 0; c < 3; ++c) s.a[3 * i + c] += df[3 * i + c] / mass_[i];
   }
-  const Eigen::VectorXd& jump = local ? jump_ : df;
-  for (Eigen::Index k = 0; k < jump.size(); ++k)
-    if (jump[k] != 0.0 && !fixed_[k / 3]) s.a[k] += jump[k] / mass_[k / 3];
+  if (!local) return;
+  const std::vector<std::int32_t>& halo = lts_->halo();
+  for (std::size_t h = 0; h < halo.size(); ++h)
+    for (int c = 0; c < 3; ++c) halo_forces_[3 * h + c] = df[3 * halo[h] + c];
+  lts_->apply(halo_forces_.data());  // (outside a parallel region: on this thread)
+  for (std::size_t h = 0; h < halo.size(); ++h)
+    for (int c = 0; c < 3; ++c) s.a[3 * halo[h] + c] += halo_forces_[3 * h + c] / mass_[halo[h]];
 }
 
 double ExplicitSolver::kinetic_energy(const ExplicitState& s) const {

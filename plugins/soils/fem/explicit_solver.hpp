@@ -84,7 +84,10 @@ class ExplicitSolver {
   /// One step of dt [s] with the external force f [N] at its end (size dofs()).
   void step(ExplicitState& s, const Eigen::VectorXd& f, double dt) const;
   /// Adds M^-1 df to the acceleration: the external force changed by df at the current time.
-  void force_jump(ExplicitState& s, const Eigen::VectorXd& df) const;
+  /// nodes: those where df may be nonzero (the footprints' nodes); df is read there only (and,
+  /// with local steps, at the halo), so a jump costs the loaded nodes, not a pass over the mesh.
+  void force_jump(ExplicitState& s, const Eigen::VectorXd& df,
+                  const std::vector<std::int32_t>& nodes) const;
 
   /// y = (K + S) x as the step reads K (its precision), filtered by the local steps at the halo
   /// at step dt [s] when they act there: the effective stiffness K_p of local_time_stepping.hpp
@@ -169,7 +172,6 @@ class ExplicitSolver {
   mutable std::optional<LocalTimeStepping> lts_;
   std::vector<std::int32_t> halo_of_;        // per node: its place in lts_->halo(), or -1
   mutable std::vector<double> halo_forces_;  // scratch: the residual at the halo [N]
-  mutable Eigen::VectorXd jump_;             // scratch: a filtered force jump [N]
   mutable bool last_step_local_ = false;     // the last step filtered the halo (force_jump)
 };
 

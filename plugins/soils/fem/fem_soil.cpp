@@ -106,6 +106,7 @@ class FemSoil final : public rumble::Soil {
     }
     const double mesh_seconds = seconds_since(start);
     weights_ = footprint_weights(mesh_, footprints);
+    loaded_nodes_ = rumble::fem::loaded_nodes(weights_);
     std::vector<BoundaryNode> boundary = absorbing_boundary(mesh_, settings_, plan_.region);
     std::vector<char> fixed(mesh_.node_count(), 0);
     // Behind a matched layer the surface is fixed: with the viscous-spring blocks or dashpots
@@ -191,7 +192,7 @@ class FemSoil final : public rumble::Soil {
     // The force may jump at the step's start (a held or extrapolated waveform): the acceleration
     // at t follows it.
     footprint_forces(force, 0.0, df_, force_last_.data());
-    op_->force_jump(state_, df_);
+    op_->force_jump(state_, df_, loaded_nodes_);
     auto last_check = std::chrono::steady_clock::now();
     for (int k = 1; k <= sub_steps; ++k) {
       const double tau = static_cast<double>(k) / sub_steps;
@@ -581,6 +582,7 @@ class FemSoil final : public rumble::Soil {
   rumble::fem::MeshPlan plan_;
   rumble::fem::TetMesh mesh_;
   rumble::fem::FootprintWeights weights_;
+  std::vector<std::int32_t> loaded_nodes_;  // every footprint node once (force_jump)
   std::optional<rumble::fem::ExplicitSolver> op_;
   std::unique_ptr<rumble::fem::StaticSolver> statics_;
   std::unique_ptr<rumble::fem::ImplicitSolver> implicit_;

@@ -41,4 +41,13 @@ FootprintWeights footprint_weights(const TetMesh& mesh, const std::vector<Footpr
   return weights;
 }
 
+std::vector<std::int32_t> loaded_nodes(const FootprintWeights& weights) {
+  std::vector<std::int32_t> nodes;
+  for (const std::vector<NodalWeight>& footprint : weights)
+    for (const NodalWeight& w : footprint) nodes.push_back(w.node);
+  std::sort(nodes.begin(), nodes.end());
+  nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+  return nodes;
+}
+
 }  // namespace rumble::fem

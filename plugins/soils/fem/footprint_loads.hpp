@@ -26,6 +26,9 @@ using FootprintWeights = std::vector<std::vector<NodalWeight>>;  // per footprin
 /// mesh that does not follow the footprints), with both areas.
 FootprintWeights footprint_weights(const TetMesh& mesh, const std::vector<Footprint>& footprints);
 
+/// Every node of any footprint, once each, ascending: where the footprints' forces act.
+std::vector<std::int32_t> loaded_nodes(const FootprintWeights& weights);
+
 /// The footprint's area-averaged vertical component of x (3 per node): one row of B^T.
 inline double footprint_average(const std::vector<NodalWeight>& footprint, const double* x) {
   double s = 0.0;
