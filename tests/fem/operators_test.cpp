@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 #include <vector>
 
 #include "absorbing_boundary.hpp"
@@ -120,6 +121,21 @@ TEST(FemElasticity, TheBlockProductIsTheRowProduct) {
       EXPECT_NEAR(block[c], K.row_dot(r, x.data()), 1e-14 * magnitude) << "row " << r;
     }
   }
+}
+
+// A force jump reads the force at the loaded nodes only (the energy tests check that nothing is
+// missed); a node listed twice would take a jump twice, so it is refused.
+TEST(FemExplicit, ForceJumpsReadTheLoadedNodesOnly) {
+  ExplicitSolver op = free_solver(kuhn_box(2, 0.5), medium_soil());
+  EXPECT_THROW(op.set_loaded_nodes({3, 5, 3}), std::invalid_argument);
+  op.set_loaded_nodes({5});
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(op.dofs());
+  f[3 * 5 + 2] = 1e3;  // N
+  f[3 * 7 + 2] = 1e3;  // (not a loaded node: never read)
+  ExplicitState s = op.rest_state();
+  op.force_jump(s, f);
+  EXPECT_GT(s.a[3 * 5 + 2], 0.0);
+  EXPECT_EQ(s.a[3 * 7 + 2], 0.0);
 }
 
 TEST(FemExplicit, StableStepOfTheKuhnBoxIs0671HOverCp) {

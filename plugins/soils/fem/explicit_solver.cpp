@@ -443,16 +443,29 @@ void ExplicitSolver::finish_node(std::int64_t i, const double residual[3], doubl
   }
 }
 
-void ExplicitSolver::force_jump(ExplicitState& s, const Eigen::VectorXd& df,
-                                const std::vector<std::int32_t>& nodes) const {
+void ExplicitSolver::set_loaded_nodes(std::vector<std::int32_t> nodes) {
+  std::vector<char> seen(static_cast<std::size_t>(mass_.size()), 0);
+  for (const std::int32_t i : nodes) {
+    if (seen[i]) throw std::invalid_argument("ExplicitSolver: a loaded node given twice");
+    seen[i] = 1;
+  }
+  loaded_nodes_ = std::move(nodes);
+  every_node_loaded_ = false;
+}
+
+void ExplicitSolver::force_jump(ExplicitState& s, const Eigen::VectorXd& df) const {
   // Under local time stepping the halo's accelerations are filtered residuals, so is the jump
   // (with the coefficients of the last step, whose acceleration this is): there the whole halo
   // takes its filtered share, elsewhere only the loaded nodes change.
   const bool local = last_step_local_;
-  for (const std::int32_t i : nodes) {
-    if (fixed_[i] || (local && halo_of_[i] >= 0)) continue;
+  const auto add = [&](std::int64_t i) {
+    if (fixed_[i] || (local && halo_of_[i] >= 0)) return;
     for (int c = 0; c < 3; ++c) s.a[3 * i + c] += df[3 * i + c] / mass_[i];
-  }
+  };
+  if (every_node_loaded_)
+    for (std::int64_t i = 0; i < mass_.size(); ++i) add(i);
+  else
+    for (const std::int32_t i : loaded_nodes_) add(i);
   if (!local) return;
   const std::vector<std::int32_t>& halo = lts_->halo();
   for (std::size_t h = 0; h < halo.size(); ++h)

@@ -106,7 +106,6 @@ class FemSoil final : public rumble::Soil {
     }
     const double mesh_seconds = seconds_since(start);
     weights_ = footprint_weights(mesh_, footprints);
-    loaded_nodes_ = rumble::fem::loaded_nodes(weights_);
     std::vector<BoundaryNode> boundary = absorbing_boundary(mesh_, settings_, plan_.region);
     std::vector<char> fixed(mesh_.node_count(), 0);
     // Behind a matched layer the surface is fixed: with the viscous-spring blocks or dashpots
@@ -119,6 +118,7 @@ class FemSoil final : public rumble::Soil {
                 settings_.damping.mass_coefficient(), settings_.damping.stiffness_coefficient(),
                 host_.threads(),
                 settings_.single_precision_step ? StepPrecision::kSingle : StepPrecision::kDouble);
+    op_->set_loaded_nodes(loaded_nodes(weights_));  // (the footprints' forces act there only)
     if (settings_.boundary.kind == BoundaryKind::kPml)
       op_->set_pml(PmlLayer(mesh_, settings_, pml_profile()));
     local_steps_chosen_ = false;  // (at the first macro step, whose length they are fitted to)
@@ -192,7 +192,7 @@ class FemSoil final : public rumble::Soil {
     // The force may jump at the step's start (a held or extrapolated waveform): the acceleration
     // at t follows it.
     footprint_forces(force, 0.0, df_, force_last_.data());
-    op_->force_jump(state_, df_, loaded_nodes_);
+    op_->force_jump(state_, df_);
     auto last_check = std::chrono::steady_clock::now();
     for (int k = 1; k <= sub_steps; ++k) {
       const double tau = static_cast<double>(k) / sub_steps;
@@ -582,7 +582,6 @@ class FemSoil final : public rumble::Soil {
   rumble::fem::MeshPlan plan_;
   rumble::fem::TetMesh mesh_;
   rumble::fem::FootprintWeights weights_;
-  std::vector<std::int32_t> loaded_nodes_;  // every footprint node once (force_jump)
   std::optional<rumble::fem::ExplicitSolver> op_;
   std::unique_ptr<rumble::fem::StaticSolver> statics_;
   std::unique_ptr<rumble::fem::ImplicitSolver> implicit_;
