@@ -172,10 +172,13 @@ void ExplicitSolver::effective_stiffness_times(const Eigen::VectorXd& x, Eigen::
   times(x, y, springs_, true);
   if (!lts_ || dt <= one_rate_limit_) return;
   prepare_local_steps(dt);
-  filter_halo(y.data());
+  filter_halo(y.data(), [&](std::int64_t node, const double* filtered) {
+    std::copy_n(filtered, 3, y.data() + 3 * node);
+  });
 }
 
-void ExplicitSolver::filter_halo(double* forces) const {
+template <class Take>
+void ExplicitSolver::filter_halo(const double* forces, Take&& take) const {
   const std::vector<std::int32_t>& halo = lts_->halo();
   const auto count = static_cast<std::int64_t>(halo.size());
   double* buffer = halo_forces_.data();
@@ -186,8 +189,7 @@ void ExplicitSolver::filter_halo(double* forces) const {
       for (int c = 0; c < 3; ++c) buffer[3 * h + c] = forces[3 * halo[h] + c];
     lts_->apply(buffer);  // (orphaned omp for loops)
 #pragma omp for schedule(static)
-    for (std::int64_t h = 0; h < count; ++h)
-      for (int c = 0; c < 3; ++c) forces[3 * halo[h] + c] = buffer[3 * h + c];
+    for (std::int64_t h = 0; h < count; ++h) take(halo[h], buffer + 3 * h);
   }
 }
 
@@ -467,12 +469,9 @@ void ExplicitSolver::force_jump(ExplicitState& s, const Eigen::VectorXd& df) con
   else
     for (const std::int32_t i : loaded_nodes_) add(i);
   if (!local) return;
-  const std::vector<std::int32_t>& halo = lts_->halo();
-  for (std::size_t h = 0; h < halo.size(); ++h)
-    for (int c = 0; c < 3; ++c) halo_forces_[3 * h + c] = df[3 * halo[h] + c];
-  lts_->apply(halo_forces_.data());  // (outside a parallel region: on this thread)
-  for (std::size_t h = 0; h < halo.size(); ++h)
-    for (int c = 0; c < 3; ++c) s.a[3 * halo[h] + c] += halo_forces_[3 * h + c] / mass_[halo[h]];
+  filter_halo(df.data(), [&](std::int64_t node, const double* filtered) {
+    for (int c = 0; c < 3; ++c) s.a[3 * node + c] += filtered[c] / mass_[node];
+  });
 }
 
 double ExplicitSolver::kinetic_energy(const ExplicitState& s) const {

@@ -140,9 +140,10 @@ class ExplicitSolver {
                             int& iterations) const;
   /// The local steps' coefficients for a step of dt [s] (once per distinct dt).
   void prepare_local_steps(double dt) const;
-  /// Replaces forces [N] (size dofs()) at the halo by their filtered form
-  /// (local_time_stepping.hpp).
-  void filter_halo(double* forces) const;
+  /// Filters forces [N] (size dofs()) at the halo (local_time_stepping.hpp) on the step's
+  /// threads and hands each halo node's filtered force to take(node, force).
+  template <class Take>
+  void filter_halo(const double* forces, Take&& take) const;
   /// Node i's residual force K y + S w - f [N] (y = w + a1 v+) from its K y in `out`.
   void residual(std::int64_t i, const double* w, const Eigen::VectorXd& f, double out[3]) const;
   /// Node i's velocity and acceleration update from its residual (filtered by the local steps
