@@ -380,8 +380,9 @@ void ExplicitSolver::step(ExplicitState& s, const Eigen::VectorXd& f, double dt)
       else
         finish_node(i, r, dt, s, memory);
     });
-#pragma omp barrier
     if (local) {
+#pragma omp barrier
+      // (every halo residual is in: the product hands nodes over with no barrier of its own)
       lts_->apply(halo_forces_.data());  // (orphaned omp for loops: barriers)
       const std::vector<std::int32_t>& halo = lts_->halo();
       const auto count = static_cast<std::int64_t>(halo.size());
