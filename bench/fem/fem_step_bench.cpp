@@ -72,6 +72,7 @@ void BM_ExplicitStep(benchmark::State& state) {
   ExplicitState st{Eigen::VectorXd::Random(dofs) * 1e-6,
                    Eigen::VectorXd::Zero(dofs),
                    Eigen::VectorXd::Zero(dofs),
+                   {},
                    {}};
   const Eigen::VectorXd f = Eigen::VectorXd::Zero(dofs);
   const double dt = 0.8 * op.stable_step();

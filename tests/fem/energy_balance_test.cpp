@@ -2,7 +2,10 @@
 // footprints' (area-averaged) displacements equals the kinetic energy 1/2 v^T M v, the strain
 // energy 1/2 w^T (K + S) w (boundary springs included), the energy dissipated by the material
 // damping (integral of v^T (a0 M + a1 K) v) and the energy radiated into the boundary's dashpots
-// (integral of v^T D v), at every step of a run on a small hemisphere with two footprints.
+// (integral of v^T D v), at every step of a run on a small hemisphere with two footprints. With
+// the Maxwell mechanisms (maxwell_damping.hpp: force K (w + sum c_l z_l), z_l' + omega_l z_l =
+// w') the material's terms are the energy they hold, 1/2 sum c_l z_l^T K z_l, and the energy
+// they dissipate, the integral of sum c_l omega_l z_l^T K z_l.
 //
 // Each term is accumulated independently of the scheme: the work by the trapezoidal rule on
 // F(t) and u_footprint(t) (exact for a force held over a step), the dissipated and radiated
@@ -16,7 +19,8 @@
 //   d = f - (K + S) w - M a (the damping force the step applied),
 //   E_n = 1/2 v^T M v + 1/2 w^T (K + S) w - dt^2/8 a^T M a  (the shadow energy) changes over a
 //   step by 1/2 dw^T (f_n + f_n+1) - 1/2 dw^T (d_n + d_n+1); and d is the documented damping
-//   force a1 K v(n+1/2) + (a0 M + D) v(n+1) (docs/fem-soil.md §4);
+//   force a1 K v(n+1/2) + (a0 M + D) v(n+1) (docs/fem-soil.md §4), or with the mechanisms
+//   K sum c_l z_l(n+1) + D v(n+1);
 // - Newmark average acceleration: E = 1/2 v^T M v + 1/2 w^T (K + S) w changes by
 //   1/2 dw^T (f_n + f_n+1) - dt v_m^T C v_m, v_m = (v_n + v_n+1) / 2 (no shadow term: the scheme
 //   conserves the energy itself when C = 0).
@@ -42,7 +46,8 @@ namespace {
 
 /// The soil as the plugin builds it in accept_layout (fem_soil.cpp): stiff soil (c_p 749,
 /// c_s 400, c_R 371 m/s), an 8 m hemisphere with h_near 0.5 m, two 1 x 0.3 m footprints 0.6 m
-/// apart; Rayleigh damping of `damping_ratio` at 5 and 100 Hz (the default: 2 %).
+/// apart; Rayleigh damping of `damping_ratio` at 5 and 100 Hz (the default: 2 %), or the Maxwell
+/// mechanisms flat over that band.
 struct EnergySoil {
   FemSettings settings;
   FootprintWeights weights;
@@ -50,7 +55,7 @@ struct EnergySoil {
   double a0 = 0.0, a1 = 0.0;
 };
 
-EnergySoil make_energy_soil(double damping_ratio, BoundaryKind kind) {
+EnergySoil make_energy_soil(double damping_ratio, BoundaryKind kind, bool maxwell = false) {
   EnergySoil soil;
   FemSettings& s = soil.settings;
   s.half_space = {750e6, 0.3, 1800.0};
@@ -59,6 +64,7 @@ EnergySoil make_energy_soil(double damping_ratio, BoundaryKind kind) {
   s.mesh.near_distance = 2.0;
   s.boundary.kind = kind;
   s.damping.ratio = damping_ratio;
+  s.damping.maxwell = maxwell;
   const std::vector<Footprint> fp = {{-0.3, 0.0, 1.0, 0.3}, {0.3, 0.0, 1.0, 0.3}};
   const MeshPlan plan = plan_mesh(s, fp);
   const TetMesh mesh = generate_mesh(s, fp, plan);
@@ -74,6 +80,7 @@ EnergySoil make_energy_soil(double damping_ratio, BoundaryKind kind) {
   // As the plugin: force jumps read the footprints' nodes only (the balance below would miss
   // the work of any jump skipped).
   soil.op->set_loaded_nodes(loaded_nodes(soil.weights));
+  if (maxwell) soil.op->set_maxwell_damping(s.damping.maxwell_mechanisms());
   return soil;
 }
 
@@ -95,7 +102,8 @@ struct Loading {
 /// The energies [J] of a run, each accumulated on its own (the comment at the top).
 struct EnergyTerms {
   double work = 0.0, kinetic = 0.0, strain = 0.0, material = 0.0, radiated = 0.0;
-  double residual() const { return work - kinetic - strain - material - radiated; }
+  double memory = 0.0;  // held by the Maxwell mechanisms
+  double residual() const { return work - kinetic - strain - memory - material - radiated; }
 };
 
 struct EnergyRun {
@@ -135,6 +143,24 @@ class EnergyMeter {
   double material_power(const Eigen::VectorXd& v) {
     return soil_.a0 * mass_norm2(v) + soil_.a1 * stiffness_norm2(v);
   }
+  /// Mechanism l's memory z_l out of the state's (mechanisms per DOF, adjacent).
+  const Eigen::VectorXd& memory_of(const ExplicitState& s, int l) {
+    const int count = op_.maxwell_damping().mechanisms();
+    memory_.resize(op_.dofs());
+    for (Eigen::Index k = 0; k < memory_.size(); ++k) memory_[k] = s.maxwell[count * k + l];
+    return memory_;
+  }
+  /// The Maxwell mechanisms' power sum c_l omega_l z_l^T K z_l [W] and energy
+  /// 1/2 sum c_l z_l^T K z_l [J].
+  void mechanisms(const ExplicitState& s, double& power, double& energy) {
+    const MaxwellDamping& d = op_.maxwell_damping();
+    power = energy = 0.0;
+    for (int l = 0; l < d.mechanisms(); ++l) {
+      const double z_k_z = stiffness_norm2(memory_of(s, l));
+      power += d.weights[l] * d.rates[l] * z_k_z;
+      energy += 0.5 * d.weights[l] * z_k_z;
+    }
+  }
   /// v^T D v [W].
   double radiated_power(const Eigen::VectorXd& v) const {
     double p = 0.0;
@@ -171,12 +197,18 @@ class EnergyMeter {
     }
     return std::sqrt(elastic) + std::sqrt(inertia);
   }
-  /// The documented one: a1 K v_half + (a0 M + D) v.
-  void documented_damping_force(const Eigen::VectorXd& v_half, const Eigen::VectorXd& v,
+  /// The documented one: a1 K v_half + (a0 M + D) v, with the mechanisms K sum c_l z_l + D v.
+  void documented_damping_force(const Eigen::VectorXd& v_half, const ExplicitState& s,
                                 Eigen::VectorXd& d) {
+    const Eigen::VectorXd& v = s.v;
     op_.stiffness_times(v_half, scratch_, false);
     for (Eigen::Index k = 0; k < d.size(); ++k)
       d[k] = soil_.a1 * scratch_[k] + soil_.a0 * op_.mass()[k / 3] * v[k];
+    const MaxwellDamping& mechanisms = op_.maxwell_damping();
+    for (int l = 0; l < mechanisms.mechanisms(); ++l) {
+      op_.stiffness_times(memory_of(s, l), scratch_, false);
+      d += mechanisms.weights[l] * scratch_;
+    }
     for (const BoundaryNode& b : op_.boundary())
       BoundaryNode::apply(b.normal, b.dashpot_normal, b.dashpot_tangential, v.data() + 3 * b.node,
                           d.data() + 3 * b.node);
@@ -187,7 +219,7 @@ class EnergyMeter {
  private:
   const EnergySoil& soil_;
   const ExplicitSolver& op_;
-  Eigen::VectorXd scratch_;
+  Eigen::VectorXd scratch_, memory_;
 };
 
 /// Runs the soil from rest over [0, t_end] in macro steps H, each cut into `sub_steps` equal
@@ -239,7 +271,10 @@ EnergyRun run_energy(const EnergySoil& soil, const Loading& loading, int sub_ste
       for (std::size_t j = 0; j < u.size(); ++j)
         e.work += 0.5 * (F_start[j] + F_end[j]) * (u[j] - u_old[j]);
       u_old = u;
-      const double q_material = meter.material_power(s.v), q_radiated = meter.radiated_power(s.v);
+      double q_memory = 0.0;
+      meter.mechanisms(s, q_memory, e.memory);
+      const double q_material = meter.material_power(s.v) + q_memory;
+      const double q_radiated = meter.radiated_power(s.v);
       e.material += 0.5 * dt * (p_material + q_material);
       e.radiated += 0.5 * dt * (p_radiated + q_radiated);
       p_material = q_material;
@@ -260,7 +295,7 @@ EnergyRun run_energy(const EnergySoil& soil, const Loading& loading, int sub_ste
         dissipated = dt * (meter.material_power(v_mid) + meter.radiated_power(v_mid));
       } else {
         const double scale = meter.applied_damping_force(s, f_new, d_new);
-        meter.documented_damping_force(v_half, s.v, d_doc);
+        meter.documented_damping_force(v_half, s, d_doc);
         run.largest_damping_force_error =
             std::max(run.largest_damping_force_error, (d_new - d_doc).norm() / scale);
         dissipated = 0.5 * dw.dot(d_old + d_new);
@@ -269,6 +304,7 @@ EnergyRun run_energy(const EnergySoil& soil, const Loading& loading, int sub_ste
       discrete += 0.5 * dw.dot(f + f_new) - dissipated;
       f = f_new;
       const double shadow = implicit ? 0.0 : dt * dt / 8.0 * meter.mass_norm2(s.a);
+      // (The mechanisms' energy is in the damping force's work, as the dissipation is.)
       run.largest_discrete =
           std::max(run.largest_discrete, std::abs(discrete - (e.kinetic + e.strain - shadow)));
     }
@@ -294,15 +330,16 @@ void record(const std::string& name, const EnergyRun& r) {
   property("strain_J", r.end.strain);
   property("material_J", r.end.material);
   property("radiated_J", r.end.radiated);
+  property("memory_J", r.end.memory);
   property("residual", r.largest_residual / W);
   property("corrected", r.largest_corrected / W);
   property("discrete", r.largest_discrete / W);
   std::printf(
-      "%s: at the end: work %.5e J = kinetic %.3e + strain %.3e + material %.5e + "
-      "radiated %.5e; of the largest work (%.4e J), largest residual %.3e (corrected "
+      "%s: at the end: work %.5e J = kinetic %.3e + strain %.3e + memory %.3e + material %.5e "
+      "+ radiated %.5e; of the largest work (%.4e J), largest residual %.3e (corrected "
       "%.3e), discrete %.2e; damping force %.1e\n",
-      name.c_str(), r.end.work, r.end.kinetic, r.end.strain, r.end.material, r.end.radiated, W,
-      r.largest_residual / W, r.largest_corrected / W, r.largest_discrete / W,
+      name.c_str(), r.end.work, r.end.kinetic, r.end.strain, r.end.memory, r.end.material,
+      r.end.radiated, W, r.largest_residual / W, r.largest_corrected / W, r.largest_discrete / W,
       r.largest_damping_force_error);
 }
 
@@ -351,6 +388,33 @@ TEST(FemEnergy, ExplicitBalanceWithRayleighDamping) {
   EXPECT_GT(coarse.largest_residual / fine.largest_residual, 2.0);
   EXPECT_LT(coarse.largest_corrected, 1.5e-4 * W);
   EXPECT_NEAR(coarse.largest_corrected / fine.largest_corrected, 4.0, 0.4);
+  EXPECT_LT(coarse.largest_discrete, 1e-12 * W);
+  EXPECT_LT(coarse.largest_damping_force_error, 1e-12);
+}
+
+TEST(FemEnergy, ExplicitBalanceWithMaxwellMechanisms) {
+  // The same 2 % over 5-100 Hz by three Maxwell mechanisms: each memory is stepped exactly for
+  // a displacement linear over the step, at the new displacement, so nothing lags and the
+  // residual against the independent quadrature (trapezoidal on the mechanisms' power) is
+  // second order with no correction. Measured: 0.282 J of net work, 0.084 J dissipated by the
+  // mechanisms (Rayleigh's 0.045 J: its ratio dips to 0.85 % at 22 Hz between its anchors, the
+  // mechanisms' stays at 2 %), 2.4e-5 J held in them and 0.197 J radiated by 0.1 s; residual
+  // 1.75e-4 of the largest work, 4.36e-5 at dt / 2 (4.00x); the discrete balance 1.4e-15.
+  // Bounds: 3.5e-4 (2x), 4 +- 0.4.
+  const EnergySoil soil = make_energy_soil(0.02, BoundaryKind::kViscousSpring, true);
+  ASSERT_EQ(soil.op->maxwell_damping().mechanisms(), 3);
+  const Loading pulse;
+  const int sub_steps = explicit_sub_steps(soil, pulse.macro_step, 0.9);
+  const EnergyRun coarse = run_energy(soil, pulse, sub_steps, 0.1, false);
+  const EnergyRun fine = run_energy(soil, pulse, 2 * sub_steps, 0.1, false);
+  record("maxwell_dt", coarse);
+  record("maxwell_dt_half", fine);
+  const double W = coarse.largest_work;
+  EXPECT_GT(coarse.end.material, 0.1 * coarse.end.work);
+  EXPECT_GT(coarse.end.radiated, 0.6 * coarse.end.work);
+  EXPECT_GT(coarse.end.memory, 0.0);
+  EXPECT_LT(coarse.largest_residual, 3.5e-4 * W);
+  EXPECT_NEAR(coarse.largest_residual / fine.largest_residual, 4.0, 0.4);
   EXPECT_LT(coarse.largest_discrete, 1e-12 * W);
   EXPECT_LT(coarse.largest_damping_force_error, 1e-12);
 }

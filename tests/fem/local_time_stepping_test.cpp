@@ -155,6 +155,7 @@ TEST_P(LocalTimeSteppingPrecision, ConservesItsShadowEnergyWithTheEffectiveStiff
   ExplicitState s{random_field(m.dof_count(), 7) * 1e-6,
                   Eigen::VectorXd::Zero(m.dof_count()),
                   Eigen::VectorXd::Zero(m.dof_count()),
+                  {},
                   {}};
   const Eigen::VectorXd no_force = Eigen::VectorXd::Zero(m.dof_count());
   const auto shadow = [&] {

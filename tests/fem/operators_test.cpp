@@ -179,6 +179,7 @@ TEST_P(FemExplicitPrecision, ConservesItsShadowEnergyExactlyWithoutDamping) {
   ExplicitState s{Eigen::VectorXd::Random(m.dof_count()) * 1e-6,
                   Eigen::VectorXd::Zero(m.dof_count()),
                   Eigen::VectorXd::Zero(m.dof_count()),
+                  {},
                   {}};
   const Eigen::VectorXd no_force = Eigen::VectorXd::Zero(m.dof_count());
   const double dt = 0.9 * op.stable_step();

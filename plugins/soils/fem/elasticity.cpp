@@ -28,6 +28,8 @@ TetGradients tet_gradients(const TetMesh& mesh, const Tetrahedron& t) {
 
 CsrMatrix assemble_stiffness(const TetMesh& mesh, const FemSettings& settings) {
   CsrMatrix K(mesh);
+  // The relaxed modulus under the Maxwell mechanisms (E is theirs at the band's centre).
+  const double relaxed = settings.damping.relaxed_modulus_factor();
   for (std::size_t e = 0; e < mesh.tets.size(); ++e) {
     const Tetrahedron& t = mesh.tets[e];
     const TetGradients g = tet_gradients(mesh, t);
@@ -38,8 +40,8 @@ CsrMatrix assemble_stiffness(const TetMesh& mesh, const FemSettings& settings) {
       throw std::invalid_argument(m.str());
     }
     const soils::SoilProperties& p = tet_properties(mesh, settings, e);
-    const double mu = p.shear_modulus();
-    const double lambda = p.E * p.nu / ((1.0 + p.nu) * (1.0 - 2.0 * p.nu));  // Lame [Pa]
+    const double mu = relaxed * p.shear_modulus();
+    const double lambda = relaxed * p.E * p.nu / ((1.0 + p.nu) * (1.0 - 2.0 * p.nu));  // Lame [Pa]
     // K_ab = V (lambda g_a g_b^T + mu g_b g_a^T + mu (g_a . g_b) I).
     for (int a = 0; a < 4; ++a)
       for (int b = 0; b < 4; ++b) {

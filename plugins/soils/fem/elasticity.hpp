@@ -18,7 +18,8 @@ struct TetGradients {
 };
 TetGradients tet_gradients(const TetMesh& mesh, const Tetrahedron& t);
 
-/// K with the material of each tetrahedron's layer. Throws std::invalid_argument for a
+/// K with the material of each tetrahedron's layer (its relaxed modulus under the Maxwell
+/// mechanisms: DampingRequest::relaxed_modulus_factor). Throws std::invalid_argument for a
 /// degenerate tetrahedron (volume <= 0), naming it.
 CsrMatrix assemble_stiffness(const TetMesh& mesh, const FemSettings& settings);
 

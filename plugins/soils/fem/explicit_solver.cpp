@@ -2,6 +2,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <stdexcept>
@@ -42,6 +43,7 @@ void ExplicitSolver::set_threads(unsigned threads) {
 std::size_t ExplicitSolver::bytes() const {
   return K_.bytes() + (single_blocks_ ? single_blocks_->bytes() : double_blocks_->bytes()) +
          product_scratch_.size() * 8 +
+         static_cast<std::size_t>(maxwell_.mechanisms()) * 3 * mass_.size() * 8 +
          static_cast<std::size_t>(mass_.size()) * (8 + 4 + 1 + 3 * 8) +
          boundary_.size() * sizeof(BoundaryNode) + (pml_ ? pml_->bytes() : 0) +
          (lts_ ? lts_->bytes() + halo_of_.size() * 4 + halo_forces_.size() * 8 : 0);
@@ -50,7 +52,15 @@ std::size_t ExplicitSolver::bytes() const {
 ExplicitState ExplicitSolver::rest_state() const {
   const Eigen::Index n = dofs();
   return {Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n),
-          Eigen::VectorXd::Zero(pml_ ? pml_->memory_size() : 0)};
+          Eigen::VectorXd::Zero(pml_ ? pml_->memory_size() : 0),
+          Eigen::VectorXd::Zero(maxwell_.mechanisms() * n)};
+}
+
+void ExplicitSolver::set_maxwell_damping(MaxwellDamping d) {
+  if (lts_) throw std::logic_error("ExplicitSolver: set_maxwell_damping after the local steps");
+  maxwell_ = std::move(d);
+  omega_max_ = std::sqrt(lambda_max_ * maxwell_.unrelaxed());
+  single_rate_step_ = step_limit(lambda_max_ / 1.02);
 }
 
 void ExplicitSolver::set_pml(PmlLayer layer) {
@@ -163,8 +173,13 @@ void ExplicitSolver::estimate_stable_step() {
   const double lambda = largest_eigenvalue(
       [this](const Eigen::VectorXd& x, Eigen::VectorXd& y) { times(x, y, springs_, true); },
       eigen_iterations_);
-  omega_max_ = std::sqrt(1.02 * lambda);  // 2 % margin for what the iteration has not reached
-  single_rate_step_ = damped_step(omega_max_, a1_);
+  lambda_max_ = 1.02 * lambda;  // 2 % margin for what the iteration has not reached
+  omega_max_ = std::sqrt(lambda_max_ * maxwell_.unrelaxed());
+  single_rate_step_ = step_limit(lambda);
+}
+
+double ExplicitSolver::step_limit(double lambda) const {
+  return damped_step(std::sqrt(1.02 * lambda * maxwell_.unrelaxed()), a1_);
 }
 
 void ExplicitSolver::effective_stiffness_times(const Eigen::VectorXd& x, Eigen::VectorXd& y,
@@ -317,6 +332,10 @@ bool ExplicitSolver::enable_local_steps(int substeps, double macro_step, double 
   std::size_t next = 0;
   double dt = 0.0;
   std::vector<char> fine;
+  // The recurrence integrates the fine nodes' fastest modes, which with the Maxwell mechanisms
+  // see the unrelaxed stiffness: its polynomial is built on (1 + sum c_l) M^-1 K, by a mass
+  // scaled down by that factor (M R(A P) M^-1 is unchanged otherwise).
+  const Eigen::VectorXd recurrence_mass = mass_ / maxwell_.unrelaxed();
   for (int t = 0; t < tries; ++t) {
     if (dt == 0.0) {
       if (next == candidates.size()) break;
@@ -324,7 +343,8 @@ bool ExplicitSolver::enable_local_steps(int substeps, double macro_step, double 
       fine = fine_at(dt, candidates[next].safety);
       ++next;
     }
-    lts_.emplace(K_, mass_, fine, fixed_, substeps, precision() == StepPrecision::kSingle);
+    lts_.emplace(K_, recurrence_mass, fine, fixed_, substeps,
+                 precision() == StepPrecision::kSingle);
     halo_of_.assign(n, -1);
     for (std::size_t h = 0; h < lts_->halo().size(); ++h)
       halo_of_[lts_->halo()[h]] = static_cast<std::int32_t>(h);
@@ -335,7 +355,7 @@ bool ExplicitSolver::enable_local_steps(int substeps, double macro_step, double 
         [&](const Eigen::VectorXd& x, Eigen::VectorXd& y) { effective_stiffness_times(x, y, dt); },
         iterations);
     eigen_iterations_ += iterations;
-    const double allowed = damped_step(std::sqrt(1.02 * mu), a1_);
+    const double allowed = step_limit(mu);
     if (dt <= allowed) return true;
     dt = macro_step == 0.0 && 0.97 * allowed > 1.05 * single_rate_step_ ? 0.97 * allowed : 0.0;
   }
@@ -358,15 +378,46 @@ void ExplicitSolver::step(ExplicitState& s, const Eigen::VectorXd& f, double dt)
   const bool local = lts_ && dt > one_rate_limit_;
   if (local) prepare_local_steps(dt);
   last_step_local_ = local;
+  // The mechanisms' exact update for a displacement linear over the step: z <- e z + g dw.
+  const int mechanisms = maxwell_.mechanisms();
+  if (mechanisms > 0 && s.maxwell.size() != mechanisms * dofs())
+    s.maxwell = Eigen::VectorXd::Zero(mechanisms * dofs());
+  double* z = s.maxwell.data();
+  std::array<double, MaxwellDamping::kMaxMechanisms> decay{}, gain{}, weight{};
+  for (int l = 0; l < mechanisms; ++l) {
+    const double rate_dt = maxwell_.rates[l] * dt;
+    decay[l] = std::exp(-rate_dt);
+    gain[l] = -std::expm1(-rate_dt) / rate_dt;
+    weight[l] = maxwell_.weights[l];
+  }
 #pragma omp parallel num_threads(threads_)
   {
+    if (mechanisms == 0) {
 #pragma omp for schedule(static)
-    for (std::int64_t i = 0; i < n; ++i) {
-      if (fixed_[i]) continue;
-      for (std::int64_t k = 3 * i; k < 3 * i + 3; ++k) {
-        v[k] += half * a[k];
-        w[k] += dt * v[k];
-        y[k] = w[k] + a1_ * v[k];
+      for (std::int64_t i = 0; i < n; ++i) {
+        if (fixed_[i]) continue;
+        for (std::int64_t k = 3 * i; k < 3 * i + 3; ++k) {
+          v[k] += half * a[k];
+          w[k] += dt * v[k];
+          y[k] = w[k] + a1_ * v[k];
+        }
+      }
+    } else {
+#pragma omp for schedule(static)
+      for (std::int64_t i = 0; i < n; ++i) {
+        if (fixed_[i]) continue;
+        for (std::int64_t k = 3 * i; k < 3 * i + 3; ++k) {
+          v[k] += half * a[k];
+          const double dw = dt * v[k];
+          w[k] += dw;
+          double memory_force = 0.0;  // sum_l c_l z_l
+          double* zk = z + mechanisms * k;
+          for (int l = 0; l < mechanisms; ++l) {
+            zk[l] = decay[l] * zk[l] + gain[l] * dw;
+            memory_force += weight[l] * zk[l];
+          }
+          y[k] = w[k] + memory_force;
+        }
       }
     }
     // (the implicit barrier of omp for: every w and y is updated before K reads them)

@@ -7,7 +7,9 @@
 // Every operator is diagonal or block-diagonal except one K product per step, so a step is one
 // pass over K (memory-bound) plus vector updates, split over the threads. The damping terms
 // a0 M and D are taken at the new velocity (unconditionally stable); a1 K v+ lags half a step,
-// which shortens the stable step as stable_step() says. Fixed nodes never move. With a perfectly
+// which shortens the stable step as stable_step() says. With the Maxwell mechanisms
+// (maxwell_damping.hpp) instead, a0 = a1 = 0 and y = w + sum_l c_l z_l, each memory z_l stepped
+// exactly at the new displacement (nothing lags). Fixed nodes never move. With a perfectly
 // matched layer (pml.hpp), its tetrahedra add their stretched-minus-elastic forces to K w and its
 // nodes their lumped damping (at the new velocity, with a0 M) and springs.
 // This class is the soil's operator back end: a distributed (MPI) or matrix-free kernel
@@ -23,6 +25,7 @@
 #include "absorbing_boundary.hpp"
 #include "csr_matrix.hpp"
 #include "local_time_stepping.hpp"
+#include "maxwell_damping.hpp"
 #include "pml.hpp"
 #include "symmetric_blocks.hpp"
 
@@ -36,6 +39,9 @@ enum class StepPrecision { kDouble, kSingle };
 struct ExplicitState {
   Eigen::VectorXd w, v, a;  // displacement from the static state [m], velocity, acceleration
   Eigen::VectorXd pml;      // the matched layer's memory variables (pml.hpp); empty: at rest
+  // The Maxwell mechanisms' memory z_l [m], DOF by DOF (mechanisms per DOF, adjacent); empty:
+  // at rest.
+  Eigen::VectorXd maxwell;
 };
 
 class ExplicitSolver {
@@ -58,6 +64,8 @@ class ExplicitSolver {
   double single_rate_step() const { return single_rate_step_; }
   /// The matched layer's own limit on the step [s] (its damping; huge without a layer).
   double layer_step_limit() const { return pml_step_; }
+  /// The highest circular frequency the step must resolve [rad/s] (with a 2 % margin, and the
+  /// Maxwell mechanisms' unrelaxed stiffness).
   double omega_max() const { return omega_max_; }
   int eigen_iterations() const { return eigen_iterations_; }
 
@@ -73,6 +81,11 @@ class ExplicitSolver {
   /// layer's nodes and their neighbours are never fine).
   bool enable_local_steps(int substeps, double macro_step = 0.0, double courant = 1.0);
   const LocalTimeStepping* local_steps() const { return lts_ ? &*lts_ : nullptr; }
+
+  /// Damps by the Maxwell mechanisms (constructed with a0 = a1 = 0; before enable_local_steps):
+  /// the stable step becomes the unrelaxed stiffness's, omega_max x sqrt(d.unrelaxed()).
+  void set_maxwell_damping(MaxwellDamping d);
+  const MaxwellDamping& maxwell_damping() const { return maxwell_; }
 
   /// Adds a perfectly matched layer on the mesh's outer tetrahedra.
   void set_pml(PmlLayer layer);
@@ -122,6 +135,9 @@ class ExplicitSolver {
 
  private:
   void estimate_stable_step();
+  /// The stable step [s] for the largest eigenvalue lambda [1/s^2] of M^-1 K from Lanczos:
+  /// with its 2 % margin, the unrelaxed stiffness of the Maxwell mechanisms and the lag of a1 K.
+  double step_limit(double lambda) const;
   /// y = K x + S x with K read as the step reads it (stepped) or in double.
   void times(const Eigen::VectorXd& x, Eigen::VectorXd& y, bool with_springs, bool stepped) const;
   /// For each node i, finish(i, out) with out = (K x) at node i, K as the step reads it (its
@@ -164,7 +180,9 @@ class ExplicitSolver {
   bool springs_;
   std::vector<char> fixed_;  // per node
   double a0_, a1_;
+  MaxwellDamping maxwell_;  // none unless set_maxwell_damping
   unsigned threads_;
+  double lambda_max_ = 0.0;  // the largest eigenvalue of M^-1 (K + S) from Lanczos [1/s^2]
   double omega_max_ = 0.0, single_rate_step_ = 0.0;
   double local_step_ = 0.0;      // verified with local time stepping [s]; 0: off
   double one_rate_limit_ = 0.0;  // [s] longer steps are local ones (enable_local_steps)

@@ -9,6 +9,7 @@
 
 #include "half_space.hpp"
 #include "layered_soil.hpp"
+#include "maxwell_damping.hpp"
 
 namespace rumble::fem {
 
@@ -54,12 +55,21 @@ struct BoundaryRequest {
   bool springs() const { return kind == BoundaryKind::kViscousSpring; }
 };
 
-/// Rayleigh damping C = a0 M + a1 K with the ratio `ratio` at f_low and f_high (physics.md §4.4).
+/// Material damping with the ratio `ratio` at f_low and f_high: Rayleigh's C = a0 M + a1 K
+/// (physics.md §4.4), or generalized Maxwell mechanisms flat over the band between them
+/// (maxwell_damping.hpp), with E the modulus at the band's centre sqrt(f_low f_high).
 struct DampingRequest {
   double ratio = 0.02;                   // [-]; 0: no material damping
   double f_low = 5.0, f_high = 100.0;    // Hz
-  double mass_coefficient() const;       // a0 [1/s]
-  double stiffness_coefficient() const;  // a1 [s]
+  bool maxwell = false;                  // the mechanisms instead of Rayleigh's terms
+  int mechanisms = 3;                    // maxwell: how many
+  double mass_coefficient() const;       // a0 [1/s] (0 with the mechanisms)
+  double stiffness_coefficient() const;  // a1 [s] (0 with the mechanisms)
+  /// The mechanisms (maxwell), none otherwise.
+  MaxwellDamping maxwell_mechanisms() const;
+  /// The relaxed (static) modulus over E [-]: 1 under Rayleigh; with the mechanisms
+  /// 1 / Re(modulus) at the band's centre, so that the soil is E (1 + 2 i ratio) there.
+  double relaxed_modulus_factor() const;
 };
 
 /// How the footprint receptance is computed: one complex LU per frequency (exact for the mesh),

@@ -119,6 +119,7 @@ class FemSoil final : public rumble::Soil {
                 host_.threads(),
                 settings_.single_precision_step ? StepPrecision::kSingle : StepPrecision::kDouble);
     op_->set_loaded_nodes(loaded_nodes(weights_));  // (the footprints' forces act there only)
+    if (settings_.damping.maxwell) op_->set_maxwell_damping(settings_.damping.maxwell_mechanisms());
     if (settings_.boundary.kind == BoundaryKind::kPml)
       op_->set_pml(PmlLayer(mesh_, settings_, pml_profile()));
     local_steps_chosen_ = false;  // (at the first macro step, whose length they are fitted to)
@@ -159,7 +160,8 @@ class FemSoil final : public rumble::Soil {
     state_.w.setZero();
     state_.v.setZero();
     state_.a.setZero();
-    state_.pml.setZero();  // the layer at rest
+    state_.pml.setZero();      // the layer at rest
+    state_.maxwell.setZero();  // the mechanisms relaxed
     for (std::size_t j = 0; j < footprints_.size(); ++j) static_u[j] = average(j, u_static_);
   }
 
@@ -291,6 +293,11 @@ class FemSoil final : public rumble::Soil {
   void linear_matrix(rumble_matrix which, rumble::CscMatrix& out) override {
     require_layout("linear_matrix");
     refuse_with_pml("its matrices (the monolithic coupler, rumble stability)");
+    if (settings_.damping.maxwell)
+      throw std::invalid_argument(
+          "fem: params/damping/model: the Maxwell mechanisms' memory has no place in M, C and K "
+          "(the monolithic coupler, rumble stability); use damping.model \"rayleigh\" for them, "
+          "got \"maxwell\"");
     rumble::fem::linear_matrix(*op_, weights_, settings_.damping.mass_coefficient(),
                                settings_.damping.stiffness_coefficient(), which, out);
   }
@@ -548,6 +555,15 @@ class FemSoil final : public rumble::Soil {
       << format(op_->stable_step()) << " s (" << op_->eigen_iterations() << " Lanczos iterations), "
       << (implicit_ ? "implicit" : "explicit") << " step " << format(max_step()) << " s"
       << (op_->precision() == StepPrecision::kSingle ? " (K read in single precision)" : "");
+    if (const auto& d = op_->maxwell_damping(); d.mechanisms() > 0)
+      m << "; " << d.mechanisms() << " Maxwell mechanisms, ratio within "
+        << format(100.0 * d.band_error(settings_.damping.ratio, settings_.damping.f_low,
+                                       settings_.damping.f_high),
+                  2)
+        << " % of " << settings_.damping.ratio << " over " << format(settings_.damping.f_low) << "-"
+        << format(settings_.damping.f_high) << " Hz, static modulus "
+        << format(settings_.damping.relaxed_modulus_factor(), 4) << " E, unrelaxed "
+        << format(settings_.damping.relaxed_modulus_factor() * d.unrelaxed(), 4) << " E";
     if (plan_.radius > 0.0)  // (0: a user's mesh, whose sizes the soil did not choose)
       m << "; f_max resolved at " << settings_.mesh.elements_per_wavelength
         << " elements per Rayleigh wavelength:";

@@ -69,7 +69,9 @@ void Receptance::at(double f_hz, std::complex<double>* H) {
   const CsrMatrix& K = op_.stiffness();
   const auto& fixed = op_.fixed();
   ComplexSparse& A = lu_->A;
-  // A = K (1 + i w a1) + diag(m (i w a0 - w^2)) + S + i w D, fixed DOFs as identity rows/columns.
+  // A = K (1 + i w a1) + diag(m (i w a0 - w^2)) + S + i w D, fixed DOFs as identity rows/columns;
+  // with the Maxwell mechanisms K's factor is their complex modulus (a0 = a1 = 0).
+  const std::complex<double> stiffness_factor = op_.maxwell_damping().modulus(w) + i_w * a1_;
   const std::int64_t n = K.rows();
   for (std::int64_t c = 0; c < n; ++c) {
     std::complex<double>* value = A.valuePtr() + A.outerIndexPtr()[c];
@@ -81,7 +83,7 @@ void Receptance::at(double f_hz, std::complex<double>* H) {
         value[k] = r == c ? 1.0 : 0.0;
         continue;
       }
-      value[k] = K.value()[K.row_start()[c] + k] * (1.0 + i_w * a1_);
+      value[k] = K.value()[K.row_start()[c] + k] * stiffness_factor;
       if (r == c) value[k] += op_.mass()[c / 3] * (i_w * a0_ - w * w);
     }
   }
