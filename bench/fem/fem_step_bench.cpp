@@ -52,22 +52,26 @@ double timed_steps(benchmark::State& state, const ExplicitSolver& op, ExplicitSt
 }
 
 /// Medium soil (physics.md §4.1) on a Kuhn box of n^3 cubes; LK dashpots and springs on five
-/// sides, 2 % Rayleigh damping: the step the plugin takes, with K read in double (single 0) or
-/// single precision (single 1).
+/// sides, 2 % Rayleigh damping (or over 5-100 Hz by `mechanisms` Maxwell mechanisms): the step
+/// the plugin takes, with K read in double (single 0) or single precision (single 1).
 void BM_ExplicitStep(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
   const int threads = static_cast<int>(state.range(1));
   const bool single = state.range(2) != 0;
+  const int mechanisms = static_cast<int>(state.range(3));
   rumble::fem::FemSettings s;
   s.half_space = {155e6, 0.3, 1800.0};
+  s.damping.maxwell = mechanisms > 0;
+  s.damping.mechanisms = std::max(mechanisms, 1);
   const rumble::fem::TetMesh mesh = rumble::fem::kuhn_box(n, 0.164);
   const rumble::fem::TrackRegion centre{0.082 * n, 0.082 * n, 0.082 * n, 0.082 * n};
-  const ExplicitSolver op(
+  ExplicitSolver op(
       rumble::fem::assemble_stiffness(mesh, s), rumble::fem::lumped_mass(mesh, s),
       rumble::fem::absorbing_boundary(mesh, s, centre), true,
       std::vector<char>(mesh.node_count(), 0), s.damping.mass_coefficient(),
       s.damping.stiffness_coefficient(), static_cast<unsigned>(threads),
       single ? rumble::fem::StepPrecision::kSingle : rumble::fem::StepPrecision::kDouble);
+  if (mechanisms > 0) op.set_maxwell_damping(s.damping.maxwell_mechanisms());
   const Eigen::Index dofs = op.dofs();
   ExplicitState st{Eigen::VectorXd::Random(dofs) * 1e-6,
                    Eigen::VectorXd::Zero(dofs),
@@ -78,12 +82,12 @@ void BM_ExplicitStep(benchmark::State& state) {
   const double dt = 0.8 * op.stable_step();
   // K's upper blocks once (the diagonal ones and half of the others: values, a node index per
   // block, a start per node), the product's scratch read and written, w v a y read and w v a y
-  // written: 10 vectors.
+  // written: 10 vectors; each mechanism's memory (float) read and written.
   const auto nnz = static_cast<double>(op.stiffness().nonzeros());
   const auto nodes = static_cast<double>(dofs) / 3.0;
   const double upper_blocks = (nnz / 9.0 - nodes) / 2.0 + nodes;
   const double bytes = (single ? 4.0 : 8.0) * 9.0 * upper_blocks + 4.0 * upper_blocks +
-                       8.0 * nodes + 10.0 * 8.0 * static_cast<double>(dofs);
+                       8.0 * nodes + (80.0 + 8.0 * mechanisms) * static_cast<double>(dofs);
   const double bandwidth = triad_bandwidth(std::max<std::int64_t>(dofs * 8, 1 << 24), threads);
   const double seconds = timed_steps(state, op, st, f, dt);
   const double steps = static_cast<double>(state.iterations());
@@ -98,16 +102,18 @@ void BM_ExplicitStep(benchmark::State& state) {
   state.counters["roofline_fraction"] = steps * bytes / seconds / bandwidth;
 }
 BENCHMARK(BM_ExplicitStep)
-    ->ArgNames({"n", "threads", "single"})
-    ->Args({20, 1, 0})
-    ->Args({20, 2, 0})
-    ->Args({32, 1, 0})
-    ->Args({32, 2, 0})
-    ->Args({46, 2, 0})
-    ->Args({20, 2, 1})
-    ->Args({32, 1, 1})
-    ->Args({32, 2, 1})
-    ->Args({46, 2, 1})
+    ->ArgNames({"n", "threads", "single", "mechanisms"})
+    ->Args({20, 1, 0, 0})
+    ->Args({20, 2, 0, 0})
+    ->Args({32, 1, 0, 0})
+    ->Args({32, 2, 0, 0})
+    ->Args({46, 2, 0, 0})
+    ->Args({20, 2, 1, 0})
+    ->Args({32, 1, 1, 0})
+    ->Args({32, 2, 1, 0})
+    ->Args({46, 2, 1, 0})
+    ->Args({32, 2, 1, 3})
+    ->Args({46, 2, 1, 3})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 

@@ -148,6 +148,7 @@ class EnergyMeter {
     const int count = op_.maxwell_damping().mechanisms();
     memory_.resize(op_.dofs());
     for (Eigen::Index k = 0; k < memory_.size(); ++k) memory_[k] = s.maxwell[count * k + l];
+    // (float to double exactly: the values the step used)
     return memory_;
   }
   /// The Maxwell mechanisms' power sum c_l omega_l z_l^T K z_l [W] and energy

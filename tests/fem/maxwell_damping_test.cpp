@@ -94,9 +94,10 @@ TEST(FemMaxwell, StableJustBelowTheUnrelaxedStepAndUnstableAbove) {
   // mode); at 1.1 of it the top mode grows (measured: see the output).
   const ExplicitSolver op = box_solver(4, 0.5, true);
   const double below = test::growth_from_random_state(op, 0.97 * op.stable_step(), 3000);
-  const double above = test::growth_from_random_state(op, 1.1 * op.stable_step(), 600);
+  // (energy_after: the memory, in float, overflows first, and the energy is then not finite)
+  const double above = test::energy_after(op, 1.1 * op.stable_step(), 600);
   EXPECT_LT(below, 1.0);
-  EXPECT_GT(above, 1e6);
+  EXPECT_FALSE(above < 1e6);
   std::printf("[ measured ] energy growth at 0.97 / 1.1 of the step: %.3g / %.3g\n", below, above);
 }
 

@@ -43,7 +43,7 @@ void ExplicitSolver::set_threads(unsigned threads) {
 std::size_t ExplicitSolver::bytes() const {
   return K_.bytes() + (single_blocks_ ? single_blocks_->bytes() : double_blocks_->bytes()) +
          product_scratch_.size() * 8 +
-         static_cast<std::size_t>(maxwell_.mechanisms()) * 3 * mass_.size() * 8 +
+         static_cast<std::size_t>(maxwell_.mechanisms()) * 3 * mass_.size() * 4 +
          static_cast<std::size_t>(mass_.size()) * (8 + 4 + 1 + 3 * 8) +
          boundary_.size() * sizeof(BoundaryNode) + (pml_ ? pml_->bytes() : 0) +
          (lts_ ? lts_->bytes() + halo_of_.size() * 4 + halo_forces_.size() * 8 : 0);
@@ -53,7 +53,7 @@ ExplicitState ExplicitSolver::rest_state() const {
   const Eigen::Index n = dofs();
   return {Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n),
           Eigen::VectorXd::Zero(pml_ ? pml_->memory_size() : 0),
-          Eigen::VectorXd::Zero(maxwell_.mechanisms() * n)};
+          Eigen::VectorXf::Zero(maxwell_.mechanisms() * n)};
 }
 
 void ExplicitSolver::set_maxwell_damping(MaxwellDamping d) {
@@ -381,8 +381,8 @@ void ExplicitSolver::step(ExplicitState& s, const Eigen::VectorXd& f, double dt)
   // The mechanisms' exact update for a displacement linear over the step: z <- e z + g dw.
   const int mechanisms = maxwell_.mechanisms();
   if (mechanisms > 0 && s.maxwell.size() != mechanisms * dofs())
-    s.maxwell = Eigen::VectorXd::Zero(mechanisms * dofs());
-  double* z = s.maxwell.data();
+    s.maxwell = Eigen::VectorXf::Zero(mechanisms * dofs());
+  float* z = s.maxwell.data();
   std::array<double, MaxwellDamping::kMaxMechanisms> decay{}, gain{}, weight{};
   for (int l = 0; l < mechanisms; ++l) {
     const double rate_dt = maxwell_.rates[l] * dt;
@@ -411,10 +411,10 @@ void ExplicitSolver::step(ExplicitState& s, const Eigen::VectorXd& f, double dt)
           const double dw = dt * v[k];
           w[k] += dw;
           double memory_force = 0.0;  // sum_l c_l z_l
-          double* zk = z + mechanisms * k;
+          float* zk = z + mechanisms * k;
           for (int l = 0; l < mechanisms; ++l) {
-            zk[l] = decay[l] * zk[l] + gain[l] * dw;
-            memory_force += weight[l] * zk[l];
+            zk[l] = static_cast<float>(decay[l] * zk[l] + gain[l] * dw);
+            memory_force += weight[l] * zk[l];  // (the value kept, so restarts repeat it)
           }
           y[k] = w[k] + memory_force;
         }
