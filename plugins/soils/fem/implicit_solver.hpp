@@ -3,6 +3,8 @@
 // elements much smaller than the waves need (numerics.md §3.3: implicit pays only there):
 //   K_eff w' = f' + M (c0 w + c2 v + c3 a) + C (c1 w + c4 v + c5 a),
 //   K_eff = K + S + c0 M + c1 C,  C = a0 M + a1 K + D,
+// and with op's Maxwell mechanisms (a0 = a1 = 0) K's factor 1 + sum c_l g_l and K h on the right
+// (implicit_solver.cpp), their memory stepped as the explicit step does,
 // with one CHOLMOD factor of K_eff per step size, reused for every step of that size.
 #pragma once
 
@@ -34,7 +36,7 @@ class ImplicitSolver {
   std::unique_ptr<Factor> factor_;
   double factored_dt_ = -1.0;
   int factorizations_ = 0;
-  Eigen::VectorXd y_, z_, rhs_, ky_;  // scratch
+  Eigen::VectorXd y_, z_, q_, rhs_, ky_;  // scratch
 };
 
 }  // namespace rumble::fem
