@@ -537,7 +537,8 @@ TEST(FemBadInput, LocalStepsThatCannotHelpSayWhy) {
   EXPECT_NE(said.find("the damping a1 K, taken half a step late, limits the step here"),
             std::string::npos)
       << said;
-  EXPECT_NE(said.find("raise damping.f_high or lower damping.ratio to lower a1, or set "
+  EXPECT_NE(said.find("set damping.model \"maxwell\" (frequency-flat mechanisms, nothing "
+                      "lags), raise damping.f_high or lower damping.ratio to lower a1, or set "
                       "local_steps 1"),
             std::string::npos)
       << said;

@@ -513,8 +513,9 @@ class FemSoil final : public rumble::Soil {
       else if (rumble::fem::LocalTimeStepping::tau_for(single, a1) == 0.0)
         m << "the damping a1 K, taken half a step late, limits the step here (a1 = " << format(a1)
           << " s is " << format(a1 / single, 2) << " of the step " << format(single)
-          << " s; local steps need below 0.4): raise damping.f_high or lower damping.ratio to "
-             "lower a1, or set local_steps 1";
+          << " s; local steps need below 0.4): set damping.model \"maxwell\" (frequency-flat "
+             "mechanisms, nothing lags), raise damping.f_high or lower damping.ratio to lower "
+             "a1, or set local_steps 1";
       else
         m << "no step longer than one rate's " << format(single)
           << " s that makes fewer sub-steps of the macro step " << format(H)
