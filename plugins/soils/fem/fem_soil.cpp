@@ -257,7 +257,6 @@ class FemSoil final : public rumble::Soil {
 
   bool frequency_response(double f_hz, std::complex<double>* receptance) override {
     require_layout("frequency_response");
-    refuse_with_pml("its receptance (rumble soil-frf, calibrate, two-step)");
     using namespace rumble::fem;
     const auto dir = mesh_cache_directory();
     std::filesystem::path cached;
@@ -379,7 +378,7 @@ class FemSoil final : public rumble::Soil {
     return plan_.physical_box(settings_.boundary.pml_reflection, settings_.boundary.pml_shift());
   }
 
-  /// The layer's memory variables have no place in M, C, K nor in one frequency's solve yet.
+  /// The layer's memory variables have no place in M, C, K yet.
   void refuse_with_pml(const std::string& what) const {
     if (op_->pml())
       throw std::invalid_argument(

@@ -167,6 +167,63 @@ void PmlLayer::add_node_forces(std::int32_t local, const double* w_old, const do
   }
 }
 
+void PmlLayer::frequency_domain(
+    double omega,
+    const std::function<void(std::int32_t, std::int32_t, const Eigen::Matrix3cd&)>& add_block,
+    const std::function<void(std::int32_t, std::complex<double>)>& add_node) const {
+  using Complex = std::complex<double>;
+  const Complex q = 1.0 / Complex(shift_, omega), iw(0.0, omega);
+  for (const Tet& t : tets_) {
+    // s_k = 1 + d_k q; the operators of update_tetrahedra: A = s_l s_m / s_k on g_kc (k's two
+    // other axes l, m), B = s_l on g_kc in T_ij (i != k, l the third axis).
+    Complex stretch[3];
+    for (int k = 0; k < 3; ++k) stretch[k] = 1.0 + t.d[k] * q;
+    // The correction's column for each unit displacement (b, c): T_ij as update_tetrahedra
+    // forms it, minus the elastic sigma_ij, then the force V sum_i dN_a/dx_i T_ij.
+    Eigen::Matrix<Complex, 12, 12> block = Eigen::Matrix<Complex, 12, 12>::Zero();
+    for (int b = 0; b < 4; ++b)
+      for (int c = 0; c < 3; ++c) {
+        Complex g[9] = {};  // g_kc = dN_b/dx_k for component c
+        for (int k = 0; k < 3; ++k) g[3 * k + c] = t.gradient(k, b);
+        Complex A[9];
+        for (int k = 0; k < 3; ++k)
+          for (int e = 0; e < 3; ++e)
+            A[3 * k + e] = stretch[(k + 1) % 3] * stretch[(k + 2) % 3] / stretch[k] * g[3 * k + e];
+        const auto B = [&](int i, int k, int e) { return stretch[3 - i - k] * g[3 * k + e]; };
+        const Complex trace = g[0] + g[4] + g[8];
+        Complex T[9];
+        for (int i = 0; i < 3; ++i) {
+          Complex sum = A[3 * i + i];
+          for (int k = 0; k < 3; ++k)
+            if (k != i) sum += B(i, k, k);
+          for (int j = 0; j < 3; ++j) {
+            const Complex stretched = (i == j ? t.lambda * sum + 2.0 * t.mu * A[3 * i + i]
+                                              : t.mu * (A[3 * i + j] + B(i, j, i)));
+            const Complex elastic =
+                (i == j ? t.lambda * trace : 0.0) + t.mu * (g[3 * i + j] + g[3 * j + i]);
+            T[3 * i + j] = stretched - elastic;
+          }
+        }
+        for (int a = 0; a < 4; ++a)
+          for (int j = 0; j < 3; ++j) {
+            Complex f = 0.0;
+            for (int i = 0; i < 3; ++i) f += t.gradient(i, a) * T[3 * i + j];
+            block(3 * a + j, 3 * b + c) = t.volume * f;
+          }
+      }
+    for (int a = 0; a < 4; ++a)
+      for (int b = 0; b < 4; ++b)
+        add_block(t.nodes[a], t.nodes[b], block.block<3, 3>(3 * a, 3 * b));
+  }
+  // The mass side: c0 u' + c1 u + c2 phi u + c3 phi^2 u + c4 phi^3 u (add_node_forces).
+  for (std::size_t node = 0; node < local_.size(); ++node) {
+    if (local_[node] < 0) continue;
+    const std::array<double, 5>& c = mass_terms_[local_[node]];
+    add_node(static_cast<std::int32_t>(node),
+             iw * c[0] + c[1] + c[2] * q + c[3] * q * q + c[4] * q * q * q);
+  }
+}
+
 std::size_t PmlLayer::bytes() const {
   // Geometry and forces per tetrahedron, mass terms and incidence offsets per node, and the
   // memory variables the state holds for it (ExplicitState::pml).

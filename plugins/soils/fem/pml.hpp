@@ -25,7 +25,9 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <complex>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "fem_settings.hpp"
@@ -75,6 +77,17 @@ class PmlLayer {
   void update_tetrahedra(const double* w, double dt, double* memory, double* forces) const;
   /// Sum of the correction forces on layer node `local` [N] (3 components, added to out).
   void gather(std::int32_t local, const double* forces, double* out) const;
+
+  /// The layer in the frequency domain at omega [rad/s] (e^{+i w t}): the semi-discrete system
+  /// the step integrates, its filters phi = q = 1 / (alpha + i w). Hands each tetrahedron's
+  /// stretched-minus-elastic stiffness to add_block(a, b, block) (mesh nodes; block(j, c) the
+  /// force on a's component j per unit displacement of b's component c [N/m]), and each layer
+  /// node's mass-side terms i w D1 + ... (pml.hpp's mass side, without the inertia) to
+  /// add_node(node, value) [N/m], on each of its three components.
+  void frequency_domain(
+      double omega,
+      const std::function<void(std::int32_t, std::int32_t, const Eigen::Matrix3cd&)>& add_block,
+      const std::function<void(std::int32_t, std::complex<double>)>& add_node) const;
   static constexpr Eigen::Index kPerTet = 54, kPerNode = 9;
 
   std::size_t bytes() const;

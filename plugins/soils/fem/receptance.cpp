@@ -87,6 +87,20 @@ void Receptance::at(double f_hz, std::complex<double>* H) {
       if (r == c) value[k] += op_.mass()[c / 3] * (i_w * a0_ - w * w);
     }
   }
+  // The matched layer's stretched-minus-elastic stiffness and its mass side (pml.hpp), in the
+  // pattern of K (the layer's tetrahedra are the mesh's).
+  if (const PmlLayer* layer = op_.pml())
+    layer->frequency_domain(
+        w,
+        [&](std::int32_t a, std::int32_t b, const Eigen::Matrix3cd& block) {
+          if (fixed[a] || fixed[b]) return;
+          for (int j = 0; j < 3; ++j)
+            for (int c = 0; c < 3; ++c) A.coeffRef(3 * a + j, 3 * b + c) += block(j, c);
+        },
+        [&](std::int32_t node, std::complex<double> value) {
+          if (fixed[node]) return;
+          for (int c = 0; c < 3; ++c) A.coeffRef(3 * node + c, 3 * node + c) += value;
+        });
   const bool springs = op_.springs_act();
   for (const BoundaryNode& b : op_.boundary()) {
     if (fixed[b.node]) continue;
