@@ -1,8 +1,9 @@
 // The footprint receptance of the FEM soil, H(f) = B^T (K + S + i w C - w^2 M)^-1 B [m/N]
 // (e^{+i w t}: u = H F; C = a0 M + a1 K + D; with op's Maxwell mechanisms K (1 + i w a1) becomes
-// K times their complex modulus; with a matched layer, its stretching at w), the same quantity the reduced soils give, so that
-// `rumble soil-frf` overlays them and `rumble calibrate` fits them to it. One complex sparse LU
-// per frequency (UMFPACK; the pattern is analysed once), one solve per footprint.
+// K times their complex modulus; with a matched layer, its stretching at w), the same quantity the
+// reduced soils give, so that `rumble soil-frf` overlays them and `rumble calibrate` fits them to
+// it. One complex sparse LU per frequency (UMFPACK; the pattern is analysed once), one solve per
+// footprint.
 #pragma once
 
 #include <complex>
