@@ -1,4 +1,4 @@
-// Multigrid's threaded sparse product (sparse_product.hpp) against Eigen's, on random matrices
+// Multigrid's threaded sparse products (sparse_product.hpp) against Eigen's, on random matrices
 // with empty rows and columns, for one to three threads (more threads than rows included).
 #include "sparse_product.hpp"
 
@@ -59,6 +59,24 @@ TEST(SparseProduct, RefusesMismatchedOrUncompressedOperands) {
   uncompressed.insert(4, 3) = 1.0;  // (row 4 was empty: inserting leaves the matrix uncompressed)
   ASSERT_FALSE(uncompressed.isCompressed());
   EXPECT_THROW(sparse_product(a, uncompressed, 1), std::invalid_argument);
+}
+
+TEST(SparseProduct, MatrixTimesVectorEqualsEigensForAnyNumberOfThreads) {
+  // Each entry is the same row's sum in the same order as Eigen's: equal to round-off (at most 6
+  // terms of magnitude <= 1: 1e-15).
+  const RowSparse a = random_sparse(200, 150, 6, 8);
+  const Eigen::VectorXd x = Eigen::VectorXd::LinSpaced(150, -1.0, 1.0);
+  const Eigen::VectorXd expected = a * x;
+  for (const unsigned threads : {1u, 2u, 3u}) {
+    Eigen::VectorXd y;
+    multiply(a, x, y, threads);
+    EXPECT_LE((y - expected).cwiseAbs().maxCoeff(), 1e-15) << threads << " threads";
+    Eigen::VectorXd z = Eigen::VectorXd::Ones(200);
+    multiply_add(a, x, z, threads);
+    EXPECT_LE((z - expected - Eigen::VectorXd::Ones(200)).cwiseAbs().maxCoeff(), 1e-15);
+  }
+  Eigen::VectorXd wrong_size = Eigen::VectorXd::Zero(3);
+  EXPECT_THROW(multiply_add(a, x, wrong_size, 1), std::invalid_argument);
 }
 
 }  // namespace

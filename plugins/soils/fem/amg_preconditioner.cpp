@@ -139,7 +139,9 @@ struct AmgPreconditioner::Coarse {
 
 AmgPreconditioner::AmgPreconditioner(RowSparse a, const Eigen::Matrix3Xd& nodes,
                                      Product fine_product, unsigned threads)
-    : coarse_(std::make_unique<Coarse>()), fine_product_(std::move(fine_product)) {
+    : coarse_(std::make_unique<Coarse>()),
+      fine_product_(std::move(fine_product)),
+      threads_(threads < 1 ? 1 : threads) {
   if (a.rows() != 3 * nodes.cols())
     throw std::invalid_argument("AmgPreconditioner: the matrix is not 3 DOFs per node");
   levels_.reserve(kMaxLevels);  // (a reallocation would copy the levels' matrices)
@@ -251,7 +253,7 @@ void AmgPreconditioner::cycle(std::size_t l) const {
     if (l == 0 && fine_product_)
       fine_product_(L.x, L.r);
     else
-      L.r.noalias() = L.A * L.x;
+      multiply(L.A, L.x, L.r, threads_);
   };
   const auto smooth = [&] {
     residual_product();
@@ -262,9 +264,9 @@ void AmgPreconditioner::cycle(std::size_t l) const {
   residual_product();
   const Level& C = levels_[l + 1];
   L.r = L.b - L.r;
-  C.b.noalias() = L.R * L.r;
+  multiply(L.R, L.r, C.b, threads_);
   cycle(l + 1);
-  L.x.noalias() += L.P * C.x;
+  multiply_add(L.P, C.x, L.x, threads_);
   for (int s = 0; s < kSweeps; ++s) smooth();
 }
 

@@ -40,7 +40,8 @@ class AmgPreconditioner {
   /// the V-cycle a fixed symmetric preconditioner); that level's own copy of A is then freed
   /// after the set-up. It must agree with A on the free DOFs and give 0 or x on fixed ones
   /// (their residual, and so their correction, is 0 either way).
-  /// threads: the set-up's Galerkin products (sparse_product.hpp) share them.
+  /// threads: the set-up's Galerkin products and the V-cycle's products below the mesh's level
+  /// (sparse_product.hpp) share them.
   AmgPreconditioner(RowSparse a, const Eigen::Matrix3Xd& nodes, Product fine_product = {},
                     unsigned threads = 1);
   ~AmgPreconditioner();
@@ -69,6 +70,7 @@ class AmgPreconditioner {
   std::vector<Level> levels_;
   std::unique_ptr<Coarse> coarse_;
   Product fine_product_;                            // empty: level 0 uses its A
+  unsigned threads_;                                // the V-cycle's products below the mesh's
   Eigen::Index fine_rows_ = 0, fine_nonzeros_ = 0;  // level 0's A, kept when A is freed
 };
 

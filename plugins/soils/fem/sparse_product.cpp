@@ -88,4 +88,38 @@ RowSparse sparse_product(const RowSparse& a, const RowSparse& b, unsigned thread
   return c;
 }
 
+namespace {
+
+template <bool kAdd>
+void row_products(const RowSparse& a, const Eigen::VectorXd& x, Eigen::VectorXd& y,
+                  unsigned threads) {
+  const std::int64_t rows = a.rows();
+  const int* start = a.outerIndexPtr();
+  const int* column = a.innerIndexPtr();
+  const double* value = a.valuePtr();
+  const double* in = x.data();
+  double* out = y.data();
+#pragma omp parallel for num_threads(threads < 1 ? 1 : threads) schedule(static)
+  for (std::int64_t r = 0; r < rows; ++r) {
+    double sum = 0.0;
+    for (int k = start[r]; k < start[r + 1]; ++k) sum += value[k] * in[column[k]];
+    out[r] = kAdd ? out[r] + sum : sum;
+  }
+}
+
+}  // namespace
+
+void multiply(const RowSparse& a, const Eigen::VectorXd& x, Eigen::VectorXd& y, unsigned threads) {
+  if (!a.isCompressed()) throw std::invalid_argument("multiply: the matrix must be compressed");
+  y.resize(a.rows());
+  row_products<false>(a, x, y, threads);
+}
+
+void multiply_add(const RowSparse& a, const Eigen::VectorXd& x, Eigen::VectorXd& y,
+                  unsigned threads) {
+  if (!a.isCompressed() || y.size() != a.rows())
+    throw std::invalid_argument("multiply_add: the matrix must be compressed and y its rows'");
+  row_products<true>(a, x, y, threads);
+}
+
 }  // namespace rumble::fem

@@ -75,13 +75,17 @@ Eigen::VectorXd StaticSolver::conjugate_gradients(const Eigen::VectorXd& f) {
     last_.setZero();
     return last_;
   }
-  op_.stiffness_times(x, q, true);  // (zero on fixed DOFs, as x is)
+  // The products read K as the step does (its upper blocks, threaded, in the step's precision):
+  // a sixth of the bytes of K's double rows, so the iteration streams mostly the V-cycle's. The
+  // static state is then the one of the operator the dynamics step (K rounded to float, §4.2),
+  // which the soil starts from at rest; the factor's path (smaller meshes) solves K in double.
+  op_.stepped_stiffness_times(x, q, true);  // (zero on fixed DOFs, as x is)
   r -= q;
   precondition(r, z);
   p = z;
   double rz = r.dot(z);
   for (cg_iterations_ = 0; cg_iterations_ < 20000 && r.norm() > target; ++cg_iterations_) {
-    op_.stiffness_times(p, q, true);
+    op_.stepped_stiffness_times(p, q, true);
     const double alpha = rz / p.dot(q);
     x += alpha * p;
     r -= alpha * q;
