@@ -147,5 +147,29 @@ TEST(FemStatics, TheWholeCombinationIsTheLowerTriangleMirrored) {
   EXPECT_EQ(whole(dof, dof), 1.0);
 }
 
+// The plugin's Ctrl-C check (ExplicitSolver::set_stop_check) is called between the conjugate
+// gradients' iterations and between the eigenvalue iterations of the local steps' choice, so a
+// stop request ends a long solve or choice with the check's exception, after as many iterations
+// as the check allowed.
+TEST(FemStatics, TheStopCheckEndsALongSolveAndTheLocalStepsChoice) {
+  struct StopRequested {};
+  const TetMesh m = kuhn_box(4, 0.5);
+  FemSettings s;
+  s.half_space = {155e6, 0.3, 1800.0};
+  const TrackRegion centre{1.0, 1.0, 1.0, 1.0};
+  ExplicitSolver op(assemble_stiffness(m, s), lumped_mass(m, s), absorbing_boundary(m, s, centre),
+                    true, std::vector<char>(m.node_count(), 0), 0.0, 0.0, 1);
+  int calls = 0;
+  op.set_stop_check([&calls] {
+    if (++calls == 5) throw StopRequested{};
+  });
+  StaticSolver cg(op, m.nodes, /*factor_limit=*/0, CgPreconditioner::kJacobi);
+  EXPECT_THROW(cg.solve(Eigen::VectorXd::Constant(op.dofs(), 1e3)), StopRequested);
+  EXPECT_EQ(calls, 5);
+  calls = 0;
+  EXPECT_THROW(op.enable_local_steps(2), StopRequested);
+  EXPECT_EQ(calls, 5);
+}
+
 }  // namespace
 }  // namespace rumble::fem

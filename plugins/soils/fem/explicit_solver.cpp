@@ -143,6 +143,7 @@ double ExplicitSolver::largest_eigenvalue(
   double lambda = 0.0;
   constexpr int kMaxIterations = 3000;
   for (iterations = 1; iterations <= kMaxIterations; ++iterations) {
+    check_stop();
     op(q, w);                   // K q
     const double a = q.dot(w);  // q^T K q, q M-normalized
 #pragma omp parallel for num_threads(threads_) schedule(static)

@@ -126,6 +126,13 @@ class ExplicitSolver {
   bool springs_act() const { return springs_; }
   const Eigen::VectorXd& mass() const { return mass_; }
   std::size_t bytes() const;
+  /// Called between the iterations of the long set-up loops (the eigenvalue iterations of
+  /// enable_local_steps, the static solver's conjugate gradients): the plugin's Ctrl-C check,
+  /// which throws to stop. None by default.
+  void set_stop_check(std::function<void()> check) { stop_check_ = std::move(check); }
+  void check_stop() const {
+    if (stop_check_) stop_check_();
+  }
   /// Threads for the step's loops (the host grants them per run, after the layout).
   void set_threads(unsigned threads);
   unsigned threads() const { return threads_; }
@@ -197,6 +204,7 @@ class ExplicitSolver {
   std::vector<std::int32_t> halo_of_;        // per node: its place in lts_->halo(), or -1
   mutable std::vector<double> halo_forces_;  // scratch: the residual at the halo [N]
   mutable bool last_step_local_ = false;     // the last step filtered the halo (force_jump)
+  std::function<void()> stop_check_;         // set_stop_check()
 };
 
 }  // namespace rumble::fem

@@ -119,6 +119,13 @@ class FemSoil final : public rumble::Soil {
                 host_.threads(),
                 settings_.single_precision_step ? StepPrecision::kSingle : StepPrecision::kDouble);
     op_->set_loaded_nodes(loaded_nodes(weights_));  // (the footprints' forces act there only)
+    // Ctrl-C inside the static solves and the local steps' choice, checked every 0.1 s at most.
+    op_->set_stop_check([this, last = std::chrono::steady_clock::now()]() mutable {
+      const auto now = std::chrono::steady_clock::now();
+      if (now - last < std::chrono::milliseconds(100)) return;
+      last = now;
+      host_.check_stop();
+    });
     if (settings_.damping.maxwell) op_->set_maxwell_damping(settings_.damping.maxwell_mechanisms());
     if (settings_.boundary.kind == BoundaryKind::kPml)
       op_->set_pml(PmlLayer(mesh_, settings_, pml_profile()));

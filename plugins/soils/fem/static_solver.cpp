@@ -85,6 +85,7 @@ Eigen::VectorXd StaticSolver::conjugate_gradients(const Eigen::VectorXd& f) {
   p = z;
   double rz = r.dot(z);
   for (cg_iterations_ = 0; cg_iterations_ < 20000 && r.norm() > target; ++cg_iterations_) {
+    op_.check_stop();  // (Ctrl-C: a solve at 1e6 DOFs takes several seconds)
     op_.stepped_stiffness_times(p, q, true);
     const double alpha = rz / p.dot(q);
     x += alpha * p;
