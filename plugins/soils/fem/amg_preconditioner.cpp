@@ -146,14 +146,17 @@ AmgPreconditioner::AmgPreconditioner(RowSparse a, const Eigen::Matrix3Xd& nodes,
     throw std::invalid_argument("AmgPreconditioner: the matrix is not 3 DOFs per node");
   levels_.reserve(kMaxLevels);  // (a reallocation would copy the levels' matrices)
   if (!a.isCompressed()) a.makeCompressed();
-  RowSparse A = std::move(a);
+  // (Eigen 3.4's SparseMatrix has no move constructor nor move assignment: std::move and the
+  // assignment of a returned matrix copy it, at the mesh's level a GB of fresh pages. Swaps.)
+  RowSparse A;
+  A.swap(a);
   Eigen::MatrixXd B = rigid_body_modes(A, nodes);
   std::vector<Eigen::Index> start(static_cast<std::size_t>(nodes.cols()) + 1);
   for (std::size_t k = 0; k < start.size(); ++k) start[k] = 3 * static_cast<Eigen::Index>(k);
 
   for (;;) {
     Level& L = levels_.emplace_back();
-    L.A = std::move(A);
+    L.A.swap(A);
     const Eigen::Index n = L.A.rows();
     L.x.resize(n);
     L.b.resize(n);
@@ -202,15 +205,17 @@ AmgPreconditioner::AmgPreconditioner(RowSparse a, const Eigen::Matrix3Xd& nodes,
           if (levels_.size() == 1 && fine_product_)
             fine_product_(x, y);
           else
-            y.noalias() = L.A * x;
+            multiply(L.A, x, y, threads_);
         },
         inverse_diagonal);
     L.scaled_inverse_diagonal = (4.0 / 3.0 / lambda) * inverse_diagonal;
     RowSparse P0(n, nc);
     P0.setFromTriplets(p0.begin(), p0.end());
-    L.P = smoothed_prolongator(L.A, P0, L.scaled_inverse_diagonal, threads);
-    L.R = L.P.transpose();
-    A = sparse_product(L.R, sparse_product(L.A, L.P, threads), threads);
+    RowSparse P = smoothed_prolongator(L.A, P0, L.scaled_inverse_diagonal, threads);
+    L.P.swap(P);
+    L.R = L.P.transpose();  // (built, then swapped in by Eigen)
+    RowSparse coarse = sparse_product(L.R, sparse_product(L.A, L.P, threads), threads);
+    A.swap(coarse);
 
     B.resize(nc, B.cols());
     for (std::size_t g = 0; g < coarse_modes.size(); ++g)
@@ -227,7 +232,9 @@ AmgPreconditioner::AmgPreconditioner(RowSparse a, const Eigen::Matrix3Xd& nodes,
         "mesh floats: give the boundary springs or a fixed boundary");
   fine_rows_ = levels_.front().A.rows();
   fine_nonzeros_ = levels_.front().A.nonZeros();
-  if (fine_product_ && levels_.size() > 1) levels_.front().A = RowSparse();  // (the product's)
+  // The mesh's level's matrix is the product's: freed (assigning an empty matrix would keep
+  // its storage).
+  if (fine_product_ && levels_.size() > 1) RowSparse().swap(levels_.front().A);
 }
 
 AmgPreconditioner::~AmgPreconditioner() = default;
