@@ -75,6 +75,13 @@ TEST(SparseProduct, MatrixTimesVectorEqualsEigensForAnyNumberOfThreads) {
     multiply_add(a, x, z, threads);
     EXPECT_LE((z - expected - Eigen::VectorXd::Ones(200)).cwiseAbs().maxCoeff(), 1e-15);
   }
+  // With the values in float (multigrid's V-cycle): the product of the rounded matrix, in double.
+  const RowSparseFloat rounded = a.cast<float>();
+  const Eigen::VectorXd expected_rounded = rounded.cast<double>() * x;
+  Eigen::VectorXd y;
+  multiply(rounded, x, y, 2);
+  EXPECT_LE((y - expected_rounded).cwiseAbs().maxCoeff(), 1e-15);
+  EXPECT_GT((y - expected).cwiseAbs().maxCoeff(), 0.0);  // (it did read the rounded values)
   Eigen::VectorXd wrong_size = Eigen::VectorXd::Zero(3);
   EXPECT_THROW(multiply_add(a, x, wrong_size, 1), std::invalid_argument);
 }

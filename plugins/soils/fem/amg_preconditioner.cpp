@@ -211,11 +211,12 @@ AmgPreconditioner::AmgPreconditioner(RowSparse a, const Eigen::Matrix3Xd& nodes,
     L.scaled_inverse_diagonal = (4.0 / 3.0 / lambda) * inverse_diagonal;
     RowSparse P0(n, nc);
     P0.setFromTriplets(p0.begin(), p0.end());
-    RowSparse P = smoothed_prolongator(L.A, P0, L.scaled_inverse_diagonal, threads);
-    L.P.swap(P);
-    L.R = L.P.transpose();  // (built, then swapped in by Eigen)
-    RowSparse coarse = sparse_product(L.R, sparse_product(L.A, L.P, threads), threads);
+    const RowSparse P = smoothed_prolongator(L.A, P0, L.scaled_inverse_diagonal, threads);
+    const RowSparse R = P.transpose();
+    RowSparse coarse = sparse_product(R, sparse_product(L.A, P, threads), threads);
     A.swap(coarse);
+    L.P = P.cast<float>();
+    L.R = R.cast<float>();
 
     B.resize(nc, B.cols());
     for (std::size_t g = 0; g < coarse_modes.size(); ++g)
@@ -230,24 +231,30 @@ AmgPreconditioner::AmgPreconditioner(RowSparse a, const Eigen::Matrix3Xd& nodes,
     throw std::runtime_error(
         "fem: the static stiffness is not positive definite (multigrid's coarsest level); the "
         "mesh floats: give the boundary springs or a fixed boundary");
-  fine_rows_ = levels_.front().A.rows();
-  fine_nonzeros_ = levels_.front().A.nonZeros();
-  // The mesh's level's matrix is the product's: freed (assigning an empty matrix would keep
-  // its storage).
-  if (fine_product_ && levels_.size() > 1) RowSparse().swap(levels_.front().A);
+  // The V-cycle's matrices in float; the set-up's in double freed (assigning an empty matrix
+  // would keep their storage). The mesh's level's is the fine product's when there is one, and
+  // the coarsest level's is the factor's.
+  for (std::size_t l = 0; l < levels_.size(); ++l) {
+    Level& L = levels_[l];
+    L.rows = L.A.rows();
+    L.nonzeros = L.A.nonZeros();
+    if (l + 1 < levels_.size() && !(l == 0 && fine_product_)) L.cycle_A = L.A.cast<float>();
+    RowSparse().swap(L.A);
+  }
 }
 
 AmgPreconditioner::~AmgPreconditioner() = default;
 
 Eigen::Index AmgPreconditioner::dofs(int level) const {
-  return level == 0 ? fine_rows_ : levels_.at(static_cast<std::size_t>(level)).A.rows();
+  return levels_.at(static_cast<std::size_t>(level)).rows;
 }
 
 double AmgPreconditioner::operator_complexity() const {
-  double total = static_cast<double>(fine_nonzeros_);
+  const auto fine = static_cast<double>(levels_.front().nonzeros);
+  double total = fine;
   for (std::size_t l = 1; l < levels_.size(); ++l)
-    total += static_cast<double>(levels_[l].A.nonZeros());
-  return total / static_cast<double>(fine_nonzeros_);
+    total += static_cast<double>(levels_[l].nonzeros);
+  return total / fine;
 }
 
 void AmgPreconditioner::cycle(std::size_t l) const {
@@ -260,7 +267,7 @@ void AmgPreconditioner::cycle(std::size_t l) const {
     if (l == 0 && fine_product_)
       fine_product_(L.x, L.r);
     else
-      multiply(L.A, L.x, L.r, threads_);
+      multiply(L.cycle_A, L.x, L.r, threads_);
   };
   const auto smooth = [&] {
     residual_product();

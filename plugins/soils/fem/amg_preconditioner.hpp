@@ -59,8 +59,11 @@ class AmgPreconditioner {
 
  private:
   struct Level {
-    RowSparse A;     // this level's matrix (full, symmetric)
-    RowSparse P, R;  // prolongator to this level from the next, and its transpose
+    RowSparse A;  // this level's matrix (full, symmetric), during the set-up
+    // What the V-cycle streams, in float: the matrix (none on the mesh's level when the fine
+    // product takes it), the prolongator from the next level and its transpose.
+    RowSparseFloat cycle_A, P, R;
+    Eigen::Index rows = 0, nonzeros = 0;
     Eigen::VectorXd scaled_inverse_diagonal;  // (4/3) / (lambda_max(D^-1 A) d_i)
     mutable Eigen::VectorXd x, b, r;          // scratch of the V-cycle
   };
@@ -69,9 +72,8 @@ class AmgPreconditioner {
 
   std::vector<Level> levels_;
   std::unique_ptr<Coarse> coarse_;
-  Product fine_product_;                            // empty: level 0 uses its A
-  unsigned threads_;                                // the V-cycle's products below the mesh's
-  Eigen::Index fine_rows_ = 0, fine_nonzeros_ = 0;  // level 0's A, kept when A is freed
+  Product fine_product_;  // empty: level 0 uses its A
+  unsigned threads_;      // the V-cycle's products below the mesh's
 };
 
 }  // namespace rumble::fem

@@ -90,13 +90,12 @@ RowSparse sparse_product(const RowSparse& a, const RowSparse& b, unsigned thread
 
 namespace {
 
-template <bool kAdd>
-void row_products(const RowSparse& a, const Eigen::VectorXd& x, Eigen::VectorXd& y,
-                  unsigned threads) {
+template <bool kAdd, class Matrix>
+void row_products(const Matrix& a, const Eigen::VectorXd& x, Eigen::VectorXd& y, unsigned threads) {
   const std::int64_t rows = a.rows();
   const int* start = a.outerIndexPtr();
   const int* column = a.innerIndexPtr();
-  const double* value = a.valuePtr();
+  const auto* value = a.valuePtr();
   const double* in = x.data();
   double* out = y.data();
 #pragma omp parallel for num_threads(threads < 1 ? 1 : threads) schedule(static)
@@ -107,19 +106,33 @@ void row_products(const RowSparse& a, const Eigen::VectorXd& x, Eigen::VectorXd&
   }
 }
 
+/// y = A x or y += A x, checked.
+template <bool kAdd, class Matrix>
+void checked_row_products(const Matrix& a, const Eigen::VectorXd& x, Eigen::VectorXd& y,
+                          unsigned threads) {
+  if (!a.isCompressed() || x.size() != a.cols())
+    throw std::invalid_argument("multiply: the matrix must be compressed and x its columns'");
+  if (!kAdd) y.resize(a.rows());
+  if (y.size() != a.rows()) throw std::invalid_argument("multiply_add: y must be the rows'");
+  row_products<kAdd>(a, x, y, threads);
+}
+
 }  // namespace
 
 void multiply(const RowSparse& a, const Eigen::VectorXd& x, Eigen::VectorXd& y, unsigned threads) {
-  if (!a.isCompressed()) throw std::invalid_argument("multiply: the matrix must be compressed");
-  y.resize(a.rows());
-  row_products<false>(a, x, y, threads);
+  checked_row_products<false>(a, x, y, threads);
 }
-
+void multiply(const RowSparseFloat& a, const Eigen::VectorXd& x, Eigen::VectorXd& y,
+              unsigned threads) {
+  checked_row_products<false>(a, x, y, threads);
+}
 void multiply_add(const RowSparse& a, const Eigen::VectorXd& x, Eigen::VectorXd& y,
                   unsigned threads) {
-  if (!a.isCompressed() || y.size() != a.rows())
-    throw std::invalid_argument("multiply_add: the matrix must be compressed and y its rows'");
-  row_products<true>(a, x, y, threads);
+  checked_row_products<true>(a, x, y, threads);
+}
+void multiply_add(const RowSparseFloat& a, const Eigen::VectorXd& x, Eigen::VectorXd& y,
+                  unsigned threads) {
+  checked_row_products<true>(a, x, y, threads);
 }
 
 }  // namespace rumble::fem
