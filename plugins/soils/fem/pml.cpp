@@ -24,6 +24,29 @@ inline double filter(double y, double x_old, double x_new, double decay, double 
   return decay * y + half * (decay * x_old + x_new);
 }
 
+/// The stretched "stress" T_ij = lambda delta_ij sum_k X(ik)_kk + mu X(ii)_ij + mu X(ij)_ji
+/// minus the elastic sigma_ij = lambda delta_ij tr g + mu (g_ij + g_ji), from the gradient g
+/// (g_kc = d_k w_c at 3 k + c), A = the S / s_k^2 operator on g_kc and B(i, k, c) = the s_l
+/// operator on g_kc (i != k, l the third axis): in time (the step, real) or at one frequency
+/// (the receptance, complex).
+template <class Scalar, class Stretch>
+void stretched_minus_elastic(double lambda, double mu, const Scalar* g, const Scalar* A,
+                             Stretch&& B, Scalar* T) {
+  const Scalar trace = g[0] + g[4] + g[8];
+  for (int i = 0; i < 3; ++i) {
+    Scalar sum = A[3 * i + i];
+    for (int k = 0; k < 3; ++k)
+      if (k != i) sum += B(i, k, k);
+    for (int j = 0; j < 3; ++j) {
+      const Scalar stretched =
+          (i == j ? lambda * sum + 2.0 * mu * A[3 * i + i] : mu * (A[3 * i + j] + B(i, j, i)));
+      const Scalar elastic =
+          (i == j ? lambda * trace : Scalar(0.0)) + mu * (g[3 * i + j] + g[3 * j + i]);
+      T[3 * i + j] = stretched - elastic;
+    }
+  }
+}
+
 }  // namespace
 
 Eigen::Vector3d PmlProfile::depth_into(const Eigen::Vector3d& p) const {
@@ -119,22 +142,8 @@ void PmlLayer::update_tetrahedra(const double* w, double dt, double* memory, dou
     const auto B = [&](int i, int k, int c) {
       return g[3 * k + c] + t.d[3 - i - k] * m[kPhiG + 3 * k + c];
     };
-    // Stretched "stress" T_ij = lambda delta_ij sum_k X(ik)_kk + mu X(ii)_ij + mu X(ij)_ji
-    // minus the elastic sigma_ij = lambda delta_ij tr g + mu (g_ij + g_ji).
-    const double trace = g[0] + g[4] + g[8];
     double T[9];
-    for (int i = 0; i < 3; ++i) {
-      double sum = A[3 * i + i];
-      for (int k = 0; k < 3; ++k)
-        if (k != i) sum += B(i, k, k);
-      for (int j = 0; j < 3; ++j) {
-        const double stretched = (i == j ? t.lambda * sum + 2.0 * t.mu * A[3 * i + i]
-                                         : t.mu * (A[3 * i + j] + B(i, j, i)));
-        const double elastic =
-            (i == j ? t.lambda * trace : 0.0) + t.mu * (g[3 * i + j] + g[3 * j + i]);
-        T[3 * i + j] = stretched - elastic;
-      }
-    }
+    stretched_minus_elastic(t.lambda, t.mu, g, A, B, T);
     double* f = forces + 12 * e;
     for (int a = 0; a < 4; ++a)
       for (int j = 0; j < 3; ++j) {
@@ -178,8 +187,8 @@ void PmlLayer::frequency_domain(
     // other axes l, m), B = s_l on g_kc in T_ij (i != k, l the third axis).
     Complex stretch[3];
     for (int k = 0; k < 3; ++k) stretch[k] = 1.0 + t.d[k] * q;
-    // The correction's column for each unit displacement (b, c): T_ij as update_tetrahedra
-    // forms it, minus the elastic sigma_ij, then the force V sum_i dN_a/dx_i T_ij.
+    // The correction's column for each unit displacement (b, c): T_ij as the step forms it
+    // (stretched_minus_elastic), then the force V sum_i dN_a/dx_i T_ij.
     Eigen::Matrix<Complex, 12, 12> block = Eigen::Matrix<Complex, 12, 12>::Zero();
     for (int b = 0; b < 4; ++b)
       for (int c = 0; c < 3; ++c) {
@@ -190,20 +199,8 @@ void PmlLayer::frequency_domain(
           for (int e = 0; e < 3; ++e)
             A[3 * k + e] = stretch[(k + 1) % 3] * stretch[(k + 2) % 3] / stretch[k] * g[3 * k + e];
         const auto B = [&](int i, int k, int e) { return stretch[3 - i - k] * g[3 * k + e]; };
-        const Complex trace = g[0] + g[4] + g[8];
         Complex T[9];
-        for (int i = 0; i < 3; ++i) {
-          Complex sum = A[3 * i + i];
-          for (int k = 0; k < 3; ++k)
-            if (k != i) sum += B(i, k, k);
-          for (int j = 0; j < 3; ++j) {
-            const Complex stretched = (i == j ? t.lambda * sum + 2.0 * t.mu * A[3 * i + i]
-                                              : t.mu * (A[3 * i + j] + B(i, j, i)));
-            const Complex elastic =
-                (i == j ? t.lambda * trace : 0.0) + t.mu * (g[3 * i + j] + g[3 * j + i]);
-            T[3 * i + j] = stretched - elastic;
-          }
-        }
+        stretched_minus_elastic(t.lambda, t.mu, g, A, B, T);
         for (int a = 0; a < 4; ++a)
           for (int j = 0; j < 3; ++j) {
             Complex f = 0.0;
