@@ -2,10 +2,11 @@
 //   picky_soil      c u' + k u = F per footprint (backward Euler, sub-steps of at most
 //                   `sub_step`), that refuses (DISCARD, state unchanged) any step longer than
 //                   `max_step`; records probes (the nearest footprint's u and v as uz and vz at
-//                   every sub-step); keeps its own checkpoints; stalls from `stall_at` [s] until
-//                   the host asks it to stop; writes field snapshots and its linear matrices;
-//                   finalize() writes finalized.json (advances, refusals, threads, checkpoint
-//                   and state-copy counts) to the results directory.
+//                   every sub-step); keeps its own checkpoints; stalls from `stall_at` [s]
+//                   (or in its statics, `stall_in_statics`) until the host asks it to stop; writes
+//                   field snapshots and its linear matrices; finalize() writes finalized.json
+//                   (advances, refusals, threads, checkpoint and state-copy counts) to the results
+//                   directory.
 //   forgetful_soil  the same spring-dashpot with no save/restore, once per process, no probes.
 //   needy_coupler   needs save/restore of every soil, a participant "reduced_soil", and macro
 //                   steps of at most 1 ms (declared only: validate refuses before it runs).
@@ -78,6 +79,7 @@ class PickySoil final : public rumble::Soil {
     "max_step": {"type": "number", "exclusiveMinimum": 0, "default": 1.0},
     "csc_defect": {"enum": ["none", "unsorted", "nan", "stiffer"], "default": "none"},
     "stall_at": {"type": "number", "default": 1.0e30},
+    "stall_in_statics": {"type": "boolean", "default": false},
     "exit_at": {"type": "number", "default": 1.0e30}}})";
     return s.c_str();
   }
@@ -87,13 +89,17 @@ class PickySoil final : public rumble::Soil {
     max_step_ = p.get<double>("max_step");
     csc_defect_ = p.get<std::string>("csc_defect");
     stall_at_ = p.get<double>("stall_at");
+    stall_in_statics_ = p.get_or<bool>("stall_in_statics", false);
     exit_at_ = p.get_or<double>("exit_at", 1.0e30);  // tests build it without the schema too
   }
   void accept_layout(const std::vector<rumble::Footprint>& f) override {
     footprints_ = f;
     spring_.resize(f.size());
   }
-  void initialize(double, const double* force, double* u) override { spring_.statics(force, u); }
+  void initialize(double, const double* force, double* u) override {
+    if (stall_in_statics_) stall();
+    spring_.statics(force, u);
+  }
   void advance(double t, double H, const rumble::Waveform& force) override {
     if (H > max_step_ * (1.0 + 1e-12)) {
       ++refusals_;
@@ -221,6 +227,7 @@ class PickySoil final : public rumble::Soil {
   std::vector<std::size_t> nearest_;  // footprint of each probe
   std::vector<double> row_;
   double max_step_ = 0.0, stall_at_ = 0.0, exit_at_ = 0.0;  // s
+  bool stall_in_statics_ = false;
   std::string csc_defect_;
   long advances_ = 0, refusals_ = 0, checkpoints_ = 0;
   mutable long state_copies_ = 0;  // save_state/restore_state: the host-copy path

@@ -10,6 +10,7 @@
 
 #include "boundary_support.hpp"
 #include "cli/scenario_prepare.hpp"
+#include "core/errors.hpp"
 #include "core/interrupt.hpp"
 #include "run/run_scenario.hpp"
 
@@ -44,6 +45,45 @@ TEST(Stop, RequestReachesAPluginInsideALongAdvance) {
       << outcome.message;
   EXPECT_EQ(read_json(outcome.results_dir / "summary.json")["status"], "interrupted");
   EXPECT_EQ(csv_rows(outcome.results_dir / "contact.csv"), 11u);  // t = 0 .. 0.01 s
+}
+
+// Ctrl-C inside a soil's static solve (a FEM soil's take tens of seconds at a million DOFs, and
+// it looks for the request between its iterations): the run ends "interrupted" before the first
+// step, says so, and summary.json records it, not a failure.
+TEST(Stop, RequestReachesAPluginInsideItsStatics) {
+  nlohmann::json s =
+      fixture_scenario({{"type", "picky_soil"}, {"params", {{"stall_in_statics", true}}}},
+                       {{"type", "gauss_seidel"}});
+  const auto dir = scratch_directory("stop_inside_statics");
+  const auto path = write_scenario(dir, s);
+  PluginRegistry registry;
+  auto doc = cli::prepare_scenario(path, registry, scenario::Format::kText);
+  ASSERT_TRUE(doc.has_value());
+  clear_interrupt();
+  const auto start = std::chrono::steady_clock::now();
+  std::thread ctrl_c([] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(500));
+    request_interrupt();
+  });
+  const scenario::RunSpec spec = scenario::make_run_spec(doc->json, path);
+  ResultsDirectory results(spec.outputs.directory, spec.path, false);
+  std::string message;
+  try {
+    run_scenario(spec, registry, results, RunOptions{});
+  } catch (const Interrupted& e) {
+    message = e.what();
+  }
+  ctrl_c.join();
+  clear_interrupt();
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_LT(seconds, 30.0);  // the stall lasts 60 s unless the stop reached it
+  EXPECT_NE(message.find("interrupted (Ctrl-C) while the static state was solved, before the "
+                         "first step"),
+            std::string::npos)
+      << message;
+  const auto summary = read_json(results.path() / "summary.json");
+  EXPECT_EQ(summary["status"], "interrupted");
 }
 
 // A plugin calling exit(0) mid-run ended rumble with exit code 0, a truncated run and

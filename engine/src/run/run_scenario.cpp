@@ -192,7 +192,18 @@ RunOutcome run_scenario(const scenario::RunSpec& spec, const PluginRegistry& reg
   try {
     const bool integrated = integrate_soil_if_asked(c);
     const auto statics_start = Clock::now();
-    const int static_iterations = solve_statics(c);
+    int static_iterations = 0;
+    try {
+      static_iterations = solve_statics(c);
+    } catch (const std::exception&) {
+      // A soil that honoured a stop request inside its static solve (a FEM soil's take tens of
+      // seconds at a million DOFs) fails it: an interruption, not a failure.
+      if (!interrupt_requested()) throw;
+      throw Interrupted(std::string("interrupted (") + interrupt_cause() +
+                        ") while the static state was solved, before the first step; "
+                        "summary.json in " +
+                        outcome.results_dir.string() + " says so");
+    }
     const double statics_seconds = seconds_since(statics_start);
     nlohmann::json wheel_loads = nlohmann::json::array();
     for (std::size_t w = 0; w < track.vehicles().wheel_count(); ++w)
@@ -318,6 +329,9 @@ RunOutcome run_scenario(const scenario::RunSpec& spec, const PluginRegistry& reg
     }
     summary.set("files", files);
     summary.finish(outcome.status, outcome.message);
+  } catch (const Interrupted& e) {
+    summary.fail(e.what(), RunStatus::kInterrupted);
+    throw;
   } catch (const std::exception& e) {
     summary.fail(e.what());
     throw;
