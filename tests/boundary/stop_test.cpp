@@ -6,6 +6,9 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <filesystem>
+#include <stdexcept>
+#include <string>
 #include <thread>
 
 #include "boundary_support.hpp"
@@ -17,14 +20,20 @@
 namespace rumble::testing {
 namespace {
 
-TEST(Stop, RequestReachesAPluginInsideALongAdvance) {
-  nlohmann::json s = fixture_scenario({{"type", "picky_soil"}, {"params", {{"stall_at", 0.0095}}}},
-                                      {{"type", "gauss_seidel"}});
-  const auto dir = scratch_directory("stop_inside_advance");
-  const auto path = write_scenario(dir, s);
+/// A run of scenario s (in scratch directory `name`) with Ctrl-C requested 0.5 s in: how it ended
+/// (the outcome, or the Interrupted it threw), where its results are and how long it took.
+struct StoppedRun {
+  RunOutcome outcome;
+  std::string thrown;  // Interrupted's message, when the run threw it
+  std::filesystem::path results_dir;
+  double seconds = 0.0;
+};
+
+StoppedRun run_with_ctrl_c(const nlohmann::json& s, const std::string& name) {
+  const auto path = write_scenario(scratch_directory(name), s);
   PluginRegistry registry;
   auto doc = cli::prepare_scenario(path, registry, scenario::Format::kText);
-  ASSERT_TRUE(doc.has_value());
+  if (!doc) throw std::runtime_error("the fixture scenario does not validate");
   clear_interrupt();
   const auto start = std::chrono::steady_clock::now();
   std::thread ctrl_c([] {
@@ -33,14 +42,28 @@ TEST(Stop, RequestReachesAPluginInsideALongAdvance) {
   });
   const scenario::RunSpec spec = scenario::make_run_spec(doc->json, path);
   ResultsDirectory results(spec.outputs.directory, spec.path, false);
-  const RunOutcome outcome = run_scenario(spec, registry, results, RunOptions{});
+  StoppedRun run;
+  run.results_dir = results.path();
+  try {
+    run.outcome = run_scenario(spec, registry, results, RunOptions{});
+  } catch (const Interrupted& e) {
+    run.thrown = e.what();
+  }
   ctrl_c.join();
   clear_interrupt();
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return run;
+}
+
+TEST(Stop, RequestReachesAPluginInsideALongAdvance) {
+  const StoppedRun run =
+      run_with_ctrl_c(fixture_scenario({{"type", "picky_soil"}, {"params", {{"stall_at", 0.0095}}}},
+                                       {{"type", "gauss_seidel"}}),
+                      "stop_inside_advance");
+  const RunOutcome& outcome = run.outcome;
   EXPECT_EQ(outcome.status, RunStatus::kInterrupted) << outcome.message;
   EXPECT_EQ(outcome.exit_code, 3);
-  EXPECT_LT(seconds, 30.0);  // the stall lasts 60 s unless the stop reached it
+  EXPECT_LT(run.seconds, 30.0);  // the stall lasts 60 s unless the stop reached it
   EXPECT_NE(outcome.message.find("inside the step after t = 0.01"), std::string::npos)
       << outcome.message;
   EXPECT_EQ(read_json(outcome.results_dir / "summary.json")["status"], "interrupted");
@@ -51,39 +74,16 @@ TEST(Stop, RequestReachesAPluginInsideALongAdvance) {
 // it looks for the request between its iterations): the run ends "interrupted" before the first
 // step, says so, and summary.json records it, not a failure.
 TEST(Stop, RequestReachesAPluginInsideItsStatics) {
-  nlohmann::json s =
+  const StoppedRun run = run_with_ctrl_c(
       fixture_scenario({{"type", "picky_soil"}, {"params", {{"stall_in_statics", true}}}},
-                       {{"type", "gauss_seidel"}});
-  const auto dir = scratch_directory("stop_inside_statics");
-  const auto path = write_scenario(dir, s);
-  PluginRegistry registry;
-  auto doc = cli::prepare_scenario(path, registry, scenario::Format::kText);
-  ASSERT_TRUE(doc.has_value());
-  clear_interrupt();
-  const auto start = std::chrono::steady_clock::now();
-  std::thread ctrl_c([] {
-    std::this_thread::sleep_for(std::chrono::milliseconds(500));
-    request_interrupt();
-  });
-  const scenario::RunSpec spec = scenario::make_run_spec(doc->json, path);
-  ResultsDirectory results(spec.outputs.directory, spec.path, false);
-  std::string message;
-  try {
-    run_scenario(spec, registry, results, RunOptions{});
-  } catch (const Interrupted& e) {
-    message = e.what();
-  }
-  ctrl_c.join();
-  clear_interrupt();
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  EXPECT_LT(seconds, 30.0);  // the stall lasts 60 s unless the stop reached it
-  EXPECT_NE(message.find("interrupted (Ctrl-C) while the static state was solved, before the "
-                         "first step"),
+                       {{"type", "gauss_seidel"}}),
+      "stop_inside_statics");
+  EXPECT_LT(run.seconds, 30.0);  // the stall lasts 60 s unless the stop reached it
+  EXPECT_NE(run.thrown.find("interrupted (Ctrl-C) while the static state was solved, before the "
+                            "first step"),
             std::string::npos)
-      << message;
-  const auto summary = read_json(results.path() / "summary.json");
-  EXPECT_EQ(summary["status"], "interrupted");
+      << run.thrown;
+  EXPECT_EQ(read_json(run.results_dir / "summary.json")["status"], "interrupted");
 }
 
 // A plugin calling exit(0) mid-run ended rumble with exit code 0, a truncated run and
