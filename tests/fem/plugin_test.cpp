@@ -658,6 +658,13 @@ TEST(FemBadInput, TheMaxwellMechanismsSayWhatTheyCannotDo) {
             "fem: params/damping: 3 Maxwell mechanisms fitted to the ratio 0.05 over 10-20 Hz "
             "need a negative weight (one would feed energy in); use fewer mechanisms (about one "
             "per half decade of the band), a wider band or a lower ratio, got mechanisms 3");
+  // Two mechanisms on 5-100 Hz keep positive weights but miss the ratio by 15 % between them.
+  p = small_stiff_soil_maxwell();
+  p["damping"]["mechanisms"] = 2;
+  EXPECT_EQ(creation_error("fem", p.dump()),
+            "fem: params/damping: 2 Maxwell mechanisms fitted to the ratio 0.02 over 5-100 Hz "
+            "miss it by 15.3 % (at most 10 %); use more mechanisms (about one per half decade of "
+            "the band), got mechanisms 2");
   TestSoil soil("fem", small_stiff_soil_maxwell().dump());
   soil.accept_layout(sleeper_row(2));
   rumble_csc csc{};

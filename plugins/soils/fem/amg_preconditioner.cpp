@@ -224,7 +224,6 @@ AmgPreconditioner::AmgPreconditioner(RowSparse a, const Eigen::Matrix3Xd& nodes,
     start = std::move(coarse_start);
   }
   Level& last = levels_.back();
-  if (last.scaled_inverse_diagonal.size() == 0) last.P.resize(0, 0);
   const Eigen::SparseMatrix<double> lower = last.A.triangularView<Eigen::Lower>();
   coarse_->llt.compute(lower);
   if (coarse_->llt.info() != Eigen::Success)

@@ -1,6 +1,7 @@
 #include "fem_settings.hpp"
 
 #include <cmath>
+#include <iomanip>
 #include <numbers>
 #include <sstream>
 #include <stdexcept>
@@ -239,15 +240,19 @@ FemSettings read_settings(const std::string& params_json) {
     const MaxwellDamping d = s.damping.maxwell_mechanisms();
     const double error = d.band_error(s.damping.ratio, s.damping.f_low, s.damping.f_high);
     if (!d.dissipative() || error > kMaxwellBandError) {
+      // Too few mechanisms for the band miss the ratio between them; too many for it (or too
+      // high a ratio) need a negative weight.
       std::ostringstream message;
-      message
-          << "fem: params/damping: " << d.mechanisms() << " Maxwell mechanisms fitted to the ratio "
-          << s.damping.ratio << " over " << s.damping.f_low << "-" << s.damping.f_high << " Hz "
-          << (d.dissipative() ? "miss it by " + std::to_string(100.0 * error) + " %"
-                              : std::string("need a negative weight (one would feed energy in)"))
-          << "; use fewer mechanisms (about one per half decade of the band), a wider band or a "
-             "lower ratio, got mechanisms "
-          << s.damping.mechanisms;
+      message << std::setprecision(3) << "fem: params/damping: " << d.mechanisms()
+              << " Maxwell mechanisms fitted to the ratio " << s.damping.ratio << " over "
+              << s.damping.f_low << "-" << s.damping.f_high << " Hz ";
+      if (d.dissipative())
+        message << "miss it by " << 100.0 * error << " % (at most " << 100.0 * kMaxwellBandError
+                << " %); use more mechanisms (about one per half decade of the band)";
+      else
+        message << "need a negative weight (one would feed energy in); use fewer mechanisms "
+                   "(about one per half decade of the band), a wider band or a lower ratio";
+      message << ", got mechanisms " << s.damping.mechanisms;
       throw std::invalid_argument(message.str());
     }
   }
