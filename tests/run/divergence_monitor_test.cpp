@@ -28,7 +28,7 @@ DivergenceMonitor monitor(bool stop) {
 std::string message_of(DivergenceMonitor& m, const std::vector<double>& u,
                        const std::vector<double>& v, double t) {
   try {
-    m.check(0, u.data(), v.data(), u.size(), t);
+    m.check(0, u.data(), v.data(), u.size(), t, 1e-3);
   } catch (const RunError& e) {
     return e.what();
   }

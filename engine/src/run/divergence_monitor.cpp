@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <sstream>
 
 #include "core/errors.hpp"
@@ -37,13 +38,46 @@ const char* const kFix =
 std::size_t DivergenceMonitor::watch(const std::string& name, const double* u, std::size_t n) {
   double settlement = 0.0;
   for (std::size_t i = 0; i < n; ++i) settlement = std::max(settlement, std::abs(u[i]));
-  watched_.push_back({name, settlement});
+  watched_.push_back({name,
+                      settlement,
+                      std::vector<double>(u, u + n),
+                      std::vector<double>(n, 0.0),
+                      std::vector<double>(n, 0.0),
+                      {},
+                      {}});
   return watched_.size() - 1;
 }
 
+void DivergenceMonitor::watch_growth(Watched& w, const double* u, const double* v, std::size_t n,
+                                     double t, double H) {
+  double speed = 0.0, alternating = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double rate = (u[i] - w.u[i]) / H;  // m/s, the footprint's mean velocity over the step
+    speed = std::max({speed, std::abs(v[i]), std::abs(rate)});
+    alternating =
+        std::max({alternating, 0.5 * std::abs(rate - w.rate[i]), 0.5 * std::abs(v[i] - w.v[i])});
+    w.u[i] = u[i];
+    w.v[i] = v[i];
+    w.rate[i] = rate;
+  }
+  w.growing = w.growth.add(t, H, speed, alternating);
+}
+
+void DivergenceMonitor::diverged(std::ostringstream& m, bool stop_anyway, double t) {
+  m << ". " << kFix;
+  t_detected_ = std::min(t_detected_, t);
+  if (stop_anyway || policy_.stop) {
+    if (!stop_anyway)
+      m << ". To record such a run to its end, set /coupling/divergence/action to \"continue\"";
+    throw RunError(m.str());
+  }
+  logger("engine")->warn("{}. The run goes on (/coupling/divergence/action is \"continue\")",
+                         m.str());
+}
+
 void DivergenceMonitor::check(std::size_t participant, const double* u, const double* v,
-                              std::size_t n, double t) {
-  const Watched& w = watched_[participant];
+                              std::size_t n, double t, double H) {
+  Watched& w = watched_[participant];
   std::size_t worst = 0, fastest = 0;
   for (std::size_t i = 0; i < n; ++i) {
     if (!std::isfinite(u[i])) {
@@ -63,6 +97,19 @@ void DivergenceMonitor::check(std::size_t participant, const double* u, const do
   const double bound = policy_.displacement_factor * w.settlement;
   if (std::isfinite(u_worst) && std::abs(u_worst) > kOnsetFactor * w.settlement)
     t_onset_ = std::min(t_onset_, t);
+  watch_growth(w, u, v, n, t, H);
+  if (const std::optional<Growth>& growth = w.growing; growth && !detected()) {
+    growth_ = growth;
+    std::ostringstream m;
+    m << "simulation diverged at t = " << t << " s: " << w.name
+      << " footprint speeds grow exponentially, by " << std::setprecision(4) << growth->per_step
+      << " per macro step (doubling every " << std::setprecision(3) << 1e3 * growth->doubling_s
+      << " ms since t = " << growth->since_s << " s), to " << growth->peak
+      << " m/s, beyond twice anything before (" << growth->peak_before
+      << " m/s): an unstable coupling, not the train";
+    diverged(m, false, t);
+    return;
+  }
   const bool too_fast = std::isfinite(v_fastest) && std::abs(v_fastest) > kDivergedVelocity;
   if (!std::isfinite(v_fastest) ||
       (too_fast && std::isfinite(u_worst) && std::abs(u_worst) <= bound && !detected())) {
@@ -73,15 +120,7 @@ void DivergenceMonitor::check(std::size_t participant, const double* u, const do
     if (t_onset_ < kNever)
       m << "; a footprint first passed " << kOnsetFactor
         << " x its static displacement at t = " << t_onset_ << " s";
-    m << ". " << kFix;
-    t_detected_ = std::min(t_detected_, t);
-    if (!std::isfinite(v_fastest) || policy_.stop) {
-      if (too_fast)
-        m << ". To record such a run to its end, set /coupling/divergence/action to \"continue\"";
-      throw RunError(m.str());
-    }
-    logger("engine")->warn("{}. The run goes on (/coupling/divergence/action is \"continue\")",
-                           m.str());
+    diverged(m, !std::isfinite(v_fastest), t);
     return;
   }
   const bool hard = !std::isfinite(u_worst) || std::abs(u_worst) > kDivergedDisplacement;
@@ -97,15 +136,7 @@ void DivergenceMonitor::check(std::size_t participant, const double* u, const do
       << w.settlement << " m)";
   if (t_onset_ < kNever)
     m << "; it first passed " << kOnsetFactor << " x at t = " << t_onset_ << " s";
-  m << ". " << kFix;
-  t_detected_ = std::min(t_detected_, t);
-  if (hard || policy_.stop) {
-    if (!hard)
-      m << ". To record such a run to its end, set /coupling/divergence/action to \"continue\"";
-    throw RunError(m.str());
-  }
-  logger("engine")->warn("{}. The run goes on (/coupling/divergence/action is \"continue\")",
-                         m.str());
+  diverged(m, hard, t);
 }
 
 nlohmann::json DivergenceMonitor::summary() const {
@@ -114,7 +145,9 @@ nlohmann::json DivergenceMonitor::summary() const {
           {"displacement_factor", policy_.displacement_factor},
           {"detected", detected()},
           {"t_detected_s", time(t_detected_)},
-          {"t_first_beyond_twice_static_s", time(t_onset_)}};
+          {"t_first_beyond_twice_static_s", time(t_onset_)},
+          {"growth_per_macro_step", growth_ ? nlohmann::json(growth_->per_step) : nlohmann::json()},
+          {"doubling_time_s", growth_ ? nlohmann::json(growth_->doubling_s) : nlohmann::json()}};
 }
 
 }  // namespace rumble

@@ -58,7 +58,7 @@ void StepObserver::operator()(const StepOutcome& step) {
       continue;
     }
     if (extra_reach_[e].advance(t, every_, t_end_)) sinks_.recorder.record_extra(e, t);
-    check_soil(*extras_[e], e + 1, t);
+    check_soil(*extras_[e], e + 1, t, step.H);
   }
   if (!all) ++partial_;
   if (sinks_.summary != nullptr) sinks_.summary->heartbeat(t_reached(), soil_.steps);
@@ -94,13 +94,13 @@ void StepObserver::on_soil(const StepOutcome& step, double t) {
   if (sinks_.probes != nullptr) sinks_.probes->take();
   if (sinks_.fields != nullptr) sinks_.fields->at(t);
   if (record) sinks_.recorder.record_soil(t, step.max_relative_residual(), step.iterations, step.H);
-  check_soil(soil_side_, 0, t);
+  check_soil(soil_side_, 0, t, step.H);
 }
 
-void StepObserver::check_soil(const SoilSide& soil, std::size_t participant, double t) {
+void StepObserver::check_soil(const SoilSide& soil, std::size_t participant, double t, double H) {
   soil.get_output(scratch_.data());
   const std::size_t n = track_participant_.interface_size();  // outputs: u, then v
-  divergence_.check(participant, scratch_.data(), scratch_.data() + n, n, t);
+  divergence_.check(participant, scratch_.data(), scratch_.data() + n, n, t, H);
 }
 
 }  // namespace rumble

@@ -77,8 +77,9 @@ class StepObserver {
   };
   void on_track(double t);
   void on_soil(const StepOutcome& step, double t);
-  /// participant: the soil's index in divergence_ (0: the soil, 1 + e: extra e).
-  void check_soil(const SoilSide& soil, std::size_t participant, double t);
+  /// participant: the soil's index in divergence_ (0: the soil, 1 + e: extra e); the final step
+  /// of length H [s] ends at t [s].
+  void check_soil(const SoilSide& soil, std::size_t participant, double t, double H);
 
   const TrackParticipant& track_participant_;
   const SoilSide& soil_side_;
