@@ -21,6 +21,7 @@
 #include "post/cwt.hpp"
 #include "post/din4150.hpp"
 #include "post/guide_values.hpp"
+#include "post/peak_frequency.hpp"
 #include "post/ppv.hpp"
 #include "post/spectrum.hpp"
 #include "post/time_series.hpp"
@@ -392,7 +393,11 @@ PostResult post_process(const fs::path& results_dir, const PostOptions& options)
       cr.v = on_grid(table.time, table.columns[*rx.column[c]], grid);
       cr.peak = peak_abs(cr.v.values);
       cr.amplitude = hann.amplitude(cr.v.values, grid.dt);
-      cr.dominant_f = dominant_frequency(cr.amplitude, options.dominant_f_min);
+      // The peak's half cycle (event-bound); a peak whose half cycle never closes in the record
+      // falls back to the spectrum's largest amplitude.
+      cr.dominant_f = peak_half_cycle_frequency(cr.v.values, cr.peak.index, grid.dt);
+      if (!std::isfinite(cr.dominant_f))
+        cr.dominant_f = dominant_frequency(cr.amplitude, options.dominant_f_min);
       const KbResult kb = kb_f(cr.v);
       cr.kb_f_max = kb.kb_f_max;
       cr.t_kb_f_max = kb.t_max;
