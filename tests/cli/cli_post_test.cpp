@@ -49,6 +49,40 @@ TEST(CliPost, ARunWritesTheIndicatorsAndPostRewritesThemWithItsOptions) {
   EXPECT_THAT(file_text(results / "post" / "third_octave.csv"), HasSubstr("dB re 1e-09 m/s"));
 }
 
+// A FEM soil says the band its mesh carries to each receiver (ABI 1.3): the run logs it,
+// summary.json keeps it per receiver with the rule, it falls with distance, and post/ gives the
+// share of energy above it and the PPV within it next to the raw PPV. The numbers themselves:
+// tests/fem/resolved_band_test.cpp, tests/post/resolved_band_test.cpp.
+TEST(CliPost, EachReceiverSaysTheBandItsMeshResolvesAndTheIndicatorsWithinIt) {
+  const auto dir = scratch_directory("post_resolved_band");
+  ::setenv("RUMBLE_MESH_CACHE", (dir / "cache").c_str(), 1);
+  nlohmann::json s = small_fem_scenario();
+  s["time"]["end"] = 0.03;
+  s["outputs"]["receivers"] = {2.5, 5.0};
+  const CliResult r = run_rumble({"run", write_scenario(dir, s).string(), "--no-progress"});
+  ::unsetenv("RUMBLE_MESH_CACHE");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("receivers resolved to: d=2.5 m "));
+  const nlohmann::json summary = read_json(dir / "results" / "summary.json");
+  EXPECT_THAT(summary.at("resolved_band_rule").get<std::string>(),
+              HasSubstr("n = 10 linear elements per Rayleigh wavelength"));
+  const double near = summary.at("ppv")[0].at("resolved_f_hz").get<double>();
+  const double far = summary.at("ppv")[1].at("resolved_f_hz").get<double>();
+  // 40 Hz within 1.5 m of the track by the mesh's rule; coarser further out.
+  EXPECT_GT(near, 15.0);
+  EXPECT_LT(near, 60.0);
+  EXPECT_LT(far, near);
+  const nlohmann::json post = read_json(dir / "results" / "post" / "post.json");
+  for (const nlohmann::json& rx : post.at("receivers")) {
+    const nlohmann::json& band = rx.at("resolved_band");
+    EXPECT_GT(band.at("f_hz").get<double>(), 0.0);
+    EXPECT_GE(band.at("energy_z_above").get<double>(), 0.0);
+    EXPECT_LE(band.at("energy_z_above").get<double>(), 1.0);
+    EXPECT_GT(band.at("ppv_z_m_s").get<double>(), 0.0);
+  }
+  EXPECT_THAT(file_text(dir / "results" / "post" / "ppv.csv"), HasSubstr("PPV_z resolved [m/s]"));
+}
+
 // The scenario's outputs.post chooses the run's indicators; `rumble post` keeps them unless its
 // options say otherwise; a bad value is refused at validation with its pointer.
 TEST(CliPost, TheScenarioChoosesTheIndicatorsAndPostKeepsThem) {

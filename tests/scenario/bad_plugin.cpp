@@ -27,7 +27,8 @@ const rumble_soil_api kApi = {.struct_size = sizeof(rumble_soil_api),
                               .probe_samples = nullptr,
                               .write_fields = nullptr,
                               .wave_speeds = nullptr,
-                              .linear_matrix = nullptr};
+                              .linear_matrix = nullptr,
+                              .probe_resolution = nullptr};
 
 const rumble_factory kFactories[] = {
     {sizeof(rumble_factory), RUMBLE_KIND_SOIL, "no_schema_soil", "test: declares no schema",

@@ -83,8 +83,9 @@ std::string function_table_defect(rumble_kind kind, const void* api, std::uint32
     case RUMBLE_KIND_SOIL: {
       const auto& t = *static_cast<const rumble_soil_api*>(api);
       std::string d = size_defect(t.struct_size,
-                                  v1_1 ? RUMBLE_END_OF(rumble_soil_api, linear_matrix)
-                                       : RUMBLE_END_OF(rumble_soil_api, receiver_velocity),
+                                  abi_minor >= 3 ? RUMBLE_END_OF(rumble_soil_api, probe_resolution)
+                                  : v1_1         ? RUMBLE_END_OF(rumble_soil_api, linear_matrix)
+                                         : RUMBLE_END_OF(rumble_soil_api, receiver_velocity),
                                   abi_minor);
       if (d.empty()) d = common_missing(t.common);
       if (d.empty()) {

@@ -429,6 +429,29 @@ void SoilInstance::take_probe_samples(std::vector<double>& times, std::vector<do
   times.resize(t0 + written);
   values.resize(v0 + written * n_probes_ * RUMBLE_PROBE_VALUES);
 }
+std::optional<SoilInstance::ProbeResolution> SoilInstance::probe_resolution() const {
+  if (n_probes_ == 0 || type().abi_minor < 3 ||
+      !RUMBLE_HAS_FIELD(api_, rumble_soil_api, probe_resolution) ||
+      api_->probe_resolution == nullptr)
+    return std::nullopt;
+  ProbeResolution r;
+  r.f_hz.assign(n_probes_, 0.0);
+  const char* rule = nullptr;
+  call("probe_resolution",
+       [&] { return api_->probe_resolution(handle(), r.f_hz.data(), n_probes_, &rule); });
+  for (std::size_t p = 0; p < n_probes_; ++p) {
+    if (!std::isfinite(r.f_hz[p]))
+      throw_not_finite("probe_resolution", "resolved frequency", p, r.f_hz[p]);
+    if (r.f_hz[p] < 0.0)
+      throw RunError(who() + ": probe_resolution returned " + std::to_string(r.f_hz[p]) +
+                     " Hz for probe " + std::to_string(p) +
+                     ", below 0 (0 says the soil cannot tell): a defect of the plugin " +
+                     type().library->path.string());
+  }
+  if (rule == nullptr) return std::nullopt;  // the soil does not say
+  r.rule = rule;
+  return r;
+}
 bool SoilInstance::write_fields(double t, const std::filesystem::path& path) {
   if (type().abi_minor < 1 || !capabilities().has(RUMBLE_CAP_FIELD_OUTPUT)) return false;
   call("write_fields", [&] { return api_->write_fields(handle(), t, path.c_str()); });

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -154,6 +155,14 @@ class SoilInstance final : public Instance {
   /// probe_count x RUMBLE_PROBE_VALUES values.
   void take_probe_samples(std::vector<double>& times, std::vector<double>& values);
   std::size_t probe_count() const { return n_probes_; }
+  /// ABI 1.3, after set_probes: the highest frequency [Hz] the soil carries to each probe (0:
+  /// it cannot say) and how it is found; nothing when the soil does not say. RunError for a
+  /// frequency that is negative or not finite.
+  struct ProbeResolution {
+    std::vector<double> f_hz;
+    std::string rule;
+  };
+  std::optional<ProbeResolution> probe_resolution() const;
   /// ABI 1.1 field output; false when not offered.
   bool write_fields(double t, const std::filesystem::path& path);
   /// ABI 1.1: slowest shear and Rayleigh speeds [m/s]; false when not offered.

@@ -23,6 +23,7 @@
 #include "post/guide_values.hpp"
 #include "post/peak_frequency.hpp"
 #include "post/ppv.hpp"
+#include "post/resolved_band.hpp"
 #include "post/spectrum.hpp"
 #include "post/time_series.hpp"
 #include "run/new_file.hpp"
@@ -34,6 +35,10 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+// A receiver with more than this share of its vertical energy above its resolved band is warned
+// about (docs/post-processing.md, "The resolved band"): its raw indicators are then mostly the
+// mesh's.
+constexpr double kUnresolvedShare = 0.2;
 constexpr const char* kComponents[3] = {"vx", "vy", "vz"};
 
 // JSON has no NaN or infinity: null stands for "not available".
@@ -51,6 +56,7 @@ std::string quoted(const fs::path& p) {
 struct Receiver {
   std::string name;
   double x = kNaN, distance = kNaN, depth = 0.0;  // m
+  double resolved_f = kNaN;  // Hz, the band the soil carries here (summary.json; NaN: unknown)
   // Column index in the CSV table per component vx, vy, vz; vertical-only receivers have vz.
   std::optional<std::size_t> column[3];
   bool three_component() const { return column[0] && column[1] && column[2]; }
@@ -126,6 +132,7 @@ void place_receivers(std::vector<Receiver>& receivers, bool probes, const fs::pa
       rx.distance = get(*entry, "distance_m", rx.distance);
       rx.x = get(*entry, "x_m", rx.x);
       rx.depth = get(*entry, "depth_m", rx.depth);
+      rx.resolved_f = get(*entry, "resolved_f_hz", kNaN);
     }
     if (std::isnan(rx.distance)) {
       if (const auto d = distance_name(rx.name)) rx.distance = *d;
@@ -252,12 +259,38 @@ struct ReceiverResult {
   std::size_t governing = 0;               // index in components of the largest component peak
   double kb_f_max = 0.0, v_eff_max = 0.0;  // m/s, largest over components
   GuideCheck din[3], bs[2];
+  // Within the resolved band (NaN when the soil did not say): the share of v_z's energy above
+  // it [-], and the peaks of the record low-passed at it [m/s] (post/resolved_band.hpp).
+  double energy_above_resolved = kNaN, ppv_z_resolved = kNaN, ppv_3c_resolved = kNaN;
 
   const ComponentResult& vz() const { return components.back(); }
 };
 
 GuideCheck nan_check() {
   return {kNaN, kNaN};
+}
+
+/// The share of rr's vertical energy above its resolved frequency and its PPV below it; a
+/// warning when the share passes kUnresolvedShare.
+void measure_resolved_band(ReceiverResult& rr, double dt, SpectrumAnalyzer& rect,
+                           std::vector<std::string>& warnings) {
+  const double f = rr.rx->resolved_f;
+  if (!(f > 0.0)) return;
+  const ComponentResult& z = rr.vz();
+  rr.energy_above_resolved = energy_share_above(rect.power(z.v.values, dt), f);
+  std::vector<std::vector<double>> low;
+  for (const ComponentResult& c : rr.components)
+    low.push_back(zero_phase_low_pass(c.v.values, dt, f));
+  rr.ppv_z_resolved = peak_abs(low.back()).value;
+  if (low.size() == 3) rr.ppv_3c_resolved = peak_vector(low[0], low[1], low[2]).value;
+  if (rr.energy_above_resolved > kUnresolvedShare)
+    warnings.push_back(
+        "receiver '" + rr.rx->name + "': " + number_text(100.0 * rr.energy_above_resolved, 3) +
+        " % of its vertical velocity's energy lies above " + number_text(f, 3) +
+        " Hz, the band its soil's mesh resolves there: its raw PPV (" + number_text(rr.ppv_z, 3) +
+        " m/s) is mostly the mesh's; within the band " + number_text(rr.ppv_z_resolved, 3) +
+        " m/s (ppv.csv, \"resolved\" columns). Refine the mesh along the path "
+        "(mesh.f_max, mesh.near_distance) for the whole record");
 }
 
 // For each wanted distance, the nearest receiver not yet chosen (surface before depth).
@@ -429,6 +462,7 @@ PostResult post_process(const fs::path& results_dir, const PostOptions& options)
       rr.bs[l] = std::isfinite(g.dominant_f)
                      ? check_bs7385_2(kBsLines[l], g.peak.value, g.dominant_f)
                      : nan_check();
+    measure_resolved_band(rr, grid.dt, rect, result.warnings);
     if (!std::isfinite(g.dominant_f))
       result.warnings.push_back("receiver '" + rx.name + "': no spectral content above " +
                                 number_text(options.dominant_f_min, 9) +
@@ -486,11 +520,13 @@ PostResult post_process(const fs::path& results_dir, const PostOptions& options)
   const std::string ref_label = "dB re " + number_text(options.velocity_reference, 9) + " m/s";
 
   {  // ppv.csv
-    std::vector<std::string> header = {
-        "receiver",     "x [m]",        "distance [m]",   "depth [m]",
-        "PPV_z [m/s]",  "t(PPV_z) [s]", "PPV_3c [m/s]",   "PPV_max_component [m/s]",
-        "component",    "f_dom [Hz]",   "KB_F,max [m/s]", "v_eff,F,max [m/s]",
-        "v_rms_z [m/s]"};
+    std::vector<std::string> header = {"receiver", "x [m]", "distance [m]", "depth [m]",
+                                       "PPV_z [m/s]", "t(PPV_z) [s]", "PPV_3c [m/s]",
+                                       "PPV_max_component [m/s]", "component", "f_dom [Hz]",
+                                       "KB_F,max [m/s]", "v_eff,F,max [m/s]", "v_rms_z [m/s]",
+                                       // The resolved band (nan where the soil does not say).
+                                       "f_resolved [Hz]", "energy_z above f_resolved [-]",
+                                       "PPV_z resolved [m/s]", "PPV_3c resolved [m/s]"};
     for (auto line : kDinLines) {
       header.push_back(name(line) + " [m/s]");
       header.push_back("PPV / " + name(line) + " [-]");
@@ -504,7 +540,8 @@ PostResult post_process(const fs::path& results_dir, const PostOptions& options)
       const ComponentResult& g = rr.components[rr.governing];
       out << rr.rx->name << rr.rx->x << rr.rx->distance << rr.rx->depth << rr.ppv_z << rr.t_ppv_z
           << rr.ppv_3c << g.peak.value << g.component << g.dominant_f << rr.kb_f_max << rr.v_eff_max
-          << rr.vz().v_rms;
+          << rr.vz().v_rms << rr.rx->resolved_f << rr.energy_above_resolved << rr.ppv_z_resolved
+          << rr.ppv_3c_resolved;
       for (const GuideCheck& c : rr.din) out << c.guide << c.ratio;
       for (const GuideCheck& c : rr.bs) out << c.guide << c.ratio;
       out.end_row();
@@ -632,6 +669,13 @@ PostResult post_process(const fs::path& results_dir, const PostOptions& options)
                          {"t_ppv_z_s", rr.t_ppv_z},
                          {"ppv_3c_m_s", number_or_null(rr.ppv_3c)},
                          {"t_ppv_3c_s", number_or_null(rr.t_ppv_3c)},
+                         {"resolved_band",
+                          {{"f_hz", number_or_null(rr.rx->resolved_f)},
+                           {"energy_z_above", number_or_null(rr.energy_above_resolved)},
+                           {"ppv_z_m_s", number_or_null(rr.ppv_z_resolved)},
+                           {"ppv_3c_m_s", number_or_null(rr.ppv_3c_resolved)},
+                           {"low_pass", "zero-phase Butterworth order 4 (-3 dB at f_hz)"},
+                           {"warning_share", kUnresolvedShare}}},
                          {"governing_component", g.component},
                          {"ppv_max_component_m_s", number_or_null(g.peak.value)},
                          {"dominant_frequency_hz", number_or_null(g.dominant_f)},

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "core/logging.hpp"
+#include "core/number_text.hpp"
 #include "plugin/instance.hpp"
 #include "run/results_directory.hpp"
 
@@ -18,6 +20,22 @@ ProbeRecorder::ProbeRecorder(ResultsDirectory& results, SoilInstance& soil,
       cols.push_back(p.name + " " + c);
   }
   csv_ = std::make_unique<CsvFile>(results.file("receivers.csv"), cols);
+  resolution_ = soil_.probe_resolution();
+  if (resolution_) log_resolution();
+}
+
+void ProbeRecorder::log_resolution() const {
+  std::string line;
+  for (std::size_t p = 0; p < points_.size(); ++p) {
+    const double f = resolution_->f_hz[p];
+    line += (p == 0 ? "" : ", ") + points_[p].name + " " +
+            (f > 0.0 ? number_text(f, 3) + " Hz" : std::string("unknown"));
+  }
+  logger("engine")->info(
+      "receivers resolved to: {} ({}); what a receiver records above its frequency is the "
+      "discretisation's, not the ground's: post/ gives each receiver's share of energy above it "
+      "and its indicators below it",
+      line, resolution_->rule);
 }
 
 void ProbeRecorder::take() {
@@ -44,7 +62,10 @@ nlohmann::json ProbeRecorder::peaks() const {
                    {"distance_m", points_[p].y},
                    {"depth_m", points_[p].depth},
                    {"ppv_m_s", ppv_z_[p]},
-                   {"ppv_3c_m_s", ppv_3c_[p]}});
+                   {"ppv_3c_m_s", ppv_3c_[p]},
+                   {"resolved_f_hz", resolution_ && resolution_->f_hz[p] > 0.0
+                                         ? nlohmann::json(resolution_->f_hz[p])
+                                         : nlohmann::json()}});
   }
   return out;
 }

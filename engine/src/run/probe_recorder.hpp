@@ -10,16 +10,17 @@
 #include <filesystem>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "plugin/instance.hpp"
 #include "run/csv_file.hpp"
 #include "scenario/run_spec.hpp"
 
 namespace rumble {
 
 class ResultsDirectory;
-class SoilInstance;
 
 class ProbeRecorder {
  public:
@@ -27,8 +28,11 @@ class ProbeRecorder {
                 const std::vector<scenario::ReceiverSpec>& points);
   /// Writes the samples the soil recorded since the last call.
   void take();
-  /// [{name, x_m, y_m, depth_m, ppv_m_s (vertical), ppv_3c_m_s}]
+  /// [{name, x_m, y_m, depth_m, ppv_m_s (vertical), ppv_3c_m_s, resolved_f_hz (null: the
+  /// soil does not say)}]
   nlohmann::json peaks() const;
+  /// How the soil finds its resolved frequencies ("": it does not say).
+  std::string resolution_rule() const { return resolution_ ? resolution_->rule : ""; }
   std::string file() const { return csv_->path().filename().string(); }
 
  private:
@@ -37,6 +41,9 @@ class ProbeRecorder {
   std::unique_ptr<CsvFile> csv_;
   std::vector<double> times_, values_;
   std::vector<double> ppv_z_, ppv_3c_;
+  std::optional<SoilInstance::ProbeResolution> resolution_;  // ABI 1.3, when the soil says
+
+  void log_resolution() const;
 };
 
 }  // namespace rumble

@@ -314,6 +314,8 @@ RunOutcome run_scenario(const scenario::RunSpec& spec, const PluginRegistry& reg
     nlohmann::json files = recorder.files();
     if (probes) {
       summary.set("ppv", probes->peaks());
+      if (const std::string rule = probes->resolution_rule(); !rule.empty())
+        summary.set("resolved_band_rule", rule);
       files.push_back(probes->file());
     }
     if (c.receivers.surface) {

@@ -31,6 +31,7 @@
 #include "probe_locator.hpp"
 #include "receptance.hpp"
 #include "receptance_cache.hpp"
+#include "resolved_band.hpp"
 #include "static_solver.hpp"
 #include "vtu_writer.hpp"
 #include "wave_speeds.hpp"
@@ -252,9 +253,23 @@ class FemSoil final : public rumble::Soil {
       }
       probes_.push_back(rumble::fem::locate_probe(mesh_, p.x, p.y, p.depth, p.name));
     }
+    std::vector<Eigen::Vector3d> points;
+    for (const rumble::Probe& p : probes) points.emplace_back(p.x, p.y, p.depth);
+    probe_resolution_ = rumble::fem::path_resolved_frequency(
+        mesh_, rumble::fem::TrackRegion::of(footprints_), points, rayleigh_speed(),
+        settings_.mesh.elements_per_wavelength);
     row_.assign(probes.size() * RUMBLE_PROBE_VALUES, 0.0);
     sample_interval_ = sample_interval;
     next_sample_ = -1.0;
+  }
+
+  std::vector<double> probe_resolution(std::string& rule) const override {
+    rule = "f = c_R / (n h): n = " + format(settings_.mesh.elements_per_wavelength) +
+           " linear elements per Rayleigh wavelength (mesh.elements_per_wavelength), c_R = " +
+           format(rayleigh_speed()) +
+           " m/s (the slowest layer's), h the mean edge of the largest tetrahedron on the "
+           "straight path from the nearest footprint to the receiver (docs/fem-soil.md 2.2)";
+    return probe_resolution_;
   }
 
   void write_fields(double t, const std::string& path) override {
@@ -312,6 +327,11 @@ class FemSoil final : public rumble::Soil {
     const auto s = rumble::soils::slowest_wave_speeds(settings_.layers, settings_.half_space);
     c_s_min = s.shear;
     c_r_min = s.rayleigh;
+  }
+
+  /// [m/s] the slowest layer's Rayleigh speed: the mesh's sizes follow its wavelength.
+  double rayleigh_speed() const {
+    return rumble::soils::slowest_wave_speeds(settings_.layers, settings_.half_space).rayleigh;
   }
 
   void checkpoint_save(std::uint32_t slot) override {
@@ -550,8 +570,7 @@ class FemSoil final : public rumble::Soil {
       for (int a = 0; a < 4; ++a)
         for (int b = a + 1; b < 4; ++b)
           shortest_edge = std::min(shortest_edge, (mesh_.node(t[a]) - mesh_.node(t[b])).norm());
-    const double c_r =
-        rumble::soils::slowest_wave_speeds(settings_.layers, settings_.half_space).rayleigh;
+    const double c_r = rayleigh_speed();
     std::ostringstream m;
     m << "fem: " << mesh_.node_count() << " nodes, " << mesh_.tets.size() << " tetrahedra, "
       << op_->dofs() << " DOFs, " << footprints_.size() << " footprints, " << op_->boundary().size()
@@ -617,6 +636,7 @@ class FemSoil final : public rumble::Soil {
   Eigen::VectorXd f_, df_;                         // scratch: nodal forces [N]
   std::vector<double> force_static_, force_last_;  // [N] per footprint
   std::vector<rumble::fem::ProbePoint> probes_;
+  std::vector<double> probe_resolution_;  // Hz, per probe (resolved_band.hpp)
   std::vector<double> row_;
   double sample_interval_ = 0.0, next_sample_ = -1.0;  // s
   double reported_macro_step_ = -1.0;                  // s: the stepping is logged per H

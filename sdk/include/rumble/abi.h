@@ -42,6 +42,9 @@
  *   1.2 (2026-12-02) one capability bit, no struct changed (docs/decisions/0008-monolithic.md):
  *       RUMBLE_CAP_MONOLITHIC, a coupler asking the host to integrate the soil inside the
  *       vehicle/track. A 1.2 coupler is refused by a 1.1 host, which would ignore the bit.
+ *   1.3 (2026-12-04) appended to the soil's table (docs/decisions/0010-abi-1-3.md):
+ *       probe_resolution, the band a soil resolves at each probe, so that every number drawn
+ *       from a receiver can say where it stops being valid.
  */
 #ifndef RUMBLE_ABI_H
 #define RUMBLE_ABI_H
@@ -54,7 +57,7 @@ extern "C" {
 #endif
 
 #define RUMBLE_ABI_MAJOR 1
-#define RUMBLE_ABI_MINOR 2
+#define RUMBLE_ABI_MINOR 3
 
 /** Name of the one symbol every plugin library exports (see rumble_plugin_entry_fn). */
 #define RUMBLE_PLUGIN_ENTRY_SYMBOL "rumble_plugin_entry"
@@ -350,6 +353,14 @@ typedef struct rumble_soil_api {
    *  equations (rumble_matrix). With out->values null the plugin sets rows, cols and nnz;
    *  then the host calls again with arrays of that size. */
   rumble_status (*linear_matrix)(rumble_instance* self, int32_t which, rumble_csc* out);
+  /* ---- 1.3 */
+  /** Optional (may be null), after set_probes: the highest frequency [Hz] up to which the soil
+   *  carries the motion from the footprints to each probe (n values in set_probes' order; 0
+   *  where it cannot say; a FEM soil: its elements per wavelength along the path from the
+   *  load), and in *rule how that frequency is found (UTF-8, kept by the soil until its next
+   *  call; may be left null). */
+  rumble_status (*probe_resolution)(rumble_instance* self, double* f_hz, uint64_t n,
+                                    const char** rule);
 } rumble_soil_api;
 
 /* ------------------------------------------------------------------ couplers ------------- */

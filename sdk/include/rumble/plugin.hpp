@@ -266,6 +266,10 @@ class Soil : public Component {
   virtual void linear_matrix(rumble_matrix /*which*/, CscMatrix& /*out*/) {
     throw std::logic_error("linear matrices not offered");
   }
+  /// ABI 1.3, after set_probes(): the highest frequency [Hz] this soil carries from the
+  /// footprints to each probe (one per probe; 0 where it cannot say), with how it is found in
+  /// `rule`. Empty (the default): the soil does not say.
+  virtual std::vector<double> probe_resolution(std::string& /*rule*/) const { return {}; }
   /// Where advance() records probe samples (sized by the boundary at set_probes()).
   ProbeSamples& samples() { return samples_; }
 
@@ -418,6 +422,7 @@ struct Box {
   std::vector<const char*> name_ptrs;   // ... and the pointers handed out
   CscMatrix matrix;                     // soil: linear_matrix between size query and fill
   std::int32_t matrix_which = -1;       // which matrix `matrix` holds
+  std::string resolution_rule;          // soil: probe_resolution's rule, held for the host
 };
 
 inline Box* box(rumble_instance* self) {
@@ -788,6 +793,15 @@ const rumble_soil_api* soil_api() {
         std::copy(m.values.begin(), m.values.end(), out->values);
         b->matrix = CscMatrix{};  // filled: release it
         b->matrix_which = -1;
+      });
+    };
+    a.probe_resolution = [](rumble_instance* s, double* f_hz, std::uint64_t n, const char** rule) {
+      return guard(s, [&] {
+        Box* b = box(s);
+        const std::vector<double> f = object<T>(s).probe_resolution(b->resolution_rule);
+        if (!f.empty()) check_length("probe_resolution", "f_hz", n, f.size());
+        for (std::uint64_t i = 0; i < n; ++i) f_hz[i] = f.empty() ? 0.0 : f[i];
+        if (rule != nullptr) *rule = f.empty() ? nullptr : b->resolution_rule.c_str();
       });
     };
     return a;
