@@ -330,6 +330,30 @@ def interface_figure(runs):
 
 
 # ------------------------------------------------------------------------------------ tables
+# A receiver with more than this share of its vertical energy above the band its soil resolves
+# is marked: its raw indicators are mostly the mesh's (docs/post-processing.md, "The resolved
+# band"; the same threshold warns in post.json).
+UNRESOLVED_SHARE = 0.2
+
+
+def unresolved(row):
+    """True when the receiver's record is mostly above its resolved band."""
+    share = number(row.get("energy_z above f_resolved [-]"))
+    return not math.isnan(share) and share > UNRESOLVED_SHARE
+
+
+def ppv_cell(row):
+    """Raw PPV_z [mm/s], marked * when mostly unresolved, with the PPV within the band beside."""
+    raw = number(row["PPV_z [m/s]"])
+    if math.isnan(raw):
+        return "<td>-</td>"
+    text = f"{raw * 1e3:.4g}"
+    within = number(row.get("PPV_z resolved [m/s]"))
+    if not math.isnan(within):
+        text += ("<sup>*</sup>" if unresolved(row) else "") + f" ({within * 1e3:.4g})"
+    return f"<td class='unresolved'>{text}</td>" if unresolved(row) else f"<td>{text}</td>"
+
+
 def ppv_table(runs):
     distances = sorted({round(number(row["distance [m]"]), 6) for r in runs for row in r.ppv
                         if not math.isnan(number(row.get("distance [m]")))})
@@ -340,12 +364,35 @@ def ppv_table(runs):
     for d in distances:
         cells = []
         for r in runs:
-            v = [number(row["PPV_z [m/s]"]) for row in r.ppv
-                 if abs(number(row["distance [m]"]) - d) < 1e-6]
-            cells.append(f"<td>{v[0] * 1e3:.4g}</td>" if v and not math.isnan(v[0]) else "<td>-</td>")
+            rows = [row for row in r.ppv if abs(number(row["distance [m]"]) - d) < 1e-6]
+            cells.append(ppv_cell(rows[0]) if rows else
+                         "<td>no receivers</td>" if not r.ppv else "<td>-</td>")
         body.append(f"<tr><th>{d:g}</th>{''.join(cells)}</tr>")
+    notes = ("<p>In brackets: the PPV within the band the soil's mesh resolves at that receiver "
+             "(zero-phase low-pass at its resolved frequency); <sup>*</sup> and shaded: more than "
+             f"{UNRESOLVED_SHARE:.0%} of the receiver's vertical energy lies above that band, so "
+             "its raw PPV is mostly the mesh's, not the ground's. \"no receivers\": the run's soil "
+             "records none (the reduced soils, Winkler and CLM, have no points but the "
+             "footprints).</p>")
     return (f"<table><caption>Vertical PPV [mm/s] by distance from the track [m]</caption>"
-            f"<tr><th>distance [m]</th>{head}</tr>{''.join(body)}</table>")
+            f"<tr><th>distance [m]</th>{head}</tr>{''.join(body)}</table>{notes}")
+
+
+def resolved_band_verdict(runs):
+    """The first screen's word on the resolved band: which runs' receivers are mostly above it."""
+    marked = [f"{r.name} {row.get('receiver', '')} "
+              f"({number(row.get('energy_z above f_resolved [-]')):.0%} above "
+              f"{number(row.get('f_resolved [Hz]')):.3g} Hz)"
+              for r in runs for row in r.ppv if unresolved(row)]
+    if not marked:
+        known = any(not math.isnan(number(row.get("f_resolved [Hz]"))) for r in runs for row in r.ppv)
+        return ("<p>Every receiver's record lies mostly within the band its soil's mesh resolves "
+                "(at most " f"{UNRESOLVED_SHARE:.0%} of its energy above it).</p>" if known else "")
+    return (f"<p class='bad'>{len(marked)} receiver records lie mostly above the band their "
+            "soil's mesh resolves, so their raw PPV, KB and scalograms show the mesh rather than "
+            "the ground: " + html.escape("; ".join(marked)) + ". The tables give the PPV within "
+            "the band beside the raw one; a finer mesh along the path (mesh.f_max, "
+            "mesh.near_distance) makes the whole record valid.</p>")
 
 
 def indicators_table(runs):
@@ -365,14 +412,18 @@ def indicators_table(runs):
                 f"<td>{html.escape(row.get('receiver', ''))}</td>"
                 + cell("PPV_z [m/s]", 1e3) + cell("PPV_3c [m/s]", 1e3) + cell("f_dom [Hz]")
                 + cell("KB_F,max [m/s]", 1e3) + cell("PPV / DIN 4150-3 line 3 [-]")
-                + cell("PPV / BS 7385-2 line 2 [-]") + "</tr>")
+                + cell("PPV / BS 7385-2 line 2 [-]") + cell("f_resolved [Hz]")
+                + cell("energy_z above f_resolved [-]", 100.0, "{:.0f}")
+                + cell("PPV_z resolved [m/s]", 1e3) + "</tr>")
     if not rows:
         return ""
     return ("<table><caption>Indicators per receiver (rows at or above the DIN 4150-3 line 3 guide "
             "value in red)</caption><tr><th>run</th><th>receiver</th><th>PPV_z [mm/s]</th>"
             "<th>PPV 3 components [mm/s]</th><th>dominant frequency [Hz]</th>"
             "<th>KB_F,max (DIN 4150-2) [mm/s]</th><th>PPV / DIN 4150-3 line 3</th>"
-            "<th>PPV / BS 7385-2 line 2</th></tr>" + "".join(rows) + "</table>")
+            "<th>PPV / BS 7385-2 line 2</th><th>resolved band [Hz]</th>"
+            "<th>energy above it [%]</th><th>PPV_z within it [mm/s]</th></tr>"
+            + "".join(rows) + "</table>")
 
 
 def diagnostics_table(runs):
@@ -416,6 +467,8 @@ table { border-collapse: collapse; margin: 1em 0; font-size: 0.9em; }
 th, td { border: 1px solid #bbb; padding: 0.25em 0.6em; text-align: right; vertical-align: top; }
 caption { font-weight: bold; text-align: left; padding: 0.3em 0; }
 tr.bad { background: #fdd; }
+td.unresolved { background: #eee; color: #777; }
+p.bad { color: #a00; }
 img { max-width: 100%; border: 1px solid #ddd; margin: 0.5em 0; }
 """
 
@@ -465,7 +518,7 @@ def main(directory):
                else f"<p>All {len(runs)} runs completed.</p>")
     page = (f"<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'><title>{name}</title>"
             f"<style>{STYLE}</style><script>{IMAGE_CHECK}</script></head>"
-            f"<body><h1>{name}</h1><p>{description}</p>{verdict}"
+            f"<body><h1>{name}</h1><p>{description}</p>{verdict}{resolved_band_verdict(runs)}"
             f"{ppv_table(runs)}{diagnostics_table(runs)}{''.join(sections)}{indicators_table(runs)}"
             f"<p>Figures also in {html.escape(str(figures_dir))} (PNG and SVG). Numbers per "
             f"receiver: each run's post/ppv.csv and post/post.json.</p></body></html>\n")
