@@ -37,7 +37,8 @@ commands:
   plugins [--format text|json]      list plugin libraries and the types they provide
   schema [TYPE] [--json]            the parameters of a type: units, defaults, ranges; without
                                     TYPE, the known types
-  mesh FILE [--output DIR]          build the scenario's soil on its footprints without running:
+  mesh FILE [--output DIR] [--allow-outside-results]
+                                    build the scenario's soil on its footprints without running:
                                     its report in the log, its mesh in DIR/mesh.vtu (FEM soil)
   soil-frf FILE [options]           receptance of the scenario's soil at its footprints (CSV)
   calibrate FILE [options]          fit a reduced soil's parameters to a target soil's receptance

@@ -1,8 +1,8 @@
-// `rumble mesh FILE [--output DIR] [--set POINTER=VALUE ...]`: build the scenario's soil on the
-// track's footprints, as a run would, without running: the soil reports its discretisation in the
-// log (a FEM soil: nodes, DOFs, smallest element, stable step, frequency resolved at each distance)
-// and, when it offers field output, writes it to DIR/mesh.vtu to look at in ParaView before
-// spending a run on it.
+// `rumble mesh FILE [--output DIR] [--allow-outside-results] [--set POINTER=VALUE ...]`: build the
+// scenario's soil on the track's footprints, as a run would, without running: the soil reports its
+// discretisation in the log (a FEM soil: nodes, DOFs, smallest element, stable step, frequency
+// resolved at each distance) and, when it offers field output, writes it to DIR/mesh.vtu to look at
+// in ParaView before spending a run on it.
 #include <iostream>
 
 #include "cli/arguments.hpp"
@@ -15,9 +15,12 @@
 namespace rumble::cli {
 
 int mesh_command(const std::vector<std::string>& args) {
-  const Arguments a(args, {}, {"output"}, {"set"});
-  if (a.positional().size() != 1)
-    throw UsageError("usage: rumble mesh FILE [--output DIR] [--set POINTER=VALUE ...]");
+  const Arguments a(args, {"allow-outside-results"}, {"output"}, {"set"});
+  if (a.positional().size() != 1) {
+    throw UsageError(
+        "usage: rumble mesh FILE [--output DIR] [--allow-outside-results] [--set POINTER=VALUE "
+        "...]");
+  }
   const auto output = a.directory("output", "mesh.vtu");  // before a mesh is built
   std::vector<scenario::Override> overrides;
   for (const std::string& set : a.values("set"))
@@ -25,6 +28,7 @@ int mesh_command(const std::vector<std::string>& args) {
   PluginRegistry registry;
   BuiltSoils built;  // the soil validation builds is the one looked at: meshed once
   scenario::CheckOptions check = kNotARun;
+  check_results_directory(check, output.has_value(), a.flag("allow-outside-results"));
   check.keep_soils = &built;
   const auto doc =
       prepare_scenario(a.positional().front(), registry, scenario::Format::kText, overrides, check);
