@@ -56,6 +56,8 @@ options:
   --no-report               no report plots at the end
   --yes                     run even the runs estimated beyond the limits on steps, memory or
                             bytes written (default: such a run is not valid)
+  --allow-outside-results   accept an "output" that is absolute or leads out of the study file's
+                            folder, with ".." or a symbolic link (default: refuse)
 )"},
       {"plugins", R"(usage: rumble plugins [options]
 

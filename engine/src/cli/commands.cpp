@@ -30,7 +30,7 @@ commands:
   validate FILE [--format text|json] [--no-load] [--set POINTER=VALUE ...]
                                     check a scenario without running it (all errors at once);
                                     --no-load: without loading its plugins or building its parts
-  study FILE [--jobs N] [--force] [--dry-run] [--no-report] [--yes]
+  study FILE [--jobs N] [--force] [--dry-run] [--no-report] [--yes] [--allow-outside-results]
                                     run a study: the product of scenario variations and/or a list,
                                     N runs at once as processes, skipping runs that are up to
                                     date (--force: rerun all; --dry-run: list them); docs/study.md

@@ -1,5 +1,7 @@
 #include "study/prepare_runs.hpp"
 
+#include <sys/stat.h>
+
 #include <ostream>
 
 #include "core/errors.hpp"
@@ -27,6 +29,23 @@ std::vector<std::string> child_command(const RunRecord& r, bool size_confirmed) 
   return c;
 }
 
+/// Why a run's results cannot go to `dir` (inside the study's output folder): "" when it is
+/// missing (made when the run starts) or a real directory. Anything else stands there in the
+/// way, never followed nor removed: a symbolic link would take the run's results (and the
+/// --overwrite the study gives the run) wherever it leads.
+std::string not_a_run_directory(const fs::path& dir) {
+  struct stat st {};
+  if (::lstat(dir.c_str(), &st) != 0 || S_ISDIR(st.st_mode)) return "";
+  std::error_code ec;
+  const std::string what =
+      S_ISLNK(st.st_mode)
+          ? "a symbolic link (to " + fs::read_symlink(dir, ec).string() + ")"
+          : std::string(S_ISREG(st.st_mode) ? "a file" : "not a directory (a device or a pipe)");
+  return "its results directory " + dir.lexically_normal().string() + " is " + what +
+         "; a study writes each run's results into a real directory of its output folder and "
+         "never through a link nor over what stands there: move it away";
+}
+
 }  // namespace
 
 std::vector<RunRecord> prepare_runs(const StudyFile& study, std::vector<PlannedRun> runs,
@@ -40,6 +59,13 @@ std::vector<RunRecord> prepare_runs(const StudyFile& study, std::vector<PlannedR
     RunRecord r;
     r.run = std::move(run);
     r.results = study.output / r.run.name;
+    if (const std::string why = not_a_run_directory(r.results); !why.empty()) {
+      r.state = RunState::kInvalid;
+      r.message = "not valid: " + why;
+      report << "study: run " << r.run.name << " is not valid:\n" << why << '\n';
+      records.push_back(std::move(r));
+      continue;
+    }
     std::vector<scenario::Override> set = overrides(r.run, study.path);
     try {
       const scenario::CheckedScenario c =
