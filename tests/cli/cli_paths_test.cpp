@@ -102,5 +102,39 @@ TEST(CliPaths, MeshAndSoilFrfKeepToTheScenariosFolder) {
   EXPECT_FALSE(fs::exists(dir / "absolute"));
 }
 
+/// The FEM soil's mesh cache in the test's scratch directory.
+RunSetup cache_in(const fs::path& dir) {
+  RunSetup setup;
+  setup.environment = {{"RUMBLE_MESH_CACHE", (dir / "cache").string()}};
+  return setup;
+}
+
+// mesh.vtu is written as a new file: a link planted at its name is refused, never followed,
+// and left as it is; an earlier mesh.vtu (a regular file) is replaced.
+TEST(CliPaths, MeshNeverWritesThroughALink) {
+  const auto dir = scratch_directory("paths_mesh_vtu_link");
+  const auto path = write_scenario(dir, small_fem_scenario()).string();
+  std::ofstream(dir / "precious.txt") << "keep me\n";
+  fs::create_directories(dir / "results");
+  fs::create_symlink(dir / "precious.txt", dir / "results" / "mesh.vtu");
+  const CliResult refused = run_rumble({"mesh", path}, cache_in(dir));
+  EXPECT_EQ(refused.exit_code, 1) << refused.output;
+  EXPECT_THAT(refused.output,
+              HasSubstr("rumble: error: " + (dir / "results" / "mesh.vtu").string() +
+                        " is a symbolic link (to " + (dir / "precious.txt").string() +
+                        "); rumble mesh writes mesh.vtu as a new file, never through a link nor "
+                        "over anything but an earlier mesh.vtu: move it away, or choose another "
+                        "directory with --output DIR"));
+  EXPECT_EQ(file_text(dir / "precious.txt"), "keep me\n");
+  EXPECT_TRUE(fs::is_symlink(dir / "results" / "mesh.vtu"));
+  fs::remove(dir / "results" / "mesh.vtu");
+  for (int k = 0; k < 2; ++k) {  // the second replaces the first's
+    const CliResult r = run_rumble({"mesh", path}, cache_in(dir));
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_TRUE(fs::is_regular_file(fs::symlink_status(dir / "results" / "mesh.vtu")));
+  }
+  EXPECT_EQ(file_text(dir / "precious.txt"), "keep me\n");
+}
+
 }  // namespace
 }  // namespace rumble::testing

@@ -429,8 +429,12 @@ void SoilInstance::take_probe_samples(std::vector<double>& times, std::vector<do
   times.resize(t0 + written);
   values.resize(v0 + written * n_probes_ * RUMBLE_PROBE_VALUES);
 }
+bool SoilInstance::offers_fields() const {
+  return type().abi_minor >= 1 && capabilities().has(RUMBLE_CAP_FIELD_OUTPUT);
+}
+
 bool SoilInstance::write_fields(double t, const std::filesystem::path& path) {
-  if (type().abi_minor < 1 || !capabilities().has(RUMBLE_CAP_FIELD_OUTPUT)) return false;
+  if (!offers_fields()) return false;
   call("write_fields", [&] { return api_->write_fields(handle(), t, path.c_str()); });
   return true;
 }

@@ -154,6 +154,8 @@ class SoilInstance final : public Instance {
   /// probe_count x RUMBLE_PROBE_VALUES values.
   void take_probe_samples(std::vector<double>& times, std::vector<double>& values);
   std::size_t probe_count() const { return n_probes_; }
+  /// ABI 1.1 field output: whether write_fields writes anything.
+  bool offers_fields() const;
   /// ABI 1.1 field output; false when not offered.
   bool write_fields(double t, const std::filesystem::path& path);
   /// ABI 1.1: slowest shear and Rayleigh speeds [m/s]; false when not offered.

@@ -6,6 +6,7 @@
 
 #include "core/errors.hpp"
 #include "plugin/registry.hpp"
+#include "run/new_file.hpp"
 #include "scenario/check_file.hpp"
 #include "scenario/report.hpp"
 #include "study/run_key.hpp"
@@ -36,12 +37,7 @@ std::vector<std::string> child_command(const RunRecord& r, bool size_confirmed) 
 std::string not_a_run_directory(const fs::path& dir) {
   struct stat st {};
   if (::lstat(dir.c_str(), &st) != 0 || S_ISDIR(st.st_mode)) return "";
-  std::error_code ec;
-  const std::string what =
-      S_ISLNK(st.st_mode)
-          ? "a symbolic link (to " + fs::read_symlink(dir, ec).string() + ")"
-          : std::string(S_ISREG(st.st_mode) ? "a file" : "not a directory (a device or a pipe)");
-  return "its results directory " + dir.lexically_normal().string() + " is " + what +
+  return "its results directory " + dir.lexically_normal().string() + " is " + what_stands_at(dir) +
          "; a study writes each run's results into a real directory of its output folder and "
          "never through a link nor over what stands there: move it away";
 }
