@@ -2,7 +2,8 @@
 // scenario's soil on the track's footprints, as a run would, without running: the soil reports its
 // discretisation in the log (a FEM soil: nodes, DOFs, smallest element, stable step, frequency
 // resolved at each distance) and, when it offers field output, writes it to DIR/mesh.vtu to look at
-// in ParaView before spending a run on it.
+// in ParaView before spending a run on it. DIR is the soil's results directory meanwhile: a FEM
+// soil's mesh.export goes there (docs/fem-soil.md §2.1).
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -63,6 +64,7 @@ int mesh_command(const std::vector<std::string>& args) {
     return kExitOk;
   }
   std::filesystem::create_directories(out_dir);
+  s.soil->set_results_dir(out_dir);  // where its own files go: a FEM soil's mesh.export
   const auto path = out_dir / "mesh.vtu";
   new_mesh_file(path);
   try {

@@ -113,9 +113,13 @@ int32_t Instance::progress_callback(void* /*host_data*/, double /*fraction*/) {
 }
 
 void Instance::set_run_context(const std::filesystem::path& results_dir, unsigned threads) {
+  set_results_dir(results_dir);
+  grant_threads(threads);
+}
+
+void Instance::set_results_dir(const std::filesystem::path& results_dir) {
   results_dir_ = results_dir.string();
   host_.results_dir = results_dir_.c_str();
-  grant_threads(threads);
 }
 
 void Instance::grant_threads(unsigned threads) {

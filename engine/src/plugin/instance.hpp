@@ -57,6 +57,9 @@ class Instance {
   /// What a run gives the plugin through rumble_host (ABI 1.1): its results directory and the
   /// threads it may use. Set before the run's first call.
   void set_run_context(const std::filesystem::path& results_dir, unsigned threads);
+  /// The results directory alone, for a command that writes the instance's files without a run
+  /// (`rumble mesh`: the directory of mesh.vtu). Until set, the plugin sees "" and writes none.
+  void set_results_dir(const std::filesystem::path& results_dir);
   /// The threads the instance may use (host.threads, at least 1), outside a run: a command that
   /// runs the soil alone (soil-frf, calibrate, mesh, stability) grants it the machine's.
   void grant_threads(unsigned threads);
