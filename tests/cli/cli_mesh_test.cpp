@@ -6,6 +6,7 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 
 #include "cli_runner.hpp"
 
@@ -114,6 +115,35 @@ TEST(CliMesh, SetChangesTheScenarioFirst) {
   EXPECT_THAT(refused.output, HasSubstr("(set by --set)"));
   ASSERT_EQ(coarser.exit_code, 0) << coarser.output;
   EXPECT_THAT(coarser.output, HasSubstr("20 Hz at 2.5 m"));  // the 40 Hz mesh resolves more
+}
+
+/// What `dir` holds, every level, as paths relative to it ("" when empty).
+std::string listing(const std::filesystem::path& dir) {
+  std::string out;
+  for (const auto& e : std::filesystem::recursive_directory_iterator(dir))
+    out += e.path().lexically_relative(dir).string() + "\n";
+  return out;
+}
+
+// gmsh reads and writes no file of its own: no options or session file in the home directory,
+// no preferences of FLTK (its GUI's toolkit, which wrote ~/.fltk/fltk.org/fltk.prefs), and its
+// temporary file there (~/.gmsh-tmp, which it removed) is left alone (docs/fem-soil.md §2).
+TEST(CliMesh, GmshWritesNothingIntoTheHomeDirectory) {
+  const auto dir = scratch_directory("mesh_home");
+  std::filesystem::create_directories(dir / "home");
+  RunSetup setup;
+  setup.environment = {{"HOME", (dir / "home").string()},
+                       {"RUMBLE_MESH_CACHE", (dir / "cache").string()}};
+  const auto path = write_scenario(dir, small_fem_scenario()).string();
+  const CliResult r = run_rumble({"mesh", path}, setup);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(listing(dir / "home"), "");
+  // A user's own ~/.gmsh-tmp stays.
+  std::ofstream(dir / "home" / ".gmsh-tmp") << "mine\n";
+  setup.environment[1].second = "off";  // meshed again
+  ASSERT_EQ(run_rumble({"mesh", path, "--output", (dir / "again").string()}, setup).exit_code, 0);
+  EXPECT_EQ(listing(dir / "home"), ".gmsh-tmp\n");
+  EXPECT_EQ(file_text(dir / "home" / ".gmsh-tmp"), "mine\n");
 }
 
 TEST(CliMesh, ASoilWithoutFieldsSaysSo) {

@@ -34,6 +34,7 @@ CliResult run_rumble(const std::vector<std::string>& args, const RunSetup& setup
       setrlimit(RLIMIT_FSIZE, &limit);
       std::signal(SIGXFSZ, SIG_IGN);  // stays ignored across exec
     }
+    for (const auto& [name, value] : setup.environment) setenv(name.c_str(), value.c_str(), 1);
     std::vector<char*> argv;
     std::string exe = RUMBLE_TEST_EXE;
     argv.push_back(exe.data());

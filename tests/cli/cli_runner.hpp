@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace rumble::testing {
@@ -23,6 +24,8 @@ struct RunSetup {
   /// RLIMIT_FSIZE in bytes when >= 0, with SIGXFSZ ignored: a write past it fails with EFBIG, as
   /// one on a full disk fails with ENOSPC.
   long file_size_limit = -1;
+  /// Variables set in the child's environment ({"HOME", "/scratch/home"}), the rest inherited.
+  std::vector<std::pair<std::string, std::string>> environment;
 };
 
 /// Runs `rumble <args>` (arguments are passed as they are, no shell) and waits.

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include "expect_message.hpp"
@@ -68,8 +69,10 @@ struct Traces {
   std::vector<double> times, values;
 };
 
-Traces run(const nlohmann::json& params, const std::vector<rumble_footprint>& footprints) {
+Traces run(const nlohmann::json& params, const std::vector<rumble_footprint>& footprints,
+           const fs::path& results_dir = {}) {
   TestSoil soil("fem", params.dump());
+  soil.set_results_dir(results_dir.string());  // "" (the default): no run's, as in validate
   soil.accept_layout(footprints);
   const std::vector<rumble_probe> probes = {{"r1", 0.6, 1.5, 0.0}, {"r2", 0.3, 3.0, 1.0}};
   EXPECT_EQ(soil.api().set_probes(soil.self(), probes.data(), probes.size(), 0.0), RUMBLE_OK);
@@ -193,15 +196,116 @@ TEST(FemMshImport, MeshExportWritesTheSoilsOwnMeshForMeshFile) {
   // params/mesh/export through the plugin (what `rumble mesh ... --set
   // /soil/params/mesh/export=...` does): the file it writes, given as mesh.file, is the same
   // mesh, so the static footprint displacements agree to round-off (as above: 1e-13).
-  const fs::path path = scratch() / "sub" / "soil.msh";  // its folder is made
+  const fs::path results = scratch();
   const auto footprints = sleeper_row(3);
   nlohmann::json exporting = small_layered_soil();
-  exporting["mesh"]["export"] = path.string();
-  const Traces generated = run(exporting, footprints);
+  exporting["mesh"]["export"] = "sub/soil.msh";  // its folder is made
+  const Traces generated = run(exporting, footprints, results);
+  const fs::path path = results / "sub" / "soil.msh";
   ASSERT_TRUE(fs::is_regular_file(path));
   const Traces imported = run(with_file(small_layered_soil(), path), footprints);
   for (Eigen::Index j = 0; j < 3; ++j)
     EXPECT_NEAR(imported.u_static[j], generated.u_static[j], 1e-13 * generated.u_static[j]);
+}
+
+// The soil `rumble validate` builds has no results directory: it writes nothing; the soil of a
+// run, laid out by its validation before the run gave it one, writes at its first call after
+// (issue 30, docs/fem-soil.md §2.1).
+TEST(FemMshImport, MeshExportIsWrittenOnlyInARun) {
+  const fs::path results = scratch();
+  nlohmann::json exporting = small_layered_soil();
+  exporting["mesh"]["export"] = "fem_mesh_file_tests_validate.msh";
+  TestSoil soil("fem", exporting.dump());
+  soil.accept_layout(sleeper_row(3));
+  EXPECT_FALSE(fs::exists("fem_mesh_file_tests_validate.msh"));  // (the old scenario_dir ".")
+  EXPECT_EQ(soil.last_log("mesh written"), "");
+  soil.set_results_dir(results.string());
+  soil.initialize(VectorXd::Constant(3, 5e4));
+  EXPECT_TRUE(fs::is_regular_file(results / "fem_mesh_file_tests_validate.msh"));
+  EXPECT_EQ(soil.last_log("mesh written"),
+            "fem: mesh written to " + (results / "fem_mesh_file_tests_validate.msh").string() +
+                " (mesh.file reads it back)");
+  soil.initialize(VectorXd::Constant(3, 6e4));  // once: a second call writes nothing
+}
+
+TEST(FemMshImport, MeshExportStaysInsideTheResultsDirectory) {
+  const std::string rule =
+      "mesh.export is written inside the run's results directory (outputs.directory, or --output "
+      "DIR) and nowhere else: give a path relative to it without '..', e.g. 'soil.msh'";
+  for (const auto& [path, why] : std::vector<std::pair<std::string, std::string>>{
+           {"/etc/passwd", "it is an absolute path"},
+           {"../scenario.json", "it climbs out with \"..\""},
+           {"a/../b.msh", "it climbs out with \"..\""}}) {
+    nlohmann::json params = small_layered_soil();
+    params["mesh"]["export"] = path;
+    EXPECT_EQ(creation_error("fem", params.dump()),
+              "fem: params/mesh/export: \"" + path + "\": " + why + "; " + rule);
+  }
+}
+
+std::string first_line(const fs::path& file) {
+  std::ifstream in(file);
+  std::string line;
+  std::getline(in, line);
+  return line;
+}
+
+/// The message accept_layout gives for params exporting to `path` in the results directory `dir`.
+std::string export_error(const fs::path& dir, const std::string& path) {
+  nlohmann::json params = small_layered_soil();
+  params["mesh"]["export"] = path;
+  TestSoil soil("fem", params.dump());
+  soil.set_results_dir(dir.string());
+  std::string message;
+  EXPECT_EQ(soil.try_accept_layout(sleeper_row(3), &message), RUMBLE_ERROR);
+  return message;
+}
+
+// Nothing standing in the results directory is followed, replaced or removed: a link on the way
+// or at the name, a file at the name or in the place of a folder.
+TEST(FemMshImport, MeshExportIsANewFileThroughRealDirectories) {
+  const fs::path dir = scratch();
+  fs::create_directories(dir / "results");
+  fs::create_directories(dir / "elsewhere");
+  const fs::path results = dir / "results";
+  fs::create_directory_symlink(dir / "elsewhere", results / "link");
+  std::ofstream(dir / "precious.txt") << "keep me\n";
+  fs::create_symlink(dir / "precious.txt", results / "to_precious.msh");
+  fs::create_symlink(dir / "ghost.msh", results / "dangling.msh");
+  std::ofstream(results / "taken.msh") << "mine\n";
+  std::ofstream(results / "a_file") << "not a folder\n";
+  const std::string through =
+      "; the file is written only through real directories inside the results directory, never "
+      "through a link: move it away, or give another path";
+  const std::string anew =
+      "; the file is written as a new one and nothing standing there is replaced (a rerun of the "
+      "same scenario removes its own first): move it away, or give another path";
+  EXPECT_NE(export_error(results, "link/soil.msh")
+                .find("fem: params/mesh/export: \"link/soil.msh\": " + (results / "link").string() +
+                      " is a symbolic link (to " + (dir / "elsewhere").string() + ")" + through),
+            std::string::npos);
+  EXPECT_NE(export_error(results, "a_file/soil.msh")
+                .find("fem: params/mesh/export: \"a_file/soil.msh\": " +
+                      (results / "a_file").string() + " is a file" + through),
+            std::string::npos);
+  EXPECT_NE(
+      export_error(results, "to_precious.msh")
+          .find("fem: params/mesh/export: \"to_precious.msh\": " +
+                (results / "to_precious.msh").string() + " is there already (a symbolic link (to " +
+                (dir / "precious.txt").string() + "))" + anew),
+      std::string::npos);
+  EXPECT_NE(export_error(results, "dangling.msh")
+                .find((results / "dangling.msh").string() + " is there already (a symbolic link"),
+            std::string::npos);
+  EXPECT_NE(export_error(results, "taken.msh")
+                .find("fem: params/mesh/export: \"taken.msh\": " +
+                      (results / "taken.msh").string() + " is there already (a file)" + anew),
+            std::string::npos);
+  EXPECT_TRUE(fs::is_empty(dir / "elsewhere"));
+  EXPECT_FALSE(fs::exists(fs::symlink_status(dir / "ghost.msh")));
+  EXPECT_EQ(first_line(dir / "precious.txt"), "keep me");
+  EXPECT_EQ(first_line(results / "taken.msh"), "mine");
+  EXPECT_TRUE(fs::is_symlink(results / "to_precious.msh"));
 }
 
 TEST(FemMshImport, MeshExportSaysWhenItCannotWrite) {
@@ -210,18 +314,12 @@ TEST(FemMshImport, MeshExportSaysWhenItCannotWrite) {
   EXPECT_EQ(creation_error("fem", both.dump()),
             "fem: params/mesh/export: \"b.msh\" would write the soil's own mesh, but mesh.file "
             "\"a.msh\" is the mesh here; drop one of them");
-  const fs::path blocker = scratch() / "a_file";
-  std::ofstream(blocker) << "not a folder\n";
-  nlohmann::json unwritable = small_layered_soil();
-  unwritable["mesh"]["export"] = (blocker / "soil.msh").string();
-  TestSoil soil("fem", unwritable.dump());
-  std::string message;
-  ASSERT_EQ(soil.try_accept_layout(sleeper_row(3), &message), RUMBLE_ERROR);
-  EXPECT_NE(message.find("fem: params/mesh/export: could not write the mesh to " +
-                         (blocker / "soil.msh").string()),
-            std::string::npos)
-      << message;
-  EXPECT_NE(message.find("; check that its folder can be written, or give another path"),
+  const fs::path missing = scratch() / "missing";  // a results directory that is not there
+  const std::string message = export_error(missing, "soil.msh");
+  EXPECT_NE(message.find("fem: params/mesh/export: \"soil.msh\": cannot create " +
+                         (missing / "soil.msh").string() +
+                         ": No such file or directory; check that its folder can be written, or "
+                         "give another path"),
             std::string::npos)
       << message;
 }

@@ -72,6 +72,11 @@ TestSoil::TestSoil(const std::string& type, const std::string& params_json) : ho
     throw std::runtime_error(std::string("create failed: ") + (error ? error : ""));
 }
 
+void TestSoil::set_results_dir(const std::string& dir) {
+  results_dir_ = dir;
+  host_.results_dir = results_dir_.c_str();
+}
+
 std::string TestSoil::last_log(const std::string& text) const {
   for (auto line = logs_.rbegin(); line != logs_.rend(); ++line)
     if (line->find(text) != std::string::npos) return *line;

@@ -71,6 +71,9 @@ class TestSoil {
   const std::vector<std::string>& logs() const { return logs_; }
   /// The last logged message containing `text`, or "".
   std::string last_log(const std::string& text) const;
+  /// Makes the soil part of a run writing into `dir` (the host's results_dir; "" until then, as
+  /// in `rumble validate`).
+  void set_results_dir(const std::string& dir);
 
  private:
   void check(rumble_status status, const char* call) const;
@@ -78,6 +81,7 @@ class TestSoil {
   rumble_instance* self_ = nullptr;
   rumble_host host_{};
   std::vector<std::string> logs_;
+  std::string results_dir_;
   Eigen::Index n_ = 0;
 };
 

@@ -7,6 +7,7 @@
 #include <sys/file.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <csignal>
 #include <fstream>
@@ -228,6 +229,86 @@ TEST(Study, RunSizeLimitsAndTheirConfirmation) {
   const CliResult confirmed = run_rumble({"study", study.string(), "--dry-run", "--yes"});
   EXPECT_THAT(confirmed.output, HasSubstr("2 runs: 2 to run, 0 up to date (skipped), 0 not valid"))
       << confirmed.output;
+}
+
+/// What `dir` holds, every level, as paths relative to it.
+std::vector<std::string> listing(const fs::path& dir) {
+  std::vector<std::string> out;
+  for (const auto& e : fs::recursive_directory_iterator(dir))
+    out.push_back(e.path().lexically_relative(dir).string());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+// A study's results stay inside the study file's folder unless the command line says otherwise
+// (issue 30), and --dry-run writes nothing at all.
+TEST(Study, AnOutputOutsideTheStudyFilesFolderNeedsConsent) {
+  const auto dir = scratch_directory("study_output_outside");
+  fs::create_directories(dir / "sub");
+  fs::create_directories(dir / "elsewhere");
+  write_scenario(dir / "sub", small_scenario());
+  fs::create_directory_symlink(dir / "elsewhere", dir / "sub" / "out");
+  json s = json::parse(R"({"study_version": 1, "scenario": "scenario.json",
+                           "output": "out/s", "runs": [{"name": "a"}]})");
+  const auto link = write_study(dir / "sub", s);
+  s["output"] = "../escaped";
+  std::ofstream(dir / "sub" / "escaping.json") << s.dump(2) << '\n';
+  const auto before = listing(dir);
+  for (const fs::path& study : {link, dir / "sub" / "escaping.json"}) {
+    for (const char* dry : {"--dry-run", "--no-report"}) {
+      const CliResult r = run_rumble({"study", study.string(), dry});
+      EXPECT_EQ(r.exit_code, 1) << r.output;
+      EXPECT_THAT(r.output, HasSubstr(study.string() + ":2:13: error: /output: "));
+      EXPECT_THAT(r.output, HasSubstr("    hint: results go inside the study file's folder unless "
+                                      "the command line says otherwise: pass "
+                                      "--allow-outside-results to write to "));
+    }
+  }
+  const fs::path real = fs::canonical(dir);
+  EXPECT_THAT(run_rumble({"study", link.string()}).output,
+              HasSubstr("error: /output: \"out/s\" leads out of the study file's folder " +
+                        (dir / "sub").string() + " through the symbolic link " +
+                        (real / "sub" / "out").string() + " (it is " +
+                        (real / "elsewhere" / "s").string() + ")"));
+  EXPECT_EQ(listing(dir), before);  // nothing made, nothing written
+  const CliResult dry =
+      run_rumble({"study", link.string(), "--dry-run", "--allow-outside-results"});
+  EXPECT_EQ(dry.exit_code, 0) << dry.output;
+  EXPECT_THAT(dry.output, HasSubstr("a: would run"));
+  EXPECT_EQ(listing(dir), before);
+  const CliResult allowed =
+      run_rumble({"study", link.string(), "--no-report", "--allow-outside-results"});
+  EXPECT_EQ(allowed.exit_code, 0) << allowed.output;
+  EXPECT_EQ(read_json(dir / "elsewhere" / "s" / "a" / "summary.json")["status"], "completed");
+}
+
+// A run's directory in the output folder that is a link (or a file) is left alone, and the run
+// is not valid: its results (and the --overwrite the study gives it) would go where it leads.
+TEST(Study, ARunDirectoryThatIsALinkIsNeverFollowed) {
+  const auto dir = scratch_directory("study_run_link");
+  write_scenario(dir, small_scenario());
+  fs::create_directories(dir / "out");
+  fs::create_directories(dir / "elsewhere");
+  fs::create_directory_symlink(dir / "elsewhere", dir / "out" / "a");
+  std::ofstream(dir / "out" / "b") << "mine\n";
+  const auto study = write_study(dir, json::parse(R"({"study_version": 1,
+    "scenario": "scenario.json", "output": "out", "runs": [{"name": "a"}, {"name": "b"},
+    {"name": "c"}]})"));
+  const CliResult r = run_rumble({"study", study.string(), "--no-report"});
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("study: run a is not valid:\nits results directory " +
+                                  (dir / "out" / "a").string() + " is a symbolic link (to " +
+                                  (dir / "elsewhere").string() +
+                                  "); a study writes each run's results into a real directory of "
+                                  "its output folder and never through a link nor over what "
+                                  "stands there: move it away"));
+  EXPECT_THAT(r.output, HasSubstr("study: run b is not valid:\nits results directory " +
+                                  (dir / "out" / "b").string() + " is a file;"));
+  EXPECT_THAT(r.output, HasSubstr("3 runs: 1 to run, 0 up to date (skipped), 2 not valid"));
+  EXPECT_TRUE(fs::is_empty(dir / "elsewhere"));
+  EXPECT_TRUE(fs::is_symlink(dir / "out" / "a"));
+  EXPECT_EQ(file_text(dir / "out" / "b"), "mine\n");
+  EXPECT_EQ(read_json(dir / "out" / "c" / "summary.json")["status"], "completed");
 }
 
 TEST(Study, Messages) {

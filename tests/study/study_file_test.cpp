@@ -2,6 +2,9 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
+
 #include "study_test_support.hpp"
 
 namespace rumble::study {
@@ -169,6 +172,38 @@ TEST(StudyFile, AllProblemsAtOnce) {
   const auto r = read(R"({"study_version": 3, "jobs": "x", "axes": [], "runs": []})");
   EXPECT_FALSE(r.study);
   EXPECT_EQ(r.problems.size(), 4u) << ::testing::PrintToString(r.problems);
+}
+
+// The study's results stay inside its folder unless the command line says otherwise (issue 30):
+// "output" absolute, leaving with "..", or leading out through a symbolic link is refused.
+TEST(StudyFile, AnOutputOutsideItsFolder) {
+  const std::filesystem::path dir = study_folder();
+  std::ofstream(dir / "study.json") << "{}\n";  // a file in a folder, as `rumble study` reads
+  std::filesystem::remove_all(dir / "link");
+  std::filesystem::create_directory_symlink("/tmp", dir / "link");
+  const auto outside = [](const std::string& output) -> std::string {
+    const auto r = read(R"({"study_version": 1, "scenario": "base.json", "output": )" +
+                        nlohmann::json(output).dump() + R"(, "runs": [{"name": "a"}]})");
+    if (!r.study) return ::testing::PrintToString(r.problems);
+    const auto d = output_outside_folder(*r.study);
+    return d ? d->pointer + ": " + d->message + " | " + d->hint : "inside";
+  };
+  const std::string hint =
+      " | results go inside the study file's folder unless the command line says otherwise: "
+      "pass --allow-outside-results to write to ";
+  EXPECT_EQ(outside("/etc"), "/output: \"/etc\" is an absolute path" + hint + "/etc");
+  EXPECT_EQ(outside("../.."), "/output: \"../..\" leaves the study file's folder " + dir.string() +
+                                  " (it is " + (dir / "../..").lexically_normal().string() + ")" +
+                                  hint + (dir / "../..").lexically_normal().string());
+  const std::filesystem::path real = std::filesystem::canonical(dir);
+  const std::filesystem::path tmp = std::filesystem::canonical("/tmp");
+  EXPECT_EQ(outside("link/x"), "/output: \"link/x\" leads out of the study file's folder " +
+                                   dir.string() + " through the symbolic link " +
+                                   (real / "link").string() + " (it is " + (tmp / "x").string() +
+                                   ")" + hint + (tmp / "x").string());
+  EXPECT_EQ(outside("out/s"), "inside");
+  EXPECT_EQ(outside("out/../results"), "inside");
+  std::filesystem::remove(dir / "link");
 }
 
 TEST(FilesystemSafe, Names) {

@@ -20,8 +20,9 @@ options:
                             scenario's outputs.directory)
   --overwrite               also replace another scenario's results in the directory, keeping
                             files rumble did not write (default: refuse)
-  --allow-outside-results   accept an outputs.directory that is absolute or leaves the
-                            scenario's folder (default: refuse; --output DIR also consents)
+  --allow-outside-results   accept an outputs.directory that is absolute or leads out of the
+                            scenario's folder, with ".." or a symbolic link (default: refuse;
+                            --output DIR also consents)
   --yes                     run even when validation estimates the run beyond the limits on
                             steps, memory or bytes written (default: refuse, with the estimate)
   --no-progress             no progress line (default: shown when stderr is a terminal)
@@ -55,6 +56,8 @@ options:
   --no-report               no report plots at the end
   --yes                     run even the runs estimated beyond the limits on steps, memory or
                             bytes written (default: such a run is not valid)
+  --allow-outside-results   accept an "output" that is absolute or leads out of the study file's
+                            folder, with ".." or a symbolic link (default: refuse)
 )"},
       {"plugins", R"(usage: rumble plugins [options]
 
@@ -79,6 +82,8 @@ mesh in DIR/mesh.vtu (soils with field output, e.g. fem).
 
 options:
   --output DIR              (default: the scenario's outputs.directory)
+  --allow-outside-results   accept an outputs.directory that is absolute or leads out of the
+                            scenario's folder (default: refuse; --output DIR also consents)
   --set POINTER=VALUE       replace the value at a JSON pointer first; repeatable, e.g.
                             --set /soil/params/mesh/f_max=50
 )"},
@@ -95,6 +100,8 @@ options:
                             locked while written; a rerun replaces its own files
   --overwrite               also replace what another set of scenarios wrote there, keeping
                             files rumble did not write (default: refuse)
+  --allow-outside-results   accept a first scenario's outputs.directory that is absolute or
+                            leads out of its folder (default: refuse; --output DIR also consents)
   --no-plot                 no plot
 )"},
       {"calibrate", R"(usage: rumble calibrate TARGET_SCENARIO --model TYPE [options]

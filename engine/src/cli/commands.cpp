@@ -30,14 +30,15 @@ commands:
   validate FILE [--format text|json] [--no-load] [--set POINTER=VALUE ...]
                                     check a scenario without running it (all errors at once);
                                     --no-load: without loading its plugins or building its parts
-  study FILE [--jobs N] [--force] [--dry-run] [--no-report] [--yes]
+  study FILE [--jobs N] [--force] [--dry-run] [--no-report] [--yes] [--allow-outside-results]
                                     run a study: the product of scenario variations and/or a list,
                                     N runs at once as processes, skipping runs that are up to
                                     date (--force: rerun all; --dry-run: list them); docs/study.md
   plugins [--format text|json]      list plugin libraries and the types they provide
   schema [TYPE] [--json]            the parameters of a type: units, defaults, ranges; without
                                     TYPE, the known types
-  mesh FILE [--output DIR]          build the scenario's soil on its footprints without running:
+  mesh FILE [--output DIR] [--allow-outside-results]
+                                    build the scenario's soil on its footprints without running:
                                     its report in the log, its mesh in DIR/mesh.vtu (FEM soil)
   soil-frf FILE [options]           receptance of the scenario's soil at its footprints (CSV)
   calibrate FILE [options]          fit a reduced soil's parameters to a target soil's receptance

@@ -31,8 +31,7 @@ int run_command(const std::vector<std::string>& args) {
   PluginRegistry registry;
   scenario::CheckOptions check;
   check.size_confirmed = a.flag("yes");  // a run beyond the size limits (scenario/run_size.hpp)
-  check.results_directory = !output;     // --output DIR replaces outputs.directory
-  check.results_inside_folder = !output && !a.flag("allow-outside-results");
+  check_results_directory(check, output.has_value(), a.flag("allow-outside-results"));
   BuiltSoils built;  // the soils validation builds, for the run (a FEM soil is built once)
   check.keep_soils = &built;
   auto doc =

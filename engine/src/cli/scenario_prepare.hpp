@@ -31,6 +31,16 @@ std::optional<scenario::Document> prepare_scenario(const std::filesystem::path& 
 inline constexpr scenario::CheckOptions kNotARun{
     .load_plugins = true, .size_confirmed = true, .results_directory = false};
 
+/// For the commands that write into the scenario's outputs.directory (run, mesh, soil-frf):
+/// `output_given` (--output DIR) replaces it, the user's choice; without it, it must be usable
+/// and, unless `allow_outside` (--allow-outside-results), inside the scenario's folder
+/// (docs/scenario.md, "The results directory").
+inline void check_results_directory(scenario::CheckOptions& check, bool output_given,
+                                    bool allow_outside) {
+  check.results_directory = !output_given;
+  check.results_inside_folder = !output_given && !allow_outside;
+}
+
 /// The scenario's soil (/soil), built and laid on the track's footprints as a run lays it: what
 /// `rumble mesh` and `rumble soil-frf` look at. Taken from `built` (the validation's, see
 /// CheckOptions::keep_soils) when it holds it.

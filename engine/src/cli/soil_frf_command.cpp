@@ -22,11 +22,12 @@
 namespace rumble::cli {
 
 int soil_frf_command(const std::vector<std::string>& args) {
-  const Arguments a(args, {"no-plot", "overwrite"}, {"fmin", "fmax", "points", "terms", "output"});
+  const Arguments a(args, {"no-plot", "overwrite", "allow-outside-results"},
+                    {"fmin", "fmax", "points", "terms", "output"});
   if (a.positional().empty()) {
     throw UsageError(
         "usage: rumble soil-frf FILE [FILE...] [--fmin 1] [--fmax 100] [--points 100] "
-        "[--terms 2] [--output DIR] [--overwrite] [--no-plot]");
+        "[--terms 2] [--output DIR] [--overwrite] [--allow-outside-results] [--no-plot]");
   }
   const double f_min = a.number("fmin", 1.0), f_max = a.number("fmax", 100.0);
   const long long points = a.integer("points", 100, 2, 100000);
@@ -42,6 +43,8 @@ int soil_frf_command(const std::vector<std::string>& args) {
   for (const std::string& file : a.positional()) {
     BuiltSoils built;  // the soil validation builds is the one measured: built once
     scenario::CheckOptions check = kNotARun;
+    if (!results)  // the first scenario's outputs.directory holds soil_frf/
+      check_results_directory(check, output.has_value(), a.flag("allow-outside-results"));
     check.keep_soils = &built;
     const auto doc = prepare_scenario(file, registry, scenario::Format::kText, {}, check);
     if (!doc) return kExitConfig;

@@ -1,7 +1,7 @@
-// `rumble study FILE [--jobs N] [--force] [--dry-run]`: the runs of a study file (a product of
-// scenario variations and/or a list), each validated first, then run as child processes, at most
-// N at once, skipping those whose results are up to date; the state in OUTPUT/study.json.
-// docs/study.md.
+// `rumble study FILE [--jobs N] [--force] [--dry-run] [--allow-outside-results]`: the runs of a
+// study file (a product of scenario variations and/or a list), each validated first, then run as
+// child processes, at most N at once, skipping those whose results are up to date; the state in
+// OUTPUT/study.json. docs/study.md.
 #include <algorithm>
 #include <iostream>
 
@@ -28,7 +28,8 @@ using study::RunRecord;
 using study::RunState;
 
 constexpr const char* kStudyUsage =
-    "usage: rumble study FILE [--jobs N] [--force] [--dry-run] [--no-report] [--yes]";
+    "usage: rumble study FILE [--jobs N] [--force] [--dry-run] [--no-report] [--yes] "
+    "[--allow-outside-results]";
 
 int parse_jobs(const std::string& text) {
   std::size_t used = 0;
@@ -57,7 +58,8 @@ std::string shown(const fs::path& p) {
 }  // namespace
 
 int study_command(const std::vector<std::string>& args) {
-  const Arguments a(args, {"force", "dry-run", "no-report", "yes"}, {"jobs"});
+  const Arguments a(args, {"force", "dry-run", "no-report", "yes", "allow-outside-results"},
+                    {"jobs"});
   if (a.positional().size() != 1) throw UsageError(kStudyUsage);
   const int cli_jobs = a.value("jobs") ? parse_jobs(*a.value("jobs")) : 0;  // 0: not given
   const fs::path file = a.positional()[0];
@@ -68,6 +70,9 @@ int study_command(const std::vector<std::string>& args) {
   std::vector<study::PlannedRun> runs;
   if (doc) s = study::read_study(*doc, diagnostics);
   if (s) runs = study::expand(*s, diagnostics);
+  if (s && !a.flag("allow-outside-results")) {  // results inside the study file's folder
+    if (auto outside = study::output_outside_folder(*s)) diagnostics.push_back(std::move(*outside));
+  }
   if (!diagnostics.empty()) {
     scenario::print_diagnostics(std::cerr, doc ? &*doc : nullptr, file, diagnostics,
                                 scenario::Format::kText);

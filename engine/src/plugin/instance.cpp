@@ -113,9 +113,13 @@ int32_t Instance::progress_callback(void* /*host_data*/, double /*fraction*/) {
 }
 
 void Instance::set_run_context(const std::filesystem::path& results_dir, unsigned threads) {
+  set_results_dir(results_dir);
+  grant_threads(threads);
+}
+
+void Instance::set_results_dir(const std::filesystem::path& results_dir) {
   results_dir_ = results_dir.string();
   host_.results_dir = results_dir_.c_str();
-  grant_threads(threads);
 }
 
 void Instance::grant_threads(unsigned threads) {
@@ -452,8 +456,12 @@ std::optional<SoilInstance::ProbeResolution> SoilInstance::probe_resolution() co
   r.rule = rule;
   return r;
 }
+bool SoilInstance::offers_fields() const {
+  return type().abi_minor >= 1 && capabilities().has(RUMBLE_CAP_FIELD_OUTPUT);
+}
+
 bool SoilInstance::write_fields(double t, const std::filesystem::path& path) {
-  if (type().abi_minor < 1 || !capabilities().has(RUMBLE_CAP_FIELD_OUTPUT)) return false;
+  if (!offers_fields()) return false;
   call("write_fields", [&] { return api_->write_fields(handle(), t, path.c_str()); });
   return true;
 }

@@ -58,6 +58,9 @@ class Instance {
   /// What a run gives the plugin through rumble_host (ABI 1.1): its results directory and the
   /// threads it may use. Set before the run's first call.
   void set_run_context(const std::filesystem::path& results_dir, unsigned threads);
+  /// The results directory alone, for a command that writes the instance's files without a run
+  /// (`rumble mesh`: the directory of mesh.vtu). Until set, the plugin sees "" and writes none.
+  void set_results_dir(const std::filesystem::path& results_dir);
   /// The threads the instance may use (host.threads, at least 1), outside a run: a command that
   /// runs the soil alone (soil-frf, calibrate, mesh, stability) grants it the machine's.
   void grant_threads(unsigned threads);
@@ -163,6 +166,8 @@ class SoilInstance final : public Instance {
     std::string rule;
   };
   std::optional<ProbeResolution> probe_resolution() const;
+  /// ABI 1.1 field output: whether write_fields writes anything.
+  bool offers_fields() const;
   /// ABI 1.1 field output; false when not offered.
   bool write_fields(double t, const std::filesystem::path& path);
   /// ABI 1.1: slowest shear and Rayleigh speeds [m/s]; false when not offered.

@@ -35,6 +35,17 @@ bool write_all(int fd, std::string_view text) noexcept {
 
 }  // namespace
 
+std::string what_stands_at(const std::filesystem::path& path) {
+  struct stat st {};
+  if (::lstat(path.c_str(), &st) != 0) return "";
+  if (S_ISLNK(st.st_mode)) {
+    std::error_code ec;
+    return "a symbolic link (to " + std::filesystem::read_symlink(path, ec).string() + ")";
+  }
+  if (S_ISDIR(st.st_mode)) return "a directory";
+  return S_ISREG(st.st_mode) ? "a file" : "a device, pipe or socket";
+}
+
 std::string write_error(const std::filesystem::path& path, int err) {
   const char* fix = "check that outputs.directory is writable";
   if (err == ENOSPC || err == EDQUOT) {

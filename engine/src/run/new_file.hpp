@@ -26,6 +26,10 @@ void replace_file(const std::filesystem::path& path, const std::filesystem::path
 int replace_file_noexcept(const char* path, const char* tmp,
                           std::initializer_list<std::string_view> pieces) noexcept;
 
+/// What stands at `path`, not followed, for messages: "a symbolic link (to TARGET)", "a
+/// directory", "a file", "a device, pipe or socket"; "" when nothing does.
+std::string what_stands_at(const std::filesystem::path& path);
+
 /// "cannot write results file PATH: REASON; FIX" for errno `err` (a full disk, a file size
 /// limit, or a directory that refuses the write).
 std::string write_error(const std::filesystem::path& path, int err);

@@ -45,34 +45,88 @@ fs::path results_directory(const json& document, const fs::path& path) {
   return dir.is_absolute() ? dir : path.parent_path() / dir;
 }
 
-std::optional<Diagnostic> results_outside_scenario_folder(const json& document,
-                                                          const fs::path& path) {
-  const std::string given = document.at("outputs").at("directory").get<std::string>();
+namespace {
+
+/// `path` is `folder` or inside it (both lexically normal).
+bool within(const fs::path& path, const fs::path& folder) {
+  const fs::path relative = path.lexically_relative(folder);
+  return !relative.empty() && *relative.begin() != "..";
+}
+
+/// Where `relative` leads from the directory `from` (canonical) once its missing directories are
+/// made, as the system resolves it: each part that exists is resolved (a symbolic link followed,
+/// ".." the parent of the real directory), a missing one appended as it is; `link`: the first
+/// symbolic link on the way that leads out of `from`, "" when none. A link that leads nowhere
+/// stays as it is (making a directory there fails). Not std::filesystem::weakly_canonical: it
+/// takes the missing tail lexically, so "new/../link" would pass for "link" unresolved.
+fs::path resolved(const fs::path& from, const fs::path& relative, fs::path& link) {
+  fs::path at = from;
+  link.clear();
+  for (const fs::path& part : relative) {
+    if (part.empty() || part == ".") continue;
+    if (part == "..") {
+      at = at.parent_path();
+      continue;
+    }
+    at /= part;
+    std::error_code ec;
+    if (!fs::is_symlink(fs::symlink_status(at, ec))) continue;  // canonical so far
+    const fs::path real = fs::canonical(at, ec);
+    if (ec) continue;
+    if (link.empty() && !within(real, from)) link = at;
+    at = real;
+  }
+  return at;
+}
+
+}  // namespace
+
+std::optional<Diagnostic> outside_folder(const ResultsFolderRule& rule, const fs::path& path,
+                                         const std::string& given) {
   const fs::path file = fs::absolute(path).lexically_normal();
   const fs::path folder = file.parent_path();
   const fs::path target = (folder / given).lexically_normal();  // `given` when absolute
   const std::string quoted = json(given).dump();
-  const auto refused = [&](const std::string& why) {
-    return finding("/outputs/directory", why,
-                   "results go inside the scenario's folder unless the command line says "
-                   "otherwise: choose the directory with --output DIR, or pass "
-                   "--allow-outside-results to write to " +
-                       target.string());
+  const auto refused = [&](const std::string& why, const fs::path& to) {
+    return finding(rule.pointer, why,
+                   "results go inside the " + rule.file +
+                       "'s folder unless the command line says otherwise: " + rule.choices +
+                       " to write to " + to.string());
   };
-  // /dev/stdin, /proc/self/fd/N, a pipe: no folder of the scenario's own to stay in.
+  // /dev/stdin, /proc/self/fd/N, a pipe: no folder of the file's own to stay in.
   std::error_code ec;
   const auto top = std::next(file.begin());
   if (!fs::is_regular_file(path, ec) || (top != file.end() && (*top == "dev" || *top == "proc"))) {
-    return refused("the scenario is read from " + path.string() +
-                   ", not from a file in a folder, so " + quoted + " would be " + target.string());
+    return refused("the " + rule.file + " is read from " + path.string() +
+                       ", not from a file in a folder, so " + quoted + " would be " +
+                       target.string(),
+                   target);
   }
-  if (fs::path(given).is_absolute()) return refused(quoted + " is an absolute path");
+  if (fs::path(given).is_absolute()) return refused(quoted + " is an absolute path", target);
   const fs::path relative = fs::path(given).lexically_normal();
   if (!relative.empty() && *relative.begin() == "..") {
-    return refused(quoted + " leaves the scenario's folder " + folder.string() + " (it is " +
-                   target.string() + ")");
+    return refused(quoted + " leaves the " + rule.file + "'s folder " + folder.string() +
+                       " (it is " + target.string() + ")",
+                   target);
   }
-  return std::nullopt;
+  // Lexically inside; through the links of what exists, perhaps not.
+  const fs::path real_folder = fs::canonical(folder, ec);
+  if (ec) return std::nullopt;  // unreadable: making the directory will say why
+  fs::path link;
+  const fs::path real = resolved(real_folder, given, link);
+  if (within(real, real_folder)) return std::nullopt;
+  const std::string through =
+      link.empty() ? "" : " through the symbolic link " + link.lexically_normal().string();
+  return refused(quoted + " leads out of the " + rule.file + "'s folder " + folder.string() +
+                     through + " (it is " + real.string() + ")",
+                 real);
+}
+
+std::optional<Diagnostic> results_outside_scenario_folder(const json& document,
+                                                          const fs::path& path) {
+  return outside_folder({"/outputs/directory", "scenario",
+                         "choose the directory with --output DIR, or pass --allow-outside-results"},
+                        path, document.at("outputs").at("directory").get<std::string>());
 }
 
 RunSpec make_run_spec(const json& document, const fs::path& path) {

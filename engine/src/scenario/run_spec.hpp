@@ -76,9 +76,24 @@ RunSpec make_run_spec(const nlohmann::json& document, const std::filesystem::pat
 std::filesystem::path results_directory(const nlohmann::json& document,
                                         const std::filesystem::path& path);
 
-/// Results go inside the scenario's folder unless the command line says otherwise (issue #8):
-/// the finding at /outputs/directory when it is absolute, leaves that folder ("../x"), or the
-/// scenario is not a file in a folder (/dev/stdin, a pipe); nullopt when it stays inside.
+/// What keeps the results that a file names inside that file's folder, for the messages.
+struct ResultsFolderRule {
+  std::string pointer;  // where the file names its results directory: "/outputs/directory"
+  std::string file;     // what the file is: "scenario", "study file"
+  std::string choices;  // how the command line allows another directory: "pass --allow-..."
+};
+
+/// Results go inside the folder of the file that names them unless the command line says
+/// otherwise (issues #8, #30): the finding at rule.pointer when `given` (relative to the folder
+/// of `file` unless absolute) is absolute, leaves that folder with "..", leads out of it through
+/// a symbolic link (the part of the path that exists is resolved as the system resolves it), or
+/// `file` is not a file in a folder (/dev/stdin, a pipe); nullopt when it stays inside.
+std::optional<Diagnostic> outside_folder(const ResultsFolderRule& rule,
+                                         const std::filesystem::path& file,
+                                         const std::string& given);
+
+/// outside_folder for a scenario's outputs.directory, which `rumble run` (and `mesh`,
+/// `soil-frf`) allow with --output DIR or --allow-outside-results.
 std::optional<Diagnostic> results_outside_scenario_folder(const nlohmann::json& document,
                                                           const std::filesystem::path& path);
 

@@ -1,9 +1,12 @@
 #include "study/prepare_runs.hpp"
 
+#include <sys/stat.h>
+
 #include <ostream>
 
 #include "core/errors.hpp"
 #include "plugin/registry.hpp"
+#include "run/new_file.hpp"
 #include "scenario/check_file.hpp"
 #include "scenario/report.hpp"
 #include "study/run_key.hpp"
@@ -27,6 +30,18 @@ std::vector<std::string> child_command(const RunRecord& r, bool size_confirmed) 
   return c;
 }
 
+/// Why a run's results cannot go to `dir` (inside the study's output folder): "" when it is
+/// missing (made when the run starts) or a real directory. Anything else stands there in the
+/// way, never followed nor removed: a symbolic link would take the run's results (and the
+/// --overwrite the study gives the run) wherever it leads.
+std::string not_a_run_directory(const fs::path& dir) {
+  struct stat st {};
+  if (::lstat(dir.c_str(), &st) != 0 || S_ISDIR(st.st_mode)) return "";
+  return "its results directory " + dir.lexically_normal().string() + " is " + what_stands_at(dir) +
+         "; a study writes each run's results into a real directory of its output folder and "
+         "never through a link nor over what stands there: move it away";
+}
+
 }  // namespace
 
 std::vector<RunRecord> prepare_runs(const StudyFile& study, std::vector<PlannedRun> runs,
@@ -40,6 +55,13 @@ std::vector<RunRecord> prepare_runs(const StudyFile& study, std::vector<PlannedR
     RunRecord r;
     r.run = std::move(run);
     r.results = study.output / r.run.name;
+    if (const std::string why = not_a_run_directory(r.results); !why.empty()) {
+      r.state = RunState::kInvalid;
+      r.message = "not valid: " + why;
+      report << "study: run " << r.run.name << " is not valid:\n" << why << '\n';
+      records.push_back(std::move(r));
+      continue;
+    }
     std::vector<scenario::Override> set = overrides(r.run, study.path);
     try {
       const scenario::CheckedScenario c =

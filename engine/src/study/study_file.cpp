@@ -6,6 +6,7 @@
 #include "scenario/did_you_mean.hpp"
 #include "scenario/json_position.hpp"
 #include "scenario/overrides.hpp"
+#include "scenario/run_spec.hpp"
 #include "scenario/value_text.hpp"
 
 namespace rumble::study {
@@ -111,6 +112,11 @@ class Reader {
 
 }  // namespace
 
+std::optional<Diagnostic> output_outside_folder(const StudyFile& study) {
+  return scenario::outside_folder({"/output", "study file", "pass --allow-outside-results"},
+                                  study.path, study.output_text);
+}
+
 bool filesystem_safe(const std::string& name) {
   if (name.empty() || name.size() > 100) return false;
   const auto alnum = [](char c) {
@@ -149,7 +155,8 @@ std::optional<StudyFile> read_study(const scenario::Document& doc,
   s.description = r.string(j, "", "description", false, "what the study is for").value_or("");
   const auto output = r.string(j, "", "output", false,
                                "the folder of the study's results, relative to the study file");
-  s.output = folder / output.value_or("results/" + doc.path.stem().string());
+  s.output_text = output.value_or("results/" + doc.path.stem().string());
+  s.output = folder / s.output_text;
   if (j.contains("jobs")) {
     const ojson& v = j["jobs"];
     if (!v.is_number_integer() || v.get<long long>() < 1 || v.get<long long>() > 1024) {

@@ -46,10 +46,16 @@ struct StudyFile {
   std::string name, description;
   std::filesystem::path scenario;  // resolved against the study file's folder; "" when none
   std::filesystem::path output;    // resolved against the study file's folder
+  std::string output_text;         // as written ("results/<stem>" when the file names none)
   std::vector<Axis> axes;
   std::vector<ExplicitRun> runs;
   std::optional<int> jobs;
 };
+
+/// The study's output folder when it lies outside the study file's folder (absolute, leaving it
+/// with "..", or leading out of it through a symbolic link: scenario::outside_folder), the
+/// finding at /output; `rumble study` allows it with --allow-outside-results. nullopt: inside.
+std::optional<scenario::Diagnostic> output_outside_folder(const StudyFile& study);
 
 /// A name that can be a directory: 1 to 100 of [A-Za-z0-9._-], starting with a letter or digit.
 bool filesystem_safe(const std::string& name);

@@ -6,6 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "results_file.hpp"
 #include "soil_params.hpp"
 
 namespace rumble::fem {
@@ -17,6 +18,12 @@ namespace {
   m << "fem: params/" << key << ": " << rule << ", got " << value;
   throw std::invalid_argument(m.str());
 }
+
+// mesh.export's rule: refused by the schema at /soil/params/mesh/export (the `not` below says
+// this), and when the params are read without it (issue 30).
+constexpr const char* kExportRule =
+    "mesh.export is written inside the run's results directory (outputs.directory, or --output "
+    "DIR) and nowhere else: give a path relative to it without '..', e.g. 'soil.msh'";
 
 // The Maxwell fit's largest miss of the ratio over its band accepted [-]: three mechanisms on
 // 5-100 Hz miss by 2.8 %; beyond 10 % the band is too wide or too narrow for the mechanisms.
@@ -83,7 +90,9 @@ const char* settings_schema() {
       "type": "object", "additionalProperties": false, "default": {},
       "description": "the tetrahedral mesh, generated with gmsh when the track announces its footprints (docs/fem-soil.md)",
       "properties": {
-        "export": {"type": "string", "minLength": 1, "description": "writes the soil's own mesh, once meshed, to this gmsh file (.msh, binary MSH 4.1, relative to the scenario's folder) with the physical groups mesh.file reads, so that it can be edited in gmsh and used again: rumble mesh SCENARIO --set /soil/params/mesh/export='\"soil.msh\"' (docs/fem-soil.md section 2.1); not with mesh.file"},
+        "export": {"type": "string", "minLength": 1, "not": {"pattern": "^/|(^|/)\\.\\.(/|$)", "description": "is absolute or climbs out with '..'; )schema" +
+      std::string(kExportRule) +
+      R"schema("}, "description": "writes the soil's own mesh as a gmsh file (binary MSH 4.1) with the physical groups mesh.file reads, so that it can be edited in gmsh and used again, at this path inside the run's results directory (outputs.directory, or --output DIR): relative to it, without '..', its folders made; written by rumble run and rumble mesh (rumble mesh SCENARIO --set /soil/params/mesh/export='\"soil.msh\"' writes DIR/soil.msh), never by rumble validate; a new file: anything already at the path is left alone and refused (docs/fem-soil.md section 2.1); not with mesh.file"},
         "file": {"type": "string", "minLength": 1, "description": "a gmsh mesh file (.msh, formats 2.2 and 4.1) to use instead of meshing, relative to the scenario's folder (docs/fem-soil.md section 2): linear tetrahedra only, z up with the ground at z = 0, and the physical groups: surface \"ground\" (the free surface), surface \"footprints\" (the track's footprint rectangles embedded in the ground, one connected patch each, matching the track's footprints in number, centre and size to 2 % of the smaller side or 1 mm), surface \"absorbing\" (the truncation surface, where the boundary acts); optionally volumes named for the layers (a layer's name, layer_<k> with k = 0 the top layer, half_space below the layers; unnamed: layers by depth). The domain must be convex around the footprints. Refused at validation when a group is missing, with the groups the file has. At most 256 bytes per mesh.max_dofs (64 MiB at least), and at most mesh.max_dofs DOFs. The other mesh keys are then ignored"},
         "shape": {"enum": ["hemisphere", "box"], "default": "hemisphere", "description": "truncation of the half-space: a hemisphere centred under the footprints (waves meet its surface near normal incidence, where the absorbing boundary works best), or a box around them"},
         "radius": {"type": "number", "exclusiveMinimum": 0, "default": 20, "description": "hemisphere radius, or the box's margin beyond the footprints on each side and below [m]; put it at least one Rayleigh wavelength of the lowest frequency of interest beyond the farthest receiver"},
@@ -191,6 +200,10 @@ FemSettings read_settings(const std::string& params_json) {
   m.quality_threshold = read(mesh, "quality_threshold", m.quality_threshold);
   m.file = mesh.value("file", "");
   m.export_file = mesh.value("export", "");
+  if (const std::string why = outside_results(m.export_file);
+      !m.export_file.empty() && !why.empty())
+    throw std::invalid_argument("fem: params/mesh/export: \"" + m.export_file + "\": " + why +
+                                "; " + kExportRule);
   if (!m.file.empty() && !m.export_file.empty())
     throw std::invalid_argument("fem: params/mesh/export: \"" + m.export_file +
                                 "\" would write the soil's own mesh, but mesh.file \"" + m.file +

@@ -35,7 +35,8 @@ struct MeshRequest {
   /// default; 0.6 lengthened the stable step 20 % on the stiff example (docs/fem-soil.md §2).
   double quality_threshold = 0.3;
   std::string file;         // a user's .msh instead (as given: relative to the scenario)
-  std::string export_file;  // where to write the generated mesh as .msh ("" none; as given)
+  std::string export_file;  // where to write the generated mesh as .msh, inside the run's
+                            // results directory ("" none; as given: relative, no "..")
   /// The largest mesh file read [bytes]: about 100 B per DOF as ASCII .msh, so 256 B per
   /// mesh.max_dofs, at least 64 MiB.
   double max_file_bytes() const { return std::max(64.0 * 1048576.0, 256.0 * max_dofs); }

@@ -32,6 +32,7 @@
 #include "receptance.hpp"
 #include "receptance_cache.hpp"
 #include "resolved_band.hpp"
+#include "results_file.hpp"
 #include "static_solver.hpp"
 #include "vtu_writer.hpp"
 #include "wave_speeds.hpp"
@@ -97,7 +98,8 @@ class FemSoil final : public rumble::Soil {
                  format(plan_.h_near) + " m, h_max " + format(plan_.h_max) + " m, radius " +
                  format(plan_.radius) + " m)");
       mesh_ = cached_or_new_mesh();
-      if (!settings_.mesh.export_file.empty()) export_mesh(footprints);
+      export_due_ = !settings_.mesh.export_file.empty();
+      export_if_due();
     } else {
       MeshFile file = load_mesh_file(settings_, mesh_file_);
       check_mesh_footprints(file, footprints);
@@ -148,6 +150,7 @@ class FemSoil final : public rumble::Soil {
 
   void initialize(double /*t0*/, const double* static_force, double* static_u) override {
     require_layout("initialize");
+    export_if_due();  // a run's soil was laid out by its validation, before it had a directory
     op_->set_threads(host_.threads());  // the statics' products and multigrid set-up use them
     force_static_.assign(static_force, static_force + footprints_.size());
     force_last_ = force_static_;
@@ -274,6 +277,7 @@ class FemSoil final : public rumble::Soil {
 
   void write_fields(double t, const std::string& path) override {
     require_layout("write_fields");
+    export_if_due();  // `rumble mesh` gives a directory, then asks for the fields only
     rumble::fem::write_vtu(path, t, mesh_, u_static_ + state_.w, state_.v);
   }
 
@@ -495,26 +499,28 @@ class FemSoil final : public rumble::Soil {
     samples().push(t, row_.data());
   }
 
-  /// mesh.export: the generated mesh as a .msh that mesh.file reads back.
-  void export_mesh(const std::vector<rumble::Footprint>& footprints) const {
-    std::filesystem::path path(settings_.mesh.export_file);
-    if (path.is_relative()) path = std::filesystem::path(host_.scenario_dir()) / path;
-    path = path.lexically_normal();
-    std::error_code ignored;
-    if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path(), ignored);
-    std::filesystem::remove(path, ignored);  // a file left from before must not pass for this one
+  /// mesh.export: the generated mesh as a .msh that mesh.file reads back, written as a new file
+  /// inside the results directory once the soil has one (issue 30): never while it has none
+  /// (`rumble validate`, a study's checks, soil-frf, calibrate).
+  void export_if_due() {
+    if (!export_due_ || host_.results_dir().empty()) return;
+    export_due_ = false;
+    const std::string where =
+        "fem: params/mesh/export: " + nlohmann::json(settings_.mesh.export_file).dump();
+    const std::filesystem::path path = rumble::fem::new_results_file(
+        host_.results_dir(), settings_.mesh.export_file, where);  // made empty, never replaced
     std::string why;
     try {
-      rumble::fem::write_mesh_file(mesh_, settings_, footprints, path.string());
+      rumble::fem::write_mesh_file(mesh_, settings_, footprints_, path.string());
     } catch (const std::exception& e) {
       why = std::string(" (") + e.what() + ")";
     }
     std::error_code error;
-    if (!why.empty() || !std::filesystem::is_regular_file(path, error) ||
-        std::filesystem::file_size(path, error) == 0)
-      throw std::runtime_error("fem: params/mesh/export: could not write the mesh to " +
-                               path.string() + why +
+    if (!why.empty() || std::filesystem::file_size(path, error) == 0) {
+      std::filesystem::remove(path, error);  // the file made above, not left empty
+      throw std::runtime_error(where + ": could not write the mesh to " + path.string() + why +
                                "; check that its folder can be written, or give another path");
+    }
     host_.info("fem: mesh written to " + path.string() + " (mesh.file reads it back)");
   }
 
@@ -631,6 +637,7 @@ class FemSoil final : public rumble::Soil {
   std::unique_ptr<rumble::fem::ImpulseReceptance> impulse_;
   std::optional<std::uint64_t> receptance_key_;  // receptance_cache.hpp, once per layout
   bool receptance_cache_warned_ = false;
+  bool export_due_ = false;  // mesh.export: the mesh is written at the first call in a run
   ExplicitState state_;
   Eigen::VectorXd u_static_;                       // [m] under force_static_
   Eigen::VectorXd f_, df_;                         // scratch: nodal forces [N]

@@ -1,5 +1,7 @@
 #include "gmsh_model.hpp"
 
+#include <dlfcn.h>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -193,7 +195,43 @@ double nm(double x) {
   return r == 0.0 ? 0.0 : r;
 }
 
+/// Debian's gmsh links FLTK 1.3 (its GUI), whose first look at one of its options reads and
+/// rewrites its preference files, /etc/fltk/fltk.org/fltk.prefs (as root) and
+/// ~/.fltk/fltk.org/fltk.prefs (made when missing); gmsh::initialize looks (its default
+/// General.Tooltips switches FLTK's tooltips on). Marking FLTK's options as read already keeps it
+/// from both; their values matter only to a GUI, which the plugin never opens. Nothing to do
+/// where gmsh is built without FLTK.
+void keep_fltk_from_its_preference_files() {
+  void* fltk = ::dlopen("libfltk.so.1.3", RTLD_LAZY | RTLD_NOLOAD);
+  if (fltk == nullptr) return;
+  if (auto* read = static_cast<unsigned char*>(::dlsym(fltk, "_ZN2Fl13options_read_E")))
+    *read = 1;  // Fl::options_read_
+  ::dlclose(fltk);
+}
+
 }  // namespace
+
+GmshSession::GmshSession(unsigned threads) {
+  keep_fltk_from_its_preference_files();
+  gmsh::initialize(0, nullptr, /*readConfigFiles=*/false);  // no ~/.gmshrc, ~/.gmsh-options
+  // Nothing saved at the end (the GUI's session and options files), and gmsh::finalize removes
+  // its temporary file, by default ~/.gmsh-tmp (a user's, from gmsh's GUI): named "." instead,
+  // it is the home directory itself, which unlink refuses.
+  gmsh::option::setNumber("General.SaveSession", 0);
+  gmsh::option::setNumber("General.SaveOptions", 0);
+  gmsh::option::setString("General.TmpFileName", ".");
+  gmsh::option::setNumber("General.Terminal", 0);
+  gmsh::option::setNumber("General.Verbosity", 1);
+  gmsh::option::setNumber("General.NumThreads", threads);
+  // Same input, same mesh: gmsh otherwise takes as many threads as OpenMP offers per stage.
+  for (const char* stage : {"Mesh.MaxNumThreads1D", "Mesh.MaxNumThreads2D", "Mesh.MaxNumThreads3D"})
+    gmsh::option::setNumber(stage, threads);
+  gmsh::model::add("soil");
+}
+
+GmshSession::~GmshSession() {
+  gmsh::finalize();
+}
 
 std::vector<std::string> mesh_layer_names(const FemSettings& s, std::size_t k) {
   std::vector<std::string> names;

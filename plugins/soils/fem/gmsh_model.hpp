@@ -17,21 +17,14 @@
 namespace rumble::fem {
 
 /// The gmsh session of one meshing: gmsh keeps global state, so one at a time per process, and
-/// gmsh 4.8 throws std::string (toolchain.md §8.10), turned here into std::runtime_error.
+/// gmsh 4.8 throws std::string (toolchain.md §8.10), turned here into std::runtime_error. It reads
+/// and writes no file of its own: no options or session file (~/.gmshrc, ~/.gmsh-options), no
+/// preferences of the toolkit of its GUI, and its temporary file is never removed
+/// (docs/fem-soil.md §2).
 class GmshSession {
  public:
-  explicit GmshSession(unsigned threads) {
-    gmsh::initialize(0, nullptr, /*readConfigFiles=*/false);
-    gmsh::option::setNumber("General.Terminal", 0);
-    gmsh::option::setNumber("General.Verbosity", 1);
-    gmsh::option::setNumber("General.NumThreads", threads);
-    // Same input, same mesh: gmsh otherwise takes as many threads as OpenMP offers per stage.
-    for (const char* stage :
-         {"Mesh.MaxNumThreads1D", "Mesh.MaxNumThreads2D", "Mesh.MaxNumThreads3D"})
-      gmsh::option::setNumber(stage, threads);
-    gmsh::model::add("soil");
-  }
-  ~GmshSession() { gmsh::finalize(); }
+  explicit GmshSession(unsigned threads);
+  ~GmshSession();
   GmshSession(const GmshSession&) = delete;
   GmshSession& operator=(const GmshSession&) = delete;
 };

@@ -113,7 +113,9 @@ typedef struct rumble_host {
   const char* scenario_dir;
   /* ---- 1.1 (check with RUMBLE_HAS_FIELD before use) */
   /** The run's results directory (UTF-8, exists, no trailing slash); "" when the instance is
-   *  not part of a run (validate, soil-frf, calibrate). Files a plugin writes go here. */
+   *  not part of a run (validate, a study's checks, soil-frf, calibrate, stability); `rumble
+   *  mesh` gives the directory of its mesh.vtu. Files a plugin writes go here, as new files
+   *  inside it, and nowhere else: none while it is "" (docs/plugin-guide.md). */
   const char* results_dir;
   /** Threads this instance may use inside one call (>= 1). The host divides the machine among
    *  participants that run at once (a Jacobi step runs two). */
