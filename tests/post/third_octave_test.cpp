@@ -46,6 +46,12 @@ TEST(ThirdOctave, BandsAreTheBaseTenSeries) {
   ASSERT_EQ(bands.size(), 21u);  // 1 Hz .. 100 Hz, both ends included
   EXPECT_EQ(bands.front().nominal, "1");
   EXPECT_EQ(bands.back().nominal, "100");
+  // The ends are nominal: 1 to 250 Hz (the default) ends with the 250 Hz band, whose centre is
+  // 251.19 Hz (it stopped at 200 Hz, issue #29), and 31.5 Hz starts with the 31.5 Hz band.
+  EXPECT_EQ(third_octave_bands(1.0, 250.0).back().nominal, "250");
+  EXPECT_EQ(third_octave_bands(1.0, 250.0).size(), 25u);
+  EXPECT_EQ(third_octave_bands(31.5, 63.0).front().nominal, "31.5");
+  EXPECT_EQ(third_octave_bands(1.0, 240.0).back().nominal, "200");
   EXPECT_THROW(third_octave_bands(0.0, 10.0), std::invalid_argument);
 }
 
