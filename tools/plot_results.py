@@ -11,6 +11,7 @@ soil recorded surface receivers, ppv_vs_distance.png. Needs python3-matplotlib a
 import json
 import os
 import sys
+import textwrap
 from pathlib import Path
 
 import matplotlib
@@ -28,6 +29,16 @@ def read_csv(path):
     return header, data
 
 
+def wheel_label(column):
+    """contact.csv's "<vehicle> wheel <i> [N]" as a legend: "<vehicle>, wheel <i>", or "wheel <i>"
+    for a vehicle itself named "wheel" (it read "wheel wheel 0")."""
+    name = column.replace(" [N]", "")
+    vehicle, _, wheel = name.rpartition(" wheel ")
+    if not vehicle:
+        return name
+    return f"wheel {wheel}" if vehicle == "wheel" else f"{vehicle}, wheel {wheel}"
+
+
 def save(fig, path):
     with open_new(path) as f:
         fig.savefig(f, format="png", dpi=120)
@@ -36,13 +47,15 @@ def save(fig, path):
 def main(directory):
     d = Path(directory)
     summary = json.loads((d / "summary.json").read_text())
-    title = summary.get("scenario", {}).get("name", d.name)
+    # Shortened: a scenario's name runs to 80 characters and more, beyond the figures' width.
+    title = textwrap.shorten(summary.get("scenario", {}).get("name", d.name), width=60,
+                             placeholder=" ...")
     written = []
 
     header, data = read_csv(d / "contact.csv")
     fig, ax = plt.subplots(figsize=(8, 4))
     for j in range(1, len(header)):
-        ax.plot(data[:, 0], data[:, j] / 1e3, label=header[j].replace(" [N]", ""))
+        ax.plot(data[:, 0], data[:, j] / 1e3, label=wheel_label(header[j]))
     ax.set(xlabel="t [s]", ylabel="contact force [kN]", title=f"{title}: wheel/rail contact")
     ax.grid(True)
     if len(header) <= 9:
