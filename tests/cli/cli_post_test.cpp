@@ -131,6 +131,34 @@ TEST(CliPost, RefusesADirectoryNoRunWrote) {
   EXPECT_THAT(missing.output, HasSubstr("is not a directory"));
 }
 
+// Any directory holding a receivers.csv can be post-processed (issue #29): without a manifest
+// post/ is written new and listed in one, so post runs again over it; a post/ that nothing says
+// rumble wrote is never replaced.
+TEST(CliPost, ADirectoryWithReceiversButNoManifestIsPostProcessedWithoutReplacingAnything) {
+  const auto dir = scratch_directory("post_no_manifest");
+  const auto results = run_with_receivers(dir);
+  const auto copy = dir / "copied";
+  std::filesystem::create_directories(copy);
+  std::filesystem::copy_file(results / "receivers.csv", copy / "receivers.csv");
+  const CliResult first = run_rumble({"post", copy.string()});
+  ASSERT_EQ(first.exit_code, 0) << first.output;
+  EXPECT_TRUE(std::filesystem::exists(copy / "post" / "ppv.csv"));
+  EXPECT_THAT(file_text(copy / ".rumble-manifest.json"), HasSubstr("post/ppv.csv"));
+  const CliResult again = run_rumble({"post", copy.string(), "--reference", "vdb"});
+  ASSERT_EQ(again.exit_code, 0) << again.output;
+  EXPECT_THAT(file_text(copy / "post" / "third_octave.csv"), HasSubstr("dB re 2.54e-08 m/s"));
+
+  const auto theirs = dir / "theirs";
+  std::filesystem::create_directories(theirs / "post");
+  std::filesystem::copy_file(results / "receivers.csv", theirs / "receivers.csv");
+  std::ofstream(theirs / "post" / "ppv.csv") << "their own\n";
+  const CliResult refused = run_rumble({"post", theirs.string()});
+  EXPECT_EQ(refused.exit_code, 1) << refused.output;
+  EXPECT_THAT(refused.output, HasSubstr("holds receivers.csv but no .rumble-manifest.json"));
+  EXPECT_THAT(refused.output, HasSubstr("move or remove it, then run rumble post again"));
+  EXPECT_EQ(file_text(theirs / "post" / "ppv.csv"), "their own\n");
+}
+
 // A run stopped as diverged keeps what it recorded, and its receivers are post-processed up to
 // where it got: the PPV of a diverging run is how the seed paper shows the divergence (its Figure
 // 4), and the study report draws such a run dashed. Here a 5 mm rail dip under the starting wheel

@@ -149,6 +149,13 @@ ResultsDirectory::ResultsDirectory(fs::path directory, Reopen) : dir_(std::move(
   lock();
   try {
     const Previous prev = read_manifest();
+    if (!prev.present && adoptable_for_post()) {
+      // receivers.csv without a manifest (copied, or from another tool): post/ is new, and the
+      // manifest written at the end lists it alone, so a second `rumble post` replaces it.
+      for (const Entry& e : scan(dir_, [](const std::string&) { return true; }))
+        before_[e.relative] = {e.dev, e.ino};
+      return;
+    }
     if (!prev.present || !prev.unreadable.empty() || !prev.outside.empty()) {
       throw ConfigError(shown(dir_) + " holds no results of a rumble run that rumble can add to (" +
                         (!prev.present
@@ -167,6 +174,18 @@ ResultsDirectory::ResultsDirectory(fs::path directory, Reopen) : dir_(std::move(
     release();
     throw;
   }
+}
+
+bool ResultsDirectory::adoptable_for_post() const {
+  struct stat st {};
+  if (::lstat((dir_ / "receivers.csv").c_str(), &st) != 0 || !S_ISREG(st.st_mode)) return false;
+  if (::lstat((dir_ / "post").c_str(), &st) == 0) {
+    throw ConfigError(shown(dir_) + " holds receivers.csv but no " + std::string(kManifestFile) +
+                      ", and " + shown(dir_ / "post") +
+                      " is there already: rumble replaces only what it wrote, and nothing says "
+                      "it wrote that; move or remove it, then run rumble post again");
+  }
+  return true;
 }
 
 ResultsDirectory::~ResultsDirectory() {

@@ -38,8 +38,10 @@ class ResultsDirectory {
   ResultsDirectory(std::filesystem::path directory, const std::filesystem::path& scenario_file,
                    bool overwrite, std::vector<std::string> overrides = {});
   /// Locks the results of a finished run to add derived files to them (`rumble post`): nothing
-  /// is removed, and what appears is listed at the end, so a rerun removes it with the rest.
-  /// Throws ConfigError when `directory` holds no usable manifest, RunError when it is locked.
+  /// is removed, and what appears is listed at the end, so a rerun removes it with the rest. A
+  /// directory with receivers.csv but no manifest is taken too while it has no post/ (the
+  /// manifest then lists what is added). Throws ConfigError when `directory` holds no usable
+  /// manifest (nor such a receivers.csv), RunError when it is locked.
   struct Reopen {};
   ResultsDirectory(std::filesystem::path directory, Reopen);
   /// Lists what appeared during the run (list_new_files), then releases the lock.
@@ -61,6 +63,9 @@ class ResultsDirectory {
  private:
   struct Previous;
   void lock();
+  /// Reopen without a manifest: true for a regular receivers.csv and no post/ (ConfigError when
+  /// post/ stands there), false without receivers.csv.
+  bool adoptable_for_post() const;
   void release() noexcept;
   Previous read_manifest() const;
   void clear_previous(bool overwrite);
