@@ -49,11 +49,11 @@ std::vector<ThirdOctaveBand> third_octave_bands(double f_lo, double f_hi) {
                                 std::to_string(f_hi) + "] Hz is empty or not > 0");
   std::vector<ThirdOctaveBand> out;
   // The ends are nominal centres: a band is in when its nominal frequency is, so n may pass
-  // 10 log10(f) by kNominal (the nominal values round the exact centres by up to 2.4 %: the
+  // 10 log10(f) by kNominalSlack (the nominal values round the exact centres by up to 2.4 %: the
   // "250 Hz" band's centre is 251.19 Hz, 10 log10 of which is 24.0, of 250 Hz 23.98).
-  constexpr double kNominal = 0.15;  // in n, 10 log10(1.035)
-  const int first = static_cast<int>(std::ceil(10.0 * std::log10(f_lo) - kNominal));
-  const int last = static_cast<int>(std::floor(10.0 * std::log10(f_hi) + kNominal));
+  constexpr double kNominalSlack = 0.15;  // in n, 10 log10(1.035)
+  const int first = static_cast<int>(std::ceil(10.0 * std::log10(f_lo) - kNominalSlack));
+  const int last = static_cast<int>(std::floor(10.0 * std::log10(f_hi) + kNominalSlack));
   for (int n = first; n <= last; ++n) out.push_back(third_octave_band(n));
   return out;
 }
