@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <string>
 
 #include "cli_runner.hpp"
 
@@ -17,8 +18,10 @@ namespace {
 using ::testing::HasSubstr;
 using ::testing::Not;
 
-/// A small FEM run with receivers at 2.5 m and 5 m, into dir/results; returns that directory.
-std::filesystem::path run_with_receivers(const std::filesystem::path& dir) {
+/// A small FEM run with receivers at 2.5 m and 5 m, into dir/results; returns that directory
+/// (and the run's output in `output` when given).
+std::filesystem::path run_with_receivers(const std::filesystem::path& dir,
+                                         std::string* output = nullptr) {
   ::setenv("RUMBLE_MESH_CACHE", (dir / "cache").c_str(), 1);
   nlohmann::json s = small_fem_scenario();
   s["time"]["end"] = 0.03;
@@ -26,6 +29,7 @@ std::filesystem::path run_with_receivers(const std::filesystem::path& dir) {
   const CliResult r = run_rumble({"run", write_scenario(dir, s).string(), "--no-progress"});
   EXPECT_EQ(r.exit_code, 0) << r.output;
   ::unsetenv("RUMBLE_MESH_CACHE");
+  if (output != nullptr) *output = r.output;
   return dir / "results";
 }
 
@@ -55,14 +59,9 @@ TEST(CliPost, ARunWritesTheIndicatorsAndPostRewritesThemWithItsOptions) {
 // tests/fem/resolved_band_test.cpp, tests/post/resolved_band_test.cpp.
 TEST(CliPost, EachReceiverSaysTheBandItsMeshResolvesAndTheIndicatorsWithinIt) {
   const auto dir = scratch_directory("post_resolved_band");
-  ::setenv("RUMBLE_MESH_CACHE", (dir / "cache").c_str(), 1);
-  nlohmann::json s = small_fem_scenario();
-  s["time"]["end"] = 0.03;
-  s["outputs"]["receivers"] = {2.5, 5.0};
-  const CliResult r = run_rumble({"run", write_scenario(dir, s).string(), "--no-progress"});
-  ::unsetenv("RUMBLE_MESH_CACHE");
-  ASSERT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_THAT(r.output, HasSubstr("receivers resolved to: d=2.5 m "));
+  std::string output;
+  run_with_receivers(dir, &output);
+  EXPECT_THAT(output, HasSubstr("receivers resolved to: d=2.5 m "));
   const nlohmann::json summary = read_json(dir / "results" / "summary.json");
   EXPECT_THAT(summary.at("resolved_band_rule").get<std::string>(),
               HasSubstr("n = 10 linear elements per Rayleigh wavelength"));

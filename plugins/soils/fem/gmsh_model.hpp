@@ -17,7 +17,7 @@
 namespace rumble::fem {
 
 /// The gmsh session of one meshing: gmsh keeps global state, so one at a time per process, and
-/// gmsh 4.8 throws std::string (toolchain.md §8.10), turned here into std::runtime_error. It reads
+/// gmsh 4.8 throws std::string (docs/fem-soil.md §2), turned here into std::runtime_error. It reads
 /// and writes no file of its own: no options or session file (~/.gmshrc, ~/.gmsh-options), no
 /// preferences of the toolkit of its GUI, and its temporary file is never removed
 /// (docs/fem-soil.md §2).
