@@ -80,6 +80,7 @@ class PickySoil final : public rumble::Soil {
     "csc_defect": {"enum": ["none", "unsorted", "nan", "stiffer"], "default": "none"},
     "stall_at": {"type": "number", "default": 1.0e30},
     "stall_in_statics": {"type": "boolean", "default": false},
+    "resolution": {"type": "number", "default": 0},
     "exit_at": {"type": "number", "default": 1.0e30}}})";
     return s.c_str();
   }
@@ -91,6 +92,7 @@ class PickySoil final : public rumble::Soil {
     stall_at_ = p.get<double>("stall_at");
     stall_in_statics_ = p.get_or<bool>("stall_in_statics", false);
     exit_at_ = p.get_or<double>("exit_at", 1.0e30);  // tests build it without the schema too
+    resolution_ = p.get_or<double>("resolution", 0.0);
   }
   void accept_layout(const std::vector<rumble::Footprint>& f) override {
     footprints_ = f;
@@ -154,6 +156,12 @@ class PickySoil final : public rumble::Soil {
       nearest_.push_back(best);
     }
     row_.assign(probes.size() * RUMBLE_PROBE_VALUES, 0.0);
+  }
+  /// ABI 1.3: `resolution` [Hz] at every probe when given (negative: a defect to be caught).
+  std::vector<double> probe_resolution(std::string& rule) const override {
+    if (resolution_ == 0.0) return {};
+    rule = "picky_soil's params.resolution";
+    return std::vector<double>(nearest_.size(), resolution_);
   }
   /// M = 0, C = c I, K = k I, B = I; or, on request, a CSC with the defect named ("stiffer": a
   /// valid K = 2 k I that does not describe the soil).
@@ -227,6 +235,7 @@ class PickySoil final : public rumble::Soil {
   std::vector<std::size_t> nearest_;  // footprint of each probe
   std::vector<double> row_;
   double max_step_ = 0.0, stall_at_ = 0.0, exit_at_ = 0.0;  // s
+  double resolution_ = 0.0;                                 // Hz, 0: not said
   bool stall_in_statics_ = false;
   std::string csc_defect_;
   long advances_ = 0, refusals_ = 0, checkpoints_ = 0;

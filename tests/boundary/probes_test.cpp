@@ -58,6 +58,36 @@ TEST(Probes, SampledInsideStepsAndWrittenWithTheirPeaks) {
   // summary.json has the full double, receivers.csv 9 significant digits.
   EXPECT_NEAR(summary["ppv"][0]["ppv_m_s"].get<double>(), peak_vz, 1e-8 * peak_vz);
   EXPECT_GT(peak_vz, 0.0);
+  // A soil that does not say which band it resolves (ABI 1.3 probe_resolution) leaves it null.
+  EXPECT_TRUE(summary["ppv"][0]["resolved_f_hz"].is_null());
+  EXPECT_FALSE(summary.contains("resolved_band_rule"));
+}
+
+// One that says it has it in the summary and the log; a negative frequency is its defect,
+// named with the plugin, and the run stops (exit 3).
+TEST(Probes, TheBandASoilResolvesIsRecordedAndANegativeOneIsItsDefect) {
+  nlohmann::json s = fixture_scenario({{"type", "picky_soil"}, {"params", {{"resolution", 30.0}}}},
+                                      {{"type", "gauss_seidel"}});
+  s["outputs"]["receivers"] = {2.5, 5.0};
+  CliResult r;
+  const auto dir = run_in("probes_resolution", s, r);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("receivers resolved to: d=2.5 m 30 Hz, d=5 m 30 Hz (picky_soil's "
+                          "params.resolution)"),
+            std::string::npos)
+      << r.output;
+  const auto summary = read_json(dir / "summary.json");
+  EXPECT_EQ(summary["ppv"][1]["resolved_f_hz"], 30.0);
+  EXPECT_EQ(summary["resolved_band_rule"], "picky_soil's params.resolution");
+
+  s["soil"]["params"]["resolution"] = -1.0;
+  CliResult bad;
+  run_in("probes_resolution_negative", s, bad);
+  EXPECT_EQ(bad.exit_code, 3) << bad.output;
+  EXPECT_NE(bad.output.find("probe_resolution returned -1.000000 Hz for probe 0, below 0 (0 says "
+                            "the soil cannot tell): a defect of the plugin"),
+            std::string::npos)
+      << bad.output;
 }
 
 TEST(Probes, ARestoreDropsTheSamplesOfTheStepTakenAgain) {
