@@ -14,6 +14,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
 #include <string>
 
 #include "cli_runner.hpp"
@@ -96,6 +98,35 @@ TEST(Stability, ExtrapolatedInputsAreAnalysedAsTheSchemeFeedsThem) {
   ASSERT_EQ(held.exit_code, 0) << held.output;
   EXPECT_THAT(held.output, HasSubstr("inputs extrapolated to order 0"));
   EXPECT_LT(radius(read_json(out), "gauss_seidel", 1e-3), kStable);
+}
+
+// --output writes a new file or over an earlier result, never over anything else (the scenario
+// it reads, someone's file) nor through a link: refused before the analysis, left as it was.
+TEST(Stability, TheOutputNeverReplacesWhatItDidNotWrite) {
+  const auto dir = scratch_directory("stability_output");
+  const std::string file = write_scenario(dir, small_scenario()).string();
+  const std::string scenario_text = file_text(file);
+  const CliResult over_scenario = run_rumble({"stability", file, "--output", file});
+  EXPECT_EQ(over_scenario.exit_code, 1) << over_scenario.output;
+  EXPECT_THAT(over_scenario.output,
+              HasSubstr("holds something other than an earlier rumble stability result; rumble "
+                        "stability replaces only a file it wrote: name a new file"));
+  EXPECT_EQ(file_text(file), scenario_text);
+  const auto theirs = dir / "theirs.json";
+  std::ofstream(theirs) << "[1, 2]\n";
+  std::filesystem::create_symlink(theirs, dir / "link.json");
+  const CliResult through_link =
+      run_rumble({"stability", file, "--output", (dir / "link.json").string()});
+  EXPECT_EQ(through_link.exit_code, 1) << through_link.output;
+  EXPECT_THAT(through_link.output, HasSubstr("link.json: is a symbolic link"));
+  EXPECT_EQ(file_text(theirs), "[1, 2]\n");
+  // Its own result, twice.
+  const auto out = (dir / "radius.json").string();
+  for (int k = 0; k < 2; ++k) {
+    const CliResult r = run_rumble({"stability", file, "--macro-steps", "1e-3", "--output", out});
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+  }
+  EXPECT_EQ(read_json(out).size(), 2u);  // gauss_seidel and jacobi at 1 ms
 }
 
 TEST(Stability, BadMacroStepsAreRefused) {

@@ -3,6 +3,7 @@
 // scenario's track on its soil, linearized at rest (analysis/coupling_stability.hpp), per macro
 // step: a table, and JSON with --output. The input orders are the scenario's coupling params
 // (gauss_seidel, jacobi; 0 for another coupler) unless the options give them.
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -14,8 +15,42 @@
 #include "cli/exit_codes.hpp"
 #include "cli/scenario_prepare.hpp"
 #include "core/errors.hpp"
+#include "run/new_file.hpp"
 
 namespace rumble::cli {
+namespace {
+
+/// Whether `file` holds what an earlier `rumble stability --output` wrote: a JSON array of
+/// points with a "spectral_radius".
+bool holds_stability_points(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  try {
+    const nlohmann::json j = nlohmann::json::parse(in);
+    return j.is_array() && !j.empty() && j.front().is_object() &&
+           j.front().contains("spectral_radius");
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
+/// --output FILE is written only where nothing stands, or over what an earlier `rumble
+/// stability` wrote there, and never through a link (a command line writes nothing it did not
+/// create: docs/scenario.md, "The results directory"). Checked before the analysis runs.
+void check_output(const std::filesystem::path& file) {
+  std::error_code ec;
+  const std::filesystem::file_status st = std::filesystem::symlink_status(file, ec);
+  if (!std::filesystem::exists(st)) return;
+  const std::string why = std::filesystem::is_symlink(st)         ? "is a symbolic link"
+                          : !std::filesystem::is_regular_file(st) ? "is not a regular file"
+                          : !holds_stability_points(file)
+                              ? "holds something other than an earlier rumble stability result"
+                              : "";
+  if (!why.empty())
+    throw UsageError("--output " + file.string() + ": " + why +
+                     "; rumble stability replaces only a file it wrote: name a new file");
+}
+
+}  // namespace
 
 int stability_command(const std::vector<std::string>& args) {
   const Arguments a(args, {}, {"macro-steps", "output", "extrapolation", "interpolation"});
@@ -39,6 +74,7 @@ int stability_command(const std::vector<std::string>& args) {
     }
     steps.push_back(H);
   }
+  if (const auto file = a.value("output")) check_output(*file);
   PluginRegistry registry;
   BuiltSoils built;  // the soil validation builds is the one analysed: built once
   scenario::CheckOptions check = kNotARun;
@@ -79,7 +115,7 @@ int stability_command(const std::vector<std::string>& args) {
                    {"state_size", p.state_size}});
   }
   if (const auto file = a.value("output")) {
-    std::ofstream(*file) << out.dump(2) << '\n';
+    replace_file(*file, *file + ".tmp", out.dump(2) + '\n');
     std::cout << "wrote " << *file << '\n';
   }
   return kExitOk;
