@@ -15,6 +15,33 @@ CliResult validate(const std::string& name, const nlohmann::json& scenario) {
   return run_rumble({"validate", write_scenario(scratch_directory(name), scenario).string()});
 }
 
+// Receiver and vehicle names become CSV column names (issue #30): a comma or quote would break
+// the header and a second receiver of one name would take the first one's columns, so names are
+// refused outside a documented character set, and each must be unique (the automatic "d=2.5 m"
+// of a distance receiver included).
+TEST(CliValidate, NamesAreUniqueAndFitACsvHeader) {
+  const auto dir = scratch_directory("validate_names");
+  nlohmann::json s = small_scenario();
+  s["outputs"]["receivers"] = {{{"name", "a,b"}, {"y", 2.0}}};
+  const CliResult comma = run_rumble({"validate", write_scenario(dir, s).string()});
+  EXPECT_EQ(comma.exit_code, 1) << comma.output;
+  EXPECT_THAT(comma.output, HasSubstr("/outputs/receivers/0/name: must match the pattern"));
+  EXPECT_THAT(comma.output, HasSubstr("got \"a,b\""));
+  EXPECT_THAT(comma.output, HasSubstr("hint: column name in receivers.csv, unique among the "
+                                      "receivers: a letter or digit, then letters, digits, "
+                                      "spaces and _ . = + ( ) - (no comma, quote or bracket"));
+  s["outputs"]["receivers"] = {2.5, {{"name", "d=2.5 m"}, {"y", 3.0}}};
+  s["vehicles"].push_back(s["vehicles"][0]);
+  s["vehicles"][0]["name"] = "vehicle1";
+  const CliResult twice = run_rumble({"validate", write_scenario(dir, s).string()});
+  EXPECT_EQ(twice.exit_code, 1) << twice.output;
+  EXPECT_THAT(twice.output, HasSubstr("error: /outputs/receivers/1: receiver name \"d=2.5 m\" is "
+                                      "taken by /outputs/receivers/0\n    hint: give each "
+                                      "receiver its own name"));
+  EXPECT_THAT(twice.output, HasSubstr("error: /vehicles/1: vehicle name \"vehicle1\" is taken by "
+                                      "/vehicles/0\n    hint: give each vehicle its own name"));
+}
+
 TEST(CliValidate, NegativeMass) {
   nlohmann::json s = small_scenario();
   s["vehicles"][0]["params"]["mass"] = -750.0;

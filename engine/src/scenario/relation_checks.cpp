@@ -1,9 +1,12 @@
 #include "scenario/relation_checks.hpp"
 
 #include <cmath>
+#include <map>
 #include <sstream>
+#include <string>
 
 #include "core/number_text.hpp"
+#include "scenario/run_spec.hpp"
 #include "track/track_config.hpp"
 #include "track/unevenness_psd.hpp"
 
@@ -15,6 +18,24 @@ using scenario::Diagnostic;
 using scenario::finding;
 
 constexpr double kMaxSleepers = 100000;  // track.sleepers.count's maximum in the schema
+
+/// Each name of `list` (at `pointer`) once: a second one would take the first one's CSV columns.
+/// name_of(i) gives entry i's name ("": none to check).
+template <class NameOf>
+void check_unique_names(const nlohmann::json& list, const std::string& pointer, const char* what,
+                        NameOf name_of, std::vector<Diagnostic>& out) {
+  std::map<std::string, std::size_t> seen;
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const std::string name = name_of(i);
+    if (name.empty()) continue;
+    const auto [it, fresh] = seen.emplace(name, i);
+    if (!fresh)
+      out.push_back(finding(pointer + "/" + std::to_string(i),
+                            std::string(what) + " name \"" + name + "\" is taken by " + pointer +
+                                "/" + std::to_string(it->second),
+                            std::string("give each ") + what + " its own name"));
+  }
+}
 
 }  // namespace
 
@@ -73,6 +94,20 @@ std::vector<Diagnostic> check_scenario_relations(const nlohmann::json& sc) {
   // The vehicle reference must stay on the rail for the whole run (the wheels' offsets are
   // checked again once the vehicle plugins are loaded).
   const auto& vehicles = sc.at("vehicles");
+  check_unique_names(
+      vehicles, "/vehicles", "vehicle",
+      [&](std::size_t i) { return vehicles[i].value("name", "vehicle" + std::to_string(i)); }, out);
+  if (const auto& o = sc.at("outputs"); o.contains("receivers")) {
+    const auto& receivers = o.at("receivers");
+    check_unique_names(
+        receivers, "/outputs/receivers", "receiver",
+        [&](std::size_t i) {
+          return receivers[i].is_object()
+                     ? receivers[i].value("name", std::string())
+                     : scenario::distance_receiver_name(receivers[i].get<double>());
+        },
+        out);
+  }
   for (std::size_t i = 0; i < vehicles.size(); ++i) {
     const std::string ptr = "/vehicles/" + std::to_string(i);
     const double start = vehicles[i].at("start").get<double>();

@@ -20,9 +20,7 @@ std::vector<ReceiverSpec> receivers(const json& list, double x_mid) {
     if (r.is_number()) {
       p.y = r.get<double>();
       p.x = x_mid;
-      char name[48];
-      std::snprintf(name, sizeof name, "d=%g m", p.y);
-      p.name = name;
+      p.name = distance_receiver_name(p.y);
     } else {
       p.name = r.at("name").get<std::string>();
       p.y = r.at("y").get<double>();
@@ -38,6 +36,12 @@ std::vector<ReceiverSpec> receivers(const json& list, double x_mid) {
 
 double RunSpec::track_middle() const {
   return 0.5 * (track.sleeper_count - 1) * track.sleeper_spacing;
+}
+
+std::string distance_receiver_name(double y) {
+  char name[48];
+  std::snprintf(name, sizeof name, "d=%g m", y);
+  return name;
 }
 
 fs::path results_directory(const json& document, const fs::path& path) {

@@ -69,6 +69,9 @@ struct RunSpec {
   double track_middle() const;
 };
 
+/// The name of a receiver given by its distance y [m] from the track axis: "d=2.5 m".
+std::string distance_receiver_name(double y);
+
 /// document: valid against the engine's and the plugins' schemas, defaults filled.
 RunSpec make_run_spec(const nlohmann::json& document, const std::filesystem::path& path);
 

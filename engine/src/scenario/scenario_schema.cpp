@@ -42,7 +42,7 @@ constexpr std::string_view kSchema = R"json({
         "required": ["type", "speed", "start"],
         "properties": {
           "type": {"type": "string", "description": "a vehicle plugin type, e.g. single_wheel"},
-          "name": {"type": "string", "minLength": 1, "description": "label in results (default vehicle<i>)"},
+          "name": {"type": "string", "minLength": 1, "maxLength": 64, "pattern": "^[A-Za-z0-9][A-Za-z0-9 _.=+()-]*$", "description": "label in results (default vehicle<i>), unique among the vehicles: a letter or digit, then letters, digits, spaces and _ . = + ( ) - (no comma, quote or bracket, which would break the CSV headers)"},
           "speed": {"type": "number", "minimum": 0, "description": "constant forward speed [m/s]"},
           "start": {"type": "number", "description": "position of the vehicle reference at t = 0, along the track [m]"},
           "params": {"type": "object", "default": {}, "description": "validated against the vehicle plugin's schema"}
@@ -190,7 +190,7 @@ constexpr std::string_view kSchema = R"json({
                 "additionalProperties": false,
                 "required": ["name", "y"],
                 "properties": {
-                  "name": {"type": "string", "minLength": 1, "maxLength": 64, "description": "column name in receivers.csv"},
+                  "name": {"type": "string", "minLength": 1, "maxLength": 64, "pattern": "^[A-Za-z0-9][A-Za-z0-9 _.=+()-]*$", "description": "column name in receivers.csv, unique among the receivers: a letter or digit, then letters, digits, spaces and _ . = + ( ) - (no comma, quote or bracket, which would break the CSV header)"},
                   "y": {"type": "number", "description": "distance across the track from its axis [m]"},
                   "x": {"type": "number", "description": "position along the track [m]; default the middle of the sleepers"},
                   "depth": {"type": "number", "minimum": 0, "default": 0, "description": "depth below the surface [m]"}

@@ -433,6 +433,12 @@ class IssueBuilder {
       const json* p = keyword("pattern");
       issue.message = "must match the pattern " +
                       (p != nullptr ? short_json(*p, 60) : std::string("of the schema"));
+      // A regular expression is no fix: the description of the value says the rule in words.
+      for (const auto& ref : refs_)
+        if (ref.node->is_object() && ref.node->contains("pattern")) {
+          issue.hint = description_of(*ref.node);
+          break;
+        }
     } else if (starts_with(d, "Target should not validate against schema specified in 'not'")) {
       issue.show_value = true;
       issue.message = "is a value that is not allowed here";
