@@ -86,7 +86,9 @@ SoilSide::SoilSide(std::string name, SoilInstance& soil, std::size_t n_footprint
       soil_(soil),
       n_(n_footprints),
       integrated_in_(integrated_in),
-      coeff_(3 * n_footprints, 0.0) {
+      coeff_(3 * n_footprints, 0.0),
+      u_start_(n_footprints, 0.0),
+      v_start_(n_footprints, 0.0) {
   input_ = rumble_waveform{0, n_, coeff_.data()};
   set_groups(motion_groups(n_), force_group(n_));
 }
@@ -113,6 +115,11 @@ void SoilSide::set_input(const rumble_waveform& u) {
   input_.order = u.order;
   has_input_ = true;
 }
+void SoilSide::reported_motion(double* u, double* v) const {
+  motion(u, v);
+  if (!reports_step_mean()) return;
+  for (std::size_t i = 0; i < n_; ++i) v[i] = (u[i] - u_start_[i]) / held_step_;
+}
 bool SoilSide::applied_force(double* f) const {
   if (!has_input_) return false;
   for (std::size_t i = 0; i < n_; ++i) {
@@ -128,7 +135,10 @@ void SoilSide::advance(double t, double H) {
                    "' is integrated in the vehicle/track (a monolithic coupler): advance the "
                    "track only");
   }
+  const bool held = input_.order == 0;
+  if (held) motion(u_start_.data(), v_start_.data());
   soil_.advance(t, H, input_);
+  held_step_ = held ? H : 0.0;
 }
 bool SoilSide::can_checkpoint() const {
   if (integrated_in_ != nullptr) return false;  // its state is the track's

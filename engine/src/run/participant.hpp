@@ -97,6 +97,14 @@ class SoilSide final : public Participant {
   SoilInstance& soil() const { return soil_; }
   /// Footprint displacements u [m] and velocities v [m/s] now (n values each).
   void motion(double* u, double* v) const;
+  /// The motion to report in the results: that of motion(), except that after a step taken
+  /// under a force held constant over it (waveform order 0, the explicit schemes' default) the
+  /// velocity is the mean over that step, (u - u at its start) / H. Under a held force a soil
+  /// relaxes towards it within the step, so its end-of-step velocity is not its motion's (a
+  /// massless soil comes to rest: docs/couplers.md, "The footprint velocity").
+  void reported_motion(double* u, double* v) const;
+  /// Whether reported_motion() gives the mean velocity over the last step.
+  bool reports_step_mean() const { return held_step_ > 0.0; }
   /// The footprint forces [N] the soil took at the end of its last step (its last input
   /// waveform at tau = 1), n values; false (f untouched) before its first input.
   bool applied_force(double* f) const;
@@ -111,6 +119,8 @@ class SoilSide final : public Participant {
   std::vector<double> coeff_;  // the force waveform until the next advance
   rumble_waveform input_{0, 0, nullptr};
   bool has_input_ = false;
+  std::vector<double> u_start_, v_start_;  // m, m/s: the motion when the last step began
+  double held_step_ = 0.0;                 // s: the last step's H when its force was held; else 0
 };
 
 }  // namespace rumble

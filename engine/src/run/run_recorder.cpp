@@ -118,7 +118,7 @@ void RunRecorder::record_soil(double t, double residual, std::uint32_t iteration
   // The force the soil really took (an explicit scheme may give it an extrapolated one, not the
   // track's current one); before its first step, the track's static forces.
   if (!soil_.applied_force(force_.data())) track_.footprint_forces(force_.data());
-  soil_.motion(u_.data(), v_.data());
+  soil_.reported_motion(u_.data(), v_.data());
   double power = 0.0;  // W: work done on the soil per second, now
   for (std::size_t i = 0; i < n; ++i) {
     power += force_[i] * v_[i];
@@ -146,7 +146,7 @@ void RunRecorder::record_soil(double t, double residual, std::uint32_t iteration
 
 void RunRecorder::record_extra(std::size_t e, double t) {
   ExtraFiles& x = extras_[e];
-  x.side->motion(u_.data(), v_.data());
+  x.side->reported_motion(u_.data(), v_.data());
   x.u->row(t, u_.data(), u_.size());
   x.v->row(t, v_.data(), v_.size());
 }

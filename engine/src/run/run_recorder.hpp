@@ -4,7 +4,9 @@
 //   track:  contact.csv           wheel/rail contact force of every wheel [N]
 //           vehicles.csv          vehicle DOFs [m or rad]
 //           footprint_force.csv   force the track puts on the soil at every footprint [N] (down +)
-//   soil:   footprint_displacement.csv, footprint_velocity.csv   footprint u [m], v [m/s] (down +)
+//   soil:   footprint_displacement.csv, footprint_velocity.csv   footprint u [m], v [m/s] (down +);
+//                                 v after a step under a held force is the mean over the step
+//                                 (SoilSide::reported_motion)
 //           interface.csv         coupler's relative interface residual (the largest of its
 //                                 channel groups'), power [W] and energy [J] that the footprint
 //                                 forces the soil took did on it, the coupler's iterations in

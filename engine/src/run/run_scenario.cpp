@@ -296,6 +296,11 @@ RunOutcome run_scenario(const scenario::RunSpec& spec, const PluginRegistry& reg
                               {"track_energy_J", recorder.track_energy()},
                               {"energy_residual_J", recorder.energy_residual()}});
     summary.set("peak_footprint_velocity_m_s", recorder.peak_footprint_velocity());
+    summary.set("footprint_velocity_definition",
+                soil_side.reports_step_mean()
+                    ? "mean over the macro step ending at each time, (u - u at its start) / H: "
+                      "the coupler held the soil's force constant over the step"
+                    : "the soil's velocity at the end of each macro step");
     summary.set("divergence", observer.divergence().summary());
     const double mean_iterations =
         observer.steps() > 0
