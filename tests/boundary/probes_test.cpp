@@ -22,8 +22,8 @@ constexpr std::size_t kColumns = 1 + 2 * RUMBLE_PROBE_VALUES;
 TEST(Probes, SampledInsideStepsAndWrittenWithTheirPeaks) {
   // A force linear over the step, so that footprint_velocity.csv holds the soil's own velocity
   // at the step's end (under a held force it holds the step's mean: docs/couplers.md).
-  nlohmann::json s = fixture_scenario({{"type", "picky_soil"}},
-                                      {{"type", "gauss_seidel"}, {"params", {{"interpolation", 1}}}});
+  nlohmann::json s = fixture_scenario(
+      {{"type", "picky_soil"}}, {{"type", "gauss_seidel"}, {"params", {{"interpolation", 1}}}});
   s["outputs"]["receivers"] = {{{"name", "under"}, {"y", 0.0}, {"x", 6.0}, {"depth", 0.5}}, 2.5};
   CliResult r;
   const auto dir = run_in("probes_sampled", s, r);

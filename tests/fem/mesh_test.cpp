@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iostream>
 #include <string>
 #include <vector>
 
@@ -64,6 +65,37 @@ TEST(FemMesh, PlanRefusesTooLargeAMeshWithTheEstimateAndTheFix) {
       [&] { plan_mesh(s, sleepers(10)); },
       {"fem: params/mesh: the mesh would have about", "more than mesh.max_dofs = 1e+05",
        "lower mesh.f_max or mesh.radius"});
+}
+
+FemSettings box_with_layer(double thickness) {
+  FemSettings s = stiff_soil(4.0, 40.0);
+  s.mesh.shape = MeshShape::kBox;
+  s.boundary.kind = BoundaryKind::kPml;
+  s.boundary.pml_thickness = thickness;  // m
+  return s;
+}
+
+// A matched layer thinner than the estimate's grid cells was invisible to it: 1e-6 m estimated
+// 3.5e3 DOFs and then took 16 GB in gmsh (issue #30 item 2). Its nodes are now counted in closed
+// form.
+TEST(FemMesh, PlanRefusesAMatchedLayerTooThinToMesh) {
+  test::expect_invalid_argument_containing(
+      [&] { plan_mesh(box_with_layer(1e-6), sleepers(5)); },
+      {"fem: params/mesh: the mesh would have about", "more than mesh.max_dofs"});
+}
+
+// The estimate is what the refusal and the memory budget rest on: within 2x of the mesh gmsh
+// makes, on a hemisphere and on a box with its matched layer.
+TEST(FemMesh, EstimateIsWithinTwiceTheMesh) {
+  const std::vector<Footprint> fp = sleepers(5);
+  for (const FemSettings& s : {stiff_soil(12.0, 80.0), box_with_layer(2.0)}) {
+    const MeshPlan plan = plan_mesh(s, fp);
+    const auto nodes = static_cast<double>(generate_mesh(s, fp, plan).node_count());
+    std::cout << "[ measured ] estimated " << plan.estimated_nodes << " nodes, meshed " << nodes
+              << "\n";
+    EXPECT_GT(plan.estimated_nodes, 0.5 * nodes);
+    EXPECT_LT(plan.estimated_nodes, 2.0 * nodes);
+  }
 }
 
 TEST(FemMesh, PlanRefusesFootprintsBeyondTheHemisphere) {

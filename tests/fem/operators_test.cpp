@@ -3,6 +3,7 @@
 // the lumped mass is the body's mass, the power-iteration stable step is the Kuhn mesh's known
 // 0.671 h / c_p (numerics.md §3.1), the scheme is stable below it and not above, and without
 // damping it conserves energy.
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
@@ -148,6 +149,20 @@ TEST(FemExplicit, StableStepOfTheKuhnBoxIs0671HOverCp) {
     // digits for the box; the boundary nodes of a small box shift the top of the spectrum a
     // little: 3 %.
     EXPECT_NEAR(op.stable_step() / (h / c_p), 0.671, 0.03 * 0.671) << "n = " << n;
+  }
+}
+
+// A modulus far outside any soil's overflows the Lanczos iteration of the stable step; it used to
+// hang `rumble validate` in the tridiagonal QR on NaN (issue #30 item 3), now it is refused.
+TEST(FemExplicit, AnOverflowingStiffnessIsRefusedNotIterated) {
+  FemSettings s = medium_soil();
+  s.half_space = {1e300, 0.3, 1800.0};  // E [Pa], nu, rho [kg/m^3]
+  try {
+    free_solver(kuhn_box(2, 0.5), s);
+    ADD_FAILURE() << "no error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("sets the stable step, is not finite"));
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("E, rho and the mesh sizes must be physical"));
   }
 }
 

@@ -151,6 +151,14 @@ double ExplicitSolver::largest_eigenvalue(
       w[k] = w[k] / mass_[k / 3] - a * q[k] - (beta.empty() ? 0.0 : beta.back() * q_prev[k]);
     alpha.push_back(a);
     const double b = mass_norm(w);
+    // Overflowed stiffness or mass (a modulus or density far outside any soil's) would make the
+    // tridiagonal QR below loop for ever on NaN: refuse with what to change.
+    if (!std::isfinite(a) || !std::isfinite(b)) {
+      throw std::runtime_error(
+          "fem: the largest vibration frequency of the mesh, which sets the stable step, is not "
+          "finite (its stiffness or mass overflowed): E, rho and the mesh sizes must be physical "
+          "(rumble schema fem gives their ranges)");
+    }
     const auto j = static_cast<Eigen::Index>(alpha.size());
     Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> tridiagonal;
     tridiagonal.computeFromTridiagonal(Eigen::Map<const Eigen::VectorXd>(alpha.data(), j),

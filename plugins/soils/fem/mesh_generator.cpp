@@ -26,9 +26,16 @@ bool inside_domain(const MeshPlan& p, double x, double y, double depth) {
   return dx * dx + dy * dy + depth * depth <= p.radius * p.radius;
 }
 
+bool inside_layer(const MeshPlan& p, double x, double y, double depth) {
+  return p.pml > 0.0 && !p.physical_box(0.5, 0.0).inside_physical_box({x, y, depth});
+}
+
 /// Integral of 0.8 / h^3 over the domain (gmsh's HXT makes about 0.8 V / h^3 nodes for a size
 /// h, numerics.md §1), on a 64 x 64 x 32 midpoint grid: a few per cent, enough to refuse a mesh
-/// that would not fit before spending minutes on it.
+/// that would not fit before spending minutes on it. What the grid cannot see is added in closed
+/// form: a matched layer thinner than a grid cell (its volume at its own size, the smaller of
+/// h_pml and the size where it begins) and footprints meshed finer than the grid (their surface
+/// alone holds about 1.15 A / h_near^2 nodes: equilateral triangles of side h_near).
 double estimate_nodes(const MeshPlan& p) {
   const double margin = p.radius + p.pml;
   const double x0 = p.region.x0 - margin, x1 = p.region.x1 + margin;
@@ -40,11 +47,19 @@ double estimate_nodes(const MeshPlan& p) {
     for (int j = 0; j < kN; ++j)
       for (int k = 0; k < kNz; ++k) {
         const double x = x0 + (i + 0.5) * dx, y = y0 + (j + 0.5) * dy, z = (k + 0.5) * dz;
-        if (!inside_domain(p, x, y, z)) continue;
+        if (!inside_domain(p, x, y, z) || inside_layer(p, x, y, z)) continue;
         const double h = p.size_at(x, y, z);
         sum += 0.8 / (h * h * h);
       }
-  return sum * dx * dy * dz;
+  double nodes = sum * dx * dy * dz;
+  if (p.pml > 0.0) {
+    const double lx = p.region.x1 - p.region.x0 + 2.0 * p.radius;
+    const double ly = p.region.y1 - p.region.y0 + 2.0 * p.radius;
+    const double outer = (lx + 2.0 * p.pml) * (ly + 2.0 * p.pml) * p.depth();
+    const double h = std::min(p.h_pml, p.size_at(p.region.x1 + p.radius, p.region.centre_y(), 0.0));
+    nodes += 0.8 * (outer - lx * ly * p.radius) / (h * h * h);
+  }
+  return std::max(nodes, 1.15 * p.footprint_area / (p.h_near * p.h_near));
 }
 
 }  // namespace
@@ -74,6 +89,7 @@ MeshPlan plan_mesh(const FemSettings& s, const std::vector<Footprint>& footprint
   if (footprints.empty()) throw std::invalid_argument("fem: the track announced no footprints");
   MeshPlan p;
   p.region = TrackRegion::of(footprints);
+  for (const Footprint& f : footprints) p.footprint_area += f.length * f.width;
   p.shape = s.mesh.shape;
   p.radius = s.mesh.radius;
   p.near_distance = s.mesh.near_distance;
