@@ -2,8 +2,8 @@
 // soft_soil_gauss_seidel.json: 70 sleepers, one wheel at 25 m/s) with a CLM soil whose footprints
 // carry 50 kg of participating mass: Jacobi at H = 1 ms diverges and is stable at 0.1 ms, while
 // Gauss-Seidel is stable at 1 ms. Measured with bench/coupling/scheme_errors.py over 0.5 s
-// (docs/couplers.md): Jacobi at 1 ms is stopped at 0.064 s; with 25 kg both schemes diverge at
-// 1 ms, with 200 kg and more neither does. 0.2 s here: three times the time Jacobi needs to
+// (docs/couplers.md): Jacobi at 1 ms is stopped at 0.050 s; with 25 kg both schemes diverge at
+// 1 ms, with 200 kg and more neither does. 0.2 s here: four times the time Jacobi needs to
 // diverge, and Gauss-Seidel stays within the divergence bound throughout (1 ms and 0.1 ms runs
 // complete over 0.5 s).
 #include <gmock/gmock.h>
