@@ -67,6 +67,24 @@ TEST(SetOption, Messages) {
                         "1e8}'"));
 }
 
+// Invalid UTF-8 used to pass as a bare word and end the run in the JSON library's exception
+// when summary.json was written (issue #30 item 3); it is refused where it came in, and the
+// message itself is valid UTF-8 (the bad bytes shown as U+FFFD).
+TEST(SetOption, BytesThatAreNotUtf8AreRefusedWithTheirOffset) {
+  EXPECT_EQ(parse_error("/name=\xff\xfe"),
+            "--set \"/name=\xEF\xBF\xBD\xEF\xBF\xBD\": byte 0xFF at offset 6 is not UTF-8, and a "
+            "scenario is UTF-8 text (RFC 8259); write the value in UTF-8, or as a JSON string "
+            "with \\u escapes, e.g. --set '/name=\"caf\\u00e9\"'");
+  EXPECT_THAT(parse_error("/na\xc3me=1"), HasSubstr("byte 0xC3 at offset 3 is not UTF-8"));
+  EXPECT_THAT(parse_error("/name=\xc0\xaf"), HasSubstr("byte 0xC0 at offset 6"));      // overlong
+  EXPECT_THAT(parse_error("/name=\xed\xa0\x80"), HasSubstr("byte 0xED at offset 6"));  // surrogate
+  EXPECT_THAT(parse_error("/name=\xf4\x90\x80\x80"), HasSubstr("byte 0xF4 at offset 6"));
+  EXPECT_THAT(parse_error("/name=caf\xc3"), HasSubstr("byte 0xC3 at offset 9"));  // cut short
+  // Well-formed text of every length passes.
+  EXPECT_EQ(parse_set_option("/name=caf\xc3\xa9 \xe2\x82\xac \xf0\x9f\x9a\x86").value,
+            json("caf\xc3\xa9 \xe2\x82\xac \xf0\x9f\x9a\x86"));
+}
+
 TEST(ApplyOverride, ReplacesAndCreatesMembers) {
   json doc = {{"soil", {{"type", "winkler"}, {"params", {{"k", 1}}}}}, {"v", {{{"s", 1}}}}};
   Override o = parse_set_option("/soil/params/k=2");

@@ -1,6 +1,7 @@
 #include "scenario/overrides.hpp"
 
 #include <cstddef>
+#include <cstdio>
 
 #include "core/errors.hpp"
 #include "scenario/json_position.hpp"
@@ -59,6 +60,15 @@ std::string pointer_problem(std::string_view pointer) {
 }
 
 Override parse_set_option(std::string_view text) {
+  if (const auto bad = first_invalid_utf8(text)) {
+    char hex[8];
+    std::snprintf(hex, sizeof hex, "0x%02X", static_cast<unsigned char>(text[*bad]));
+    throw ConfigError("--set " + short_json(json(std::string(text)), 80) + ": byte " + hex +
+                      " at offset " + std::to_string(*bad) +
+                      " is not UTF-8, and a scenario is UTF-8 text (RFC 8259); write the value "
+                      "in UTF-8, or as a JSON string with \\u escapes, e.g. --set "
+                      "'/name=\"caf\\u00e9\"'");
+  }
   const std::string shown = "--set " + truncate_text(text, 80);
   const auto eq = text.find('=');
   if (eq == std::string_view::npos) {

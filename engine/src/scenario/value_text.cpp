@@ -37,6 +37,33 @@ std::string short_json(const nlohmann::json& value, std::size_t max_chars) {
   return truncate_text(text, max_chars);
 }
 
+std::optional<std::size_t> first_invalid_utf8(std::string_view text) {
+  const auto byte = [&](std::size_t i) { return static_cast<unsigned char>(text[i]); };
+  std::size_t i = 0;
+  while (i < text.size()) {
+    const unsigned char b = byte(i);
+    const std::size_t n = b < 0x80   ? 1
+                          : b < 0xC2 ? 0
+                          : b < 0xE0 ? 2
+                          : b < 0xF0 ? 3
+                          : b < 0xF5 ? 4
+                                     : 0;
+    if (n == 0 || i + n > text.size()) return i;
+    for (std::size_t k = 1; k < n; ++k)
+      if ((byte(i + k) & 0xC0) != 0x80) return i;
+    // The second byte's range after the leads whose first continuation is restricted
+    // (RFC 3629 §4): E0 (overlong), ED (surrogates), F0 (overlong), F4 (beyond U+10FFFF).
+    if (n > 2) {
+      const unsigned char c = byte(i + 1);
+      if ((b == 0xE0 && c < 0xA0) || (b == 0xED && c >= 0xA0) || (b == 0xF0 && c < 0x90) ||
+          (b == 0xF4 && c >= 0x90))
+        return i;
+    }
+    i += n;
+  }
+  return std::nullopt;
+}
+
 std::string quote_name(std::string_view name) {
   bool plain = true;
   for (const char c : name) {

@@ -3,6 +3,7 @@
 
 #include <cstddef>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -18,6 +19,10 @@ std::string short_json(const nlohmann::json& value, std::size_t max_chars = 40);
 
 /// Cuts text to about `max_chars` characters, appending "..." when cut.
 std::string truncate_text(std::string_view text, std::size_t max_chars);
+
+/// The offset of the first byte of text that does not belong to a well-formed UTF-8 sequence
+/// (RFC 3629: no overlong forms, no surrogates, nothing above U+10FFFF), or nullopt.
+std::optional<std::size_t> first_invalid_utf8(std::string_view text);
 
 /// A key or name for a message: 'dampng', or with JSON escapes when it holds control characters.
 std::string quote_name(std::string_view name);
