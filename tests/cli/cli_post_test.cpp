@@ -4,11 +4,13 @@
 // what, where and the fix. The numbers themselves are checked in tests/post.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "cli_runner.hpp"
 
@@ -177,6 +179,55 @@ TEST(CliPost, ADivergedRunIsPostProcessedUpToWhereItGot) {
   EXPECT_EQ(read_json(dir / "results" / "summary.json")["status"], "failed");
   EXPECT_TRUE(std::filesystem::exists(dir / "results" / "post" / "ppv.csv"));
   EXPECT_THAT(file_text(dir / "results" / "post" / "ppv.csv"), HasSubstr("d=2.5 m"));
+}
+
+// What post reads is a run's files: a FIFO in their place waited for a writer for ever and
+// /dev/zero was read without end (issue #30 item 3). Each is refused before it is opened, named
+// with what it is, and a receivers.csv larger than post reads whole (a sparse file of 5 GiB)
+// with the bound.
+TEST(CliPost, InputsThatAreNotRegularFilesOfBoundedSizeAreRefusedUnread) {
+  const auto dir = scratch_directory("post_hostile_inputs");
+  const auto results = run_with_receivers(dir);
+  namespace fs = std::filesystem;
+  struct Case {
+    const char* file;
+    const char* kind;  // "fifo", "device" or "huge"
+    std::string says;
+  };
+  for (const Case& c : std::vector<Case>{
+           Case{"receivers.csv", "fifo",
+                "receivers.csv is a FIFO (named pipe), not a regular file: rumble post reads the "
+                "CSV files a run wrote, regular files of at most 4 GiB"},
+           Case{"receivers.csv", "device", "receivers.csv is a device, not a regular file"},
+           Case{"receivers.csv", "huge",
+                "receivers.csv is 5.37e+09 bytes, more than the "
+                "4.29e+09 that rumble reads of it"},
+           Case{"summary.json", "fifo",
+                "summary.json in '" + results.string() +
+                    "' is a FIFO (named pipe), not a regular file: rumble post reads the "
+                    "summary.json a run wrote, a regular file of at most 64 MiB; rerun the "
+                    "scenario into the directory"},
+           Case{"summary.json", "device", "summary.json in '"},
+       }) {
+    const fs::path file = results / c.file, kept = results / "kept";
+    fs::rename(file, kept);
+    const std::string kind = c.kind;
+    if (kind == "fifo") {
+      ASSERT_EQ(::mkfifo(file.c_str(), 0600), 0);
+    } else if (kind == "device") {
+      fs::create_symlink("/dev/zero", file);
+    } else {
+      std::ofstream(file).close();
+      fs::resize_file(file, std::uintmax_t{5} << 30);  // sparse: no disk spent
+    }
+    const CliResult r = run_rumble({"post", results.string()});
+    EXPECT_EQ(r.exit_code, 1) << c.file << " " << kind << ": " << r.output;
+    EXPECT_THAT(r.output, HasSubstr(c.says)) << c.file << " " << kind;
+    fs::remove(file);
+    fs::rename(kept, file);
+  }
+  const CliResult again = run_rumble({"post", results.string()});
+  EXPECT_EQ(again.exit_code, 0) << again.output;
 }
 
 TEST(CliPost, ARunWithoutReceiversSaysSo) {

@@ -13,6 +13,7 @@
 #include "cli/commands.hpp"
 #include "cli/exit_codes.hpp"
 #include "core/errors.hpp"
+#include "core/input_file.hpp"
 #include "core/logging.hpp"
 #include "post/post_run.hpp"
 #include "run/results_directory.hpp"
@@ -27,10 +28,11 @@ constexpr const char* kPostUsage =
 /// The run's own outputs.post (the scenario summary.json records), the defaults where there is
 /// none or summary.json cannot be read (post_process names what it lacks).
 post::PostOptions scenario_options(const std::filesystem::path& results_dir) {
-  std::ifstream in(results_dir / "summary.json");
-  if (!in) return {};
+  const std::filesystem::path file = results_dir / "summary.json";
+  if (!input_file_problem(file, kMaxResultJsonBytes).empty()) return {};
   try {
-    const nlohmann::json summary = nlohmann::json::parse(in);
+    const nlohmann::json summary =
+        nlohmann::json::parse(read_input_file(file, kMaxResultJsonBytes));
     if (const auto s = summary.find("scenario"); s != summary.end() && s->is_object())
       return post::options_from_scenario(*s);
   } catch (const std::exception&) {  // a damaged summary: the defaults

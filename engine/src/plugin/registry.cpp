@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "core/errors.hpp"
+#include "core/input_file.hpp"
 #include "core/logging.hpp"
 #include "plugin/function_table.hpp"
 
@@ -23,22 +24,6 @@ std::string quoted(const fs::path& p) {
 }
 
 /// What a path that is no regular file is, for messages.
-std::string file_kind(const fs::file_status& status) {
-  switch (status.type()) {
-    case fs::file_type::directory:
-      return "a directory";
-    case fs::file_type::fifo:
-      return "a FIFO (named pipe)";
-    case fs::file_type::character:
-    case fs::file_type::block:
-      return "a device";
-    case fs::file_type::socket:
-      return "a socket";
-    default:
-      return "not a file";
-  }
-}
-
 /// The *.so regular files of dir, sorted (deterministic order, so duplicate errors are too);
 /// none when dir is not a directory.
 std::vector<fs::path> library_files(const fs::path& dir) {

@@ -17,6 +17,7 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "core/input_file.hpp"
 #include "core/number_text.hpp"
 #include "post/cwt.hpp"
 #include "post/din4150.hpp"
@@ -101,10 +102,15 @@ std::string list_names(const std::vector<std::string>& names, std::size_t max = 
 
 std::optional<json> read_summary(const fs::path& dir) {
   const fs::path file = dir / "summary.json";
-  std::ifstream in(file);
-  if (!in) return std::nullopt;
+  std::error_code ec;
+  if (!fs::exists(fs::symlink_status(file, ec))) return std::nullopt;
+  if (const std::string problem = input_file_problem(file, kMaxResultJsonBytes); !problem.empty())
+    throw std::runtime_error("summary.json in " + quoted(dir) + " " + problem +
+                             ": rumble post reads the summary.json a run wrote, a regular file "
+                             "of at most 64 MiB; rerun the scenario into the directory");
+  const std::string text = read_input_file(file, kMaxResultJsonBytes);
   try {
-    return json::parse(in);
+    return json::parse(text);
   } catch (const json::exception& e) {
     throw std::runtime_error("summary.json in " + quoted(dir) + " is not valid JSON (" + e.what() +
                              "); the run was cut while writing it. Rerun the scenario");

@@ -7,6 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/input_file.hpp"
 #include "core/number_text.hpp"
 
 namespace rumble::post {
@@ -148,15 +149,17 @@ std::vector<std::string> split_csv_line(const std::string& line) {
 }
 
 CsvTable read_csv(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in)
+  const std::string problem = input_file_problem(path, kMaxResultCsvBytes);
+  if (problem == "does not exist")
     throw std::runtime_error("cannot read " + path.string() +
                              ": no such file or not readable. Check the results directory (it "
                              "is the run's outputs.directory) and rerun the scenario if the "
                              "file was never written");
-  std::ostringstream buffer;  // (istreambuf_iterator trips GCC 12's -Wnull-dereference)
-  buffer << in.rdbuf();
-  const std::string text = buffer.str();
+  if (!problem.empty())
+    throw std::runtime_error(path.string() + " " + problem +
+                             ": rumble post reads the CSV files a run wrote, regular files of at "
+                             "most 4 GiB (docs/post-processing.md)");
+  const std::string text = read_input_file(path, kMaxResultCsvBytes);
   CsvTable table;
   table.path = path;
   std::istringstream lines(text);

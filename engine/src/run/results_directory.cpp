@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/errors.hpp"
+#include "core/input_file.hpp"
 #include "core/logging.hpp"
 #include "run/new_file.hpp"
 
@@ -258,8 +259,7 @@ ResultsDirectory::Previous ResultsDirectory::read_manifest() const {
   if (prev.present) {
     try {
       if (!S_ISREG(st.st_mode)) throw std::runtime_error("it is not a regular file");
-      std::ifstream in(manifest_path);
-      const json m = json::parse(in);
+      const json m = json::parse(read_input_file(manifest_path, kMaxResultJsonBytes));
       if (m.at("version").get<int>() != kManifestVersion)
         throw std::runtime_error("version " + m.at("version").dump() + " is not known here");
       prev.scenario =

@@ -4,6 +4,7 @@
 #include <set>
 #include <vector>
 
+#include "core/input_file.hpp"
 #include "plugin/registry.hpp"
 #include "study/sha256.hpp"
 
@@ -40,6 +41,9 @@ void collect(const json& v, bool in_params, std::set<std::string>& types,
 /// The SHA-256 of a file's bytes, read in 1 MiB pieces: a FEM soil's mesh file may be hundreds
 /// of megabytes, which the key need not hold at once.
 std::string file_digest(const fs::path& p) {
+  // Regular files only: a FIFO would wait for a writer, a device never end (any size: the digest
+  // reads in pieces).
+  if (!input_file_problem(p, UINTMAX_MAX).empty()) return "(unreadable)";
   std::ifstream in(p, std::ios::binary);
   if (!in) return "(unreadable)";
   Sha256 h;

@@ -17,6 +17,7 @@
 
 #include "core/cpu_affinity.hpp"
 #include "core/errors.hpp"
+#include "core/input_file.hpp"
 #include "core/interrupt.hpp"
 #include "run/new_file.hpp"
 
@@ -34,6 +35,7 @@ struct Child {
 
 /// The last "error:" line of a run's log (what the child said when it failed), or "".
 std::string last_error(const fs::path& log) {
+  if (!input_file_problem(log, kMaxResultJsonBytes).empty()) return "";
   std::ifstream in(log);
   std::string line, found;
   while (std::getline(in, line)) {
@@ -45,9 +47,9 @@ std::string last_error(const fs::path& log) {
 }
 
 std::string summary_status(const fs::path& dir) {
-  std::ifstream in(dir / "summary.json");
   try {
-    const auto j = nlohmann::json::parse(in);
+    const auto j =
+        nlohmann::json::parse(read_input_file(dir / "summary.json", kMaxResultJsonBytes));
     return j.value("status", "");
   } catch (const std::exception&) {
     return "";

@@ -4,6 +4,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "core/input_file.hpp"
 #include "run/new_file.hpp"
 
 namespace rumble::study {
@@ -27,10 +28,9 @@ std::string utc_now() {
 }
 
 std::optional<nlohmann::json> read_json(const fs::path& p) {
-  std::ifstream in(p);
-  if (!in) return std::nullopt;
+  if (!input_file_problem(p, kMaxResultJsonBytes).empty()) return std::nullopt;
   try {
-    return nlohmann::json::parse(in);
+    return nlohmann::json::parse(read_input_file(p, kMaxResultJsonBytes));
   } catch (const std::exception&) {
     return std::nullopt;
   }
