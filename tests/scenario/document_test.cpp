@@ -1,6 +1,7 @@
 #include "scenario/document.hpp"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <filesystem>
 #include <fstream>
@@ -179,6 +180,24 @@ TEST(ScenarioDocument, MissingFileDirectoryAndUnreadableFileAreReported) {
   EXPECT_FALSE(load_document(fs::temp_directory_path(), diags).has_value());
   ASSERT_EQ(diags.size(), 1u);
   EXPECT_EQ(diags[0].message, "is a directory, not a scenario file");
+}
+
+// A FIFO on disk waited for a writer for ever (a scenario or a study file; issue #30 item 3) and
+// a device was read up to the size limit: both are refused unopened. What the process was given
+// on standard input stays readable (tests/cli: `rumble run /dev/stdin`).
+TEST(ScenarioDocument, AFifoOrADeviceIsRefusedUnopened) {
+  const fs::path fifo = fs::temp_directory_path() / "rumble_scenario_test_fifo.json";
+  fs::remove(fifo);
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  for (const fs::path& p : {fifo, fs::path("/dev/zero")}) {
+    std::vector<Diagnostic> diags;
+    EXPECT_FALSE(load_document(p, diags).has_value());
+    ASSERT_EQ(diags.size(), 1u);
+    EXPECT_EQ(diags[0].message, p == fifo ? "is a FIFO (named pipe), not a regular file"
+                                          : "is a device, not a regular file");
+    EXPECT_EQ(diags[0].hint, "give the file itself, or pass it on standard input as /dev/stdin");
+  }
+  fs::remove(fifo);
 }
 
 TEST(ScenarioDocument, LoadsAFileFromDisk) {

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <system_error>
 
+#include "core/input_file.hpp"
 #include "scenario/json_position.hpp"
 #include "scenario/syntax_error.hpp"
 #include "scenario/value_text.hpp"
@@ -45,6 +46,12 @@ bool only_whitespace(std::string_view text) {
   return true;
 }
 
+/// /dev/stdin, /dev/fd/N, /proc/self/fd/N: a descriptor this process was given.
+bool names_an_open_descriptor(const fs::path& path) {
+  const std::string p = path.lexically_normal().string();
+  return p == "/dev/stdin" || p.starts_with("/dev/fd/") || p.starts_with("/proc/self/fd/");
+}
+
 }  // namespace
 
 std::optional<Document> load_document(const fs::path& path, std::vector<Diagnostic>& diagnostics) {
@@ -61,6 +68,15 @@ std::optional<Document> load_document(const fs::path& path, std::vector<Diagnost
   }
   if (fs::is_directory(status)) {
     diagnostics.push_back(file_error("is a directory, not a scenario file"));
+    return std::nullopt;
+  }
+  // A pipe or terminal is read only as the process's standard input or a descriptor the shell
+  // opened (`rumble validate /dev/stdin < file`, `<(...)`): a FIFO on disk would wait for a
+  // writer for ever, a device such as /dev/zero never ends (docs/scenario.md, "Limits").
+  if (!fs::is_regular_file(status) && !names_an_open_descriptor(path)) {
+    diagnostics.push_back(file_error("is " + file_kind(status) + ", not a regular file",
+                                     "give the file itself, or pass it on standard input as "
+                                     "/dev/stdin"));
     return std::nullopt;
   }
   if (fs::is_regular_file(status)) {
