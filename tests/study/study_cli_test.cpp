@@ -211,6 +211,33 @@ TEST(Study, InterruptStopsTheRunsAndRecordsTheState) {
   EXPECT_FALSE(fs::exists(dir / "out" / "second" / "summary.json"));
 }
 
+// A study killed outright (SIGKILL: no handler runs) left its run orphaned and still writing
+// (issue #30 item 4); its runs now get SIGTERM from the kernel when it dies and stop as an
+// interrupted run does, with what they finished on disk.
+TEST(Study, ItsRunsDieWithAStudyKilledOutright) {
+  const auto dir = scratch_directory("study_killed");
+  json s = small_scenario();
+  s["time"]["end"] = 0.6;
+  s["time"]["macro_step"] = 1e-4;
+  s["track"]["sleepers"]["count"] = 40;
+  write_scenario(dir, s);
+  const auto study = write_study(dir, json::parse(R"({"study_version": 1,
+    "scenario": "scenario.json", "output": "out", "jobs": 1, "runs": [{"name": "first"}]})"));
+  const pid_t pid = start_rumble({"study", study.string()});
+  const auto run = dir / "out" / "first";
+  for (int i = 0; i < 600 && csv_rows(run / "contact.csv") < 20; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  kill(pid, SIGKILL);
+  wait_rumble(pid);
+  std::string status;
+  for (int i = 0; i < 100 && status != "interrupted"; ++i) {  // 5 s at most
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    status = read_json(run / "summary.json").value("status", "");
+  }
+  EXPECT_EQ(status, "interrupted");
+  EXPECT_THAT(read_json(run / "summary.json").value("message", ""), HasSubstr("SIGTERM"));
+}
+
 // A run beyond the size limits (issue #8) is not valid in a study either, unless the study says
 // --yes (its child `rumble run` then gets --yes too). The scenario's own outputs.directory, a
 // file here, is no concern of a study: each run writes to its --output directory.

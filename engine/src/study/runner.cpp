@@ -1,6 +1,7 @@
 #include "study/runner.hpp"
 
 #include <fcntl.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -69,9 +70,15 @@ pid_t start_child(const fs::path& executable, const std::vector<std::string>& co
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
+  const pid_t study = ::getpid();
   const pid_t pid = ::fork();
   if (pid == 0) {
     ::setpgid(0, 0);
+    // The run dies with the study, even one killed outright (SIGKILL, a crash): the kernel then
+    // sends it SIGTERM, which stops a run cleanly with what it finished on disk. (The study
+    // forks from its main thread, whose exit is what the kernel watches.) A study that died
+    // before this line is seen as a new parent.
+    if (::prctl(PR_SET_PDEATHSIG, SIGTERM) != 0 || ::getppid() != study) ::_exit(128 + SIGTERM);
     restrict_to_cpus(cpus);  // where refused, the run shares all of them: slower, still right
     const int null = ::open("/dev/null", O_RDONLY);
     if (null >= 0) ::dup2(null, STDIN_FILENO);
