@@ -13,6 +13,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdlib>
 #include <fstream>
 #include <limits>
@@ -81,7 +82,8 @@ class PickySoil final : public rumble::Soil {
     "stall_at": {"type": "number", "default": 1.0e30},
     "stall_in_statics": {"type": "boolean", "default": false},
     "resolution": {"type": "number", "default": 0},
-    "exit_at": {"type": "number", "default": 1.0e30}}})";
+    "exit_at": {"type": "number", "default": 1.0e30},
+    "crash_at": {"type": "number", "default": 1.0e30}}})";
     return s.c_str();
   }
   PickySoil(const std::string& params, const rumble::Host& host) : host_(host) {
@@ -92,6 +94,7 @@ class PickySoil final : public rumble::Soil {
     stall_at_ = p.get<double>("stall_at");
     stall_in_statics_ = p.get_or<bool>("stall_in_statics", false);
     exit_at_ = p.get_or<double>("exit_at", 1.0e30);  // tests build it without the schema too
+    crash_at_ = p.get_or<double>("crash_at", 1.0e30);
     resolution_ = p.get_or<double>("resolution", 0.0);
   }
   void accept_layout(const std::vector<rumble::Footprint>& f) override {
@@ -109,7 +112,8 @@ class PickySoil final : public rumble::Soil {
                             " s, asked " + std::to_string(H));
     }
     if (t >= stall_at_) stall();
-    if (t >= exit_at_) std::exit(0);  // a careless plugin ending the process (issue #8)
+    if (t >= exit_at_) std::exit(0);          // a careless plugin ending the process (issue #8)
+    if (t >= crash_at_) std::raise(SIGSEGV);  // a plugin's bad pointer (issue #30 item 4)
     ++advances_;
     spring_.step(t, H, force, [&](double now) { record(now); });
   }
@@ -234,8 +238,8 @@ class PickySoil final : public rumble::Soil {
   std::vector<rumble::Footprint> footprints_;
   std::vector<std::size_t> nearest_;  // footprint of each probe
   std::vector<double> row_;
-  double max_step_ = 0.0, stall_at_ = 0.0, exit_at_ = 0.0;  // s
-  double resolution_ = 0.0;                                 // Hz, 0: not said
+  double max_step_ = 0.0, stall_at_ = 0.0, exit_at_ = 0.0, crash_at_ = 0.0;  // s
+  double resolution_ = 0.0;                                                  // Hz, 0: not said
   bool stall_in_statics_ = false;
   std::string csc_defect_;
   long advances_ = 0, refusals_ = 0, checkpoints_ = 0;

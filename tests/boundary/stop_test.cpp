@@ -104,5 +104,22 @@ TEST(Stop, PluginCallingExitAbortsTheRunVisibly) {
   EXPECT_LE(csv_rows(results / "contact.csv"), 21u);  // at most t = 0 .. 0.02 s
 }
 
+// A plugin that crashed left summary.json "running" for ever (issue #30 item 4): the crash is
+// recorded before the process ends, with the signal and the participant that was stepping, and
+// the process ends as the signal ends it (128 + 11), with the results so far on disk.
+TEST(Stop, APluginThatCrashesLeavesTheSignalAndItsNameInTheSummary) {
+  const nlohmann::json s = fixture_scenario(
+      {{"type", "picky_soil"}, {"params", {{"crash_at", 0.0195}}}}, {{"type", "gauss_seidel"}});
+  CliResult r;
+  const auto results = run_in("plugin_crashes", s, r);
+  EXPECT_EQ(r.exit_code, 128 + SIGSEGV) << r.output;
+  const nlohmann::json summary = read_json(results / "summary.json");
+  EXPECT_EQ(summary["status"], "crashed");
+  EXPECT_EQ(summary["crash"]["signal"], "SIGSEGV");
+  EXPECT_EQ(summary["crash"]["participant"], "soil/picky_soil");
+  EXPECT_TRUE(summary["heartbeat"].is_object());      // the last one written (about once a second)
+  EXPECT_EQ(csv_rows(results / "contact.csv"), 21u);  // t = 0 .. 0.02 s, then the crash
+}
+
 }  // namespace
 }  // namespace rumble::testing

@@ -143,6 +143,33 @@ TEST(CliResults, ARunThatDiedSaysRunningWithAHeartbeatThatStopped) {
   EXPECT_NEAR(done["heartbeat"]["t_s"].get<double>(), 0.002, 1e-12);
 }
 
+// The next look at a dead run's directory says so (issue #30 item 4): whoever takes its free
+// lock (here `rumble post`) rewrites the summary as "died" with what the last heartbeat says, and
+// warns; the results stay.
+TEST(CliResults, TheNextLookAtADeadRunSaysItDied) {
+  const auto dir = scratch_directory("results_died");
+  const auto results = dir / "results";
+  const pid_t run =
+      start_rumble({"run", write_scenario(dir, long_scenario()).string(), "--no-progress"});
+  ASSERT_TRUE(wait_for([&] {
+    const auto s = summary_now(results);
+    return s.is_object() && s["heartbeat"]["macro_steps"].get<std::size_t>() > 0;
+  }));
+  kill(run, SIGKILL);
+  EXPECT_EQ(wait_rumble(run), 128 + SIGKILL);
+  EXPECT_EQ(read_json(results / "summary.json")["status"], "running");
+  const CliResult post = run_rumble({"post", results.string()});
+  EXPECT_THAT(post.output, HasSubstr("the run died without a word (a kill -9, a crash it could "
+                                     "not record, or the machine stopping): it had reached t = "));
+  const auto summary = read_json(results / "summary.json");
+  EXPECT_EQ(summary["status"], "died");
+  EXPECT_THAT(summary["message"].get<std::string>(),
+              HasSubstr("process " + std::to_string(run) + " on "));
+  EXPECT_TRUE(std::filesystem::exists(results / "contact.csv"));
+  // Settled once: the next look finds nothing to say.
+  EXPECT_THAT(run_rumble({"post", results.string()}).output, Not(HasSubstr("died without")));
+}
+
 // ---- what a rerun replaces
 
 TEST(CliResults, ARunListsWhatItWroteInAManifest) {

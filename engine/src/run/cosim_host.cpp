@@ -6,6 +6,7 @@
 #include "core/errors.hpp"
 #include "core/logging.hpp"
 #include "plugin/instance.hpp"
+#include "run/crash_record.hpp"
 
 namespace rumble {
 
@@ -73,6 +74,7 @@ void CosimHostImpl::fill_table() {
         [&] {
           Participant* part = self(ctx).checked(p);
           const auto start = std::chrono::steady_clock::now();
+          const SteppingParticipant stepping(part->label().c_str());
           part->advance(t, H);
           part->wall_seconds +=
               std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

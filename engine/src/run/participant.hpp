@@ -24,6 +24,11 @@ class Participant {
   const std::string& name() const { return name_; }
   /// What it is, for logs and timings: "vehicle/track", "soil/clm".
   virtual std::string description() const = 0;
+  /// description(), kept: a string that a crash record can point at (run/crash_record.hpp).
+  const std::string& label() const {
+    if (label_.empty()) label_ = description();
+    return label_;
+  }
   virtual std::size_t output_size() const = 0;
   virtual void get_output(double* y) const = 0;
   virtual void set_input(const rumble_waveform& u) = 0;
@@ -40,6 +45,9 @@ class Participant {
   virtual void free_checkpoint(std::uint32_t slot);
 
   double wall_seconds = 0.0;  // accumulated time spent in advance()
+
+ private:
+  mutable std::string label_;  // description(), made at the first label()
 
  protected:
   virtual std::size_t state_size() const = 0;

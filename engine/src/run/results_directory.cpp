@@ -16,6 +16,7 @@
 #include "core/errors.hpp"
 #include "core/input_file.hpp"
 #include "core/logging.hpp"
+#include "run/dead_run.hpp"
 #include "run/new_file.hpp"
 
 namespace rumble {
@@ -228,6 +229,9 @@ void ResultsDirectory::lock() {
       ::close(lock_fd_);
       throw RunError(write_error(path, err));
     }
+    // The lock was free: a summary that still says "running" is a dead run's.
+    if (const std::string died = settle_dead_run(dir_); !died.empty())
+      logger("engine")->warn("{}: {}", shown(dir_), died);
     return;
   }
   const int err = errno;

@@ -13,6 +13,7 @@
 #include "core/interrupt.hpp"
 #include "core/logging.hpp"
 #include "run/cosim_host.hpp"
+#include "run/crash_record.hpp"
 #include "run/field_writer.hpp"
 #include "run/participant.hpp"
 #include "run/probe_recorder.hpp"
@@ -186,6 +187,7 @@ RunOutcome run_scenario(const scenario::RunSpec& spec, const PluginRegistry& reg
   outcome.results_dir = results.path();
   SummaryWriter summary(results, spec, c, options.heartbeat_seconds);
   exit_guard.watch(summary);
+  const CrashRecord crash_record(summary);  // a plugin's segfault or abort() says so in it
   give_run_context(c, outcome.results_dir);
 
   // Anything failing from here on leaves summary.json saying so, then propagates.

@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <stdexcept>
+#include <string_view>
 
 #include "core/cpu_affinity.hpp"
 #include "core/errors.hpp"
@@ -133,12 +135,43 @@ void SummaryWriter::write() {
     throw std::logic_error("summary.json: the heartbeat's place is lost");
   prefix_ = text.substr(0, at + kHeartbeatKey.size());
   suffix_ = text.substr(at + placeholder.size());
+  crashed_suffix_ = suffix_;
+  const std::string running = std::string("\n  \"status\": \"") + status_name(RunStatus::kRunning);
+  if (const std::size_t s = crashed_suffix_.find(running + '"'); s != std::string::npos)
+    crashed_suffix_.replace(s + running.size() - 7, 7, "crashed");
   changed_ = false;
   char beat[192];
   write_pieces(beat, format_heartbeat(beat, sizeof beat));
 }
 
+void SummaryWriter::crashed(int signal, const char* participant) noexcept {
+  // `, "crash": {...}` follows the heartbeat's value: valid JSON whether the summary goes on
+  // with another key (",") or closes ("}"). Built by hand: no allocation, no locale.
+  char crash[256];
+  std::size_t n = 0;
+  const auto add = [&](const char* text) {
+    for (; *text != '\0' && n + 1 < sizeof crash; ++text)
+      if (*text != '"' && *text != '\\' && static_cast<unsigned char>(*text) >= 0x20)
+        crash[n++] = *text;
+  };
+  const auto add_raw = [&](std::string_view text) {
+    for (const char c : text)
+      if (n + 1 < sizeof crash) crash[n++] = c;
+  };
+  add_raw(",\n  \"crash\": {\"signal\": \"SIG");
+  const char* name = ::sigabbrev_np(signal);
+  add(name != nullptr ? name : "?");
+  add_raw("\", \"participant\": \"");
+  add(participant);
+  add_raw("\"}");
+  (void)replace_file_noexcept(path_.c_str(), tmp_.c_str(),
+                              {prefix_, std::string_view(beat_.data(), beat_length_),
+                               std::string_view(crash, n), crashed_suffix_});
+}
+
 void SummaryWriter::write_pieces(const char* heartbeat, std::size_t length) {
+  beat_length_ = std::min(length, beat_.size());
+  std::copy_n(heartbeat, beat_length_, beat_.data());
   const int err = replace_file_noexcept(path_.c_str(), tmp_.c_str(),
                                         {prefix_, std::string_view(heartbeat, length), suffix_});
   if (err != 0) throw RunError(write_error(path_, err));

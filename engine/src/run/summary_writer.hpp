@@ -6,6 +6,7 @@
 // "running". docs/scenario.md says what each status means.
 #pragma once
 
+#include <array>
 #include <chrono>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -45,6 +46,10 @@ class SummaryWriter {
   /// After an exception: status "failed" (or `status`) with the message, as far as the disk
   /// allows; never throws (the original error is the one to report).
   void fail(const std::string& message, RunStatus status = RunStatus::kFailed) noexcept;
+  /// From a crash's signal handler (run/crash_record.hpp): the last summary written, with status
+  /// "crashed" and "crash": {"signal", "participant"} after the last heartbeat. Async-signal-safe:
+  /// it writes text kept from the last write and allocates nothing; a failing disk is ignored.
+  void crashed(int signal, const char* participant) noexcept;
 
  private:
   using Clock = std::chrono::steady_clock;
@@ -55,9 +60,12 @@ class SummaryWriter {
 
   std::filesystem::path path_, tmp_;
   nlohmann::json summary_;
-  bool changed_ = true;          // summary_ differs from what prefix_ + suffix_ hold
-  std::string prefix_, suffix_;  // summary.json before and after the heartbeat's value
-  double t_ = 0.0;               // s, end of the last final macro step
+  bool changed_ = true;           // summary_ differs from what prefix_ + suffix_ hold
+  std::string prefix_, suffix_;   // summary.json before and after the heartbeat's value
+  std::string crashed_suffix_;    // suffix_ with status "crashed"
+  std::array<char, 192> beat_{};  // the last heartbeat written, for crashed()
+  std::size_t beat_length_ = 0;
+  double t_ = 0.0;  // s, end of the last final macro step
   std::size_t steps_ = 0;
   Clock::duration heartbeat_interval_;
   Clock::time_point next_heartbeat_;

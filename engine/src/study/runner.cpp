@@ -20,6 +20,7 @@
 #include "core/errors.hpp"
 #include "core/input_file.hpp"
 #include "core/interrupt.hpp"
+#include "run/dead_run.hpp"
 #include "run/new_file.hpp"
 
 namespace rumble::study {
@@ -190,6 +191,8 @@ bool run_pending(std::vector<RunRecord>& records, const RunnerOptions& options,
     } else {
       r.exit_code = 128 + WTERMSIG(status);
     }
+    // A run that ended without saying how (killed outright) is marked "died" in its summary.
+    if (WIFSIGNALED(status)) settle_dead_run_if_unlocked(r.results);
     const std::string summary = summary_status(r.results);
     if (WIFEXITED(status) && WEXITSTATUS(status) == 0) {
       r.state = RunState::kCompleted;
