@@ -17,12 +17,12 @@ constexpr std::array<int, 5> kCrashSignals = {SIGSEGV, SIGBUS, SIGFPE, SIGILL, S
 std::atomic<SummaryWriter*> g_summary{nullptr};
 thread_local const char* t_participant = nullptr;
 
-void on_crash(int signal) {
+void on_crash(int sig) {
   // One record: a second crash (another thread, or inside this handler) finds none to write.
   if (SummaryWriter* summary = g_summary.exchange(nullptr))
-    summary->crashed(signal, t_participant != nullptr ? t_participant : "the engine");
+    summary->crashed(sig, t_participant != nullptr ? t_participant : "the engine");
   // SA_RESETHAND gave the signal back its default action: end as it would have ended.
-  ::raise(signal);
+  ::raise(sig);
 }
 
 /// The alternate stack the handler runs on (a stack overflow leaves none on the thread's own).

@@ -144,7 +144,7 @@ void SummaryWriter::write() {
   write_pieces(beat, format_heartbeat(beat, sizeof beat));
 }
 
-void SummaryWriter::crashed(int signal, const char* participant) noexcept {
+void SummaryWriter::crashed(int sig, const char* participant) noexcept {
   // `, "crash": {...}` follows the heartbeat's value: valid JSON whether the summary goes on
   // with another key (",") or closes ("}"). Built by hand: no allocation, no locale.
   char crash[256];
@@ -159,7 +159,7 @@ void SummaryWriter::crashed(int signal, const char* participant) noexcept {
       if (n + 1 < sizeof crash) crash[n++] = c;
   };
   add_raw(",\n  \"crash\": {\"signal\": \"SIG");
-  const char* name = ::sigabbrev_np(signal);
+  const char* name = ::sigabbrev_np(sig);
   add(name != nullptr ? name : "?");
   add_raw("\", \"participant\": \"");
   add(participant);

@@ -49,7 +49,7 @@ class SummaryWriter {
   /// From a crash's signal handler (run/crash_record.hpp): the last summary written, with status
   /// "crashed" and "crash": {"signal", "participant"} after the last heartbeat. Async-signal-safe:
   /// it writes text kept from the last write and allocates nothing; a failing disk is ignored.
-  void crashed(int signal, const char* participant) noexcept;
+  void crashed(int sig, const char* participant) noexcept;
 
  private:
   using Clock = std::chrono::steady_clock;
