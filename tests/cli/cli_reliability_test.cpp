@@ -121,6 +121,52 @@ TEST(CliReliability, RunsBeyondTheSizeLimitsAreRefusedUnlessConfirmed) {
   EXPECT_EQ(confirmed.exit_code, 0) << confirmed.output;
 }
 
+// receivers.csv grew about 30 times past the size estimate (issue #30 item 2): the soil samples
+// its receivers inside its own steps, six values each. Validation now counts six values a
+// receiver at least once a macro step (or every receiver_interval), and the run projects the
+// file from the soil's rate at its first step: 100 receivers over 400 s of a small FEM soil
+// (5000 samples a second) would write about 19 GiB, and the run stops at once with the
+// projection and the fix.
+TEST(CliReliability, ReceiversProjectedBeyondTheLimitStopTheRunAtItsFirstStep) {
+  nlohmann::json s = small_fem_scenario();
+  s["time"]["end"] = 400.0;         // s
+  s["vehicles"][0]["speed"] = 0.0;  // at rest: the rail is short
+  s["outputs"]["receivers"] = nlohmann::json::array();
+  for (int k = 0; k < 100; ++k) s["outputs"]["receivers"].push_back(1.0 + 0.04 * k);  // m
+  const auto dir = scratch_directory("receivers_size");
+  ::setenv("RUMBLE_MESH_CACHE", (dir / "cache").c_str(), 1);
+  const auto path = write_scenario(dir, s).string();
+  const CliResult run = run_rumble({"run", path, "--no-progress"});
+  ::unsetenv("RUMBLE_MESH_CACHE");
+  EXPECT_EQ(run.exit_code, 3) << run.output;
+  EXPECT_THAT(run.output, HasSubstr("/outputs/receiver_interval: receivers.csv would take about "));
+  EXPECT_THAT(run.output, HasSubstr("GiB limit on time histories; set outputs.receiver_interval"));
+  EXPECT_LT(csv_rows(dir / "results" / "contact.csv"), 3u);  // stopped at its first step
+  EXPECT_LT(fs::file_size(dir / "results" / "receivers.csv"), 1u << 20);
+}
+
+// Field snapshots had no size limit (16 GB written): the first snapshot's size times the
+// snapshots to come is checked at once (here 9901 snapshots of a small FEM soil meshed for
+// 120 Hz, within validation's count limit of 1e4, each about 1.4 MiB).
+TEST(CliReliability, FieldsProjectedBeyondTheLimitStopTheRunAtTheFirstSnapshot) {
+  nlohmann::json s = small_fem_scenario();
+  s["soil"]["params"]["mesh"]["f_max"] = 120.0;   // Hz
+  s["time"]["end"] = 99.0;                        // s
+  s["vehicles"][0]["speed"] = 0.0;                // at rest: the rail is short
+  s["outputs"]["fields"] = {{"interval", 1e-2}};  // s
+  const auto dir = scratch_directory("fields_size");
+  ::setenv("RUMBLE_MESH_CACHE", (dir / "cache").c_str(), 1);
+  const CliResult run = run_rumble({"run", write_scenario(dir, s).string(), "--no-progress"});
+  ::unsetenv("RUMBLE_MESH_CACHE");
+  EXPECT_EQ(run.exit_code, 3) << run.output;
+  EXPECT_THAT(run.output, HasSubstr("/outputs/fields/interval: the field snapshots would take "
+                                    "about "));
+  EXPECT_THAT(run.output, HasSubstr("(9.9e+03 snapshots of "));
+  EXPECT_EQ(
+      std::distance(fs::directory_iterator(dir / "results" / "fields"), fs::directory_iterator{}),
+      1);
+}
+
 // sleepers.count 1e7 died of std::bad_alloc, 2^63-1 gave a message about the vehicle's start, and
 // a hint read "use at least -2147483647 sleepers".
 TEST(CliReliability, SleeperCountHasAnUpperBoundAndHintsDoNotOverflow) {

@@ -43,6 +43,7 @@ int run_command(const std::vector<std::string>& args) {
   install_interrupt_handler();
   RunOptions options;
   options.built_soils = &built;
+  options.size_confirmed = check.size_confirmed;
   options.progress = !a.flag("no-progress") && isatty(STDERR_FILENO) != 0;
   scenario::RunSpec spec = scenario::make_run_spec(doc->json, doc->path);
   std::vector<std::string> identity;  // the same file with other --set values is another run

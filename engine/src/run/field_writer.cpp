@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cmath>
 #include <cstdio>
 #include <sstream>
 
@@ -15,8 +16,13 @@ namespace rumble {
 
 namespace fs = std::filesystem;
 
-FieldWriter::FieldWriter(ResultsDirectory& results, SoilInstance& soil, double interval)
-    : results_(results), soil_(soil), interval_(interval) {
+FieldWriter::FieldWriter(ResultsDirectory& results, SoilInstance& soil, double interval,
+                         double t_end, bool size_confirmed)
+    : results_(results),
+      soil_(soil),
+      interval_(interval),
+      t_end_(t_end),
+      size_confirmed_(size_confirmed) {
   results_.subdirectory("fields");  // a real directory, never a link followed
 }
 
@@ -36,6 +42,23 @@ void FieldWriter::at(double t) {
   times_.push_back(t);
   files_.emplace_back(name);
   write_index();
+  if (times_.size() == 1) check_projected_size(path);
+}
+
+void FieldWriter::check_projected_size(const fs::path& first) const {
+  std::error_code ec;
+  const auto bytes = static_cast<double>(fs::file_size(first, ec));
+  const double snapshots = std::floor(t_end_ / interval_ + 1e-9) + 1.0;
+  if (ec || bytes * snapshots <= kMaxFieldBytes || size_confirmed_) return;
+  std::ostringstream m;
+  m.precision(3);
+  m << "/outputs/fields/interval: the field snapshots would take about "
+    << bytes * snapshots / (1u << 30) << " GiB (" << snapshots << " snapshots of "
+    << bytes / (1u << 20) << " MiB, the first one's size), more than the "
+    << kMaxFieldBytes / (1u << 30)
+    << " GiB limit; raise outputs.fields.interval, shorten the run, or confirm the size with "
+       "--yes";
+  throw RunError(m.str());
 }
 
 void FieldWriter::write_index() {

@@ -3,17 +3,26 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <sstream>
 
+#include "core/errors.hpp"
 #include "core/logging.hpp"
 #include "core/number_text.hpp"
 #include "plugin/instance.hpp"
 #include "run/results_directory.hpp"
+#include "scenario/run_size.hpp"
 
 namespace rumble {
 
 ProbeRecorder::ProbeRecorder(ResultsDirectory& results, SoilInstance& soil,
-                             const std::vector<scenario::ReceiverSpec>& points)
-    : soil_(soil), points_(points), ppv_z_(points.size(), 0.0), ppv_3c_(points.size(), 0.0) {
+                             const std::vector<scenario::ReceiverSpec>& points, double t_end,
+                             bool size_confirmed)
+    : soil_(soil),
+      points_(points),
+      t_end_(t_end),
+      size_confirmed_(size_confirmed),
+      ppv_z_(points.size(), 0.0),
+      ppv_3c_(points.size(), 0.0) {
   std::vector<std::string> cols{"t [s]"};
   for (const scenario::ReceiverSpec& p : points_) {
     for (const char* c : {"vx [m/s]", "vy [m/s]", "vz [m/s]", "ux [m]", "uy [m]", "uz [m]"})
@@ -38,10 +47,30 @@ void ProbeRecorder::log_resolution() const {
       line, resolution_->rule);
 }
 
+void ProbeRecorder::check_projected_size(double t) const {
+  const double columns = 1.0 + static_cast<double>(points_.size() * RUMBLE_PROBE_VALUES);
+  const double bytes = samples_ * (t_end_ / t) * columns * scenario::kBytesPerValue;
+  if (bytes <= scenario::kMaxBytesWritten || size_confirmed_) return;
+  std::ostringstream m;
+  m.precision(3);
+  m << "/outputs/receiver_interval: receivers.csv would take about " << bytes / (1u << 30)
+    << " GiB (the soil samples its receivers " << samples_ / t << " times a second, " << columns
+    << " values a row, " << t_end_ << " s), more than the "
+    << scenario::kMaxBytesWritten / (1u << 30)
+    << " GiB limit on time histories; set outputs.receiver_interval (a sample every 1e-4 s "
+       "resolves 5 kHz), list fewer receivers, or confirm the size with --yes";
+  throw RunError(m.str());
+}
+
 void ProbeRecorder::take() {
   times_.clear();
   values_.clear();
   soil_.take_probe_samples(times_, values_);
+  samples_ += static_cast<double>(times_.size());
+  if (!projected_ && !times_.empty() && times_.back() > 0.0) {
+    projected_ = true;
+    check_projected_size(times_.back());
+  }
   const std::size_t width = points_.size() * RUMBLE_PROBE_VALUES;
   for (std::size_t s = 0; s < times_.size(); ++s) {
     const double* row = values_.data() + s * width;

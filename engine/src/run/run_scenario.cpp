@@ -242,13 +242,15 @@ RunOutcome run_scenario(const scenario::RunSpec& spec, const PluginRegistry& reg
           "and writes no fields; its footprint motion is recorded");
     }
     if (c.receivers.probes && !integrated) {
-      probes = std::make_unique<ProbeRecorder>(results, *c.soil, spec.outputs.receivers);
+      probes = std::make_unique<ProbeRecorder>(results, *c.soil, spec.outputs.receivers, spec.t_end,
+                                               options.size_confirmed);
       probes->take();  // samples at t = 0, if the soil records one there
     }
     std::unique_ptr<FieldWriter> fields;
     if (spec.outputs.field_interval && c.soil->capabilities().has(RUMBLE_CAP_FIELD_OUTPUT) &&
         !integrated) {
-      fields = std::make_unique<FieldWriter>(results, *c.soil, *spec.outputs.field_interval);
+      fields = std::make_unique<FieldWriter>(results, *c.soil, *spec.outputs.field_interval,
+                                             spec.t_end, options.size_confirmed);
       fields->at(0.0);
     }
 

@@ -19,6 +19,7 @@ struct RunOptions {
   bool progress = false;              // progress line with ETA on stderr
   double heartbeat_seconds = 1.0;     // at most one heartbeat write in summary.json per this time
   BuiltSoils* built_soils = nullptr;  // soils the validation built, taken when they match
+  bool size_confirmed = false;        // --yes: a run beyond the size limits is wanted
 };
 
 struct RunOutcome {

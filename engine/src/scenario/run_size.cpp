@@ -55,9 +55,16 @@ RunSize estimate_run_size(const json& sc) {
   // contact.csv + vehicles.csv, footprint force/displacement/velocity, interface.csv,
   // receivers.csv, and each extra soil's displacement and velocity; a time column in each.
   r.values_per_record = (2.0 + vehicles * kValuesPerVehicle) + 3.0 * (footprints + 1.0) +
-                        kInterfaceColumns + (receivers > 0 ? receivers + 1.0 : 0.0) +
-                        extras * 2.0 * (footprints + 1.0);
-  r.bytes_written = r.records * r.values_per_record * kBytesPerValue;
+                        kInterfaceColumns + extras * 2.0 * (footprints + 1.0);
+  // receivers.csv: a row per sample with 6 values per receiver (rumble/abi.h probes), sampled
+  // every receiver_interval, else inside every soil step: at least once a macro step (the run
+  // checks the soil's own rate at its first step: run/probe_recorder.hpp).
+  const double interval = outputs.value("receiver_interval", 0.0);
+  r.receiver_rows =
+      receivers == 0.0 ? 0.0 : (interval > 0.0 ? std::floor(t_end / interval) + 1.0 : r.records);
+  r.bytes_written = (r.records * r.values_per_record +
+                     r.receiver_rows * (receivers > 0.0 ? 6.0 * receivers + 1.0 : 0.0)) *
+                    kBytesPerValue;
 
   // The recorder keeps one energy per record; two_step keeps the track's footprint forces and
   // the reduced soil's motion over the whole run: 3 n (steps + 1) doubles (plugins/couplers).

@@ -27,7 +27,8 @@ struct RunSize {
   double macro_steps = 0.0;      // ceil(time.end / time.macro_step)
   double micro_steps = 0.0;      // time.end / track.integrator.micro_step; 0 when not given
   double records = 0.0;          // rows of each time history: macro_steps / outputs.every + 1
-  double values_per_record = 0;  // numbers in one row of all time histories together
+  double values_per_record = 0;  // numbers in one row of the time histories but receivers.csv
+  double receiver_rows = 0.0;    // rows of receivers.csv, at least (soils may sample faster)
   double bytes_written = 0.0;    // records x values_per_record x kBytesPerValue
   double memory_bytes = 0.0;     // what the run reserves for its histories up front
   double field_snapshots = 0.0;  // time.end / outputs.fields.interval + 1; 0 without fields
