@@ -140,20 +140,24 @@ TEST(CliFailure, AStableRunRecordsNoDivergence) {
 // A micro-step far too small for the macro step (issue #8: 1e-15 s at 1 ms overflowed an int
 // count and ran one micro-step per macro step): refused with the count and the fix, at validate
 // by the run's size estimate, and when confirmed (--yes) by the track before its first step.
+// Within the schema's ranges now (docs/scenario.md, "Limits"): the shortest micro-step (1e-9 s)
+// over 2 s, in macro steps of 20 ms.
 TEST(CliFailure, AbsurdMicroStepCountIsRefused) {
   const auto dir = scratch_directory("absurd_micro_step");
   nlohmann::json s = small_scenario();
-  s["track"]["integrator"] = {{"micro_step", 1e-15}};
+  s["time"] = {{"end", 2.0}, {"macro_step", 0.02}};
+  s["vehicles"][0]["speed"] = 1.0;  // stays on the rail for the 2 s
+  s["track"]["integrator"] = {{"micro_step", 1e-9}};
   const std::string path = write_scenario(dir, s).string();
   const CliResult v = run_rumble({"validate", path});
   EXPECT_EQ(v.exit_code, 1) << v.output;
-  EXPECT_THAT(v.output, HasSubstr("/track/integrator/micro_step: the track takes 5e+13 "
+  EXPECT_THAT(v.output, HasSubstr("/track/integrator/micro_step: the track takes 2e+09 "
                                   "micro-steps over the run (time.end / micro_step), more than "
                                   "the limit of 1e+09"));
   const CliResult r = run_rumble({"run", path, "--no-progress", "--yes"});
   EXPECT_EQ(r.exit_code, 3) << r.output;
-  EXPECT_THAT(r.output, HasSubstr("track: a macro step of 0.001 s in micro-steps of 1e-15 s is "
-                                  "1e+12 micro-steps, more than 1e+07; raise "
+  EXPECT_THAT(r.output, HasSubstr("track: a macro step of 0.02 s in micro-steps of 1e-09 s is "
+                                  "2e+07 micro-steps, more than 1e+07; raise "
                                   "/track/integrator/micro_step or lower /time/macro_step"));
   EXPECT_EQ(read_json(dir / "results" / "summary.json")["status"], "failed");
 }

@@ -55,7 +55,7 @@ TEST(CliValidate, ZeroSleeperSpacing) {
   s["track"]["sleepers"]["spacing"] = 0;
   const CliResult r = validate("zero_spacing", s);
   EXPECT_EQ(r.exit_code, 1) << r.output;
-  EXPECT_THAT(r.output, HasSubstr("error: /track/sleepers/spacing: must be > 0, got 0"));
+  EXPECT_THAT(r.output, HasSubstr("error: /track/sleepers/spacing: must be in [0.1, 2], got 0"));
 }
 
 TEST(CliValidate, UnknownUnevennessClass) {
