@@ -47,7 +47,8 @@ TEST(CliValidate, NegativeMass) {
   s["vehicles"][0]["params"]["mass"] = -750.0;
   const CliResult r = validate("negative_mass", s);
   EXPECT_EQ(r.exit_code, 1) << r.output;
-  EXPECT_THAT(r.output, HasSubstr("error: /vehicles/0/params/mass: must be > 0, got -750"));
+  EXPECT_THAT(r.output,
+              HasSubstr("error: /vehicles/0/params/mass: must be in [1, 1e+05], got -750"));
 }
 
 TEST(CliValidate, ZeroSleeperSpacing) {
