@@ -25,6 +25,17 @@ constexpr const char* kExportRule =
     "mesh.export is written inside the run's results directory (outputs.directory, or --output "
     "DIR) and nowhere else: give a path relative to it without '..', e.g. 'soil.msh'";
 
+// A lower bound on the DOFs of a perfectly matched layer [-]: its shell around the box is at
+// least 12 radius^2 x thickness (a bottom of 2 radius x 2 radius, four sides of 2 radius x
+// radius), meshed at most thickness / elements, with 0.8 / h^3 nodes per unit volume and 3 DOFs
+// per node as the mesh's own estimate (docs/fem-soil.md section 2). That estimate samples the
+// domain on a grid that a layer thinner than about radius / 30 falls between; this bound refuses
+// such a layer before gmsh spends hours (or all the memory) on it (docs/scenario.md, "Limits").
+double pml_dofs_at_least(double radius, double thickness, double elements) {
+  const double h = thickness / elements;
+  return 3.0 * 0.8 * 12.0 * radius * radius * thickness / (h * h * h);
+}
+
 // The Maxwell fit's largest miss of the ratio over its band accepted [-]: three mechanisms on
 // 5-100 Hz miss by 2.8 %; beyond 10 % the band is too wide or too narrow for the mechanisms.
 constexpr double kMaxwellBandError = 0.1;
@@ -236,6 +247,21 @@ FemSettings read_settings(const std::string& params_json) {
         "fem: params/boundary/pml: sets the perfectly matched layer, but "
         "boundary.type is \"" +
         kind + "\"; set boundary.type \"pml\" or drop boundary.pml, got " + pml.dump());
+  if (s.boundary.kind == BoundaryKind::kPml && m.file.empty()) {
+    const double dofs =
+        pml_dofs_at_least(m.radius, s.boundary.pml_thickness, s.boundary.pml_elements);
+    if (dofs > m.max_dofs) {
+      std::ostringstream rule;
+      rule << std::setprecision(3) << "a layer of this thickness in elements of at most "
+           << s.boundary.pml_thickness / s.boundary.pml_elements
+           << " m (thickness / pml.elements) around a box of mesh.radius " << m.radius
+           << " m needs at least " << dofs
+           << " degrees of freedom, more than mesh.max_dofs = " << m.max_dofs
+           << "; thicken the layer (about mesh.radius / 2), use fewer pml.elements, a smaller "
+              "mesh.radius, or raise mesh.max_dofs (about 1 GB per million DOFs)";
+      refuse("boundary/pml/thickness", rule.str(), s.boundary.pml_thickness);
+    }
+  }
   s.boundary.alpha_normal = read(boundary, "alpha_normal", s.boundary.alpha_normal);
   s.boundary.alpha_tangential = read(boundary, "alpha_tangential", s.boundary.alpha_tangential);
 
