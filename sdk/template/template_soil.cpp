@@ -53,10 +53,10 @@ class TemplateSoil final : public rumble::Soil {
   "type": "object",
   "additionalProperties": false,
   "properties": {
-    "stiffness": {"type": "number", "exclusiveMinimum": 0, "default": 1.0e8,
-                  "description": "spring stiffness under each footprint [N/m]"},
-    "damping": {"type": "number", "exclusiveMinimum": 0, "default": 1.0e5,
-                "description": "dashpot coefficient under each footprint [N s/m]"}
+    "stiffness": {"type": "number", "minimum": 1.0e4, "maximum": 1.0e13, "default": 1.0e8,
+                  "description": "spring stiffness under each footprint [N/m]; [1e4, 1e13] N/m: a sleeper's footprint is about 1e6 N/m on peat and 1e10 N/m on hard rock"},
+    "damping": {"type": "number", "exclusiveMinimum": 0, "maximum": 1.0e10, "default": 1.0e5,
+                "description": "dashpot coefficient under each footprint [N s/m]; (0, 1e10] N s/m: a sleeper's footprint is about 2e4 N s/m on peat and 1e7 N s/m on hard rock"}
   }
 })";
   }

@@ -26,12 +26,12 @@ class TemplateVehicle final : public rumble::Vehicle {
   "type": "object",
   "additionalProperties": false,
   "properties": {
-    "mass": {"type": "number", "exclusiveMinimum": 0, "default": 1000.0,
-             "description": "mass on the wheel [kg]"},
-    "preload": {"type": "number", "minimum": 0, "default": 0.0,
-                "description": "static load on the wheel besides the mass's own weight [N]"},
-    "wheel_radius": {"type": "number", "exclusiveMinimum": 0, "default": 0.46,
-                     "description": "rolling radius [m]"}
+    "mass": {"type": "number", "minimum": 1, "maximum": 1.0e5, "default": 1000.0,
+             "description": "mass on the wheel [kg]; [1, 1e5] kg: a rail vehicle carries 0.5 to 15 t per wheel; 100 t is a whole loaded wagon"},
+    "preload": {"type": "number", "minimum": 0, "maximum": 1.0e6, "default": 0.0,
+                "description": "static load on the wheel besides the mass's own weight [N]; [0, 1e6] N: wheel loads are 50 to 125 kN, heavy haul with 40 t axles about 200 kN"},
+    "wheel_radius": {"type": "number", "minimum": 0.1, "maximum": 2, "default": 0.46,
+                     "description": "rolling radius [m]; [0.1, 2] m: from small tram and bogie wheels (0.3 m) to the largest steam locomotive drivers, about 1.1 m"}
   }
 })";
   }

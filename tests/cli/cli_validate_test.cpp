@@ -47,7 +47,8 @@ TEST(CliValidate, NegativeMass) {
   s["vehicles"][0]["params"]["mass"] = -750.0;
   const CliResult r = validate("negative_mass", s);
   EXPECT_EQ(r.exit_code, 1) << r.output;
-  EXPECT_THAT(r.output, HasSubstr("error: /vehicles/0/params/mass: must be > 0, got -750"));
+  EXPECT_THAT(r.output,
+              HasSubstr("error: /vehicles/0/params/mass: must be in [1, 1e+05], got -750"));
 }
 
 TEST(CliValidate, ZeroSleeperSpacing) {
@@ -55,7 +56,7 @@ TEST(CliValidate, ZeroSleeperSpacing) {
   s["track"]["sleepers"]["spacing"] = 0;
   const CliResult r = validate("zero_spacing", s);
   EXPECT_EQ(r.exit_code, 1) << r.output;
-  EXPECT_THAT(r.output, HasSubstr("error: /track/sleepers/spacing: must be > 0, got 0"));
+  EXPECT_THAT(r.output, HasSubstr("error: /track/sleepers/spacing: must be in [0.1, 2], got 0"));
 }
 
 TEST(CliValidate, UnknownUnevennessClass) {

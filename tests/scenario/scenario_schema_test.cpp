@@ -6,7 +6,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <nlohmann/json.hpp>
+#include <regex>
 #include <set>
 #include <sstream>
 
@@ -76,6 +78,33 @@ std::vector<std::string> keys_in(const std::string& cell) {
   return keys;
 }
 
+/// "" when the rule cell of a number's row states the schema's range ("[1e-7, 1], <= end",
+/// "integer [3, 100000]", "(2, 1e6], default 20"), else what differs: docs/scenario.md's
+/// tables and the schema say the same ranges ("Limits").
+std::string documented_range_problem(const std::string& rule, const json& node) {
+  const auto type = node.find("type");
+  if (type == node.end() || !(*type == "number" || *type == "integer") || node.contains("const"))
+    return "";
+  const auto bound = [&](const char* exclusive, const char* inclusive, bool& open) -> const json* {
+    open = node.contains(exclusive);
+    const auto it = node.find(open ? exclusive : inclusive);
+    return it == node.end() ? nullptr : &*it;
+  };
+  bool lo_open = false, hi_open = false;
+  const json* lo = bound("exclusiveMinimum", "minimum", lo_open);
+  const json* hi = bound("exclusiveMaximum", "maximum", hi_open);
+  if (lo == nullptr || hi == nullptr) return "";  // parameter_ranges_test.cpp says so
+  const std::string wanted =
+      std::string(lo_open ? "(" : "[") + lo->dump() + ", " + hi->dump() + (hi_open ? ")" : "]");
+  static const std::regex range(R"(([\[(])\s*([-+0-9.eE]+)\s*,\s*([-+0-9.eE]+)\s*([\])]))");
+  std::smatch m;
+  if (std::regex_search(rule, m, range) && (m[1] == "(") == lo_open && (m[4] == ")") == hi_open &&
+      std::strtod(m[2].str().c_str(), nullptr) == lo->get<double>() &&
+      std::strtod(m[3].str().c_str(), nullptr) == hi->get<double>())
+    return "";
+  return "the rule \"" + rule + "\" does not state the schema's range " + wanted;
+}
+
 struct DocumentedKeys {
   std::set<std::string> keys;  // "track.sleepers.count", "vehicles.[].speed"
   std::vector<std::string> problems;
@@ -139,6 +168,8 @@ DocumentedKeys check_document() {
       out.problems.push_back(dotted + " is documented but not in the schema");
       continue;
     }
+    if (const std::string p = documented_range_problem(trim(cells[3]), *node); !p.empty())
+      out.problems.push_back(dotted + ": " + p);
     // Tables with a default column: | key | unit | rule | default | meaning |.
     if (std::count(line.begin(), line.end(), '|') == 6) {
       const std::string documented = trim(cells[4]);

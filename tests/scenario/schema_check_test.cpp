@@ -49,7 +49,8 @@ TEST(ScenarioSchemaCheck, EachRuleIsPhrasedFromTheSchemaKeyword) {
       (Lines{"/count: must be in [1, 32] [got]",
              "/damping: must be a number [got] | remove the quotes: numbers are written "
              "without quotes",
-             "/mass: must be > 0 [got]",
+             // A range's hint is the description, which says why (docs/scenario.md, "Limits").
+             "/mass: must be > 0 [got] | wheel mass [kg]",
              "/mode: must be one of: fast, slow, exact [got] | did you mean \"fast\"?",
              "/ratio: must be in [0, 0.5) [got]", "/tags: must have at least 1 item, got 0"}));
 }
@@ -178,9 +179,9 @@ TEST(ScenarioSchemaCheck, RefsAreFollowedForRulesDescriptionsAndDefaults) {
     "definitions": {"pos": {"type": "number", "exclusiveMinimum": 0, "default": 2,
                             "description": "a length [m]"}}
   })";
-  EXPECT_EQ(
-      issues(schema, json::parse(R"({"a": 0})")),
-      (Lines{"/a: must be > 0 [got]", ": required key 'b' is missing | add \"b\": a length [m]"}));
+  EXPECT_EQ(issues(schema, json::parse(R"({"a": 0})")),
+            (Lines{"/a: must be > 0 [got] | a length [m]",
+                   ": required key 'b' is missing | add \"b\": a length [m]"}));
   const SchemaChecker checker(schema);
   json v = json::object();
   checker.fill_defaults(v);

@@ -51,6 +51,25 @@ TEST(ScenarioSchemaPrint, OneRowPerParamInDeclarationOrderWithNestedObjectsDotte
             "  nu           number  no        0.3      [0, 0.5)\n");
 }
 
+// A number inside an array or a variant has no row of its own; its range shows in the row of
+// what holds it (every number has a range: docs/scenario.md, "Limits").
+TEST(ScenarioSchemaPrint, NumbersInsideArraysAndVariantsShowTheirRange) {
+  const auto t = component(R"({
+    "type": "object",
+    "properties": {
+      "point": {"type": "array", "minItems": 2, "maxItems": 2,
+                "items": {"$ref": "#/definitions/coordinate"}},
+      "inertia": {"oneOf": [{"type": "number", "minimum": 0, "maximum": 1e8},
+                            {"type": "array", "items": {"type": "array",
+                             "items": {"type": "number", "minimum": -1e8, "maximum": 1e8}}}]}
+    },
+    "definitions": {"coordinate": {"type": "number", "minimum": -100, "maximum": 100}}
+  })");
+  const std::string out = printed(t, false);
+  EXPECT_NE(out.find(">= 2 items, <= 2 items, each [-100, 100]"), std::string::npos) << out;
+  EXPECT_NE(out.find("a number [0, 1e+08] or each [-1e+08, 1e+08]"), std::string::npos) << out;
+}
+
 // `rumble schema TYPE --json` is for tools: JSON and nothing else (issue #8).
 TEST(ScenarioSchemaPrint, RawSchemaIsJsonOnly) {
   const std::string out = printed(component(R"({"type": "object", "required": ["k"]})"), true);

@@ -105,7 +105,8 @@ TEST(ScenarioValidate, ErrorsAreCollectedFromEverySourceAndSortedByPosition) {
                 "library in /plugins or in RUMBLE_PLUGIN_PATH",
                 "/time/macro_step: must be <= /time/end (0.05), got 0.1 | the coupling step cannot "
                 "be longer than the whole run",
-                "/track/sleepers/count: must be in [3, 100000], got 2 | ",
+                "/track/sleepers/count: must be in [3, 100000], got 2 | number of sleepers; [3, "
+                "100000]: a rail needs supports on both sides of a wheel; 100000 is 60 km at 0.6 m",
                 "/vehicles/0/type: unknown vehicle type \"single_wheel\" | no vehicle plugins are "
                 "loaded; list the library in /plugins or in RUMBLE_PLUGIN_PATH"}));
   for (std::size_t i = 1; i < diags.size(); ++i) {

@@ -240,7 +240,9 @@ TEST(Study, ItsRunsDieWithAStudyKilledOutright) {
 
 // A run beyond the size limits (issue #8) is not valid in a study either, unless the study says
 // --yes (its child `rumble run` then gets --yes too). The scenario's own outputs.directory, a
-// file here, is no concern of a study: each run writes to its --output directory.
+// file here, is no concern of a study: each run writes to its --output directory. The huge run
+// is the longest the schema's ranges allow (an hour in macro steps of 1e-7 s, the vehicle
+// standing so that it stays on the rail; docs/scenario.md, "Limits").
 TEST(Study, RunSizeLimitsAndTheirConfirmation) {
   const auto dir = scratch_directory("study_run_size");
   nlohmann::json s = small_scenario();
@@ -248,10 +250,11 @@ TEST(Study, RunSizeLimitsAndTheirConfirmation) {
   write_scenario(dir, s);
   const auto study = write_study(dir, json::parse(R"({"study_version": 1,
     "scenario": "scenario.json", "output": "out",
-    "runs": [{"name": "small"}, {"name": "huge", "set": {"/time/macro_step": 1e-12}}]})"));
+    "runs": [{"name": "small"}, {"name": "huge", "set": {"/time/end": 3600, "/time/macro_step": 1e-7,
+                                                        "/vehicles/0/speed": 0}}]})"));
   const CliResult refused = run_rumble({"study", study.string(), "--dry-run"});
   EXPECT_THAT(refused.output, HasSubstr("study: run huge is not valid:\n"));
-  EXPECT_THAT(refused.output, HasSubstr("/time/macro_step: the run takes 5e+10 macro steps"));
+  EXPECT_THAT(refused.output, HasSubstr("/time/macro_step: the run takes 3.6e+10 macro steps"));
   EXPECT_THAT(refused.output, HasSubstr("2 runs: 1 to run, 0 up to date (skipped), 1 not valid"));
   const CliResult confirmed = run_rumble({"study", study.string(), "--dry-run", "--yes"});
   EXPECT_THAT(confirmed.output, HasSubstr("2 runs: 2 to run, 0 up to date (skipped), 0 not valid"))

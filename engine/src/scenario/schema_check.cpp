@@ -374,6 +374,9 @@ class IssueBuilder {
       issue.rule = Rule::kRange;
       issue.show_value = true;
       issue.message = range_message(*value, d);
+      // Every number's description says why its range is what it is (docs/scenario.md,
+      // "Limits"): the hint a user needs to choose a value.
+      issue.hint = range_reason(*value);
     } else if (starts_with(d, "Failed to match against any enum values")) {
       issue.rule = Rule::kEnum;
       issue.show_value = true;
@@ -554,6 +557,19 @@ class IssueBuilder {
     // valijson's text: "Array should contain no fewer than 1 elements"
     const auto digits = d.find_first_of("0123456789");
     return digits == std::string::npos ? 0 : std::strtoull(d.c_str() + digits, nullptr, 10);
+  }
+
+  /// The description of the schema node whose range `value` violates ("" when none says).
+  std::string range_reason(const json& value) const {
+    if (!value.is_number()) return "";
+    for (const auto& ref : refs_) {
+      if (!ref.node->is_object()) continue;
+      const Range r = range_of(*ref.node);
+      if ((r.lower.value != nullptr || r.upper.value != nullptr) &&
+          violates(r, value.get<double>()))
+        return description_of(*ref.node);
+    }
+    return "";
   }
 
   std::string range_message(const json& value, const std::string& d) const {

@@ -98,6 +98,39 @@ std::string range_text(const ojson& node) {
   return join(parts, ", ");
 }
 
+bool numeric(const ojson& node) {
+  const auto t = node.find("type");
+  return t != node.end() && (*t == "number" || *t == "integer");
+}
+
+/// The range of the numbers inside an array or a set of variants, which have no row of their
+/// own: "each [-100, 100]" (an array of numbers, nested arrays too), "a number [0, 1e+08]" (a
+/// variant that is a number). Every number has a range (docs/scenario.md, "Limits").
+std::string inner_range_text(const ojson& root, const ojson& node, int depth = 0) {
+  if (depth > 8) return "";
+  if (const auto items = node.find("items"); items != node.end()) {
+    const ojson* item = follow(root, &*items);
+    if (item == nullptr || !item->is_object()) return "";
+    if (numeric(*item)) return "each " + range_text(*item);
+    return inner_range_text(root, *item, depth + 1);
+  }
+  std::vector<std::string> parts;
+  for (const char* key : {"oneOf", "anyOf"}) {
+    const auto variants = node.find(key);
+    if (variants == node.end() || !variants->is_array()) continue;
+    for (const auto& raw : *variants) {
+      const ojson* v = follow(root, &raw);
+      if (v == nullptr || !v->is_object()) continue;
+      if (numeric(*v)) {
+        parts.push_back("a number " + range_text(*v));
+      } else if (const std::string inner = inner_range_text(root, *v, depth + 1); !inner.empty()) {
+        parts.push_back(inner);
+      }
+    }
+  }
+  return join(parts, " or ");
+}
+
 void add_rows(const ojson& root, const ojson& object, const std::string& prefix,
               std::vector<Row>& rows, int depth) {
   if (depth > 8) return;
@@ -118,8 +151,11 @@ void add_rows(const ojson& root, const ojson& object, const std::string& prefix,
     const bool is_required = std::find(required.begin(), required.end(), name) != required.end();
     const auto d = node->find("default");
     const auto description = node->find("description");
+    std::string range = range_text(*node);
+    if (const std::string inner = inner_range_text(root, *node); !inner.empty())
+      range += (range.empty() ? "" : ", ") + inner;
     rows.push_back({prefix + name, type_text(*node), is_required ? "yes" : "no",
-                    d != node->end() ? value_text(*d) : "", range_text(*node),
+                    d != node->end() ? value_text(*d) : "", range,
                     description != node->end() && description->is_string()
                         ? description->get<std::string>()
                         : ""});

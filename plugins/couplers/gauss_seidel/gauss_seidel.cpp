@@ -44,9 +44,9 @@ class GaussSeidel final : public rumble::Coupler {
     "order": {"enum": ["track_first", "soil_first"], "default": "track_first",
               "description": "which participant advances first in each macro step"},
     "extrapolation": {"type": "integer", "minimum": 0, "maximum": 2, "default": 0,
-                      "description": "polynomial order of the first participant's input over the step, extrapolated from past macro steps (0 = held constant)"},
+                      "description": "polynomial order of the first participant's input over the step, extrapolated from past macro steps (0 = held constant); [0, 2]: the orders implemented"},
     "interpolation": {"type": "integer", "minimum": 0, "maximum": 1, "default": 0,
-                      "description": "polynomial order of the second participant's input over the step (0 = the first participant's new end-of-step value held; 1 = linear from its previous to its new value)"},
+                      "description": "polynomial order of the second participant's input over the step (0 = the first participant's new end-of-step value held; 1 = linear from its previous to its new value); [0, 1]: the orders implemented"},
     )schema") + rumble::coupling::kMaxStepHalvingsSchema +
                                       ",\n    " + rumble::coupling::kAdaptiveStepSchema +
                                       R"schema(

@@ -42,9 +42,9 @@ class Jacobi final : public rumble::Coupler {
   "additionalProperties": false,
   "properties": {
     "extrapolation": {"type": "integer", "minimum": 0, "maximum": 2, "default": 0,
-                      "description": "polynomial order of each participant's input over the step, extrapolated from past macro steps (0 = held constant)"},
+                      "description": "polynomial order of each participant's input over the step, extrapolated from past macro steps (0 = held constant); [0, 2]: the orders implemented"},
     "threads": {"type": "integer", "minimum": 1, "maximum": 2, "default": 2,
-                "description": "2: the two participants advance on two threads; 1: one after the other (same results)"},
+                "description": "2: the two participants advance on two threads; 1: one after the other (same results); [1, 2]: one thread per participant"},
     )schema") + rumble::coupling::kMaxStepHalvingsSchema +
                                       ",\n    " + rumble::coupling::kAdaptiveStepSchema +
                                       R"schema(

@@ -76,9 +76,9 @@ class TwoStep final : public rumble::Coupler {
   "additionalProperties": false,
   "properties": {
     "extrapolation": {"type": "integer", "minimum": 0, "maximum": 2, "default": 0,
-                      "description": "step 1: polynomial order of the track's input (the reduced soil's motion) over a macro step, extrapolated from past steps (0 = held constant)"},
+                      "description": "step 1: polynomial order of the track's input (the reduced soil's motion) over a macro step, extrapolated from past steps (0 = held constant); [0, 2]: the orders implemented"},
     "interpolation": {"type": "integer", "minimum": 0, "maximum": 1, "default": 1,
-                      "description": "both steps: how a soil receives the footprint forces over a macro step (0 = the step-end force held; 1 = linear from the step-start to the step-end force)"}
+                      "description": "both steps: how a soil receives the footprint forces over a macro step (0 = the step-end force held; 1 = linear from the step-start to the step-end force); [0, 1]: the orders implemented"}
   }
 })schema";
   }

@@ -24,9 +24,9 @@ namespace rumble::soils {
 inline std::string soil_properties_schema(const std::string& layers_description,
                                           const std::string& extra_layer_properties = "") {
   return R"schema(
-    "E": {"type": "number", "exclusiveMinimum": 0, "description": "Young's modulus of the half-space, below any layers [Pa]; with nu and rho it gives G = E / (2 (1 + nu)) [Pa] and c_s = sqrt(G / rho) [m/s], from which every parameter is derived"},
-    "nu": {"type": "number", "minimum": 0, "exclusiveMaximum": 0.5, "description": "Poisson ratio of the half-space [-], in [0, 0.5)"},
-    "rho": {"type": "number", "exclusiveMinimum": 0, "description": "density of the half-space [kg/m^3]"},
+    "E": {"type": "number", "minimum": 1e5, "maximum": 1e12, "description": "Young's modulus of the half-space, below any layers [Pa]; with nu and rho it gives G = E / (2 (1 + nu)) [Pa] and c_s = sqrt(G / rho) [m/s], from which every parameter is derived; [1e5, 1e12] Pa: from peat (about 0.1 MPa) to hard rock (about 100 GPa)"},
+    "nu": {"type": "number", "minimum": 0, "maximum": 0.495, "description": "Poisson ratio of the half-space [-]; [0, 0.495]: soils are 0.2 to 0.4 dry, water-saturated clay about 0.49; nearer 0.5 the soil is incompressible and c_p = c_s sqrt((2 - 2 nu) / (1 - 2 nu)) grows without bound (a FEM soil's explicit step with it)"},
+    "rho": {"type": "number", "minimum": 500, "maximum": 5000, "description": "density of the half-space [kg/m^3]; [500, 5000] kg/m^3: from peat (about 1000) to dense rock (about 3000)"},
     "layers": {
       "type": "array",
       "description": ")schema" +
@@ -36,10 +36,10 @@ inline std::string soil_properties_schema(const std::string& layers_description,
         "additionalProperties": false,
         "required": ["thickness", "E", "nu", "rho"],
         "properties": {
-          "thickness": {"type": "number", "exclusiveMinimum": 0, "description": "layer thickness [m]"},
-          "E": {"type": "number", "exclusiveMinimum": 0, "description": "Young's modulus of the layer [Pa]"},
-          "nu": {"type": "number", "minimum": 0, "exclusiveMaximum": 0.5, "description": "Poisson ratio of the layer [-], in [0, 0.5)"},
-          "rho": {"type": "number", "exclusiveMinimum": 0, "description": "density of the layer [kg/m^3]"})schema" +
+          "thickness": {"type": "number", "minimum": 0.05, "maximum": 1000, "description": "layer thickness [m]; [0.05, 1000] m: from a thin asphalt or blinding layer (some cm) to far deeper than a train's waves reach (some 10 m)"},
+          "E": {"type": "number", "minimum": 1e5, "maximum": 1e12, "description": "Young's modulus of the layer [Pa]; [1e5, 1e12] Pa: from peat (about 0.1 MPa) to hard rock (about 100 GPa)"},
+          "nu": {"type": "number", "minimum": 0, "maximum": 0.495, "description": "Poisson ratio of the layer [-]; [0, 0.495]: soils are 0.2 to 0.4 dry, water-saturated clay about 0.49; nearer 0.5 the soil is incompressible and c_p = c_s sqrt((2 - 2 nu) / (1 - 2 nu)) grows without bound (a FEM soil's explicit step with it)"},
+          "rho": {"type": "number", "minimum": 500, "maximum": 5000, "description": "density of the layer [kg/m^3]; [500, 5000] kg/m^3: from peat (about 1000) to dense rock (about 3000)"})schema" +
          extra_layer_properties + R"schema(
         }
       }
@@ -55,7 +55,7 @@ inline const std::string kSoilPropertiesSchema = soil_properties_schema(
 
 /// Schema property of the internal time step, shared by the reduced soils.
 inline constexpr const char* kMaxStepSchema = R"schema(
-    "max_step": {"type": "number", "exclusiveMinimum": 0, "description": "longest internal sub-step [s]; each macro step H is cut into equal sub-steps no longer than this (default: 1/20 of the period of the fastest free motion, from the parameters; docs/soils.md)"})schema";
+    "max_step": {"type": "number", "minimum": 1e-7, "maximum": 1, "description": "longest internal sub-step [s]; each macro step H is cut into equal sub-steps no longer than this (default: 1/20 of the period of the fastest free motion, from the parameters; docs/soils.md); [1e-7, 1] s: as time.macro_step's (the soil's fastest motion is some 100 Hz; a sub-step of 1e-7 s is far finer than it needs)"})schema";
 
 class SoilParams {
  public:

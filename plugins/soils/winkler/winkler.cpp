@@ -35,9 +35,9 @@ class Winkler final : public rumble::soils::LumpedSoil {
     {"required": ["E", "nu", "rho"], "not": {"description": "gives soil properties together with k or c; give either k and c (direct) or E, nu and rho (from soil properties), not both", "anyOf": [{"required": ["k"]}, {"required": ["c"]}]}}
   ],
   "properties": {
-    "k": {"type": "number", "exclusiveMinimum": 0, "description": "spring per footprint [N/m]; from soil properties: Gazetas (1991) rigid rectangle 2L x 2B on a half-space, K_z = 2 G L / (1 - nu) (0.73 + 1.54 chi^0.75), chi = B / L <= 1"},
-    "c": {"type": "number", "minimum": 0, "description": "dashpot per footprint [N s/m]; from soil properties: Lysmer's analog (Gazetas 1991), C_z = rho V_La A, V_La = 3.4 c_s / (pi (1 - nu)) [m/s], A the footprint area [m^2]"},
-    "m": {"type": "number", "minimum": 0, "description": "participating mass per footprint [kg]; default 0 with k and c; from soil properties: Wolf's cone trapped mass (Wolf & Deeks 2004) 2.4 (nu - 1/3) rho pi r0^3, r0 = sqrt(A / pi), for nu > 1/3, else 0"},)schema") +
+    "k": {"type": "number", "minimum": 1e4, "maximum": 1e13, "description": "spring per footprint [N/m]; from soil properties: Gazetas (1991) rigid rectangle 2L x 2B on a half-space, K_z = 2 G L / (1 - nu) (0.73 + 1.54 chi^0.75), chi = B / L <= 1; [1e4, 1e13] N/m: Gazetas' K_z of a sleeper's footprint is about 1e6 on peat (E = 1 MPa) and 1e10 on hard rock (E = 100 GPa)"},
+    "c": {"type": "number", "minimum": 0, "maximum": 1e10, "description": "dashpot per footprint [N s/m]; from soil properties: Lysmer's analog (Gazetas 1991), C_z = rho V_La A, V_La = 3.4 c_s / (pi (1 - nu)) [m/s], A the footprint area [m^2]; [0, 1e10] N s/m: Lysmer's C_z of a sleeper's footprint is about 2e4 on peat and 1e7 on hard rock"},
+    "m": {"type": "number", "minimum": 0, "maximum": 1e6, "description": "participating mass per footprint [kg]; default 0 with k and c; from soil properties: Wolf's cone trapped mass (Wolf & Deeks 2004) 2.4 (nu - 1/3) rho pi r0^3, r0 = sqrt(A / pi), for nu > 1/3, else 0; [0, 1e6] kg: the trapped mass of a sleeper's footprint is some 100 kg (1e5 kg under a 10 m x 2 m footprint of dense soil)"},)schema") +
                                       rumble::soils::kSoilPropertiesSchema + "," +
                                       rumble::soils::kMaxStepSchema + R"schema(
   }

@@ -23,19 +23,32 @@ std::string num(double x) {
   return nlohmann::json(x).dump();
 }
 
-std::string positive_number(const char* unit, double fallback, const char* meaning) {
-  return R"({"type": "number", "exclusiveMinimum": 0, "default": )" + num(fallback) +
-         R"(, "description": ")" + meaning + " [" + unit + R"(]"})";
-}
+/// A number param's bounds (JSON number texts) and the reason for them, which its description
+/// states: "<meaning> [unit]; [lo, hi] unit: <why>" (every number has a physical range,
+/// docs/scenario.md "Limits").
+struct Bounds {
+  const char* lo;
+  const char* hi;
+  const char* why;
+};
 
-std::string non_negative_number(const char* unit, double fallback, const char* meaning) {
-  return R"({"type": "number", "minimum": 0, "default": )" + num(fallback) +
-         R"(, "description": ")" + meaning + " [" + unit + R"(]"})";
+constexpr Bounds kMassBounds{"1", "1e5",
+                             "a rail vehicle carries 0.5 to 15 t per wheel; 100 t is a whole "
+                             "loaded wagon"};
+constexpr Bounds kStiffnessBounds{"1e3", "1e10",
+                                  "suspension springs are 1e5 to 2e6 N/m per wheel; 1e10 N/m is "
+                                  "practically rigid"};
+constexpr Bounds kDampingBounds{"0", "1e7", "suspension dampers are 1e3 to 5e4 N s/m per wheel"};
+
+std::string number_param(const char* unit, const Bounds& b, double fallback, const char* meaning) {
+  return std::string(R"({"type": "number", "minimum": )") + b.lo + R"(, "maximum": )" + b.hi +
+         R"(, "default": )" + num(fallback) + R"(, "description": ")" + meaning + " [" + unit +
+         "]; [" + b.lo + ", " + b.hi + "] " + unit + ": " + b.why + R"("})";
 }
 
 std::string spring_damper_properties(double k, double c) {
-  return R"("k": )" + positive_number("N/m", k, "stiffness") + R"(, "c": )" +
-         non_negative_number("N s/m", c, "viscous damping");
+  return R"("k": )" + number_param("N/m", kStiffnessBounds, k, "stiffness") + R"(, "c": )" +
+         number_param("N s/m", kDampingBounds, c, "viscous damping");
 }
 
 std::string make_schema() {
@@ -45,10 +58,11 @@ std::string make_schema() {
   "description": "quarter car, values per wheel: wheel mass, primary spring-damper, bogie mass, optional secondary spring-damper and car-body mass. DOFs (down +): wheel, bogie[, car body] [m]",
   "properties": {
     "wheel_mass": )" +
-         positive_number("kg", kWheelMass, "unsprung mass per wheel (half a wheelset)") + R"(,
+         number_param("kg", kMassBounds, kWheelMass, "unsprung mass per wheel (half a wheelset)") +
+         R"(,
     "bogie_mass": )" +
-         positive_number("kg", kBogieMass,
-                         "bogie mass carried by this wheel's primary suspension") +
+         number_param("kg", kMassBounds, kBogieMass,
+                      "bogie mass carried by this wheel's primary suspension") +
          R"(,
     "primary": {"type": "object", "additionalProperties": false,
                 "description": "primary suspension per wheel, wheel to bogie",
@@ -59,17 +73,27 @@ std::string make_schema() {
     "secondary": {"type": "object", "additionalProperties": false,
                   "description": "optional secondary stage per wheel (bogie to car body); absent: two masses only",
                   "properties": {"car_body_mass": )" +
-         positive_number("kg", kCarBodyMass, "car-body mass carried by this wheel") + ", " +
-         spring_damper_properties(kSecondaryK, kSecondaryC) + R"(}},
+         number_param("kg", kMassBounds, kCarBodyMass, "car-body mass carried by this wheel") +
+         ", " + spring_damper_properties(kSecondaryK, kSecondaryC) + R"(}},
     "static_load": )" +
-         non_negative_number(
-             "N", kStaticLoad,
-             "constant downward load on the top mass (payload not modelled as a body)") +
+         number_param("N",
+                      {"0", "1e6",
+                       "wheel loads are 50 to 125 kN (heavy haul, 40 t axles, about "
+                       "200 kN)"},
+                      kStaticLoad,
+                      "constant downward load on the top mass (payload not modelled as a body)") +
          R"(,
     "wheel_radius": )" +
-         positive_number("m", kWheelRadius, "rolling radius") + R"(,
+         number_param("m",
+                      {"0.1", "2",
+                       "from small tram and bogie wheels (0.3 m) to the largest "
+                       "steam locomotive drivers (about 1.1 m)"},
+                      kWheelRadius, "rolling radius") +
+         R"(,
     "gravity": )" +
-         non_negative_number("m/s^2", kStandardGravity, "gravitational acceleration") + R"(
+         number_param("m/s^2", {"0", "30", "9.81 on Earth, 0 switches gravity off"},
+                      kStandardGravity, "gravitational acceleration") +
+         R"(
   }
 })";
 }

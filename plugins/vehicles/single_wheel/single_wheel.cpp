@@ -23,11 +23,12 @@ class SingleWheel final : public rumble::Vehicle {
   "additionalProperties": false,
   "required": ["mass", "static_load"],
   "properties": {
-    "mass": {"type": "number", "exclusiveMinimum": 0, "description": "wheel (unsprung) mass [kg]"},
-    "static_load": {"type": "number", "minimum": 0,
-                    "description": "static load carried by the wheel, excluding its own weight [N]"},
-    "wheel_radius": {"type": "number", "exclusiveMinimum": 0, "default": 0.46,
-                     "description": "rolling radius [m]"}
+    "mass": {"type": "number", "minimum": 1, "maximum": 1e5,
+             "description": "wheel (unsprung) mass [kg]; [1, 1e5] kg: half a wheelset is 500 to 1000 kg; 100 t is a whole loaded wagon"},
+    "static_load": {"type": "number", "minimum": 0, "maximum": 1e6,
+                    "description": "static load carried by the wheel, excluding its own weight [N]; [0, 1e6] N: wheel loads are 50 to 125 kN (heavy haul, 40 t axles, about 200 kN)"},
+    "wheel_radius": {"type": "number", "minimum": 0.1, "maximum": 2, "default": 0.46,
+                     "description": "rolling radius [m]; [0.1, 2] m: from small tram and bogie wheels (0.3 m) to the largest steam locomotive drivers (about 1.1 m)"}
   }
 })schema";
   }

@@ -52,7 +52,7 @@ struct AdaptiveStep {
 /// JSON schema of the "max_step_halvings" property, for a coupler's params_schema.
 inline constexpr const char* kMaxStepHalvingsSchema = R"schema("max_step_halvings": {
       "type": "integer", "minimum": 0, "maximum": 20, "default": 10,
-      "description": "how many times a macro step refused by a participant (DISCARD) is halved and retried before the run stops; 0 = stop at the first refusal"})schema";
+      "description": "how many times a macro step refused by a participant (DISCARD) is halved and retried before the run stops; 0 = stop at the first refusal; [0, 20]: 20 halvings shorten the step a million times"})schema";
 
 /// Stops the run (CosimHost::Stop) when participant `who` refused [t, t + h] after `halvings`
 /// halvings and max_halvings allow no more.
@@ -69,13 +69,13 @@ inline constexpr const char* kAdaptiveStepSchema = R"schema("adaptive": {
       "type": "object", "additionalProperties": false, "required": ["min_step", "max_step"],
       "description": "adaptive macro step controlled by the energy residual at the cut (docs/couplers.md); time.macro_step is the first step. Absent: fixed steps of time.macro_step",
       "properties": {
-        "min_step": {"type": "number", "exclusiveMinimum": 0, "description": "shortest macro step [s]; every step is a whole number of it"},
-        "max_step": {"type": "number", "exclusiveMinimum": 0, "description": "longest macro step [s]"},
-        "tolerance": {"type": "number", "exclusiveMinimum": 0, "maximum": 1, "default": 0.05, "description": "the energy residual a step may create, relative to the energy the run's strongest step passed through the cut in the same time [-]"},
-        "power_floor": {"type": "number", "exclusiveMinimum": 0, "default": 0.001, "description": "residual power always tolerated [W] (before anything moves)"},
-        "safety": {"type": "number", "exclusiveMinimum": 0, "maximum": 1, "default": 0.9, "description": "the controller aims at this fraction of the tolerance [-]"},
-        "proportional_gain": {"type": "number", "minimum": 0, "maximum": 1, "default": 0.2, "description": "PI controller's gain on the change of the error [-]"},
-        "integral_gain": {"type": "number", "exclusiveMinimum": 0, "maximum": 1, "default": 0.15, "description": "PI controller's gain on the error [-]"},
+        "min_step": {"type": "number", "minimum": 1e-7, "maximum": 1, "description": "shortest macro step [s]; every step is a whole number of it; [1e-7, 1] s: as time.macro_step's (usually 1e-4 to 1e-3 s; a step beyond 1 s couples none of a train's vibration)"},
+        "max_step": {"type": "number", "minimum": 1e-7, "maximum": 1, "description": "longest macro step [s], >= min_step; [1e-7, 1] s: as time.macro_step's (usually 1e-4 to 1e-3 s; a step beyond 1 s couples none of a train's vibration)"},
+        "tolerance": {"type": "number", "exclusiveMinimum": 0, "maximum": 1, "default": 0.05, "description": "the energy residual a step may create, relative to the energy the run's strongest step passed through the cut in the same time [-]; (0, 1]: a residual as large as the energy itself is no control"},
+        "power_floor": {"type": "number", "exclusiveMinimum": 0, "maximum": 1e6, "default": 0.001, "description": "residual power always tolerated [W] (before anything moves); (0, 1e6] W: a whole run passes joules through the cut (docs/couplers.md), so a megawatt tolerates any residual"},
+        "safety": {"type": "number", "exclusiveMinimum": 0, "maximum": 1, "default": 0.9, "description": "the controller aims at this fraction of the tolerance [-]; (0, 1]: a fraction"},
+        "proportional_gain": {"type": "number", "minimum": 0, "maximum": 1, "default": 0.2, "description": "PI controller's gain on the change of the error [-]; [0, 1]: ECCO's 0.2; above 1 the step oscillates"},
+        "integral_gain": {"type": "number", "exclusiveMinimum": 0, "maximum": 1, "default": 0.15, "description": "PI controller's gain on the error [-]; (0, 1]: ECCO's 0.15; above 1 the step oscillates"},
         "retake": {"type": "boolean", "default": true, "description": "take a step whose energy residual is above the tolerance again, shorter, when both participants can save and restore their state (false: never, as ECCO)"}
       }
     })schema";

@@ -97,17 +97,17 @@ TEST(SoilInputErrors, SchemaRulesThroughValidate) {
   } cases[] = {
       {"winkler_negative_k",
        {{"type", "winkler"}, {"params", {{"k", -1e8}, {"c", 2e5}}}},
-       "error: /soil/params/k: must be > 0, got -100000000.0"},
+       "error: /soil/params/k: must be in [10000, 1e+13], got -100000000.0"},
       {"clm_zero_k_f",
        {{"type", "clm"},
         {"params", {{"m_f", 0.0}, {"k_f", 0.0}, {"c_f", 1e5}, {"k_c", 1e8}, {"c_c", 1e5}}}},
-       "error: /soil/params/k_f: must be > 0, got 0.0"},
+       "error: /soil/params/k_f: must be in [10000, 1e+13], got 0.0"},
       {"clm_nu_half",
        {{"type", "clm"}, {"params", {{"E", 155e6}, {"nu", 0.5}, {"rho", 1800.0}}}},
-       "error: /soil/params/nu: must be in [0, 0.5), got 0.5"},
+       "error: /soil/params/nu: must be in [0, 0.495], got 0.5"},
       {"winkler_nu_negative",
        {{"type", "winkler"}, {"params", {{"E", 155e6}, {"nu", -0.1}, {"rho", 1800.0}}}},
-       "error: /soil/params/nu: must be in [0, 0.5), got -0.1"},
+       "error: /soil/params/nu: must be in [0, 0.495], got -0.1"},
       // Direct parameters and soil properties are exclusive: the plugin would refuse the mix at
       // run time, validate refuses it first.
       {"winkler_k_c_with_E",
