@@ -66,7 +66,8 @@ def soil_derived_clm(E, m_f):
 
 def scenarios(name, soil, f_max, near, work, sleepers=None, radius=None, impulse=None):
     base = json.loads(BASE.read_text())
-    base["outputs"] = {"directory": str(work / "runs")}
+    # Relative to the scenario file in `work`: an absolute results directory is refused (docs/scenario.md).
+    base["outputs"] = {"directory": "runs"}
     if sleepers:  # a smaller soil (the validation test): the track's other values unchanged
         base["track"]["sleepers"]["count"] = sleepers
         base["track"]["unevenness"]["position"] = 0.3 * sleepers
