@@ -84,6 +84,16 @@ TEST(FemMesh, PlanRefusesAMatchedLayerTooThinToMesh) {
       {"fem: params/mesh: the mesh would have about", "more than mesh.max_dofs"});
 }
 
+// So was a fine zone around the footprints thinner than the grid in a wide domain.
+TEST(FemMesh, PlanRefusesANearZoneTooFineToMeshInAWideDomain) {
+  FemSettings s = stiff_soil(1000.0, 40.0);
+  s.mesh.h_near = 0.01;        // m
+  s.mesh.near_distance = 0.1;  // m
+  test::expect_invalid_argument_containing(
+      [&] { plan_mesh(s, sleepers(30)); },
+      {"fem: params/mesh: the mesh would have about", "more than mesh.max_dofs"});
+}
+
 // The estimate is what the refusal and the memory budget rest on: within 2x of the mesh gmsh
 // makes, on a hemisphere and on a box with its matched layer.
 TEST(FemMesh, EstimateIsWithinTwiceTheMesh) {

@@ -72,6 +72,7 @@ RunSize estimate_run_size(const json& sc) {
   if (coupling.value("type", "") == "two_step")
     r.memory_bytes += 3.0 * footprints * (r.macro_steps + 1.0) * 8.0;
 
+  r.statics_bytes = kStaticsBytesPerPair * footprints * footprints;
   if (const auto f = outputs.find("fields"); f != outputs.end() && f->contains("interval"))
     r.field_snapshots = std::floor(t_end / f->at("interval").get<double>()) + 1.0;
   return r;
@@ -121,6 +122,22 @@ std::vector<Diagnostic> check_run_size(const json& sc) {
                               ", more than the limit of " + bytes_text(kMaxMemoryBytes),
                           std::string("shorten time.end, raise time.macro_step") +
                               (two_step ? " or use fewer sleepers; " : "; ") + kConfirm));
+  }
+  if (r.statics_bytes > kMaxMemoryBytes) {
+    const double footprints = sc.at("track").at("sleepers").at("count").get<double>();
+    out.push_back(finding(
+        "/track/sleepers/count",
+        "the static state of " + number_text(footprints) + " sleepers needs about " +
+            bytes_text(r.statics_bytes) + " of memory (dense " + number_text(footprints) + " x " +
+            number_text(footprints) +
+            " matrices of the track/soil interface), more than the "
+            "limit of " +
+            bytes_text(kMaxMemoryBytes),
+        "use at most " +
+            number_text(std::floor(std::sqrt(kMaxMemoryBytes / kStaticsBytesPerPair))) +
+            " sleepers (the track beyond a few hundred metres of the receivers barely changes "
+            "their vibration); " +
+            kConfirm));
   }
   if (r.field_snapshots > kMaxFieldSnapshots) {
     out.push_back(finding("/outputs/fields/interval",

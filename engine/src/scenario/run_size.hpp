@@ -32,7 +32,14 @@ struct RunSize {
   double bytes_written = 0.0;    // records x values_per_record x kBytesPerValue
   double memory_bytes = 0.0;     // what the run reserves for its histories up front
   double field_snapshots = 0.0;  // time.end / outputs.fields.interval + 1; 0 without fields
+  double statics_bytes = 0.0;    // the track/soil statics' dense matrices: kStaticsBytesPerPair n^2
 };
+
+/// The track/soil statics (track/static_interface.cpp) hold about seven dense n x n matrices of
+/// doubles for n footprints (the soil's flexibility shape, its prior and secant, the track's
+/// Jacobian, the identity, the LU and a product): 56 n^2 bytes, 5.6 GB at 1e4 sleepers (the
+/// 5.5 GB measured there), under kMaxMemoryBytes up to about 12 000 sleepers.
+inline constexpr double kStaticsBytesPerPair = 56.0;
 
 /// Bytes of one number in a CSV row: 9 significant digits, sign, exponent and separator.
 inline constexpr double kBytesPerValue = 17.0;

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/errors.hpp"
+#include "core/interrupt.hpp"
 
 namespace rumble {
 namespace {
@@ -125,6 +126,9 @@ InterfaceStatics solve_interface_statics(const InterfaceMap& track, const Interf
   const auto ni = static_cast<Eigen::Index>(n);
   std::vector<double> settled(n);
   const auto evaluate_track = [&](const Eigen::VectorXd& at) {
+    // Ctrl-C and SIGTERM stop the statics here: its Jacobian takes n track solves, minutes at
+    // thousands of sleepers (issue #30 item 2).
+    if (interrupt_requested()) throw Interrupted("interrupted while the static state was solved");
     std::copy(at.begin(), at.end(), u.begin());
     track(u, force);
     ++stats.track_evaluations;
