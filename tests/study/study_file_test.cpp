@@ -131,6 +131,24 @@ TEST(StudyFile, AxisMessages) {
                           "the scenario value to replace"));
 }
 
+// 8 axes of 20 values were 2.6e10 runs: --dry-run died of std::bad_alloc expanding them
+// (issue #30 item 2). The product is counted first.
+TEST(StudyFile, AxesThatMultiplyBeyondTheLimitAreRefusedUnexpanded) {
+  std::string axes = "[";
+  for (int a = 0; a < 8; ++a) {
+    axes += std::string(a ? ", " : "") + "{\"name\": \"a" + std::to_string(a) + "\", \"values\": {";
+    for (int v = 0; v < 20; ++v)
+      axes += std::string(v ? ", " : "") + "\"v" + std::to_string(v) + "\": {\"/time/end\": 0.1}";
+    axes += "}}";
+  }
+  axes += "]";
+  EXPECT_THAT(
+      read(R"({"study_version": 1, "scenario": "base.json", "axes": )" + axes + "}").problems,
+      ElementsAre("/axes: the study has 2.56e+10 runs (20 x 20 x 20 x 20 x 20 x 20 x 20 x 20 from "
+                  "the axes), more than the 10000 a study holds | remove axes or values, or "
+                  "split the study into several"));
+}
+
 TEST(StudyFile, RunMessages) {
   const auto with_runs = [](const std::string& runs) {
     return read(R"({"study_version": 1, "scenario": "base.json", "runs": )" + runs + "}").problems;

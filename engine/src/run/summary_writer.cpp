@@ -137,8 +137,9 @@ void SummaryWriter::write() {
   suffix_ = text.substr(at + placeholder.size());
   crashed_suffix_ = suffix_;
   const std::string running = std::string("\n  \"status\": \"") + status_name(RunStatus::kRunning);
+  constexpr std::string_view kCrashed = "crashed";  // as long as "running": same offsets
   if (const std::size_t s = crashed_suffix_.find(running + '"'); s != std::string::npos)
-    crashed_suffix_.replace(s + running.size() - 7, 7, "crashed");
+    crashed_suffix_.replace(s + running.size() - kCrashed.size(), kCrashed.size(), kCrashed);
   changed_ = false;
   char beat[192];
   write_pieces(beat, format_heartbeat(beat, sizeof beat));
@@ -149,8 +150,8 @@ void SummaryWriter::crashed(int sig, const char* participant) noexcept {
   // with another key (",") or closes ("}"). Built by hand: no allocation, no locale.
   char crash[256];
   std::size_t n = 0;
-  const auto add = [&](const char* text) {
-    for (; *text != '\0' && n + 1 < sizeof crash; ++text)
+  const auto add = [&](const char* text) {  // room is kept for the closing "}
+    for (; *text != '\0' && n + 8 < sizeof crash; ++text)
       if (*text != '"' && *text != '\\' && static_cast<unsigned char>(*text) >= 0x20)
         crash[n++] = *text;
   };

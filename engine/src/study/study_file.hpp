@@ -15,6 +15,9 @@
 namespace rumble::study {
 
 inline constexpr int kStudyVersion = 1;
+/// Most runs one study holds, axes' product and listed runs together (docs/study.md): each is a
+/// process, a results folder and a line of the report; 1e4 is days of FEM runs.
+inline constexpr double kMaxStudyRuns = 1e4;
 
 /// One value replaced in a run's scenario.
 struct Patch {
