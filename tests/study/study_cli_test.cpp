@@ -185,20 +185,28 @@ TEST(Study, FailingRunsAreReportedAndTheOthersComplete) {
               HasSubstr("4 runs: 1 to run, 1 up to date (skipped), 2 not valid"));
 }
 
-TEST(Study, InterruptStopsTheRunsAndRecordsTheState) {
-  const auto dir = scratch_directory("study_interrupt");
+/// Starts a study of `runs` (run objects) of a scenario long enough to be stopped (6000 macro
+/// steps), one at a time, into dir/out; returns once its first run has recorded 20 rows (or
+/// 30 s have passed).
+pid_t start_long_study(const fs::path& dir, const std::string& runs) {
   json s = small_scenario();
   s["time"]["end"] = 0.6;
   s["time"]["macro_step"] = 1e-4;
   s["track"]["sleepers"]["count"] = 40;
   write_scenario(dir, s);
   const auto study = write_study(dir, json::parse(R"({"study_version": 1,
-    "scenario": "scenario.json", "output": "out", "jobs": 1,
-    "runs": [{"name": "first"}, {"name": "second"}]})"));
+    "scenario": "scenario.json", "output": "out", "jobs": 1, "runs": )" +
+                                                  runs + "}"));
   const pid_t pid = start_rumble({"study", study.string()});
   const auto contact = dir / "out" / "first" / "contact.csv";
   for (int i = 0; i < 600 && csv_rows(contact) < 20; ++i)
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  return pid;
+}
+
+TEST(Study, InterruptStopsTheRunsAndRecordsTheState) {
+  const auto dir = scratch_directory("study_interrupt");
+  const pid_t pid = start_long_study(dir, R"([{"name": "first"}, {"name": "second"}])");
   kill(pid, SIGINT);
   EXPECT_EQ(wait_rumble(pid), 3);
   const json state = read_json(dir / "out" / "study.json");
@@ -216,17 +224,8 @@ TEST(Study, InterruptStopsTheRunsAndRecordsTheState) {
 // interrupted run does, with what they finished on disk.
 TEST(Study, ItsRunsDieWithAStudyKilledOutright) {
   const auto dir = scratch_directory("study_killed");
-  json s = small_scenario();
-  s["time"]["end"] = 0.6;
-  s["time"]["macro_step"] = 1e-4;
-  s["track"]["sleepers"]["count"] = 40;
-  write_scenario(dir, s);
-  const auto study = write_study(dir, json::parse(R"({"study_version": 1,
-    "scenario": "scenario.json", "output": "out", "jobs": 1, "runs": [{"name": "first"}]})"));
-  const pid_t pid = start_rumble({"study", study.string()});
+  const pid_t pid = start_long_study(dir, R"([{"name": "first"}])");
   const auto run = dir / "out" / "first";
-  for (int i = 0; i < 600 && csv_rows(run / "contact.csv") < 20; ++i)
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
   kill(pid, SIGKILL);
   wait_rumble(pid);
   std::string status;
