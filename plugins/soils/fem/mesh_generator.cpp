@@ -31,10 +31,10 @@ bool inside_layer(const MeshPlan& p, double x, double y, double depth) {
 }
 
 /// Integral of 0.8 / h^3 over the domain (gmsh's HXT makes about 0.8 V / h^3 nodes for a size
-/// h, numerics.md §1), on a 64 x 64 x 32 midpoint grid: a few per cent, enough to refuse a mesh
-/// that would not fit before spending minutes on it. What the grid cannot see is added in closed
-/// form: a matched layer thinner than a grid cell (its volume at its own size, the smaller of
-/// h_pml and the size where it begins), and as lower bounds the zone within near_distance of the
+/// h, docs/fem-soil.md §2), on a 64 x 64 x 32 midpoint grid: a few per cent, enough to refuse a
+/// mesh that would not fit before spending minutes on it. What the grid cannot see is added in
+/// closed form: a matched layer thinner than a grid cell (its volume at its own size, the smaller
+/// of h_pml and the size where it begins), and as lower bounds the zone within near_distance of the
 /// footprints at h_near and the footprints' surface alone (about 1.15 A / h_near^2 nodes:
 /// equilateral triangles of side h_near).
 double estimate_nodes(const MeshPlan& p) {

@@ -25,7 +25,7 @@ struct MeshPlan {
   double h_near = 0.0;          // m
   double h_max = 0.0;           // m
   double near_distance = 0.0;   // m
-  double estimated_nodes = 0;   // 0.8 V / h^3 integrated over the domain (numerics.md §1)
+  double estimated_nodes = 0;   // 0.8 V / h^3 integrated over the domain (docs/fem-soil.md §2)
   double pml = 0.0;             // m: a matched layer's thickness beyond the box (sides, bottom)
   double h_pml = 0.0;           // m: the largest element size in the layer
   double footprint_area = 0.0;  // m^2: all footprints together
