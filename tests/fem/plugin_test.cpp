@@ -204,7 +204,12 @@ INSTANTIATE_TEST_SUITE_P(BothDampings, FemCheckpoints, ::testing::Bool(),
                          });
 
 TEST(FemReceptance, StaticLimitReciprocityAndDissipation) {
-  TestSoil soil("fem", small_stiff_soil().dump());
+  // With Liu's springs alone: the half-space springs' statics add the far field's traction,
+  // which the receptance (the motion about the static state) does not carry
+  // (docs/fem-soil.md section 3.2).
+  nlohmann::json params = small_stiff_soil();
+  params["boundary"]["springs"] = "liu";
+  TestSoil soil("fem", params.dump());
   soil.accept_layout(sleeper_row(3));
   const VectorXd F = (VectorXd(3) << 5e4, 2e4, -1e4).finished();
   const VectorXd u_static = soil.initialize(F);
@@ -577,6 +582,22 @@ TEST(FemBadInput, AMatchedLayersSettingsUnderAnotherBoundaryAreRefused) {
   p["boundary"]["pml"] = {{"reflection", 0.01}, {"elements", 12}};
   EXPECT_NE(creation_error("fem", p.dump()), "");
   p["boundary"]["pml"] = {{"reflection", 0.01}, {"elements", 8}};
+  EXPECT_EQ(creation_error("fem", p.dump()), "");
+}
+
+TEST(FemBadInput, LiusNormalSpringUnderTheHalfSpaceSpringsIsRefused) {
+  // It would be ignored (the half-space springs are fitted to the field); its default passes.
+  nlohmann::json p = small_stiff_soil();
+  p["boundary"]["alpha_normal"] = 2.0;
+  EXPECT_EQ(creation_error("fem", p.dump()),
+            "fem: params/boundary/alpha_normal: sets Liu's normal springs, but boundary.springs "
+            "is \"half_space\" (springs fitted to the half-space's static field: "
+            "docs/fem-soil.md section 3.2); set boundary.springs \"liu\" or drop alpha_normal, "
+            "got 2");
+  p["boundary"]["springs"] = "liu";
+  EXPECT_EQ(creation_error("fem", p.dump()), "");
+  p["boundary"]["springs"] = "half_space";
+  p["boundary"]["alpha_normal"] = 4.0 / 3.0;
   EXPECT_EQ(creation_error("fem", p.dump()), "");
 }
 

@@ -68,6 +68,33 @@ TEST(IntegratedSoil, AMassOnASpringFollowsTheAverageAccelerationRuleExactly) {
   EXPECT_GT(energy.front(), 0.1 * 0.5 * kOscillatorStiffness * u0 * u0);  // it does oscillate
 }
 
+TEST(IntegratedSoil, AStaticStateHeldBeyondTheMatricesShiftsThePositionsNotTheMotion) {
+  // The soil's own statics put the footprint 10 % lower than K^-1 B F (a static far field): the
+  // footprint starts there, and the motion about it is the matrices' (the same oscillation).
+  const auto make = [] {
+    return IntegratedSoil("test", diagonal({kOscillatorMass}), diagonal({0.0}),
+                          diagonal({kOscillatorStiffness}), diagonal({1.0}));
+  };
+  IntegratedSoil plain = make(), held = make();
+  const double force = 5e4, u0 = force / kOscillatorStiffness, lower = 1.1 * u0;  // N, m, m
+  plain.start_static(&force);
+  held.start_static(&force, &lower);
+  EXPECT_NEAR(held.footprint_u(0), lower, 1e-15 * u0);
+  EXPECT_NEAR(held.static_offset(0), 0.1 * u0, 1e-15 * u0);
+  const Newmark newmark;
+  const double h = 2e-3, released = 0.0;  // s, N
+  Eigen::VectorXd predicted(1), p(1), force_now = Eigen::VectorXd::Constant(1, released);
+  for (IntegratedSoil* s : {&plain, &held}) s->factorize(newmark, h);
+  for (int n = 1; n <= 20; ++n) {
+    for (IntegratedSoil* s : {&plain, &held}) {
+      s->predict(newmark, h, predicted, p);
+      s->correct(newmark, h, force_now);
+    }
+    ASSERT_NEAR(held.footprint_u(0) - plain.footprint_u(0), 0.1 * u0, 1e-12 * u0) << n;
+    ASSERT_EQ(held.footprint_v(0), plain.footprint_v(0)) << n;
+  }
+}
+
 /// A chain of n masses on springs to the ground and to their neighbours, mass j numbered
 /// number[j]; B loads the first and last masses.
 struct Chain {

@@ -113,6 +113,7 @@ IntegratedSoil::IntegratedSoil(const std::string& name, const Sparse& M, const S
   G_.setZero(static_cast<Eigen::Index>(n_f_), static_cast<Eigen::Index>(n_f_));
   for (Eigen::VectorXd* v : {&x_, &v_, &a_, &pa_, &pv_, &rhs_, &free_, &x_old_})
     v->setZero(static_cast<Eigen::Index>(n_x_));
+  offset_.setZero(static_cast<Eigen::Index>(n_f_));
 }
 
 void IntegratedSoil::solve_static(Eigen::VectorXd& x) const {
@@ -164,12 +165,16 @@ void IntegratedSoil::static_displacement(const double* force, double* u) {
   for (std::size_t i = 0; i < n_f_; ++i) u[i] = footprint_dot(i, rhs_);
 }
 
-void IntegratedSoil::start_static(const double* force) {
+void IntegratedSoil::start_static(const double* force, const double* held) {
   x_.setZero();
   add_input(force, x_);
   solve_static(x_);
   v_.setZero();
   a_.setZero();
+  offset_.setZero();
+  if (held != nullptr)
+    for (std::size_t i = 0; i < n_f_; ++i)
+      offset_[static_cast<Eigen::Index>(i)] = held[i] - footprint_dot(i, x_);
 }
 
 void IntegratedSoil::factorize(const Newmark& newmark, double h) {
@@ -222,7 +227,7 @@ void IntegratedSoil::correct(const Newmark& newmark, double h, const Eigen::Vect
 }
 
 double IntegratedSoil::footprint_u(std::size_t i) const {
-  return footprint_dot(i, x_);
+  return footprint_dot(i, x_) + offset_[static_cast<Eigen::Index>(i)];
 }
 
 double IntegratedSoil::footprint_v(std::size_t i) const {

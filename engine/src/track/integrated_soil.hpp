@@ -49,14 +49,20 @@ class IntegratedSoil {
 
   /// Static footprint displacements u = B^T K^-1 B F [m] under footprint forces F [N].
   void static_displacement(const double* force, double* u);
-  /// Rest under static footprint forces F [N]: x = K^-1 B F, x' = x'' = 0.
-  void start_static(const double* force);
+  /// Rest under static footprint forces F [N]: x = K^-1 B F, x' = x'' = 0. With `held` (the
+  /// soil's own static footprint displacements [m]) the footprints report held + B^T (x - K^-1
+  /// B F) from then on: a soil's statics may hold more than its matrices (a FEM soil's static
+  /// far field, abi.h linear_matrix), which carry the motion about its static state.
+  void start_static(const double* force, const double* held = nullptr);
+  /// held - B^T K^-1 B F of the last start_static [m] (0 without `held`).
+  double static_offset(std::size_t i) const { return offset_[static_cast<Eigen::Index>(i)]; }
 
   /// For step size h: factors A and forms G [m/N] (n_footprints x n_footprints, symmetric).
   void factorize(const Newmark& newmark, double h);
   const Eigen::MatrixXd& step_receptance() const { return G_; }
 
-  /// Start of a micro-step: the predictors and the motion under no new force; u0 [m], p [m/s].
+  /// Start of a micro-step: the predictors and the motion under no new force; u0 [m] (B^T x:
+  /// without the static offset, which the caller adds where positions count), p [m/s].
   void predict(const Newmark& newmark, double h, Eigen::VectorXd& u0, Eigen::VectorXd& p);
   /// End of the micro-step under footprint forces F [N]: the soil's new state.
   void correct(const Newmark& newmark, double h, const Eigen::VectorXd& force);
@@ -93,6 +99,7 @@ class IntegratedSoil {
   Eigen::MatrixXd G_;
 
   Eigen::VectorXd x_, v_, a_;                     // state
+  Eigen::VectorXd offset_;                        // start_static's, per footprint [m]
   Eigen::VectorXd pa_, pv_, rhs_, free_, x_old_;  // per-step work space
 };
 

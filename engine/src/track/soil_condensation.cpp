@@ -63,15 +63,20 @@ void SoilCondensation::correct_solve(double* y) const {
 void SoilCondensation::predict(const Newmark& newmark, double h, const Eigen::VectorXd& pv_track,
                                double* rhs) {
   soil_->predict(newmark, h, u0_, p_);
+  // The footprints sit at B^T x plus the soil's static offset d (IntegratedSoil::start_static):
+  // the ballast's springs see it, its dashpots (velocities) do not.
   for (std::size_t i = 0; i < sleeper_dof_.size(); ++i) {
     const auto ii = static_cast<Eigen::Index>(i);
-    q_[ii] = -2.0 * c_b_ * (pv_track[static_cast<Eigen::Index>(sleeper_dof_[i])] - p_[ii]);
+    const double d = soil_->static_offset(i);
+    q_[ii] = -2.0 * c_b_ * (pv_track[static_cast<Eigen::Index>(sleeper_dof_[i])] - p_[ii]) -
+             2.0 * k_b_ * d;
   }
   t_ = q_ - kappa_ * u0_;
   force_.noalias() = gp_ * t_;  // work space here; the forces come in correct()
   for (std::size_t i = 0; i < sleeper_dof_.size(); ++i) {
     const auto ii = static_cast<Eigen::Index>(i);
-    rhs[sleeper_dof_[i]] += 0.5 * kappa_ * (u0_[ii] + force_[ii]) - c_b_ * p_[ii];
+    rhs[sleeper_dof_[i]] +=
+        0.5 * kappa_ * (u0_[ii] + force_[ii]) - c_b_ * p_[ii] + k_b_ * soil_->static_offset(i);
   }
 }
 

@@ -137,12 +137,7 @@ void TrackParticipant::solve_linear(double* y) const {
 
 // --------------------------------------------------------------------------- statics
 
-int TrackParticipant::solve_static(const SoilStatics& given_soil) {
-  const SoilStatics integrated = [this](const std::vector<double>& force, std::vector<double>& u) {
-    u.resize(force.size());
-    soil_->soil().static_displacement(force.data(), u.data());
-  };
-  const SoilStatics& soil = soil_ ? integrated : given_soil;
+int TrackParticipant::solve_static(const SoilStatics& soil) {
   const TrackConfig& c = structure_.config();
   const std::size_t n = structure_.sleeper_count();
   const std::size_t nw = vehicles_.wheel_count();
@@ -280,8 +275,8 @@ int TrackParticipant::solve_static(const SoilStatics& given_soil) {
   qd_.setZero();
   qdd_.setZero();
   u_now_ = u;
-  if (soil_) {  // the soil at rest under the final footprint forces (u to the iteration's 1e-9)
-    soil_->soil().start_static(fb.data());
+  if (soil_) {  // the soil at rest under the final footprint forces, where its statics put it
+    soil_->soil().start_static(fb.data(), u.data());
     for (std::size_t i = 0; i < n; ++i) u_now_[i] = soil_->soil().footprint_u(i);
   }
   std::fill(v_now_.begin(), v_now_.end(), 0.0);

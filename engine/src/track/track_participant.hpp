@@ -51,15 +51,18 @@ class TrackParticipant {
   static constexpr double kMaxMicroStepsPerMacroStep = 1e7;
 
   /// Integrates a linear soil with the track as one system (the monolithic reference, decision
-  /// 0008): from then on the footprint motion is the integrated soil's, set_input is not used,
-  /// and solve_static finds the statics on it. Before solve_static.
+  /// 0008): from then on the footprint motion is the integrated soil's and set_input is not
+  /// used; the statics are still the soil's own (solve_static's function), and the integrated
+  /// soil starts at rest there (IntegratedSoil::start_static). Before solve_static.
   void integrate_soil(std::unique_ptr<IntegratedSoil> soil);
   bool has_integrated_soil() const { return soil_ != nullptr; }
 
   /// Static equilibrium under the vehicles' weight, iterated with the soil to consistency;
-  /// with no soil (empty function) the footprints are fixed; with an integrated soil, on it
-  /// (the function is not called). Returns the iterations used.
+  /// with no soil (empty function) the footprints are fixed. Returns the iterations used.
   int solve_static(const SoilStatics& soil);
+  /// With an integrated soil after solve_static: how far the soil's statics hold footprint i
+  /// beyond its matrices' K^-1 B F [m] (IntegratedSoil::static_offset).
+  double integrated_static_offset(std::size_t i) const { return soil_->soil().static_offset(i); }
 
   /// Footprint motion over the next macro step: 2n channels (u_0..u_{n-1}, v_0..v_{n-1}).
   void set_input(const rumble_waveform& motion);

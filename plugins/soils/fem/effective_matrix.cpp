@@ -19,10 +19,8 @@ void for_each_entry(const ExplicitSolver& op, const Combination& c, Visit visit)
     for (int d = 0; d < 3; ++d) {
       double unit[3] = {0.0, 0.0, 0.0}, column[3] = {0.0, 0.0, 0.0};
       unit[d] = 1.0;
-      if (c.springs)
-        BoundaryNode::apply(b.normal, b.spring_normal, b.spring_tangential, unit, column);
-      BoundaryNode::apply(b.normal, c.dashpots * b.dashpot_normal,
-                          c.dashpots * b.dashpot_tangential, unit, column);
+      if (c.springs) b.apply_spring(unit, column);
+      b.apply_dashpot(unit, column, c.dashpots);
       for (int r = 0; r < 3; ++r) block[9 * b.node + 3 * r + d] += column[r];
     }
   // Symmetric to the bit (n_r n_d and n_d n_r may round apart): the upper part copies the lower.

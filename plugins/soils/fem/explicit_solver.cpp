@@ -88,8 +88,7 @@ void ExplicitSolver::times(const Eigen::VectorXd& x, Eigen::VectorXd& y, bool wi
     const std::int32_t b = boundary_of_[i];
     if (with_springs && b >= 0) {
       const BoundaryNode& node = boundary_[b];
-      BoundaryNode::apply(node.normal, node.spring_normal, node.spring_tangential, x.data() + 3 * i,
-                          out);
+      node.apply_spring(x.data() + 3 * i, out);
     }
   };
   if (stepped) {
@@ -457,7 +456,7 @@ void ExplicitSolver::residual(std::int64_t i, const double* w, const Eigen::Vect
                               double out[3]) const {
   if (const std::int32_t b = springs_ ? boundary_of_[i] : -1; b >= 0) {
     const BoundaryNode& node = boundary_[b];
-    BoundaryNode::apply(node.normal, node.spring_normal, node.spring_tangential, w + 3 * i, out);
+    node.apply_spring(w + 3 * i, out);
   }
   for (int c = 0; c < 3; ++c) out[c] -= f[3 * i + c];
 }

@@ -122,7 +122,7 @@ const char* settings_schema() {
       "type": "object", "additionalProperties": false, "default": {},
       "description": "the truncation surface",
       "properties": {
-        "type": {"enum": ["viscous_spring", "dashpot", "fixed", "pml"], "default": "viscous_spring", "description": "viscous_spring: Lysmer-Kuhlemeyer dashpots rho c_p (normal) and rho c_s (tangential) per unit area plus springs alpha G / r (Liu et al. 2006), which hold the static load without drift; dashpot: the dashpots alone (the static state comes from the springs, the dynamics have no static support: a net force drifts); fixed: no motion (reflects every wave, for checks); pml: a perfectly matched layer of boundary.pml.thickness beyond the box's sides and bottom (mesh.shape box, explicit integrator), which absorbs waves of any incidence above a few Hz (17 times less reflected than the viscous-spring boundary on the same box, 4 times less than on a box of the same DOFs, which costs 12 times less per simulated second: docs/fem-soil.md section 3.1), fixed behind; its damping may shorten the explicit step (logged)"},
+        "type": {"enum": ["viscous_spring", "dashpot", "fixed", "pml"], "default": "viscous_spring", "description": "viscous_spring: Lysmer-Kuhlemeyer dashpots rho c_p (normal) and rho c_s (tangential) per unit area plus springs (boundary.springs), which hold the static load without drift; dashpot: the dashpots alone (the static state comes from the springs, the dynamics have no static support: a net force drifts); fixed: no motion (reflects every wave, for checks); pml: a perfectly matched layer of boundary.pml.thickness beyond the box's sides and bottom (mesh.shape box, explicit integrator), which absorbs waves of any incidence above a few Hz (17 times less reflected than the viscous-spring boundary on the same box, 4 times less than on a box of the same DOFs, which costs 12 times less per simulated second: docs/fem-soil.md section 3.1), fixed behind; its damping may shorten the explicit step (logged)"},
         "pml": {
           "type": "object", "additionalProperties": false, "default": {},
           "description": "the perfectly matched layer (boundary.type pml)",
@@ -132,8 +132,9 @@ const char* settings_schema() {
             "elements": {"type": "number", "minimum": 2, "maximum": 40, "default": 8, "description": "tetrahedra across the layer at least: the element size in the layer is at most thickness / elements (measured: 4 reflect 5 times more than 8, 12 a quarter less) [-]; [2, 40]: fewer than 2 are no profile, more than 40 cost without gain"}
           }
         },
-        "alpha_normal": {"type": "number", "minimum": 0, "maximum": 10, "default": 1.3333333333333333, "description": "normal spring factor alpha_N [-] of K_N = alpha_N G / r [N/m^3], r the distance from the footprints' centre; [0, 10]: Liu et al. (2006) give 4/3 (0.5 to 2 in the literature)"},
-        "alpha_tangential": {"type": "number", "minimum": 0, "maximum": 10, "default": 0.6666666666666666, "description": "tangential spring factor alpha_T [-] of K_T = alpha_T G / r [N/m^3]; [0, 10]: Liu et al. (2006) give 2/3 (0.5 to 2 in the literature)"}
+        "springs": {"enum": ["half_space", "liu"], "default": "half_space", "description": "the static support of viscous_spring and dashpot: half_space: the statics take the traction that the half-space beyond the truncation surface exerts under the footprints' load (Boussinesq's point load integrated over each footprint), so the static state is the half-space's under any load (measured 0.2-1.5 % off Love's closed form at 2.5 and 5 m of a 30-sleeper track under the paper's wheel on a 12 m hemisphere, against up to 13.5 % too soft with liu), and each boundary node gets the 3 x 3 spring that holds the half-space's field of a uniform pressure on the footprints exactly, with alpha_tangential G / r across it (the motion about the static state, its receptance and linear matrices, move on these springs alone: a load change 5 m off the centre settles 7-13 % too soft beside it on 12 m, as with liu); liu: alpha_normal G / r along the normal and alpha_tangential G / r along the tangents (Liu et al. 2006), no far field: docs/fem-soil.md section 3.2"},
+        "alpha_normal": {"type": "number", "minimum": 0, "maximum": 10, "default": 1.3333333333333333, "description": "springs liu: normal spring factor alpha_N [-] of K_N = alpha_N G / r [N/m^3], r the distance from the footprints; [0, 10]: Liu et al. (2006) give 4/3 (0.5 to 2 in the literature)"},
+        "alpha_tangential": {"type": "number", "minimum": 0, "maximum": 10, "default": 0.6666666666666666, "description": "tangential spring factor alpha_T [-] of K_T = alpha_T G / r [N/m^3] (springs liu: along the tangents; half_space: across the half-space's static field); [0, 10]: Liu et al. (2006) give 2/3 (0.5 to 2 in the literature)"}
       }
     },
     "damping": {
@@ -262,7 +263,19 @@ FemSettings read_settings(const std::string& params_json) {
       refuse("boundary/pml/thickness", rule.str(), s.boundary.pml_thickness);
     }
   }
+  s.boundary.spring_model = boundary.value("springs", "half_space") == "liu"
+                                ? SpringModel::kLiu
+                                : SpringModel::kHalfSpace;
   s.boundary.alpha_normal = read(boundary, "alpha_normal", s.boundary.alpha_normal);
+  // alpha_normal would be ignored by the half-space springs: refused (the engine fills in its
+  // default, so only another value tells that it was set).
+  if (s.boundary.spring_model == SpringModel::kHalfSpace &&
+      s.boundary.alpha_normal != defaults.alpha_normal)
+    refuse("boundary/alpha_normal",
+           "sets Liu's normal springs, but boundary.springs is \"half_space\" (springs fitted "
+           "to the half-space's static field: docs/fem-soil.md section 3.2); set "
+           "boundary.springs \"liu\" or drop alpha_normal",
+           s.boundary.alpha_normal);
   s.boundary.alpha_tangential = read(boundary, "alpha_tangential", s.boundary.alpha_tangential);
 
   const nlohmann::json damping = j.value("damping", nlohmann::json::object());

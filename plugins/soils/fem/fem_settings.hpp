@@ -20,6 +20,9 @@ enum class MeshShape { kHemisphere, kBox };
 /// dynamics see no static support), a fixed truncation surface (reflects everything), or a
 /// perfectly matched layer around a box (pml.hpp) with a fixed surface behind it.
 enum class BoundaryKind { kViscousSpring, kDashpot, kFixed, kPml };
+/// The boundary springs: fitted to the half-space's static field (docs/fem-soil.md section 3.2)
+/// or Liu et al.'s alpha G / r.
+enum class SpringModel { kHalfSpace, kLiu };
 
 struct MeshRequest {
   MeshShape shape = MeshShape::kHemisphere;
@@ -44,8 +47,10 @@ struct MeshRequest {
 
 struct BoundaryRequest {
   BoundaryKind kind = BoundaryKind::kViscousSpring;
-  double alpha_normal = 4.0 / 3.0;      // spring K_N = alpha_N G / r per unit area [-]
-  double alpha_tangential = 2.0 / 3.0;  // spring K_T = alpha_T G / r per unit area [-]
+  SpringModel spring_model = SpringModel::kHalfSpace;
+  double alpha_normal = 4.0 / 3.0;      // kLiu: spring K_N = alpha_N G / r per unit area [-]
+  double alpha_tangential = 2.0 / 3.0;  // spring K_T = alpha_T G / r per unit area [-], kLiu's
+                                        // tangents and kHalfSpace's directions across the field
   // kPml: the layer beyond the box's sides and bottom.
   double pml_thickness = 0.0;        // m; 0 = mesh.radius / 2
   double pml_reflection = 1e-2;      // [-] continuum reflection of a normally incident P wave

@@ -33,6 +33,7 @@
 #include "receptance_cache.hpp"
 #include "resolved_band.hpp"
 #include "results_file.hpp"
+#include "static_far_field.hpp"
 #include "static_solver.hpp"
 #include "vtu_writer.hpp"
 #include "wave_speeds.hpp"
@@ -109,7 +110,7 @@ class FemSoil final : public rumble::Soil {
     }
     const double mesh_seconds = seconds_since(start);
     weights_ = footprint_weights(mesh_, footprints);
-    std::vector<BoundaryNode> boundary = absorbing_boundary(mesh_, settings_, plan_.region);
+    std::vector<BoundaryNode> boundary = absorbing_boundary(mesh_, settings_, footprints);
     std::vector<char> fixed(mesh_.node_count(), 0);
     // Behind a matched layer the surface is fixed: with the viscous-spring blocks or dashpots
     // there the discrete layer grew at every step tried (docs/fem-soil.md section 3.1).
@@ -134,6 +135,13 @@ class FemSoil final : public rumble::Soil {
       op_->set_pml(PmlLayer(mesh_, settings_, pml_profile()));
     local_steps_chosen_ = false;  // (at the first macro step, whose length they are fitted to)
     statics_ = std::make_unique<StaticSolver>(*op_, mesh_.nodes);
+    far_field_.reset();  // (built at the first static solve: validate needs none)
+    if (settings_.boundary.spring_model == rumble::fem::SpringModel::kHalfSpace &&
+        !settings_.layers.empty() && settings_.boundary.springs())
+      host_.info(
+          "fem: a layered profile: the statics hold no half-space far field (no closed form), "
+          "the boundary springs alone, fitted to the half-space's field with each node's own G "
+          "and nu (docs/fem-soil.md section 3.2)");
     implicit_.reset();
     if (settings_.implicit)
       implicit_ = std::make_unique<ImplicitSolver>(*op_, settings_.damping.mass_coefficient(),
@@ -155,6 +163,7 @@ class FemSoil final : public rumble::Soil {
     force_static_.assign(static_force, static_force + footprints_.size());
     force_last_ = force_static_;
     spread(force_static_.data(), f_);
+    add_static_far_field(force_static_.data(), f_);
     // No static load (a check, or a soil driven by forces alone): no factor needed.
     const auto start = std::chrono::steady_clock::now();
     const bool first_multigrid = statics_->multigrid() == nullptr;
@@ -464,6 +473,20 @@ class FemSoil final : public rumble::Soil {
     }
   }
 
+  /// f += the half-space's traction beyond the truncation surface under the footprint forces
+  /// (static_far_field.hpp): the static state is the half-space's, not the springs'.
+  void add_static_far_field(const double* force, Eigen::VectorXd& f) {
+    if (!rumble::fem::static_far_field_applies(settings_)) return;
+    if (!far_field_) {
+      const auto start = std::chrono::steady_clock::now();
+      far_field_.emplace(mesh_, settings_, footprints_, op_->boundary());
+      host_.log(RUMBLE_LOG_DEBUG, "fem: the half-space's static far field in " +
+                                      format(seconds_since(start), 2) + " s, " +
+                                      format(far_field_->bytes() / 1048576.0) + " MiB");
+    }
+    far_field_->add(force, f);
+  }
+
   void spread(const double* force, Eigen::VectorXd& out) const {
     out.setZero();
     for (std::size_t j = 0; j < weights_.size(); ++j)
@@ -632,6 +655,7 @@ class FemSoil final : public rumble::Soil {
   rumble::fem::FootprintWeights weights_;
   std::optional<rumble::fem::ExplicitSolver> op_;
   std::unique_ptr<rumble::fem::StaticSolver> statics_;
+  std::optional<rumble::fem::StaticFarField> far_field_;  // at the first static solve
   std::unique_ptr<rumble::fem::ImplicitSolver> implicit_;
   std::unique_ptr<rumble::fem::Receptance> receptance_;
   std::unique_ptr<rumble::fem::ImpulseReceptance> impulse_;

@@ -45,9 +45,9 @@ void add_boundary(const ExplicitSolver& op, bool springs, Triplets& t) {
       double unit[3] = {0.0, 0.0, 0.0}, column[3] = {0.0, 0.0, 0.0};
       unit[d] = 1.0;
       if (springs)
-        BoundaryNode::apply(b.normal, b.spring_normal, b.spring_tangential, unit, column);
+        b.apply_spring(unit, column);
       else
-        BoundaryNode::apply(b.normal, b.dashpot_normal, b.dashpot_tangential, unit, column);
+        b.apply_dashpot(unit, column);
       for (int c = 0; c < 3; ++c)
         if (column[c] != 0.0) t.emplace_back(3 * b.node + c, 3 * b.node + d, column[c]);
     }

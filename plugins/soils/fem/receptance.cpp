@@ -107,9 +107,8 @@ void Receptance::at(double f_hz, std::complex<double>* H) {
     for (int d = 0; d < 3; ++d) {
       double unit[3] = {0.0, 0.0, 0.0}, spring[3] = {0.0, 0.0, 0.0}, dashpot[3] = {0.0, 0.0, 0.0};
       unit[d] = 1.0;
-      if (springs)
-        BoundaryNode::apply(b.normal, b.spring_normal, b.spring_tangential, unit, spring);
-      BoundaryNode::apply(b.normal, b.dashpot_normal, b.dashpot_tangential, unit, dashpot);
+      if (springs) b.apply_spring(unit, spring);
+      b.apply_dashpot(unit, dashpot);
       for (int c = 0; c < 3; ++c)
         A.coeffRef(3 * b.node + c, 3 * b.node + d) += spring[c] + i_w * dashpot[c];
     }

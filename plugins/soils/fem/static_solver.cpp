@@ -61,9 +61,7 @@ Eigen::VectorXd StaticSolver::conjugate_gradients(const Eigen::VectorXd& f) {
       for (std::int64_t k = K.row_start()[r]; k < K.row_start()[r + 1]; ++k)
         if (K.column()[k] == r) diagonal_[r] = K.value()[k];
     for (const BoundaryNode& b : op_.boundary())
-      for (int c = 0; c < 3; ++c)
-        diagonal_[3 * b.node + c] += b.spring_tangential + (b.spring_normal - b.spring_tangential) *
-                                                               b.normal[c] * b.normal[c];
+      for (int c = 0; c < 3; ++c) diagonal_[3 * b.node + c] += b.spring(c, c);
     last_ = Eigen::VectorXd::Zero(n);
   }
   Eigen::VectorXd x = last_, r = f, z(n), p(n), q;

@@ -303,7 +303,11 @@ typedef struct rumble_csc {
   double* values;     /**< nnz entries, or null */
 } rumble_csc;
 
-/** 1.1: which matrix linear_matrix returns (M x'' + C x' + K x = B F; u = B^T x, v = B^T x'). */
+/** 1.1: which matrix linear_matrix returns (M x'' + C x' + K x = B F; u = B^T x, v = B^T x').
+ *  They describe the motion about the soil's static state: a host starts them at rest at
+ *  K^-1 B F_static and reports each footprint where the soil's own initialize put it plus
+ *  B^T (x - K^-1 B F_static). A soil's statics may hold more than K^-1 B F (the FEM soil's
+ *  static far field: a few per cent); more than a tenth of the settlement is refused. */
 typedef enum rumble_matrix {
   RUMBLE_MATRIX_MASS = 0,      /**< M [kg], n_x x n_x */
   RUMBLE_MATRIX_DAMPING = 1,   /**< C [N s/m] */

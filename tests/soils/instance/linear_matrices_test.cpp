@@ -41,8 +41,13 @@ double largest(const SparseMatrix& a) {
              : Eigen::Map<const Eigen::VectorXd>(a.valuePtr(), a.nonZeros()).cwiseAbs().maxCoeff();
 }
 
+/// The matrices' receptance against the soil's to `tolerance`, and their statics K^-1 B F against
+/// the soil's to `statics_tolerance` (by default the same; a soil's statics may hold more than
+/// its matrices, abi.h linear_matrix).
 void expect_matrices_give_the_soils_answers(const std::string& type, const nlohmann::json& params,
-                                            double tolerance = 1e-10) {
+                                            double tolerance = 1e-10,
+                                            double statics_tolerance = 0.0) {
+  if (statics_tolerance == 0.0) statics_tolerance = tolerance;
   SCOPED_TRACE(type + " " + params.dump());
   const auto layout = sleeper_row(9);
   const Index n = static_cast<Index>(layout.size());
@@ -77,7 +82,8 @@ void expect_matrices_give_the_soils_answers(const std::string& type, const nlohm
   ASSERT_EQ(statics.info(), Eigen::Success);
   const VectorXd u_matrices = m.B.transpose() * statics.solve(VectorXd(m.B * F));
   const VectorXd u_soil = static_displacement(*soil, F);
-  EXPECT_LT((u_matrices - u_soil).cwiseAbs().maxCoeff(), tolerance * u_soil.cwiseAbs().maxCoeff());
+  EXPECT_LT((u_matrices - u_soil).cwiseAbs().maxCoeff(),
+            statics_tolerance * u_soil.cwiseAbs().maxCoeff());
 }
 
 TEST(SoilLinearMatrices, WinklerGivenDirectly) {
@@ -95,13 +101,16 @@ TEST(SoilLinearMatrices, ClmFromSoilProperties) {
 
 TEST(SoilLinearMatrices, FemOnASmallMesh) {
   // A coarse stiff hemisphere (as tests/fem): 405 nodes, its viscous-spring boundary in C and K.
-  expect_matrices_give_the_soils_answers(
-      "fem",
-      {{"E", 750e6},
-       {"nu", 0.3},
-       {"rho", 1800.0},
-       {"mesh", {{"radius", 6.0}, {"f_max", 40.0}, {"near_distance", 1.5}}}},
-      1e-8);
+  // Its statics also hold the half-space's far field, which the matrices (the motion about the
+  // static state) do not carry: measured 1.3 % of the largest settlement under this uneven
+  // load; with Liu's springs alone there is none.
+  nlohmann::json params = {{"E", 750e6},
+                           {"nu", 0.3},
+                           {"rho", 1800.0},
+                           {"mesh", {{"radius", 6.0}, {"f_max", 40.0}, {"near_distance", 1.5}}}};
+  expect_matrices_give_the_soils_answers("fem", params, 1e-8, 0.03);
+  params["boundary"] = {{"springs", "liu"}};
+  expect_matrices_give_the_soils_answers("fem", params, 1e-8);
 }
 
 TEST(SoilLinearMatrices, DeclaredAsACapability) {
