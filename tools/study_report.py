@@ -200,6 +200,7 @@ def ppv_figure(runs, axes):
 
 
 def cwt_files(run):
+    """{distance [m]: (receiver, its cwt CSV, its ppv.csv row)}."""
     post = run.dir / "post"
     out = {}
     for row in run.ppv:
@@ -207,8 +208,19 @@ def cwt_files(run):
         safe = "".join(c if c.isalnum() or c in ".-_=" else "_" for c in name)
         path = post / f"cwt_{safe}.csv"
         if path.exists():
-            out[number(row.get("distance [m]"))] = (name, path)
+            out[number(row.get("distance [m]"))] = (name, path, row)
     return out
+
+
+def mark_resolved_band(ax, row, horizontal):
+    """The receiver's resolved frequency as a dashed red line (above it the record is the
+    mesh's, docs/post-processing.md "The resolved band"); returns the title's mark."""
+    f_resolved = number(row.get("f_resolved [Hz]"))
+    if math.isnan(f_resolved):
+        return ""
+    line = ax.axhline if horizontal else ax.axvline
+    line(f_resolved, color="red", ls="--", lw=1.0)
+    return f" (* mostly above {f_resolved:.3g} Hz)" if unresolved(row) else ""
 
 
 def scalogram_figure(runs, distance):
@@ -224,14 +236,14 @@ def scalogram_figure(runs, distance):
         return None
     n = len(chosen)
     # One colour scale for all panels, so that the runs compare at a glance.
-    tables = [read_csv(path) for (_, _, _, path) in chosen]
+    tables = [read_csv(path) for (_, _, _, path, _) in chosen]
     vmax = max((np.nanmax(t[1][:, 2:]) * 1e3 for t in tables if t is not None), default=1.0)
     cols = min(3, n)
     rows = (n + cols - 1) // cols
     fig, panels = plt.subplots(rows, cols, figsize=(4.2 * cols, 3.2 * rows), squeeze=False)
     for ax in panels.flat[n:]:
         ax.axis("off")
-    for ax, (r, d, name, path), table in zip(panels.flat, chosen, tables):
+    for ax, (r, d, name, path, row), table in zip(panels.flat, chosen, tables):
         if table is None:
             continue
         header, data = table
@@ -245,7 +257,9 @@ def scalogram_figure(runs, distance):
         ax.plot(t, coi, "w--", lw=0.8)
         ax.set_yscale("log")
         ax.set_ylim(freqs.min(), freqs.max())
-        ax.set(xlabel="t [s]", ylabel="f [Hz]", title=f"{r.name}{stopped_note(r)}: {name}")
+        mark = mark_resolved_band(ax, row, horizontal=True)
+        ax.set(xlabel="t [s]", ylabel="f [Hz]")
+        ax.set_title(f"{r.name}{stopped_note(r)}: {name}{mark}", fontsize=8)
         fig.colorbar(mesh, ax=ax, label="|W| [mm/s]")
     fig.tight_layout()
     return fig
@@ -259,8 +273,8 @@ def third_octave_figure(runs, distances=(2.5, 5.0)):
         lines = []
         for r in runs:
             table = read_csv(r.dir / "post" / "third_octave.csv")
-            names = {number(row.get("distance [m]")): row.get("receiver", "") for row in r.ppv}
-            names = {k: v for k, v in names.items() if not math.isnan(k)}
+            rows = {number(row.get("distance [m]")): row for row in r.ppv}
+            names = {k: row.get("receiver", "") for k, row in rows.items() if not math.isnan(k)}
             if table is None or not names:
                 continue
             near = min(names, key=lambda x: abs(x - d))
@@ -270,18 +284,22 @@ def third_octave_figure(runs, distances=(2.5, 5.0)):
             col = next((i for i, h in enumerate(header) if h.startswith(names[near] + " vz L_v")),
                        None)
             if col is not None:
-                lines.append((r.name, data[:, 1], data[:, col], header[col]))
+                lines.append((r.name, data[:, 1], data[:, col], header[col], rows[near]))
         if lines:
             panels.append((d, lines))
     if not panels:
         return None
     fig, axes = plt.subplots(1, len(panels), figsize=(5.2 * len(panels), 3.6), squeeze=False)
     for ax, (d, lines) in zip(axes.flat, panels):
-        for name, f, level, _ in lines:
-            ax.semilogx(f, level, marker="o", ms=3, lw=0.9, label=name)
+        for name, f, level, _, row in lines:
+            drawn = ax.semilogx(f, level, marker="o", ms=3, lw=0.9, label=name)[0]
+            f_resolved = number(row.get("f_resolved [Hz]"))
+            if not math.isnan(f_resolved):  # above it, the bands are the mesh's
+                ax.axvline(f_resolved, color=drawn.get_color(), ls="--", lw=0.9)
         unit = lines[0][3].split("L_v", 1)[-1].strip()  # e.g. "[dB re 1e-09 m/s]"
         ax.set(xlabel="band centre f_m [Hz]", ylabel=f"vertical L_v {unit}",
-               title=f"one-third-octave levels near {d:g} m")
+               title=f"one-third-octave levels near {d:g} m\n(dashed: each run's resolved band; "
+                     "above it, the mesh's)")
         ax.grid(True, which="both", alpha=0.4)
         ax.legend(fontsize=7)
     fig.tight_layout()
@@ -405,23 +423,32 @@ def indicators_table(runs):
     rows = []
     for r in runs:
         for row in r.ppv:
-            def cell(key, scale=1.0, fmt="{:.3g}"):
+            def cell(key, scale=1.0, fmt="{:.3g}", raw=False):
+                """A value; a raw one (of the whole record) is marked where the record is
+                mostly above the resolved band."""
                 v = number(row.get(key))
-                return "<td>-</td>" if math.isnan(v) else f"<td>{fmt.format(v * scale)}</td>"
+                if math.isnan(v):
+                    return "<td>-</td>"
+                if raw and unresolved(row):
+                    return f"<td class='unresolved'>{fmt.format(v * scale)}<sup>*</sup></td>"
+                return f"<td>{fmt.format(v * scale)}</td>"
             ratio = number(row.get("PPV / DIN 4150-3 line 3 [-]"))
             css = " class='bad'" if not math.isnan(ratio) and ratio >= 1.0 else ""
             rows.append(
                 f"<tr{css}><th>{html.escape(r.name + stopped_note(r))}</th>"
                 f"<td>{html.escape(row.get('receiver', ''))}</td>"
-                + cell("PPV_z [m/s]", 1e3) + cell("PPV_3c [m/s]", 1e3) + cell("f_dom [Hz]")
-                + cell("KB_F,max [m/s]", 1e3) + cell("PPV / DIN 4150-3 line 3 [-]")
-                + cell("PPV / BS 7385-2 line 2 [-]") + cell("f_resolved [Hz]")
+                + cell("PPV_z [m/s]", 1e3, raw=True) + cell("PPV_3c [m/s]", 1e3, raw=True)
+                + cell("f_dom [Hz]", raw=True) + cell("KB_F,max [m/s]", 1e3, raw=True)
+                + cell("PPV / DIN 4150-3 line 3 [-]", raw=True)
+                + cell("PPV / BS 7385-2 line 2 [-]", raw=True) + cell("f_resolved [Hz]")
                 + cell("energy_z above f_resolved [-]", 100.0, "{:.0f}")
                 + cell("PPV_z resolved [m/s]", 1e3) + "</tr>")
     if not rows:
         return ""
     return ("<table><caption>Indicators per receiver (rows at or above the DIN 4150-3 line 3 guide "
-            "value in red)</caption><tr><th>run</th><th>receiver</th><th>PPV_z [mm/s]</th>"
+            "value in red; <sup>*</sup> and shaded: of a record mostly above the band its soil's "
+            f"mesh resolves, more than {UNRESOLVED_SHARE:.0%} of its vertical energy, so mostly "
+            "the mesh's)</caption><tr><th>run</th><th>receiver</th><th>PPV_z [mm/s]</th>"
             "<th>PPV 3 components [mm/s]</th><th>dominant frequency [Hz]</th>"
             "<th>KB_F,max (DIN 4150-2) [mm/s]</th><th>PPV / DIN 4150-3 line 3</th>"
             "<th>PPV / BS 7385-2 line 2</th><th>resolved band [Hz]</th>"
