@@ -1,8 +1,8 @@
 // The FEM soil on meshes too large for the default suite (label `validation`, excluded from
 // `ctest -LE validation`; run with `ctest --preset dev -L validation`): the footing settlement
-// converging under refinement (physics.md §8 case 7), a receiver's PPV on finer meshes than
+// converging under refinement (docs/fem-soil.md section 6), a receiver's PPV on finer meshes than
 // the default suite's (ppv_convergence_test.cpp), and the Rayleigh wave's speed between two
-// surface receivers far from the load (physics.md §8 case 2).
+// surface receivers far from the load (docs/fem-soil.md section 6).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -31,12 +31,18 @@ double footing_settlement(double h_near) {
   return soil.initialize(VectorXd::Constant(1, 1e5))[0];
 }
 
-TEST(FemValidation, FootingSettlementConvergesAsHSquared) {
-  const double exact = 0.946 * 1e5 * (1.0 - 0.09) / 155e6;  // physics.md §5.3, B = 1 m
+TEST(FemValidation, FootingSettlementConvergesFromBelow) {
+  const double exact = 0.946 * 1e5 * (1.0 - 0.09) / 155e6;  // docs/soils.md (Love), B = 1 m
   const double coarse = footing_settlement(0.25), fine = footing_settlement(0.125);
-  // Measured: -9.2 % and -2.2 %: the error falls 4.2x for h / 2 (second order), from below.
-  EXPECT_LT(std::abs(fine / exact - 1.0), 0.035);
-  EXPECT_GT((exact - coarse) / (exact - fine), 3.0);
+  std::printf("settlement / closed form: %.4f at B/4, %.4f at B/8\n", coarse / exact, fine / exact);
+  // Measured with the half-space's far field (docs/fem-soil.md section 3.2): -11.0 % and
+  // -4.0 %, the error falling 2.7x for h / 2 (order 1.45: the pressure's jump at the footing's
+  // edge). With Liu's springs it was -9.2 % and -2.2 % (4.2x), the boundary's softness
+  // making up part of the elements' stiffness.
+  EXPECT_LT(coarse, fine);
+  EXPECT_LT(fine, exact);
+  EXPECT_LT(std::abs(fine / exact - 1.0), 0.05);
+  EXPECT_GT((exact - coarse) / (exact - fine), 2.4);
 }
 
 TEST(FemValidation, ReceiverPpvConvergesOnFinerMeshes) {
