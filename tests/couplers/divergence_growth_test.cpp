@@ -3,7 +3,7 @@
 // still small, with the growth rate per macro step in the message and in summary.json. Each ran
 // to `completed` or was caught only at 10 m/s before. Their stable twins complete.
 //   - the paper's track over a massless CLM (E = 60 MPa), Gauss-Seidel at 0.5 ms: predicted
-//     1.029 per step; the run's speed later grows 1.041 per step (footprint_velocity.csv,
+//     1.041 per step; the run's speed later grows 1.041 per step (footprint_velocity.csv,
 //     0.17-0.25 s), to 218 m/s at 0.25 s, and was `completed` with 0.26 m/s and more;
 //   - the small track over the soft CLM with 50 kg per footprint, Jacobi at 1 ms: predicted 1.244;
 //   - the small track on a soft FEM soil (E = 10 MPa, a 3.3e4-DOF mesh), Jacobi at 1 ms: its

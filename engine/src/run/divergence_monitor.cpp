@@ -30,8 +30,7 @@ const char* const kFix =
     "one: a massless soil and the ballast dashpots close a loop that explicit coupling does not "
     "survive at any time.macro_step (docs/decisions/0004); otherwise (a soil with mass, fem "
     "included) reduce time.macro_step, couple with gauss_seidel rather than jacobi, or use the "
-    "implicit coupler (`rumble stability FILE` gives the growth per macro step where the soil "
-    "offers its matrices)";
+    "implicit coupler (`rumble stability FILE` gives the growth per macro step of each scheme)";
 
 }  // namespace
 
