@@ -251,6 +251,23 @@ TEST(PostRun, DivergedRecordIsCutWithAWarning) {
   EXPECT_NEAR(r.report["receivers"][0]["ppv_z_m_s"].get<double>(), kA, 1e-8 * kA);
 }
 
+// The same record beside a summary.json of a run that completed: the file is blamed, not the run
+// (issue #30 item 5: a message blames the right thing).
+TEST(PostRun, ANonFiniteRecordOfACompletedRunBlamesTheFile) {
+  const fs::path dir = fresh_dir();
+  std::vector<double> v = sine_at_fs(kA, 25.0);
+  v[1500] = std::nan("");
+  write_csv(dir / "receivers.csv", {"d=2.500000 m [m/s]"}, {v});
+  std::ofstream(dir / "summary.json") << R"({"status": "completed"})";
+  EXPECT_EQ(message_of([&] { post_process(dir); }),
+            "receivers.csv in '" + dir.string() +
+                "': column 'd=2.500000 m [m/s]' is not finite at t = 1.5 s (data row 1501), but "
+                "summary.json says the run completed, which writes finite numbers only: the file "
+                "was damaged or edited after the run. Rerun the scenario");
+  std::ofstream(dir / "summary.json") << R"({"status": "failed"})";
+  EXPECT_NO_THROW(post_process(dir));  // cut with a warning, as without a summary
+}
+
 TEST(PostRun, MissingFileOrColumnSaysWhatWhereAndTheFix) {
   const fs::path dir = fresh_dir();
   std::string m = message_of([&] { post_process(dir); });

@@ -214,7 +214,16 @@ RunRecord read_run(const fs::path& dir) {
   return run;
 }
 
-// Cuts the record before the first non-finite velocity (a diverged run) and says so.
+// The run's status as its summary.json gives it ("" when it does not say).
+std::string run_status(const fs::path& dir) {
+  const std::optional<json> summary = read_summary(dir);
+  return summary && summary->contains("status") && (*summary)["status"].is_string()
+             ? (*summary)["status"].get<std::string>()
+             : "";
+}
+
+// Cuts the record before the first non-finite velocity (a diverged run) and says so. A run that
+// completed writes finite numbers only: then the file is blamed, not the run.
 void cut_at_divergence(RunRecord& run, std::vector<std::string>& warnings, const fs::path& dir) {
   CsvTable& t = run.table;
   std::size_t first_bad = t.time.size();
@@ -231,6 +240,12 @@ void cut_at_divergence(RunRecord& run, std::vector<std::string>& warnings, const
         }
     }
   if (first_bad == t.time.size()) return;
+  if (const std::string status = run_status(dir); status == "completed")
+    throw std::runtime_error(
+        "receivers.csv in " + quoted(dir) + ": column '" + column + "' is not finite at t = " +
+        number_text(t.time[first_bad], 9) + " s (data row " + std::to_string(first_bad + 1) +
+        "), but summary.json says the run completed, which writes finite numbers only: the "
+        "file was damaged or edited after the run. Rerun the scenario");
   if (first_bad < 2)
     throw std::runtime_error(
         "receivers.csv in " + quoted(dir) + ": column '" + column +
