@@ -8,9 +8,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <nlohmann/json.hpp>
 #include <numbers>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -36,6 +36,20 @@ double half_space_settlement(const std::vector<rumble_footprint>& footprints,
   return u * (1.0 - nu * nu) / (std::numbers::pi * E);
 }
 
+/// Each probe's vertical displacement [m] in the newest of the samples waiting (at most 1024).
+std::vector<double> newest_probe_settlements(TestSoil& soil, std::size_t probes) {
+  std::vector<double> times(1024), values(times.size() * probes * RUMBLE_PROBE_VALUES);
+  std::uint64_t n = 0;
+  if (soil.api().probe_samples(soil.self(), times.data(), values.data(), times.size(), &n) !=
+          RUMBLE_OK ||
+      n == 0)
+    throw std::runtime_error("probe_samples");
+  std::vector<double> uz(probes);
+  for (std::size_t p = 0; p < probes; ++p)
+    uz[p] = values[((n - 1) * probes + p) * RUMBLE_PROBE_VALUES + 5];
+  return uz;
+}
+
 /// The probes' static vertical displacements [m]: the soil is initialized under `forces` and
 /// stepped once under the same forces (which moves nothing, plugin_test.cpp), so that the
 /// probes record the static state.
@@ -46,16 +60,7 @@ std::vector<double> static_probe_settlements(TestSoil& soil, const VectorXd& for
     throw std::runtime_error("set_probes");
   soil.initialize(forces);
   soil.advance_linear(0.0, H, forces, forces);
-  std::vector<double> times(16), values(times.size() * probes.size() * RUMBLE_PROBE_VALUES);
-  std::uint64_t n = 0;
-  if (soil.api().probe_samples(soil.self(), times.data(), values.data(), times.size(), &n) !=
-          RUMBLE_OK ||
-      n == 0)
-    throw std::runtime_error("probe_samples");
-  std::vector<double> uz(probes.size());
-  for (std::size_t p = 0; p < probes.size(); ++p)
-    uz[p] = values[((n - 1) * probes.size() + p) * RUMBLE_PROBE_VALUES + 5];
-  return uz;
+  return newest_probe_settlements(soil, probes.size());
 }
 
 /// The paper's wheel (2 x 50 kN) at rest over sleeper 6 of a 30-sleeper track on the medium soil:
@@ -135,15 +140,8 @@ TEST(FemStaticFarField, ALoadChangeSettlesThroughTheSpringsAlone) {
   ASSERT_EQ(soil.api().set_probes(soil.self(), probes.data(), probes.size(), H), RUMBLE_OK);
   soil.initialize(F0);
   for (double t = 0.0; t < 0.5 - 1e-9; t += H) soil.advance_linear(t, H, F1, F1);
-  std::vector<double> times(1024), values(times.size() * probes.size() * RUMBLE_PROBE_VALUES);
-  std::uint64_t n = 0;
-  ASSERT_EQ(soil.api().probe_samples(soil.self(), times.data(), values.data(), times.size(), &n),
-            RUMBLE_OK);
-  ASSERT_GT(n, 0u);
-  std::vector<double> uz(probes.size());
-  for (std::size_t p = 0; p < probes.size(); ++p)
-    uz[p] = values[((n - 1) * probes.size() + p) * RUMBLE_PROBE_VALUES + 5];
-  const std::vector<double> ratios = ratios_to_half_space(uz, F1, "after the change");
+  const std::vector<double> ratios =
+      ratios_to_half_space(newest_probe_settlements(soil, probes.size()), F1, "after the change");
   EXPECT_NEAR(ratios[0], 1.0, 0.02);
   EXPECT_NEAR(ratios[1], 1.0, 0.02);
   EXPECT_NEAR(ratios[2], 1.0, 0.15);
