@@ -13,6 +13,7 @@
 
 #include "fuzz_support.hpp"
 #include "scenario_check.hpp"
+#include "set_check.hpp"
 
 namespace rumble::fuzz {
 namespace {
@@ -55,6 +56,14 @@ TEST(ScenarioFuzzReplay, Seeds) {
 TEST(ScenarioFuzzReplay, MalformedInputsHoldTheProperties) {
   EXPECT_EQ(check_scenario_text("{"), "");   // a syntax error
   EXPECT_EQ(check_scenario_text("[]"), "");  // not an object: a schema finding
+}
+
+TEST(SetFuzzReplay, Regressions) {
+  replay(check_set_option, kFuzz / "regressions" / "set", 0);
+}
+
+TEST(SetFuzzReplay, Seeds) {
+  replay(check_set_option, kFuzz / "corpus" / "set", 30);
 }
 
 }  // namespace
