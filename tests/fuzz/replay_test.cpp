@@ -14,6 +14,7 @@
 #include "fuzz_support.hpp"
 #include "scenario_check.hpp"
 #include "set_check.hpp"
+#include "study_check.hpp"
 
 namespace rumble::fuzz {
 namespace {
@@ -64,6 +65,14 @@ TEST(SetFuzzReplay, Regressions) {
 
 TEST(SetFuzzReplay, Seeds) {
   replay(check_set_option, kFuzz / "corpus" / "set", 30);
+}
+
+TEST(StudyFuzzReplay, Regressions) {
+  replay(check_study_text, kFuzz / "regressions" / "study", 0);
+}
+
+TEST(StudyFuzzReplay, Seeds) {
+  replay(check_study_text, kFuzz / "corpus" / "study", 40);
 }
 
 }  // namespace
