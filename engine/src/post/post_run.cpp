@@ -398,6 +398,18 @@ PostOptions options_from_scenario(const nlohmann::json& scenario, PostOptions ba
   return base;
 }
 
+PostOptions options_from_summary(const fs::path& results_dir) {
+  const fs::path file = results_dir / "summary.json";
+  if (!input_file_problem(file, kMaxResultJsonBytes).empty()) return {};
+  try {
+    const json summary = json::parse(read_input_file(file, kMaxResultJsonBytes));
+    if (const auto s = summary.find("scenario"); s != summary.end() && s->is_object())
+      return options_from_scenario(*s);
+  } catch (const std::exception&) {  // a damaged summary: the defaults
+  }
+  return {};
+}
+
 PostResult post_process(const fs::path& results_dir, const PostOptions& options) {
   PostResult result;
   RunRecord run = read_run(results_dir);
