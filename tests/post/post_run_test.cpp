@@ -251,6 +251,19 @@ TEST(PostRun, DivergedRecordIsCutWithAWarning) {
   EXPECT_NEAR(r.report["receivers"][0]["ppv_z_m_s"].get<double>(), kA, 1e-8 * kA);
 }
 
+// A column "d=<distance> m [m/s]" whose distance is not finite is no receiver: "d=-inf m" was one,
+// at -inf in ppv.csv (found by the post fuzz target: tests/fuzz/regressions/post/).
+TEST(PostRun, ADistanceColumnThatIsNotFiniteIsNoReceiver) {
+  const fs::path dir = fresh_dir();
+  write_csv(dir / "receivers.csv", {"d=-inf m [m/s]", "d=nan m [m/s]"},
+            {sine_at_fs(kA, 25.0), sine_at_fs(kA, 25.0)});
+  EXPECT_EQ(message_of([&] { post_process(dir); }),
+            "receivers.csv in '" + dir.string() +
+                "' has no receiver velocity column: expected '<name> vz [m/s]' or "
+                "'d=<distance> m [m/s]', found 'd=-inf m [m/s]', 'd=nan m [m/s]'. Rerun with "
+                "receivers in the scenario (outputs.receivers)");
+}
+
 TEST(PostRun, MissingFileOrColumnSaysWhatWhereAndTheFix) {
   const fs::path dir = fresh_dir();
   std::string m = message_of([&] { post_process(dir); });

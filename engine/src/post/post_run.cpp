@@ -63,7 +63,9 @@ struct Receiver {
   bool three_component() const { return column[0] && column[1] && column[2]; }
 };
 
-// "d=2.500000 m [m/s]" -> 2.5 (the older surface receivers' column); nullopt for other names.
+// "d=2.500000 m [m/s]" -> 2.5 (the older surface receivers' column); nullopt for other names,
+// and for a distance that is not finite ("d=-inf m [m/s]": no receiver the engine places, and
+// its rows, sorted by distance, went out as -inf; found by the post fuzz target).
 std::optional<double> distance_column(const std::string& name) {
   const std::string head = "d=", tail = " m [m/s]";
   if (name.size() <= head.size() + tail.size() || name.compare(0, head.size(), head) != 0 ||
@@ -73,7 +75,7 @@ std::optional<double> distance_column(const std::string& name) {
   const char* last = name.data() + name.size() - tail.size();
   double d = 0.0;
   const auto [ptr, ec] = std::from_chars(first, last, d);
-  if (ec != std::errc() || ptr != last) return std::nullopt;
+  if (ec != std::errc() || ptr != last || !std::isfinite(d)) return std::nullopt;
   return d;
 }
 
