@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "fuzz_support.hpp"
+#include "post_check.hpp"
 #include "scenario_check.hpp"
 #include "set_check.hpp"
 #include "study_check.hpp"
@@ -73,6 +74,14 @@ TEST(StudyFuzzReplay, Regressions) {
 
 TEST(StudyFuzzReplay, Seeds) {
   replay(check_study_text, kFuzz / "corpus" / "study", 40);
+}
+
+TEST(PostFuzzReplay, Regressions) {
+  replay(check_post_input, kFuzz / "regressions" / "post", 0);
+}
+
+TEST(PostFuzzReplay, Seeds) {
+  replay(check_post_input, kFuzz / "corpus" / "post", 25);
 }
 
 }  // namespace
