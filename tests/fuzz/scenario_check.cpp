@@ -1,11 +1,10 @@
 #include "scenario_check.hpp"
 
-#include <algorithm>
 #include <exception>
-#include <sstream>
 #include <utility>
 #include <vector>
 
+#include "fuzz_support.hpp"
 #include "plugin/registry.hpp"
 #include "scenario/check_file.hpp"
 #include "scenario/json_position.hpp"
@@ -55,19 +54,6 @@ std::string check_positions(std::string_view text, const json& parsed) {
   return "";
 }
 
-std::string check_diagnostics(std::string_view text, const std::vector<Diagnostic>& diagnostics) {
-  const std::size_t lines =
-      static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')) + 1;
-  for (const Diagnostic& d : diagnostics) {
-    if (d.message.empty()) return "a diagnostic without a message at \"" + d.pointer + "\"";
-    if (d.line > lines)
-      return "line " + std::to_string(d.line) + " of a text of " + std::to_string(lines) +
-             " lines: " + d.message;
-    if (d.line == 0 && d.column != 0) return "a column without a line: " + d.message;
-  }
-  return "";
-}
-
 }  // namespace
 
 std::string check_scenario_text(std::string_view text) {
@@ -89,16 +75,9 @@ std::string check_scenario_text(std::string_view text) {
       diagnostics = std::move(checked.diagnostics);
     }
     if (std::string bad = check_diagnostics(text, diagnostics); !bad.empty()) return bad;
-    std::ostringstream plain;
-    scenario::print_diagnostics(plain, doc ? &*doc : nullptr, "fuzz.json", diagnostics,
-                                scenario::Format::kText);
-    std::ostringstream js;
-    scenario::print_diagnostics(js, doc ? &*doc : nullptr, "fuzz.json", diagnostics,
-                                scenario::Format::kJson);
-    const json report = json::parse(js.str(), nullptr, false);
-    if (report.is_discarded() || !report.contains("diagnostics") ||
-        report["diagnostics"].size() != diagnostics.size())
-      return "the JSON report does not parse back: " + js.str().substr(0, 200);
+    if (std::string bad = check_reports(doc ? &*doc : nullptr, "fuzz.json", diagnostics);
+        !bad.empty())
+      return bad;
   } catch (const std::exception& e) {
     return std::string("exception escaped: ") + e.what();
   }

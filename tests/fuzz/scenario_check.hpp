@@ -1,5 +1,5 @@
 // What the scenario fuzz target checks for one input, shared by the libFuzzer target
-// (scenario_fuzzer.cpp, preset "fuzz") and the replay test of the dev build (replay_test.cpp).
+// (fuzz_target.cpp, preset "fuzz") and the replay test of the other presets (replay_test.cpp).
 #pragma once
 
 #include <string>

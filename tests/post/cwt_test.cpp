@@ -186,6 +186,16 @@ TEST(Cwt, OptionsOutOfRangeAreRefused) {
   EXPECT_THROW(cwt_morlet(x, o), std::invalid_argument);
   MorletCwt cwt(100, 1e-3, {});
   EXPECT_THROW(cwt.transform(tone(1.0, 10.0, 1e-3, 99)), std::invalid_argument);
+  // A step so short that f_min's padding passes any size: refused before it is converted to one
+  // (at 1e-300 s the conversion of 5.8e300 was undefined; found by the post fuzz target).
+  try {
+    MorletCwt tiny(100, 1e-300, {});
+    ADD_FAILURE() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "CWT: f_min = 1 Hz at dt = 1e-300 s needs a zero padding of 5.80808e+300 samples "
+              "(6 wavelet scales), more than 6.71089e+07; raise f_min");
+  }
 }
 
 }  // namespace

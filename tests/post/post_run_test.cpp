@@ -3,6 +3,7 @@
 // missing file or column gives a message with what, where and the fix.
 #include "post/post_run.hpp"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -266,6 +267,53 @@ TEST(PostRun, ANonFiniteRecordOfACompletedRunBlamesTheFile) {
                 "was damaged or edited after the run. Rerun the scenario");
   std::ofstream(dir / "summary.json") << R"({"status": "failed"})";
   EXPECT_NO_THROW(post_process(dir));  // cut with a warning, as without a summary
+}
+
+// A column "d=<distance> m [m/s]" whose distance is not finite is no receiver: "d=-inf m" was one,
+// at -inf in ppv.csv (found by the post fuzz target: tests/fuzz/regressions/post/).
+TEST(PostRun, ADistanceColumnThatIsNotFiniteIsNoReceiver) {
+  const fs::path dir = fresh_dir();
+  write_csv(dir / "receivers.csv", {"d=-inf m [m/s]", "d=nan m [m/s]"},
+            {sine_at_fs(kA, 25.0), sine_at_fs(kA, 25.0)});
+  EXPECT_EQ(message_of([&] { post_process(dir); }),
+            "receivers.csv in '" + dir.string() +
+                "' has no receiver velocity column: expected '<name> vz [m/s]' or "
+                "'d=<distance> m [m/s]', found 'd=-inf m [m/s]', 'd=nan m [m/s]'. Rerun with "
+                "receivers in the scenario (outputs.receivers)");
+}
+
+// The CWT's zero padding for f_min is 6 wavelet scales, 5.8 s at 1 Hz at any step: at a step of
+// 1e-300 s that was 1e300 samples, converted to a size (undefined; found by the post fuzz
+// target). A record of a step so short that the padding passes 64 records (and 65536 samples)
+// has its f_min raised to what fits, and is transformed from there.
+TEST(PostRun, ARecordOfATinyStepHasItsCwtFromAHigherFrequency) {
+  const fs::path dir = fresh_dir();
+  const double dt = std::ldexp(1.0, -20);  // s, exact in binary: the grid's step is exactly it
+  std::ofstream out(dir / "receivers.csv");
+  out << "t [s],d=2.5 m [m/s]\n";
+  for (int k = 0; k < 200; ++k) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.17g,%.9g\n", k * dt, kA * std::sin(0.1 * k));
+    out << buf;
+  }
+  out.close();
+  const PostResult r = post_process(dir);
+  EXPECT_THAT(r.warnings,
+              ::testing::Contains("CWT: f_min raised from 1 Hz to 92.9292908 Hz: at the record's "
+                                  "step of 9.53674316e-07 s its wavelet needs 6090214 samples of "
+                                  "zero padding, more than 65536 (64 times the record's samples, "
+                                  "at least 65536)"));
+  EXPECT_DOUBLE_EQ(r.report["options"]["cwt_f_min_hz"].get<double>(), 6090214.0 / 65536.0);
+  ASSERT_EQ(r.report["cwt"].size(), 1u);  // transformed from there
+  // At a step of 1e-300 s nothing is left below f_max: the CWT is skipped, and said so.
+  std::ofstream tiny(dir / "receivers.csv");
+  tiny << "t [s],d=2.5 m [m/s]\n";
+  for (int k = 0; k < 50; ++k) tiny << k << "e-300," << kA * std::sin(0.1 * k) << "\n";
+  tiny.close();
+  fs::remove_all(dir / "post");
+  const PostResult none = post_process(dir);
+  EXPECT_TRUE(none.report["cwt"].empty());
+  EXPECT_THAT(none.warnings, ::testing::Contains(::testing::HasSubstr("CWT skipped: f_min = ")));
 }
 
 TEST(PostRun, MissingFileOrColumnSaysWhatWhereAndTheFix) {

@@ -67,8 +67,8 @@ INSTANTIATE_TEST_SUITE_P(
         SyntaxCase{"{\"a\": 01}",
                    "1:7: syntax error: numbers must not have leading zeros | "
                    "write 1 (or 0.1)"},
-        // Found by the fuzz target (tests/fuzz/regressions/all_zero_number.json): only zeros
-        // left nothing to suggest, and an std::out_of_range escaped instead of a diagnostic.
+        // Found by the fuzz target (tests/fuzz/regressions/scenario/all_zero_number.json): only
+        // zeros left nothing to suggest, and an std::out_of_range escaped instead of a diagnostic.
         SyntaxCase{"{\"a\": 00}",
                    "1:7: syntax error: numbers must not have leading zeros | "
                    "write 0 (or 0.0)"},

@@ -149,6 +149,31 @@ TEST(StudyFile, AxesThatMultiplyBeyondTheLimitAreRefusedUnexpanded) {
                   "split the study into several"));
 }
 
+// A product run's name joins a value name of each axis and names its results folder: three axes
+// of 100-character value names passed --dry-run, and `rumble study` stopped at the first such run
+// ("cannot create the results directory ...: File name too long") after the runs before it had
+// run. Found by the study fuzz target's run-name property on its seed
+// tests/fuzz/corpus/study/long_names.json.
+TEST(StudyFile, ProductRunNamesTooLongForAFolderAreRefused) {
+  const auto axis = [](const std::string& name, char c, std::size_t n) {
+    return "{\"name\": \"" + name + "\", \"values\": {\"short\": {}, \"" + std::string(n, c) +
+           "\": {}}}";
+  };
+  EXPECT_THAT(
+      read(R"({"study_version": 1, "scenario": "base.json", "axes": [)" + axis("a", 'a', 100) +
+           ", " + axis("b", 'b', 100) + ", " + axis("c", 'c', 100) + "]}")
+          .problems,
+      ElementsAre("/axes: the axes' product has run names of up to 302 characters (the "
+                  "longest value name of each axis, 100 + 100 + 100, joined by '-'), more "
+                  "than the 255 a results folder's name may have | shorten the value "
+                  "names, or use fewer axes"));
+  // 100 + 100 + 53 and the two dashes: 255, the longest a folder's name may be.
+  EXPECT_TRUE(read(R"({"study_version": 1, "scenario": "base.json", "axes": [)" +
+                   axis("a", 'a', 100) + ", " + axis("b", 'b', 100) + ", " + axis("c", 'c', 53) +
+                   "]}")
+                  .study);
+}
+
 TEST(StudyFile, RunMessages) {
   const auto with_runs = [](const std::string& runs) {
     return read(R"({"study_version": 1, "scenario": "base.json", "runs": )" + runs + "}").problems;

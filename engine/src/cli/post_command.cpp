@@ -5,15 +5,12 @@
 // the command's options. `rumble run` does the same after every run whose soil recorded receivers.
 // The directory is locked meanwhile and the new files are added to its manifest, so a rerun of the
 // scenario removes them with the rest.
-#include <fstream>
 #include <iostream>
-#include <sstream>
 
 #include "cli/arguments.hpp"
 #include "cli/commands.hpp"
 #include "cli/exit_codes.hpp"
 #include "core/errors.hpp"
-#include "core/input_file.hpp"
 #include "core/logging.hpp"
 #include "post/post_run.hpp"
 #include "run/results_directory.hpp"
@@ -24,21 +21,6 @@ namespace {
 constexpr const char* kPostUsage =
     "usage: rumble post RESULTS_DIR [--cwt NAME,NAME...] [--cwt-distances M,M...] "
     "[--f-max HZ] [--reference iso|vdb]";
-
-/// The run's own outputs.post (the scenario summary.json records), the defaults where there is
-/// none or summary.json cannot be read (post_process names what it lacks).
-post::PostOptions scenario_options(const std::filesystem::path& results_dir) {
-  const std::filesystem::path file = results_dir / "summary.json";
-  if (!input_file_problem(file, kMaxResultJsonBytes).empty()) return {};
-  try {
-    const nlohmann::json summary =
-        nlohmann::json::parse(read_input_file(file, kMaxResultJsonBytes));
-    if (const auto s = summary.find("scenario"); s != summary.end() && s->is_object())
-      return post::options_from_scenario(*s);
-  } catch (const std::exception&) {  // a damaged summary: the defaults
-  }
-  return {};
-}
 
 /// The command line's options over `o` (the run's own).
 post::PostOptions options_from(const Arguments& a, post::PostOptions o) {
@@ -80,7 +62,7 @@ int post_command(const std::vector<std::string>& args) {
   const Arguments a(args, {}, {"cwt", "cwt-distances", "f-max", "reference"});
   if (a.positional().size() != 1) throw UsageError(kPostUsage);
   const post::PostOptions options =
-      options_from(a, scenario_options(std::filesystem::path(a.positional().front())));
+      options_from(a, post::options_from_summary(a.positional().front()));
   ResultsDirectory results(a.positional().front(), ResultsDirectory::Reopen{});
   try {
     post_process_run(results.path(), options);

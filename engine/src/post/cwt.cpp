@@ -30,6 +30,12 @@ void check_options(std::size_t n, double dt, const CwtOptions& o) {
   if (!(o.f_max < nyquist))
     fail("f_max = " + number_text(o.f_max) + " Hz is not below the Nyquist frequency " +
          number_text(nyquist) + " Hz of the record (dt = " + number_text(dt) + " s); lower f_max");
+  // Before the padding is converted to a size: a step of 1e-300 s asked for 1e300 samples, an
+  // undefined conversion (UBSan, found by the post fuzz target, docs/fuzzing.md).
+  if (!(cwt_padding(dt, o) <= kMaxCwtPadding))
+    fail("f_min = " + number_text(o.f_min) + " Hz at dt = " + number_text(dt) +
+         " s needs a zero padding of " + number_text(cwt_padding(dt, o)) +
+         " samples (6 wavelet scales), more than " + number_text(kMaxCwtPadding) + "; raise f_min");
   if (o.n_freq == 0) fail("n_freq is 0; at least 1 frequency is needed");
   if (o.time_stride == 0) fail("time_stride is 0; 1 keeps every sample");
 }
@@ -56,14 +62,16 @@ std::vector<double> log_spaced(double lo, double hi, std::size_t n) {
   return out;
 }
 
+double cwt_padding(double dt, const CwtOptions& options) {
+  return std::ceil(kPadEnvelopes * morlet_scale(options.f_min, options.omega0) / dt);
+}
+
 MorletCwt::MorletCwt(std::size_t n, double dt, const CwtOptions& options)
     : n_(n),
       dt_(dt),
       options_((check_options(n, dt, options), options)),
       frequency_(log_spaced(options.f_min, options.f_max, options.n_freq)),
-      forward_(fft_friendly_size(
-                   n + static_cast<std::size_t>(std::ceil(
-                           kPadEnvelopes * morlet_scale(options.f_min, options.omega0) / dt))),
+      forward_(fft_friendly_size(n + static_cast<std::size_t>(cwt_padding(dt, options))),
                ComplexFft::Direction::kForward),
       inverse_(forward_.size(), ComplexFft::Direction::kBackward) {
   const double omega0 = options_.omega0;

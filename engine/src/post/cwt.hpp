@@ -69,9 +69,18 @@ double morlet_scale(double frequency, double omega0);
 /// n values from lo to hi equally spaced in log (lo alone when n = 1).
 std::vector<double> log_spaced(double lo, double hi, std::size_t n);
 
+/// The zero padding [samples] a transform at time step dt adds for options.f_min (6 scales of
+/// f_min, see "Edges"), before rounding to an FFT-friendly size; a double, as it can exceed any
+/// size when dt is tiny.
+double cwt_padding(double dt, const CwtOptions& options);
+/// Most padding MorletCwt takes: 2^26 samples (1 GiB per complex FFT buffer). A record of a
+/// tiny step asks for more; the lowest frequency f_min must then rise (post_process raises it).
+inline constexpr double kMaxCwtPadding = 67108864.0;
+
 /// A Morlet CWT for records of one length and time step: the padded FFT plans and the wavelet's
 /// spectra are made once, then transform() runs per record (one forward and n_freq inverse
-/// FFTs). Options out of range throw std::invalid_argument saying which and why.
+/// FFTs). Options out of range throw std::invalid_argument saying which and why (padding beyond
+/// kMaxCwtPadding included).
 class MorletCwt {
  public:
   MorletCwt(std::size_t n, double dt, const CwtOptions& options);

@@ -63,7 +63,9 @@ struct Receiver {
   bool three_component() const { return column[0] && column[1] && column[2]; }
 };
 
-// "d=2.500000 m [m/s]" -> 2.5 (the older surface receivers' column); nullopt for other names.
+// "d=2.500000 m [m/s]" -> 2.5 (the older surface receivers' column); nullopt for other names,
+// and for a distance that is not finite ("d=-inf m [m/s]": no receiver the engine places, and
+// its rows, sorted by distance, went out as -inf; found by the post fuzz target).
 std::optional<double> distance_column(const std::string& name) {
   const std::string head = "d=", tail = " m [m/s]";
   if (name.size() <= head.size() + tail.size() || name.compare(0, head.size(), head) != 0 ||
@@ -73,7 +75,7 @@ std::optional<double> distance_column(const std::string& name) {
   const char* last = name.data() + name.size() - tail.size();
   double d = 0.0;
   const auto [ptr, ec] = std::from_chars(first, last, d);
-  if (ec != std::errc() || ptr != last) return std::nullopt;
+  if (ec != std::errc() || ptr != last || !std::isfinite(d)) return std::nullopt;
   return d;
 }
 
@@ -413,6 +415,18 @@ PostOptions options_from_scenario(const nlohmann::json& scenario, PostOptions ba
   return base;
 }
 
+PostOptions options_from_summary(const fs::path& results_dir) {
+  const fs::path file = results_dir / "summary.json";
+  if (!input_file_problem(file, kMaxResultJsonBytes).empty()) return {};
+  try {
+    const json summary = json::parse(read_input_file(file, kMaxResultJsonBytes));
+    if (const auto s = summary.find("scenario"); s != summary.end() && s->is_object())
+      return options_from_scenario(*s);
+  } catch (const std::exception&) {  // a damaged summary: the defaults
+  }
+  return {};
+}
+
 PostResult post_process(const fs::path& results_dir, const PostOptions& options) {
   PostResult result;
   RunRecord run = read_run(results_dir);
@@ -528,6 +542,23 @@ PostResult post_process(const fs::path& results_dir, const PostOptions& options)
     result.warnings.push_back("CWT: f_max lowered from " + number_text(options.cwt_f_max, 9) +
                               " Hz to " + number_text(cwt_options.f_max, 9) +
                               " Hz (0.4 of the sampling rate)");
+  // The zero padding for f_min's wavelet is 6 scales, 5.8 s at 1 Hz whatever the record's
+  // length: a step of 1e-300 s asked for 1e300 samples (found by the post fuzz target,
+  // docs/fuzzing.md). Beyond 64 records (and 65536 samples: 1 Hz at steps of 89 us or more) the
+  // wavelet at f_min outlasts the record tenfold and its |W| is all cone of influence: f_min rises
+  // to the lowest frequency within that padding (it falls as 1 / f).
+  const double padding_allowed =
+      std::min(kMaxCwtPadding, std::max(64.0 * static_cast<double>(n), 65536.0));
+  if (const double padding = cwt_padding(grid.dt, cwt_options);
+      !cwt_of.empty() && padding > padding_allowed) {
+    const double raised = cwt_options.f_min * padding / padding_allowed;
+    result.warnings.push_back(
+        "CWT: f_min raised from " + number_text(cwt_options.f_min, 9) + " Hz to " +
+        number_text(raised, 9) + " Hz: at the record's step of " + number_text(grid.dt, 9) +
+        " s its wavelet needs " + number_text(padding, 9) + " samples of zero padding, more than " +
+        number_text(padding_allowed, 9) + " (64 times the record's samples, at least 65536)");
+    cwt_options.f_min = raised;
+  }
   if (!cwt_of.empty() && !(cwt_options.f_min < cwt_options.f_max)) {
     result.warnings.push_back("CWT skipped: f_min = " + number_text(cwt_options.f_min, 9) +
                               " Hz is not below f_max = " + number_text(cwt_options.f_max, 9) +

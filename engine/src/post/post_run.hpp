@@ -57,6 +57,11 @@ struct PostResult {
 /// `base`; a scenario without outputs.post gives base.
 PostOptions options_from_scenario(const nlohmann::json& scenario, PostOptions base = {});
 
+/// The options of the run in results_dir (`rumble post`): those of the scenario its summary.json
+/// records, the defaults where there is none or summary.json cannot be read or used
+/// (post_process names what it lacks).
+PostOptions options_from_summary(const std::filesystem::path& results_dir);
+
 /// Computes every indicator for the run in results_dir and writes RESULTS_DIR/post/.
 PostResult post_process(const std::filesystem::path& results_dir, const PostOptions& options = {});
 

@@ -21,6 +21,12 @@ std::vector<PlannedRun> expand(const StudyFile& study,
                                std::vector<scenario::Diagnostic>& diagnostics) {
   std::vector<PlannedRun> runs;
   if (!study.axes.empty()) {
+    // What each value adds to a run's entry, made once: made per run, the 4e4 patch copies of a
+    // study at the run limit took seconds (the study fuzz target's slowest input).
+    std::vector<std::vector<ojson>> value_entries(study.axes.size());
+    for (std::size_t a = 0; a < study.axes.size(); ++a)
+      for (const AxisValue& v : study.axes[a].values)
+        value_entries[a].push_back({{"value", v.name}, {"set", patch_json(v.patches)}});
     // Odometer over the value indices, the last axis fastest.
     std::vector<std::size_t> index(study.axes.size(), 0);
     for (;;) {
@@ -33,7 +39,7 @@ std::vector<PlannedRun> expand(const StudyFile& study,
         run.name += (a == 0 ? "" : "-") + v.name;
         run.axis_values[axis.name] = v.name;
         run.patches.insert(run.patches.end(), v.patches.begin(), v.patches.end());
-        run.entry[axis.name] = {{"value", v.name}, {"set", patch_json(v.patches)}};
+        run.entry[axis.name] = value_entries[a][index[a]];
       }
       runs.push_back(std::move(run));
       std::size_t a = study.axes.size();

@@ -274,6 +274,26 @@ std::optional<StudyFile> read_study(const scenario::Document& doc,
     r.error(s.axes.empty() ? "/runs" : "/axes", m.str(),
             "remove axes or values, or split the study into several");
   }
+  // A product run's name is its value names joined, and names its results directory: three
+  // axes of 100-character names made a name no file system takes (NAME_MAX), which --dry-run
+  // passed; the study then stopped at the first such run, "File name too long", after the runs
+  // before it had run.
+  std::size_t longest = 0;
+  std::string lengths;  // "100 + 100 + 100"
+  for (const Axis& axis : s.axes) {
+    std::size_t most = 0;
+    for (const AxisValue& value : axis.values) most = std::max(most, value.name.size());
+    longest += (lengths.empty() ? 0 : 1) + most;
+    lengths += (lengths.empty() ? "" : " + ") + std::to_string(most);
+  }
+  if (longest > kMaxRunNameBytes) {
+    r.error("/axes",
+            "the axes' product has run names of up to " + std::to_string(longest) +
+                " characters (the longest value name of each axis, " + lengths +
+                ", joined by '-'), more than the " + std::to_string(kMaxRunNameBytes) +
+                " a results folder's name may have",
+            "shorten the value names, or use fewer axes");
+  }
   if (!j.contains("axes") && !j.contains("runs")) {
     r.error("", "the study has no runs",
             "add \"axes\" (the product of their values is run) or \"runs\" (a list), or both");

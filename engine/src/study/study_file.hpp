@@ -3,6 +3,7 @@
 // expanded into runs by expansion.hpp.
 #pragma once
 
+#include <cstddef>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -18,6 +19,9 @@ inline constexpr int kStudyVersion = 1;
 /// Most runs one study holds, axes' product and listed runs together (docs/study.md): each is a
 /// process, a results folder and a line of the report; 1e4 is days of FEM runs.
 inline constexpr double kMaxStudyRuns = 1e4;
+/// Longest run name: a run's name is the name of its results folder, and no Linux file system
+/// takes a longer one (NAME_MAX). A product run's name joins a value name of each axis.
+inline constexpr std::size_t kMaxRunNameBytes = 255;
 
 /// One value replaced in a run's scenario.
 struct Patch {
@@ -65,8 +69,9 @@ bool filesystem_safe(const std::string& name);
 
 /// Checks the study in `doc` (parsed already) and returns it, or nullopt with every problem
 /// found appended to `diagnostics` (JSON pointers into the study file, the value, the fix):
-/// unknown keys, wrong types, empty axes, unsafe or duplicate names, malformed pointers, scenario
-/// files that do not exist. Duplicate run names are checked by expand().
+/// unknown keys, wrong types, empty axes, unsafe or duplicate names, product run names too long
+/// for a folder, malformed pointers, scenario files that do not exist. Duplicate run names are
+/// checked by expand().
 std::optional<StudyFile> read_study(const scenario::Document& doc,
                                     std::vector<scenario::Diagnostic>& diagnostics);
 
