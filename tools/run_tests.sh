@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
 # The test job (also what CI runs): install what is missing, check formatting, build with
 # warnings as errors and run the test suite, then build and run it again under ASan + UBSan,
-# then build the scenario fuzz target (clang) and fuzz for a minute (docs/fuzzing.md).
+# then build the fuzz targets (clang) and fuzz each for a minute (docs/fuzzing.md).
 #   tools/run_tests.sh            everything (from a clean checkout two full unity builds: dev
 #                                 (GCC) about 23 CPU-minutes, asan (Clang, the tests' own code
-#                                 at -O0, decision 0009) about 15; the fuzz target 4 and 60 s of
-#                                 fuzzing; later runs rebuild only what changed)
+#                                 at -O0, decision 0009) about 15; the five fuzz targets about 4.5,
+#                                 and a minute of fuzzing each, as many at once as there are
+#                                 cores (each fuzzer runs on one); later runs rebuild only what
+#                                 changed)
 #   tools/run_tests.sh --quick    skip the sanitizer builds (asan and fuzz)
 # Tests labelled "validation" (long physics runs) are left out: ctest --preset dev -L validation.
 # Each phase's wall time is printed at the end and kept in build/run_tests_times.txt, so a slow
@@ -33,5 +35,5 @@ if [ "${1:-}" != "--quick" ]; then
   phase asan-build eval 'cmake --preset asan >/dev/null && cmake --build --preset asan -j"$jobs"'
   phase asan-tests ctest --preset asan -j"$jobs" --timeout 600 -LE validation
   phase fuzz-build eval 'cmake --preset fuzz >/dev/null && cmake --build --preset fuzz -j"$jobs"'
-  phase fuzz-run ctest --preset fuzz --timeout 600
+  phase fuzz-run ctest --preset fuzz -j"$jobs" --timeout 600
 fi

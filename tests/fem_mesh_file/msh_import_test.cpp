@@ -411,6 +411,53 @@ TEST(FemMshImport, FilesThatAreNoTetrahedralMeshAreRefused) {
                {"notes.msh' is not a gmsh mesh file: it does not start with $MeshFormat"});
 }
 
+/// One tetrahedron as MSH 2.2: node 4 at (x4, 0, -1), the ground face at z = 0, the absorbing
+/// ones below; with `stray`, a fifth node and a ground face using it that no tetrahedron has.
+std::string one_tetrahedron(const std::string& x4, bool stray = false) {
+  return "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n2\n2 1 \"ground\"\n"
+         "2 2 \"absorbing\"\n$EndPhysicalNames\n$Nodes\n" +
+         std::string(stray ? "5" : "4") + "\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 " + x4 + " 0 -1\n" +
+         (stray ? "5 2 2 0\n" : "") + "$EndNodes\n$Elements\n" + (stray ? "6" : "5") +
+         "\n1 4 2 3 1 1 2 3 4\n2 2 2 1 1 1 2 3\n3 2 2 2 2 1 2 4\n4 2 2 2 2 1 3 4\n"
+         "5 2 2 2 2 2 3 4\n" +
+         (stray ? "6 2 2 1 1 2 3 5\n" : "") + "$EndElements\n";
+}
+
+// Found by the msh fuzz targets (tests/fuzz/, docs/fuzzing.md): gmsh reads "nan" and "inf" as
+// coordinates, which reached the node order (undefined conversions) and every operator; a face
+// with a node of no tetrahedron was refused without naming the file; gmsh threw a standard
+// exception on damaged partition tags; nodes at +-1e308 made the node order's extent infinite (a
+// NaN key, undefined: the asan preset's UBSan sees it).
+TEST(FemMshImport, WhatTheMshFuzzTargetsFoundIsRefusedNamingTheFileOrRead) {
+  const fs::path dir = scratch();
+  const fem::FemSettings s;
+  const std::string where = "fem: params/mesh/file: '" + (dir / "t.msh").string() + "'";
+  std::ofstream(dir / "t.msh") << one_tetrahedron("0");
+  EXPECT_EQ(fem::load_mesh_file(s, (dir / "t.msh").string()).mesh.tets.size(), 1u);
+  std::ofstream(dir / "t.msh") << one_tetrahedron("nan");
+  expect_invalid_argument([&] { fem::load_mesh_file(s, (dir / "t.msh").string()); },
+                          where +
+                              ": a node of its tetrahedra is at x = nan, y = 0, z = -1 m; every "
+                              "coordinate must be a finite number");
+  std::ofstream(dir / "t.msh") << one_tetrahedron("0", true);
+  expect_invalid_argument([&] { fem::load_mesh_file(s, (dir / "t.msh").string()); },
+                          where +
+                              ": a face of its physical surface \"ground\" has a node that no "
+                              "tetrahedron has; the physical surfaces must be made of faces of "
+                              "the mesh's tetrahedra");
+  // Element tags of a damaged partition made gmsh throw std::length_error, not its own error
+  // type: it escaped as "vector::_M_fill_insert" (tests/fuzz/regressions/msh_raw/).
+  const fs::path damaged = fs::path(RUMBLE_TEST_SOURCE_DIR) / "tests" / "fuzz" / "regressions" /
+                           "msh_raw" / "damaged_partition_tags";
+  expect_invalid_argument_containing(
+      [&] { fem::load_mesh_file(s, damaged.string()); },
+      {"fem: params/mesh/file: '" + damaged.string() + "': gmsh cannot read it: "});
+  std::ofstream(dir / "t.msh") << one_tetrahedron("1e308");
+  EXPECT_EQ(fem::load_mesh_file(s, (dir / "t.msh").string()).mesh.node_count(), 4);
+  std::ofstream(dir / "t.msh") << one_tetrahedron("-1.7e308");
+  EXPECT_EQ(fem::load_mesh_file(s, (dir / "t.msh").string()).mesh.node_count(), 4);
+}
+
 TEST(FemMshImport, TheFileItselfIsCheckedWhenTheSoilIsMade) {
   const fs::path dir = scratch();
   const nlohmann::json soil = small_layered_soil();

@@ -12,6 +12,8 @@
 #include <vector>
 
 #include "fuzz_support.hpp"
+#include "gmsh_model.hpp"
+#include "msh_check.hpp"
 #include "post_check.hpp"
 #include "scenario_check.hpp"
 #include "set_check.hpp"
@@ -82,6 +84,28 @@ TEST(PostFuzzReplay, Regressions) {
 
 TEST(PostFuzzReplay, Seeds) {
   replay(check_post_input, kFuzz / "corpus" / "post", 25);
+}
+
+TEST(MshFuzzReplay, Regressions) {
+  replay(check_msh_text, kFuzz / "regressions" / "msh", 0);
+}
+
+TEST(MshFuzzReplay, Seeds) {
+  replay(check_msh_text, kFuzz / "corpus" / "msh", 10);
+}
+
+// Found by the campaign on the bytes as they are (msh_raw_fuzzer), fixed on Rumble's side.
+TEST(MshFuzzReplay, RawRegressions) {
+  replay(check_raw_msh_text, kFuzz / "regressions" / "msh_raw", 1);
+}
+
+// The seeds reach the end of the import: the box is a mesh of the track's one sleeper.
+TEST(MshFuzzReplay, TheBoxSeedIsAMeshOfTheTrack) {
+  const std::string path = (kFuzz / "corpus" / "msh" / "box_one_footprint").string();
+  const fem::MeshFile file = fem::load_mesh_file(fem::FemSettings{}, path);
+  EXPECT_EQ(file.mesh.tets.size(), 54u);
+  EXPECT_EQ(file.footprints.size(), 1u);
+  EXPECT_NO_THROW(fem::check_mesh_footprints(file, {{0.0, 0.0, 2.6, 0.26}}));
 }
 
 }  // namespace

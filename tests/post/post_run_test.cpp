@@ -316,6 +316,20 @@ TEST(PostRun, ARecordOfATinyStepHasItsCwtFromAHigherFrequency) {
   EXPECT_THAT(none.warnings, ::testing::Contains(::testing::HasSubstr("CWT skipped: f_min = ")));
 }
 
+// The peak's quarter period over a record of 1e308 s is 4e308 s, infinite: its frequency was 0 Hz
+// and the DIN 4150-3 guide values refused it, an exception out of post_process instead of the
+// indicators (found by the post fuzz target: tests/fuzz/regressions/post/). The spectrum's
+// dominant frequency stands in, and with none there are no guide values, as for any record.
+TEST(PostRun, AHalfCycleOfNoFrequencyGivesNoGuideValues) {
+  const fs::path dir = fresh_dir();
+  std::ofstream(dir / "receivers.csv") << "t [s],d=2.5 m [m/s]\n0,0\n1e+308,0.0314\n";
+  const PostResult r = post_process(dir);
+  EXPECT_THAT(r.warnings, ::testing::Contains("receiver 'd=2.5 m': no spectral content above 1 "
+                                              "Hz, so no dominant frequency and no guide values"));
+  EXPECT_TRUE(r.report["receivers"][0]["dominant_frequency_hz"].is_null());
+  EXPECT_TRUE(r.report["receivers"][0]["din4150_3"][0]["guide_m_s"].is_null());
+}
+
 TEST(PostRun, MissingFileOrColumnSaysWhatWhereAndTheFix) {
   const fs::path dir = fresh_dir();
   std::string m = message_of([&] { post_process(dir); });

@@ -463,8 +463,10 @@ PostResult post_process(const fs::path& results_dir, const PostOptions& options)
       cr.amplitude = hann.amplitude(cr.v.values, grid.dt);
       // The peak's half cycle (event-bound); a peak whose half cycle never closes in the record
       // falls back to the spectrum's largest amplitude.
+      // The frequency of a half cycle lasting 1e308 s is 0 Hz (underflow), where no guide value
+      // is defined (std::invalid_argument escaped; found by the post fuzz target): the spectrum's.
       cr.dominant_f = peak_half_cycle_frequency(cr.v.values, cr.peak.index, grid.dt);
-      if (!std::isfinite(cr.dominant_f))
+      if (!(cr.dominant_f > 0.0) || !std::isfinite(cr.dominant_f))
         cr.dominant_f = dominant_frequency(cr.amplitude, options.dominant_f_min);
       const KbResult kb = kb_f(cr.v);
       cr.kb_f_max = kb.kb_f_max;

@@ -319,10 +319,24 @@ TetMesh read_grouped(const FemSettings& s, const std::string& where,
     for (const char* name : {"ground", "footprints"})
       if (const auto g = surfaces.find(name); g != surfaces.end())
         for (int e : entities_of(2, g->second)) ground.insert(e);
-    for (int e : ground) faces_of(ix, e, mesh.ground);
-    for (int e : entities_of(2, surfaces.at("absorbing"))) faces_of(ix, e, mesh.truncation);
+    // A face with a node no tetrahedron has (ModelIndex::node) named neither the file nor the
+    // surface (found by the msh fuzz target).
+    const auto faces = [&](const char* group, int entity, std::vector<Triangle>& out) {
+      try {
+        faces_of(ix, entity, out);
+      } catch (const std::invalid_argument&) {
+        throw std::invalid_argument(where + ": a face of its physical surface \"" + group +
+                                    "\" has a node that no tetrahedron has; the physical "
+                                    "surfaces must be made of faces of the mesh's tetrahedra");
+      }
+    };
+    const std::vector<int> own = entities_of(2, surfaces.at("ground"));
+    for (int e : ground)
+      faces(std::find(own.begin(), own.end(), e) != own.end() ? "ground" : "footprints", e,
+            mesh.ground);
+    for (int e : entities_of(2, surfaces.at("absorbing"))) faces("absorbing", e, mesh.truncation);
     if (const auto f = surfaces.find("footprints"); f != surfaces.end() && footprint_faces)
-      for (int e : entities_of(2, f->second)) faces_of(ix, e, *footprint_faces);
+      for (int e : entities_of(2, f->second)) faces("footprints", e, *footprint_faces);
     layers_from_volumes(s, ix, where, mesh);
     return 0;
   });
@@ -383,6 +397,9 @@ MeshFile load_mesh_file(const FemSettings& s, const std::string& path) {
     gmsh::open(path);
   } catch (const std::string& message) {
     throw std::invalid_argument(where + ": gmsh cannot read it: " + message);
+  } catch (const std::exception& e) {  // from gmsh's containers: std::length_error on a damaged
+                                       // partition tag (found by the msh fuzz target)
+    throw std::invalid_argument(where + ": gmsh cannot read it: " + e.what());
   }
   MeshFile file;
   file.path = path;
@@ -417,6 +434,16 @@ MeshFile load_mesh_file(const FemSettings& s, const std::string& path) {
   file.has_footprints = surfaces.count("footprints") > 0;
   std::vector<Triangle> footprint_faces;
   file.mesh = read_grouped(s, where, &footprint_faces);
+  // gmsh reads "nan" and "inf" as coordinates; no operator (nor the node order) takes them
+  // (found by the msh fuzz target).
+  for (Eigen::Index i = 0; i < file.mesh.nodes.cols(); ++i)
+    if (!file.mesh.nodes.col(i).allFinite()) {
+      std::ostringstream m;
+      m << where << ": a node of its tetrahedra is at x = " << file.mesh.nodes(0, i)
+        << ", y = " << file.mesh.nodes(1, i) << ", z = " << -file.mesh.nodes(2, i)
+        << " m; every coordinate must be a finite number";
+      throw std::invalid_argument(m.str());
+    }
   order_nodes_spatially(file.mesh, &footprint_faces);  // as generated meshes: node_order.hpp
   const TetMesh& mesh = file.mesh;
   for (const Triangle& f : mesh.ground)

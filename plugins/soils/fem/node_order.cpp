@@ -24,11 +24,14 @@ std::uint64_t spread_bits(std::uint64_t v) {
 void order_nodes_spatially(TetMesh& m, std::vector<Triangle>* more_faces) {
   const Eigen::Index n = m.node_count();
   if (n == 0) return;
-  const Eigen::Vector3d lo = m.nodes.rowwise().minCoeff(), hi = m.nodes.rowwise().maxCoeff();
+  // Halved coordinates (exactly: the keys are the same): a mesh file's nodes at +-1e308 made the
+  // extent infinite, its scale 0 and 0 x inf a NaN key, no integer (found by the msh fuzz target).
+  const Eigen::Vector3d lo = 0.5 * m.nodes.rowwise().minCoeff(),
+                        hi = 0.5 * m.nodes.rowwise().maxCoeff();
   const double scale = ((1 << 21) - 1) / std::max((hi - lo).maxCoeff(), 1e-300);
   std::vector<std::uint64_t> key(static_cast<std::size_t>(n));
   for (Eigen::Index i = 0; i < n; ++i) {
-    const Eigen::Vector3d q = (m.nodes.col(i) - lo) * scale;
+    const Eigen::Vector3d q = (0.5 * m.nodes.col(i) - lo) * scale;
     key[static_cast<std::size_t>(i)] = spread_bits(static_cast<std::uint64_t>(q.x())) |
                                        spread_bits(static_cast<std::uint64_t>(q.y())) << 1 |
                                        spread_bits(static_cast<std::uint64_t>(q.z())) << 2;
