@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -213,7 +214,14 @@ void keep_fltk_from_its_preference_files() {
 
 GmshSession::GmshSession(unsigned threads) {
   keep_fltk_from_its_preference_files();
+  // gmsh::initialize appends the executable's folder to PATH (for its ONELAB clients, which the
+  // plugin never runs), every session: PATH grew by it each time, and glibc keeps every value
+  // setenv replaces, so thousands of sessions in one process took memory quadratically (the msh
+  // fuzz target ran out of its 2 GiB). Put back as it was, the same value is reused.
+  const char* path = std::getenv("PATH");
+  const std::string saved_path = path != nullptr ? path : "";
   gmsh::initialize(0, nullptr, /*readConfigFiles=*/false);  // no ~/.gmshrc, ~/.gmsh-options
+  if (path != nullptr) ::setenv("PATH", saved_path.c_str(), 1);
   // Nothing saved at the end (the GUI's session and options files), and gmsh::finalize removes
   // its temporary file, by default ~/.gmsh-tmp (a user's, from gmsh's GUI): named "." instead,
   // it is the home directory itself, which unlink refuses.
