@@ -4,7 +4,7 @@
 # then build the fuzz targets (clang) and fuzz each for a minute (docs/fuzzing.md).
 #   tools/run_tests.sh            everything (from a clean checkout two full unity builds: dev
 #                                 (GCC) about 23 CPU-minutes, asan (Clang, the tests' own code
-#                                 at -O0, decision 0009) about 15; the five fuzz targets about 4.5,
+#                                 at -O0, decision 0009) about 15; the five fuzz targets about 3.5,
 #                                 and a minute of fuzzing each, as many at once as there are
 #                                 cores (each fuzzer runs on one); later runs rebuild only what
 #                                 changed)

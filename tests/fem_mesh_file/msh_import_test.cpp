@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <rumble/abi.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -456,6 +457,21 @@ TEST(FemMshImport, WhatTheMshFuzzTargetsFoundIsRefusedNamingTheFileOrRead) {
   EXPECT_EQ(fem::load_mesh_file(s, (dir / "t.msh").string()).mesh.node_count(), 4);
   std::ofstream(dir / "t.msh") << one_tetrahedron("-1.7e308");
   EXPECT_EQ(fem::load_mesh_file(s, (dir / "t.msh").string()).mesh.node_count(), 4);
+}
+
+// gmsh::initialize appends the executable's folder to PATH and PYTHONPATH at every session; glibc
+// keeps each replaced value, so the msh fuzz target's thousands of sessions ran out of memory
+// (quadratically: each value a little longer). A session leaves both as they were.
+TEST(FemMshImport, AGmshSessionLeavesTheEnvironmentAsItWas) {
+  const char* path = std::getenv("PATH");
+  ASSERT_NE(path, nullptr);
+  const std::string before = path;
+  ::unsetenv("PYTHONPATH");
+  for (int i = 0; i < 3; ++i) {
+    const fem::GmshSession session(1);
+  }
+  EXPECT_EQ(std::getenv("PATH"), before);
+  EXPECT_EQ(std::getenv("PYTHONPATH"), nullptr);
 }
 
 TEST(FemMshImport, TheFileItselfIsCheckedWhenTheSoilIsMade) {

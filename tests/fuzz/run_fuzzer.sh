@@ -24,10 +24,8 @@ dict_option=()
 [ -n "$dict" ] && dict_option=(-dict="$dict")
 seeds=()  # regressions/<name> is there once a defect was found
 for d in "$@"; do [ -d "$d" ] && seeds+=("$d"); done
-# RUMBLE_FUZZ_FLAGS: a target's own libFuzzer flags (CMakeLists.txt, rumble_add_fuzzer FLAGS).
-read -ra flags <<<"${RUMBLE_FUZZ_FLAGS:-}"
 "$fuzzer" -max_total_time="$seconds" -timeout="${RUMBLE_FUZZ_TIMEOUT:-5}" -rss_limit_mb=2048 \
-  -max_len=16384 "${dict_option[@]}" "${flags[@]}" -artifact_prefix="$scratch/artifacts/" \
+  -max_len=16384 "${dict_option[@]}" -artifact_prefix="$scratch/artifacts/" \
   -print_final_stats=1 -reload=0 "$scratch/corpus" "${seeds[@]}" >"$scratch/fuzz.log" 2>&1
 rc=$?
 # The seeds loaded, the last status lines and the final statistics (executions, coverage).

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <limits>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <unordered_map>
@@ -214,14 +215,20 @@ void keep_fltk_from_its_preference_files() {
 
 GmshSession::GmshSession(unsigned threads) {
   keep_fltk_from_its_preference_files();
-  // gmsh::initialize appends the executable's folder to PATH (for its ONELAB clients, which the
-  // plugin never runs), every session: PATH grew by it each time, and glibc keeps every value
-  // setenv replaces, so thousands of sessions in one process took memory quadratically (the msh
-  // fuzz target ran out of its 2 GiB). Put back as it was, the same value is reused.
-  const char* path = std::getenv("PATH");
-  const std::string saved_path = path != nullptr ? path : "";
+  // gmsh::initialize appends the executable's folder to PATH and PYTHONPATH (for its ONELAB
+  // clients and Python modules, which the plugin never uses) at every session: they grew each
+  // time, and glibc keeps every value setenv replaces, so thousands of sessions in one process
+  // took memory quadratically (the msh fuzz target ran out of its 2 GiB). Put back as they were,
+  // the same values are reused.
+  std::vector<std::pair<const char*, std::optional<std::string>>> environment;
+  for (const char* name : {"PATH", "PYTHONPATH"}) {
+    const char* value = std::getenv(name);
+    environment.emplace_back(name,
+                             value != nullptr ? std::optional<std::string>(value) : std::nullopt);
+  }
   gmsh::initialize(0, nullptr, /*readConfigFiles=*/false);  // no ~/.gmshrc, ~/.gmsh-options
-  if (path != nullptr) ::setenv("PATH", saved_path.c_str(), 1);
+  for (const auto& [name, value] : environment)
+    value ? ::setenv(name, value->c_str(), 1) : ::unsetenv(name);
   // Nothing saved at the end (the GUI's session and options files), and gmsh::finalize removes
   // its temporary file, by default ~/.gmsh-tmp (a user's, from gmsh's GUI): named "." instead,
   // it is the home directory itself, which unlink refuses.
