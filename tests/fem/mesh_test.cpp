@@ -67,6 +67,20 @@ TEST(FemMesh, PlanRefusesTooLargeAMeshWithTheEstimateAndTheFix) {
        "lower mesh.f_max or mesh.radius"});
 }
 
+// Within mesh.max_dofs, a mesh that would not fit in the memory available now was meshed until
+// gmsh or the statics died of it (issue #30 item 2): the plan holds the estimate's peak (about
+// 4 kB per DOF) against the machine's available memory and refuses it before meshing. 30 m at
+// 400 Hz is about 1e9 DOFs, 4 TB: more than any machine this runs on.
+TEST(FemMesh, PlanRefusesAMeshTheMachinesMemoryCannotHold) {
+  FemSettings s = stiff_soil(30.0, 400.0);
+  s.mesh.max_dofs = 1e12;  // the schema's bound (1e9) is not the plan's to check
+  test::expect_invalid_argument_containing(
+      [&] { plan_mesh(s, sleepers(10)); },
+      {"fem: params/mesh: a mesh of about", "degrees of freedom needs about",
+       "GB at a run's peak (about 4 kB per DOF", "this machine has available now",
+       "lower mesh.f_max or mesh.radius, raise mesh.h_near, or free memory and run again"});
+}
+
 FemSettings box_with_layer(double thickness) {
   FemSettings s = stiff_soil(4.0, 40.0);
   s.mesh.shape = MeshShape::kBox;

@@ -5,6 +5,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <rumble/host_resources.hpp>
 #include <sstream>
 
 #include "core/errors.hpp"
@@ -48,14 +49,26 @@ void FieldWriter::at(double t) {
 void FieldWriter::check_projected_size(const fs::path& first) const {
   std::error_code ec;
   const auto bytes = static_cast<double>(fs::file_size(first, ec));
+  if (ec) return;
   const double snapshots = std::floor(t_end_ / interval_ + 1e-9) + 1.0;
-  if (ec || bytes * snapshots <= kMaxFieldBytes || size_confirmed_) return;
+  // The snapshots still to come must fit the disk, --yes or not.
+  const double to_come = bytes * (snapshots - 1.0);
+  const std::string dir = first.parent_path().string();
+  const double free = free_disk_bytes(dir);
   std::ostringstream m;
   m.precision(3);
   m << "/outputs/fields/interval: the field snapshots would take about "
     << bytes * snapshots / (1u << 30) << " GiB (" << snapshots << " snapshots of "
-    << bytes / (1u << 20) << " MiB, the first one's size), more than the "
-    << kMaxFieldBytes / (1u << 30)
+    << bytes / (1u << 20) << " MiB, the first one's size), ";
+  if (to_come > free) {
+    m << "and the " << to_come / (1u << 30) << " GiB still to come are more than the "
+      << free / (1u << 30) << " GiB free under " << dir
+      << " (--yes does not waive this); raise outputs.fields.interval, shorten the run, or free "
+         "space there";
+    throw RunError(m.str());
+  }
+  if (bytes * snapshots <= kMaxFieldBytes || size_confirmed_) return;
+  m << "more than the " << kMaxFieldBytes / (1u << 30)
     << " GiB limit; raise outputs.fields.interval, shorten the run, or confirm the size with "
        "--yes";
   throw RunError(m.str());

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <rumble/host_resources.hpp>
 #include <sstream>
 
 #include "core/errors.hpp"
@@ -50,13 +51,24 @@ void ProbeRecorder::log_resolution() const {
 void ProbeRecorder::check_projected_size(double t) const {
   const double columns = 1.0 + static_cast<double>(points_.size() * RUMBLE_PROBE_VALUES);
   const double bytes = samples_ * (t_end_ / t) * columns * scenario::kBytesPerValue;
-  if (bytes <= scenario::kMaxBytesWritten || size_confirmed_) return;
+  // What is still to come must fit the disk, --yes or not (a full disk ends the run anyway).
+  const double to_come = bytes * (1.0 - t / t_end_);
+  const std::string dir = csv_->path().parent_path().string();
+  const double free = free_disk_bytes(dir);
   std::ostringstream m;
   m.precision(3);
   m << "/outputs/receiver_interval: receivers.csv would take about " << bytes / (1u << 30)
     << " GiB (the soil samples its receivers " << samples_ / t << " times a second, " << columns
-    << " values a row, " << t_end_ << " s), more than the "
-    << scenario::kMaxBytesWritten / (1u << 30)
+    << " values a row, " << t_end_ << " s), ";
+  if (to_come > free) {
+    m << "and the " << to_come / (1u << 30) << " GiB still to come are more than the "
+      << free / (1u << 30) << " GiB free under " << dir
+      << " (--yes does not waive this); set outputs.receiver_interval (a sample every 1e-4 s "
+         "resolves 5 kHz), list fewer receivers, or free space there";
+    throw RunError(m.str());
+  }
+  if (bytes <= scenario::kMaxBytesWritten || size_confirmed_) return;
+  m << "more than the " << scenario::kMaxBytesWritten / (1u << 30)
     << " GiB limit on time histories; set outputs.receiver_interval (a sample every 1e-4 s "
        "resolves 5 kHz), list fewer receivers, or confirm the size with --yes";
   throw RunError(m.str());

@@ -6,6 +6,7 @@
 #include <cerrno>
 #include <cstring>
 #include <optional>
+#include <rumble/host_resources.hpp>
 
 #include "plugin/registry.hpp"
 #include "scenario/component_check.hpp"
@@ -97,6 +98,15 @@ CheckedScenario check_scenario_document(Document document, std::vector<Override>
       size.push_back(make_diagnostic(doc, d.pointer, d.message, d.hint, d.severity));
     sort_diagnostics(size);
     c.diagnostics.insert(c.diagnostics.end(), size.begin(), size.end());
+  }
+  // What the machine has free, whatever --yes says (past it the run cannot end well).
+  if (no_errors(c.diagnostics) && options.machine_room) {
+    const fs::path dir = options.output_directory ? *options.output_directory
+                                                  : results_directory(doc.json, doc.path);
+    const MachineRoom room{available_memory_bytes(), free_disk_bytes(dir.string()),
+                           dir.lexically_normal().string()};
+    for (Diagnostic& d : check_machine_room(doc.json, room))
+      c.diagnostics.push_back(make_diagnostic(doc, d.pointer, d.message, d.hint, d.severity));
   }
   // A directory outside the scenario's folder is the command line's to allow (rumble run
   // refuses it, or the user consents and the run reports what it cannot create).

@@ -36,6 +36,11 @@ struct CheckOptions {
   /// When given, the soils built by the check stay here for the run or command that follows in
   /// the same process (a FEM soil is then meshed and assembled once, not twice).
   BuiltSoils* keep_soils = nullptr;
+  /// true (`rumble run`): the run's estimate is also held against the memory and the disk this
+  /// machine has free now (check_machine_room), the disk's under `output_directory` when given,
+  /// else under outputs.directory. Not in `validate`: a scenario may be meant for another machine.
+  bool machine_room = false;
+  std::optional<std::filesystem::path> output_directory;
 };
 
 struct CheckedScenario {

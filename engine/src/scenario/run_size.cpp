@@ -150,4 +150,45 @@ std::vector<Diagnostic> check_run_size(const json& sc) {
   return out;
 }
 
+std::vector<Diagnostic> check_machine_room(const json& sc, const MachineRoom& room) {
+  std::vector<Diagnostic> out;
+  const RunSize r = estimate_run_size(sc);
+  const double memory = r.statics_bytes + r.memory_bytes;
+  if (memory > room.memory_bytes) {
+    const bool statics = r.statics_bytes >= r.memory_bytes;
+    const bool two_step = sc.at("coupling").value("type", "") == "two_step";
+    const double sleepers = sc.at("track").at("sleepers").at("count").get<double>();
+    const char* pointer =
+        statics ? "/track/sleepers/count" : (two_step ? "/coupling/type" : "/time/end");
+    // What fits: the statics grow as n^2 (kStaticsBytesPerPair), the histories as time.end.
+    const std::string fix =
+        statics
+            ? "use at most " +
+                  number_text(std::floor(std::sqrt(
+                      std::max(0.0, room.memory_bytes - r.memory_bytes) / kStaticsBytesPerPair))) +
+                  " sleepers, or free memory (other processes) and run again"
+            : std::string("shorten time.end or raise time.macro_step") +
+                  (two_step ? ", or use fewer sleepers" : "") +
+                  "; or free memory (other processes) and run again";
+    out.push_back(finding(pointer,
+                          "the run needs about " + bytes_text(memory) + " of memory (" +
+                              bytes_text(r.statics_bytes) + " for the static state of " +
+                              number_text(sleepers) + " sleepers, " + bytes_text(r.memory_bytes) +
+                              " for its histories), more than the " +
+                              bytes_text(room.memory_bytes) +
+                              " this machine has available now (MemAvailable, or the cgroup's "
+                              "limit); --yes does not waive this",
+                          fix));
+  }
+  if (r.bytes_written > room.disk_bytes) {
+    out.push_back(finding("/outputs/every",
+                          "the time histories would take at least " + bytes_text(r.bytes_written) +
+                              " on disk, more than the " + bytes_text(room.disk_bytes) +
+                              " free under " + room.results + " now; --yes does not waive this",
+                          "record every n-th macro step (outputs.every), shorten time.end, "
+                          "choose another results directory (--output DIR) or free space there"));
+  }
+  return out;
+}
+
 }  // namespace rumble::scenario

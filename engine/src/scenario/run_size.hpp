@@ -10,6 +10,7 @@
 #pragma once
 
 #include <nlohmann/json.hpp>
+#include <string>
 #include <vector>
 
 #include "scenario/diagnostic.hpp"
@@ -50,5 +51,18 @@ RunSize estimate_run_size(const nlohmann::json& scenario);
 /// An error per limit the estimate exceeds, at the value to change, with the estimate and the
 /// fix ("... or confirm it with --yes").
 std::vector<Diagnostic> check_run_size(const nlohmann::json& scenario);
+
+/// What this machine has free as a run starts (rumble/host_resources.hpp), in bytes.
+struct MachineRoom {
+  double memory_bytes = 0.0;  // available to new allocations (MemAvailable, the cgroup's limit)
+  double disk_bytes = 0.0;    // free to the user on the results directory's file system
+  std::string results;        // that directory, for the message
+};
+
+/// An error where the run's estimate exceeds what the machine has free now: the memory of the
+/// statics and the histories (at /track/sleepers/count, /coupling/type or /time/end), the disk
+/// the time histories take (at /outputs/every). Unlike the budgets of check_run_size, --yes does
+/// not waive these: past them a run ends in std::bad_alloc, the OOM killer or a full disk.
+std::vector<Diagnostic> check_machine_room(const nlohmann::json& scenario, const MachineRoom& room);
 
 }  // namespace rumble::scenario

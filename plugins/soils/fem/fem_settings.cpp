@@ -112,7 +112,7 @@ const char* settings_schema() {
         "near_distance": {"type": "number", "minimum": 0.1, "maximum": 1000, "default": 5, "description": "full resolution within this distance of the footprints [m]; beyond it the size grows in proportion to the distance (f_max resolved falls as near_distance / distance); [0.1, 1000] m: from a footprint's size to mesh.radius's largest (ground vibration is assessed within some 100 m)"},
         "h_near": {"type": "number", "minimum": 0.01, "maximum": 100, "description": "element size near the track [m]; default: slowest Rayleigh speed / (f_max x elements_per_wavelength); [0.01, 100] m: a sleeper's footprint is 0.26 m wide; the mesh's size is bounded apart (mesh.max_dofs)"},
         "h_max": {"type": "number", "minimum": 0.01, "maximum": 1000, "description": "largest element size [m], >= h_near; default radius / 4; [0.01, 1000] m: from h_near's smallest to mesh.radius's largest"},
-        "max_dofs": {"type": "number", "minimum": 1000, "maximum": 1e9, "default": 3e6, "description": "largest mesh accepted, in degrees of freedom (3 per node), estimated before meshing; about 1 GB per million DOFs for the explicit scheme; [1e3, 1e9]: 1e9 DOFs would need a terabyte"},
+        "max_dofs": {"type": "number", "minimum": 1000, "maximum": 1e9, "default": 3e6, "description": "largest mesh accepted, in degrees of freedom (3 per node), estimated before meshing; about 4 GB per million DOFs at a run's peak (docs/fem-soil.md §7), and a mesh that would not fit in the memory available now is refused before meshing; [1e3, 1e9]: 1e9 DOFs would need a terabyte"},
         "algorithm": {"enum": ["delaunay", "hxt"], "default": "delaunay", "description": "gmsh's 3D algorithm: delaunay gives the same mesh for the same input on every run; hxt is 2-5x faster on large meshes but its mesh differs slightly from run to run"},
         "threads": {"type": "integer", "minimum": 1, "maximum": 64, "default": 1, "description": "gmsh meshing threads (used by hxt); [1, 64]: a machine's cores"},
         "quality_threshold": {"type": "number", "minimum": 0, "maximum": 0.95, "default": 0.3, "description": "gmsh optimizes the tetrahedra whose quality is below this (its Mesh.OptimizeThreshold) [-]: the worst tetrahedra set the explicit stable step; 0.6 gave a 20 % longer step than gmsh's 0.3 on the stiff example for about the same meshing time, 0.9 no more for 3x the time (docs/fem-soil.md section 2); [0, 0.95]: gmsh's quality is 0 to 1, 1 only for the regular tetrahedron, which no mesh reaches everywhere"}
@@ -259,7 +259,7 @@ FemSettings read_settings(const std::string& params_json) {
            << " m needs at least " << dofs
            << " degrees of freedom, more than mesh.max_dofs = " << m.max_dofs
            << "; thicken the layer (about mesh.radius / 2), use fewer pml.elements, a smaller "
-              "mesh.radius, or raise mesh.max_dofs (about 1 GB per million DOFs)";
+              "mesh.radius, or raise mesh.max_dofs (about 4 GB per million DOFs at a run's peak)";
       refuse("boundary/pml/thickness", rule.str(), s.boundary.pml_thickness);
     }
   }

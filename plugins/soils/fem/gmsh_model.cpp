@@ -15,6 +15,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "mesh_memory.hpp"
 #include "node_order.hpp"
 
 namespace rumble::fem {
@@ -473,10 +474,12 @@ MeshFile load_mesh_file(const FemSettings& s, const std::string& path) {
     std::ostringstream m;
     m << where << " has " << mesh.dof_count()
       << " degrees of freedom, more than mesh.max_dofs = " << s.mesh.max_dofs
-      << "; give a coarser mesh or raise mesh.max_dofs (about 1 GB per "
-      << "million DOFs)";
+      << "; give a coarser mesh or raise mesh.max_dofs (about " << kPeakBytesPerDof * 1e-3
+      << " GB per million DOFs at a run's peak)";
     throw std::invalid_argument(m.str());
   }
+  check_memory_for(static_cast<double>(mesh.dof_count()), "params/mesh/file",
+                   "give a coarser mesh");
   file.footprints = patches(mesh, footprint_faces);
   return file;
 }

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "gmsh_model.hpp"
+#include "mesh_memory.hpp"
 #include "node_order.hpp"
 #include "wave_speeds.hpp"
 
@@ -124,9 +125,11 @@ MeshPlan plan_mesh(const FemSettings& s, const std::vector<Footprint>& footprint
       << " degrees of freedom (h_near " << p.h_near << " m, h_max " << p.h_max << " m, radius "
       << p.radius << " m), more than mesh.max_dofs = " << s.mesh.max_dofs
       << "; lower mesh.f_max or mesh.radius, raise mesh.h_near, or raise mesh.max_dofs (about "
-      << "1 GB per million DOFs)";
+      << kPeakBytesPerDof * 1e-3 << " GB per million DOFs at a run's peak)";
     throw std::invalid_argument(m.str());
   }
+  check_memory_for(3.0 * p.estimated_nodes, "params/mesh",
+                   "lower mesh.f_max or mesh.radius, raise mesh.h_near");
   return p;
 }
 
