@@ -3,7 +3,8 @@
 //                   `sub_step`), that refuses (DISCARD, state unchanged) any step longer than
 //                   `max_step`; records probes (the nearest footprint's u and v as uz and vz at
 //                   every sub-step); keeps its own checkpoints; stalls from `stall_at` [s]
-//                   (or in its statics, `stall_in_statics`) until the host asks it to stop; writes
+//                   (or in its statics, `stall_in_statics`) until the host asks it to stop (or,
+//                   `deaf`, for 60 s without asking, as a dense factorisation would); writes
 //                   field snapshots and its linear matrices; finalize() writes finalized.json
 //                   (advances, refusals, threads, checkpoint and state-copy counts) to the results
 //                   directory.
@@ -81,6 +82,7 @@ class PickySoil final : public rumble::Soil {
     "csc_defect": {"enum": ["none", "unsorted", "nan", "stiffer"], "default": "none"},
     "stall_at": {"type": "number", "default": 1.0e30},
     "stall_in_statics": {"type": "boolean", "default": false},
+    "deaf": {"type": "boolean", "default": false},
     "resolution": {"type": "number", "default": 0},
     "exit_at": {"type": "number", "default": 1.0e30},
     "crash_at": {"type": "number", "default": 1.0e30}}})";
@@ -93,6 +95,7 @@ class PickySoil final : public rumble::Soil {
     csc_defect_ = p.get<std::string>("csc_defect");
     stall_at_ = p.get<double>("stall_at");
     stall_in_statics_ = p.get_or<bool>("stall_in_statics", false);
+    deaf_ = p.get_or<bool>("deaf", false);
     exit_at_ = p.get_or<double>("exit_at", 1.0e30);  // tests build it without the schema too
     crash_at_ = p.get_or<double>("crash_at", 1.0e30);
     resolution_ = p.get_or<double>("resolution", 0.0);
@@ -223,11 +226,12 @@ class PickySoil final : public rumble::Soil {
     }
     samples().push(t, row_.data());
   }
-  /// A long advance, as a big FEM soil's: works in 10 ms slices and honours a stop request.
+  /// A long advance, as a big FEM soil's: works in 10 ms slices and honours a stop request
+  /// (unless deaf_).
   void stall() {
     const auto start = std::chrono::steady_clock::now();
     while (std::chrono::steady_clock::now() - start < std::chrono::seconds(60)) {
-      host_.check_stop(-1.0);
+      if (!deaf_) host_.check_stop(-1.0);
       std::this_thread::sleep_for(std::chrono::milliseconds(10));
     }
     throw std::runtime_error("picky_soil stalled 60 s and no stop request came");
@@ -240,7 +244,7 @@ class PickySoil final : public rumble::Soil {
   std::vector<double> row_;
   double max_step_ = 0.0, stall_at_ = 0.0, exit_at_ = 0.0, crash_at_ = 0.0;  // s
   double resolution_ = 0.0;                                                  // Hz, 0: not said
-  bool stall_in_statics_ = false;
+  bool stall_in_statics_ = false, deaf_ = false;
   std::string csc_defect_;
   long advances_ = 0, refusals_ = 0, checkpoints_ = 0;
   mutable long state_copies_ = 0;  // save_state/restore_state: the host-copy path

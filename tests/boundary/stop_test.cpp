@@ -3,7 +3,9 @@
 // far, instead of waiting for a soil that may run for minutes. picky_soil stalls in its first step
 // starting after 0.0095 s (t = 0.01 s), for 60 s at most, in 10 ms slices, asking the host each
 // time.
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <signal.h>
 
 #include <chrono>
 #include <filesystem>
@@ -19,6 +21,8 @@
 
 namespace rumble::testing {
 namespace {
+
+using ::testing::HasSubstr;
 
 /// A run of scenario s (in scratch directory `name`) with Ctrl-C requested 0.5 s in: how it ended
 /// (the outcome, or the Interrupted it threw), where its results are and how long it took.
@@ -84,6 +88,56 @@ TEST(Stop, RequestReachesAPluginInsideItsStatics) {
             std::string::npos)
       << run.thrown;
   EXPECT_EQ(read_json(run.results_dir / "summary.json")["status"], "interrupted");
+}
+
+// Ctrl-C or SIGTERM in a phase that cannot look for it (a dense LU, gmsh, a plugin's long call
+// that never asks the host) still ends the run within a second or two (issue #30 item 2): at
+// the deadline (core/interrupt.hpp) summary.json says "interrupted" and which phase held it,
+// the rows written so far stay, and the exit code is an interrupted run's. picky_soil, deaf,
+// stalls 60 s in its statics or in the step from t = 0.01 s.
+std::filesystem::path expect_stopped_at_deadline(const std::string& name,
+                                                 const nlohmann::json& soil_params, int signal,
+                                                 const std::string& phase) {
+  const auto dir = scratch_directory(name);
+  const auto path =
+      write_scenario(dir, fixture_scenario({{"type", "picky_soil"}, {"params", soil_params}},
+                                           {{"type", "gauss_seidel"}}));
+  const auto output = dir / "output.txt";
+  const pid_t pid = start_rumble({"run", path.string(), "--no-progress"}, output);
+  const auto summary_file = dir / "results" / "summary.json";
+  for (int i = 0; i < 600 && !std::filesystem::exists(summary_file); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));  // inside the stall
+  const auto start = std::chrono::steady_clock::now();
+  kill(pid, signal);
+  const int exit_code = wait_rumble(pid);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_EQ(exit_code, 3) << file_text(output);
+  EXPECT_GT(seconds, kStopGraceSeconds - 0.1);  // the phase had its grace
+  EXPECT_LT(seconds, kStopGraceSeconds + 1.5);  // and no more (the stall lasts 60 s)
+  const std::string cause = signal == SIGTERM ? "SIGTERM" : "Ctrl-C";
+  EXPECT_THAT(file_text(output),
+              HasSubstr("rumble: error: stopped by " + cause + ": " + phase +
+                        " did not stop within 1.5 s of the request, so the process ends here"));
+  const nlohmann::json summary = read_json(summary_file);
+  EXPECT_EQ(summary["status"], "interrupted");
+  EXPECT_EQ(summary["message"], "interrupted (" + cause + "): " + phase +
+                                    " did not stop within 1.5 s of the request, so the process "
+                                    "ended there");
+  return dir / "results";
+}
+
+TEST(Stop, CtrlCInAStaticSolveThatNeverLooksEndsTheRunAtTheDeadline) {
+  expect_stopped_at_deadline("deadline_statics", {{"stall_in_statics", true}, {"deaf", true}},
+                             SIGINT, "the static state");
+}
+
+TEST(Stop, SigtermInAStepThatNeverLooksEndsTheRunAtTheDeadlineWithItsRows) {
+  const auto results = expect_stopped_at_deadline(
+      "deadline_step", {{"stall_at", 0.0095}, {"deaf", true}}, SIGTERM, "the time stepping");
+  // t = 0 .. 0.01 s were recorded before the stall: on disk, row by row (run/csv_file.hpp).
+  EXPECT_EQ(csv_rows(results / "contact.csv"), 11u);
 }
 
 // A plugin calling exit(0) mid-run ended rumble with exit code 0, a truncated run and

@@ -61,6 +61,7 @@ int run_command(const std::vector<std::string>& args) {
   // the PPV of a diverging run is how the seed paper shows its divergence. Not after Ctrl-C.
   const bool post = outcome.status == RunStatus::kCompleted || outcome.status == RunStatus::kFailed;
   if (post && std::filesystem::exists(outcome.results_dir / "receivers.csv")) {
+    const StopPhase phase("post-processing");
     try {
       post_process_run(outcome.results_dir, post::options_from_scenario(doc->json));
     } catch (const std::exception& e) {  // the run's own results are on disk: say, go on
@@ -69,7 +70,9 @@ int run_command(const std::vector<std::string>& args) {
           e.what(), outcome.results_dir.lexically_normal().string());
     }
   }
-  if (outcome.status != RunStatus::kFailed && spec.outputs.plots) {
+  // Not after Ctrl-C either: the user asked to stop (the plots take seconds).
+  if (outcome.status == RunStatus::kCompleted && spec.outputs.plots) {
+    const StopPhase phase("the plots");
     run_plot_script("plot_results.py", outcome.results_dir);
   }
   // Printed as "results/x", not "scenarios/paper/../../results/x"; only printed: lexically

@@ -109,7 +109,8 @@ int study_command(const std::vector<std::string>& args) {
   }
 
   const study::OutputLock lock(s->output);
-  install_interrupt_handler();
+  // Its runs get their own deadline (kStopGraceSeconds) and their summaries written first.
+  install_interrupt_handler(4.0 * kStopGraceSeconds);
   const auto write = [&](const std::string& status) {
     study::write_state(state_file, *s, records, status, jobs);
   };

@@ -197,6 +197,15 @@ RunOutcome run_scenario(const scenario::RunSpec& spec, const PluginRegistry& reg
   SummaryWriter summary(results, spec, c, options.heartbeat_seconds);
   exit_guard.watch(summary);
   const CrashRecord crash_record(summary);  // a plugin's segfault or abort() says so in it
+  // Ctrl-C in a phase that cannot stop between its pieces (a dense LU, a plugin's long call)
+  // ends the process at the deadline (core/interrupt.hpp); summary.json says so first.
+  const LastWordScope last_word([&summary](const char* phase) {
+    std::ostringstream m;
+    m << "interrupted (" << interrupt_cause() << "): " << phase << " did not stop within "
+      << kStopGraceSeconds << " s of the request, so the process ended there";
+    summary.stopped_at_deadline(m.str());
+    return exit_code(RunStatus::kInterrupted);
+  });
   give_run_context(c, outcome.results_dir);
 
   // Anything failing from here on leaves summary.json saying so, then propagates.
@@ -205,6 +214,7 @@ RunOutcome run_scenario(const scenario::RunSpec& spec, const PluginRegistry& reg
     const auto statics_start = Clock::now();
     int static_iterations = 0;
     try {
+      const StopPhase phase("the static state");
       static_iterations = solve_statics(c);
     } catch (const std::exception&) {
       // A soil that honoured a stop request inside its static solve (a FEM soil's take tens of
@@ -274,6 +284,7 @@ RunOutcome run_scenario(const scenario::RunSpec& spec, const PluginRegistry& reg
       recording_seconds += seconds_since(start);
     });
     std::string coupler_message;
+    const StopPhase stepping("the time stepping");
     const rumble_status status = c.coupler->run(*host.table(), 0.0, spec.t_end, H, coupler_message);
     const Ending ending =
         judge(host, status, coupler_message, *c.coupler, observer, spec.t_end, outcome.results_dir);

@@ -79,6 +79,8 @@ SummaryWriter::SummaryWriter(ResultsDirectory& results, const scenario::RunSpec&
 }
 
 void SummaryWriter::heartbeat(double t, std::size_t steps) {
+  const std::lock_guard lock(mutex_);
+  if (sealed_) return;
   t_ = t;
   steps_ = steps;
   if (Clock::now() < next_heartbeat_) return;
@@ -91,6 +93,8 @@ void SummaryWriter::heartbeat(double t, std::size_t steps) {
 }
 
 void SummaryWriter::finish(RunStatus status, const std::string& message) {
+  const std::lock_guard lock(mutex_);
+  if (sealed_) return;
   summary_["status"] = status_name(status);
   if (!message.empty()) summary_["message"] = message;
   write();
@@ -98,11 +102,26 @@ void SummaryWriter::finish(RunStatus status, const std::string& message) {
 
 void SummaryWriter::fail(const std::string& message, RunStatus status) noexcept {
   try {
+    const std::lock_guard lock(mutex_);
+    if (sealed_) return;
     summary_["status"] = status_name(status);
     summary_["message"] = message;
     write();
   } catch (...) {
     // The disk refused the summary too; the caller reports the original error.
+  }
+}
+
+void SummaryWriter::stopped_at_deadline(const std::string& message) noexcept {
+  try {
+    const std::lock_guard lock(mutex_);
+    if (sealed_) return;
+    summary_["status"] = status_name(RunStatus::kInterrupted);
+    summary_["message"] = message;
+    write();
+    sealed_ = true;
+  } catch (...) {
+    // The disk refused it: the next look at the directory finds the run dead (run/dead_run.hpp).
   }
 }
 

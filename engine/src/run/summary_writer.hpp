@@ -9,6 +9,7 @@
 #include <array>
 #include <chrono>
 #include <filesystem>
+#include <mutex>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -34,6 +35,7 @@ class SummaryWriter {
                 const RunComponents& components, double heartbeat_seconds);
   /// Sets a top-level entry of the next write.
   void set(const std::string& key, nlohmann::json value) {
+    const std::lock_guard lock(mutex_);
     summary_[key] = std::move(value);
     changed_ = true;
   }
@@ -50,6 +52,9 @@ class SummaryWriter {
   /// "crashed" and "crash": {"signal", "participant"} after the last heartbeat. Async-signal-safe:
   /// it writes text kept from the last write and allocates nothing; a failing disk is ignored.
   void crashed(int sig, const char* participant) noexcept;
+  /// From the stop deadline's watchdog (core/interrupt.hpp), while `phase` still runs on the
+  /// run's thread: status "interrupted" with why, and nothing written after it. Never throws.
+  void stopped_at_deadline(const std::string& message) noexcept;
 
  private:
   using Clock = std::chrono::steady_clock;
@@ -58,6 +63,10 @@ class SummaryWriter {
   void write();
   void write_pieces(const char* heartbeat, std::size_t length);
 
+  // Guards what set(), heartbeat(), finish(), fail() and stopped_at_deadline() touch: the last
+  // runs on the watchdog's thread. crashed() takes no lock (a signal handler).
+  std::mutex mutex_;
+  bool sealed_ = false;  // stopped_at_deadline wrote the last word
   std::filesystem::path path_, tmp_;
   nlohmann::json summary_;
   bool changed_ = true;           // summary_ differs from what prefix_ + suffix_ hold
