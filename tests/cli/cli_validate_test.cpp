@@ -155,8 +155,40 @@ TEST(CliValidate, ASoilRefusingTheLayoutIsAValidateError) {
   s["time"]["end"] = 0.01;
   const CliResult r = validate("soil_refuses_layout", s);
   EXPECT_EQ(r.exit_code, 1) << r.output;
-  EXPECT_THAT(r.output, HasSubstr("error: /soil: soil 'clm' (/soil): accept_layout failed: clm: "
-                                  "footprints overlap"));
+  // Blamed on the track, whose sleepers the layout is (issue #30 item 5: it said /soil).
+  EXPECT_THAT(r.output, HasSubstr("error: /track/sleepers: soil 'clm' (/soil): accept_layout "
+                                  "failed: clm: footprints overlap"));
+}
+
+// A plugin that names the key it refuses ("fem: params/mesh/radius: ...") is blamed there, not
+// on its params as a whole (issue #30 item 5): here the footprints of 40 sleepers do not fit
+// the 6 m hemisphere, found when the FEM soil takes the layout.
+TEST(CliValidate, ASoilsRefusalPointsAtTheKeyItNames) {
+  nlohmann::json s = small_fem_scenario();
+  s["track"]["sleepers"]["count"] = 40;
+  const CliResult r = validate("soil_names_its_key", s);
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("error: /soil/params/mesh/radius: soil 'fem' (/soil): "
+                                  "accept_layout failed: fem: params/mesh/radius: the footprints "
+                                  "span "));
+  EXPECT_THAT(r.output, HasSubstr("give a radius of at least"));
+}
+
+// A FEM soil's receiver outside its mesh failed the run at its first call, blamed on the soil
+// ("soil 'fem' (/soil): set_probes failed"), and validate said the scenario was valid (issue #30
+// item 5). Validation now asks the soil it builds, and names the receiver, its pointer and
+// where it stands.
+TEST(CliValidate, AReceiverOutsideTheSoilsMeshIsBlamedAtItsPointer) {
+  nlohmann::json s = small_fem_scenario();
+  s["outputs"]["receivers"] = {2.0, 100.0};
+  const CliResult r = validate("receiver_outside_mesh", s);
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("error: /outputs/receivers/1: receiver 'd=100 m' (x "));
+  EXPECT_THAT(r.output, HasSubstr("y 100 m, depth 0 m) cannot be recorded by soil 'fem' (/soil): "
+                                  "set_probes failed: fem: receiver 'd=100 m'"));
+  EXPECT_THAT(r.output, HasSubstr("lies outside the mesh"));
+  EXPECT_THAT(r.output, HasSubstr("hint: move the receiver into the soil's domain"));
+  EXPECT_THAT(r.output, ::testing::Not(HasSubstr("/outputs/receivers/0")));
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 #include "scenario/component_check.hpp"
 
+#include <cctype>
 #include <cmath>
 #include <memory>
 #include <sstream>
@@ -8,6 +9,7 @@
 #include "plugin/built_soils.hpp"
 #include "plugin/instance.hpp"
 #include "plugin/registry.hpp"
+#include "scenario/run_spec.hpp"
 #include "track/footprint_layout.hpp"
 #include "track/track_config.hpp"
 
@@ -22,6 +24,32 @@ std::string one_decimal(double x) {
   return s.str();
 }
 
+/// Where a plugin's refusal points. Plugins name the key they refuse "params/<key>" (the SDK's
+/// convention, docs/plugin-guide.md §6: "fem: params/mesh/radius: ..."): the finding goes to that
+/// key under `component` (as far down as its params, defaults filled, have it); without one, to
+/// `otherwise`.
+std::string refused_pointer(const std::string& component, const json& params,
+                            const std::string& message, const std::string& otherwise) {
+  const std::size_t at = message.find("params/");
+  if (at == std::string::npos) return otherwise;
+  std::string pointer = component + "/params";
+  const json* node = &params;
+  std::size_t begin = at + 7;
+  for (;;) {
+    std::size_t end = begin;
+    while (end < message.size() &&
+           (std::isalnum(static_cast<unsigned char>(message[end])) != 0 || message[end] == '_'))
+      ++end;
+    const std::string key = message.substr(begin, end - begin);
+    if (key.empty() || !node->is_object() || !node->contains(key)) break;
+    pointer += "/" + key;
+    node = &node->at(key);
+    if (end >= message.size() || message[end] != '/') break;
+    begin = end + 1;
+  }
+  return pointer;
+}
+
 /// Builds the component at pointer with make(type, params); a refusal is a finding there.
 template <class Make>
 bool build(const json& component, const std::string& pointer, rumble_kind kind,
@@ -32,14 +60,53 @@ bool build(const json& component, const std::string& pointer, rumble_kind kind,
     make(*type, component.value("params", json::object()));
     return true;
   } catch (const std::exception& e) {
-    out.push_back(finding(pointer + "/params", e.what()));
+    const json params = component.value("params", json::object());
+    out.push_back(
+        finding(refused_pointer(pointer, params, e.what(), pointer + "/params"), e.what()));
     return false;
+  }
+}
+
+/// The receivers of /outputs/receivers that the soil cannot record (a FEM soil's point outside
+/// its mesh, or in its matched layer): a finding at each, found while the soil is built rather
+/// than at the run's first call, which named neither the receiver's pointer nor its index. All
+/// at once first; when refused, one at a time to tell which.
+void check_receivers(SoilInstance& soil, const json& scenario, std::vector<Diagnostic>& out) {
+  const json& outputs = scenario.at("outputs");
+  const auto track = TrackConfig::from_json(scenario.at("track"));
+  const std::vector<ReceiverSpec> receivers =
+      scenario::receivers(outputs.value("receivers", json::array()),
+                          0.5 * (track.sleeper_count - 1) * track.sleeper_spacing);
+  if (receivers.empty()) return;
+  const auto probe = [](const ReceiverSpec& r) {
+    return rumble_probe{r.name.c_str(), r.x, r.y, r.depth};
+  };
+  std::vector<rumble_probe> all;
+  for (const ReceiverSpec& r : receivers) all.push_back(probe(r));
+  const double interval = outputs.value("receiver_interval", 0.0);
+  try {
+    soil.set_probes(all, interval);
+    return;
+  } catch (const std::exception&) {
+  }
+  for (std::size_t i = 0; i < receivers.size(); ++i) {
+    try {
+      soil.set_probes({probe(receivers[i])}, interval);
+    } catch (const std::exception& e) {
+      std::ostringstream m;
+      m << "receiver '" << receivers[i].name << "' (x " << receivers[i].x << " m, y "
+        << receivers[i].y << " m, depth " << receivers[i].depth << " m) cannot be recorded by "
+        << e.what();
+      out.push_back(finding("/outputs/receivers/" + std::to_string(i), m.str(),
+                            "move the receiver into the soil's domain, or enlarge the domain "
+                            "(a FEM soil's /soil/params/mesh/radius)"));
+    }
   }
 }
 
 /// The soil at pointer accepts the layout; returns its slowest Rayleigh speed [m/s] (0: unknown).
 /// A soil that accepted it goes to `keep` when given.
-double check_soil(const json& component, const std::string& pointer,
+double check_soil(const json& scenario, const json& component, const std::string& pointer,
                   const std::filesystem::path& dir, const std::vector<rumble_footprint>& layout,
                   const PluginRegistry& registry, std::vector<Diagnostic>& out, BuiltSoils* keep) {
   double c_r = 0.0;
@@ -51,8 +118,15 @@ double check_soil(const json& component, const std::string& pointer,
           try {
             soil->accept_layout(layout);
           } catch (const std::exception& e) {
-            out.push_back(finding(pointer, e.what()));
+            // The layout is the track's (/track/sleepers) unless the soil names its own key.
+            out.push_back(
+                finding(refused_pointer(pointer, params, e.what(), "/track/sleepers"), e.what()));
             return;
+          }
+          if (pointer == "/soil") {  // the receivers are the scenario's soil's
+            const std::size_t findings = out.size();
+            check_receivers(*soil, scenario, out);
+            if (out.size() > findings) return;
           }
           if (keep != nullptr) keep->keep(pointer, type.type_name, params, layout, std::move(soil));
         });
@@ -75,12 +149,12 @@ std::vector<Diagnostic> check_components(const json& scenario,
   const std::vector<rumble_footprint> layout =
       footprint_layout(TrackConfig::from_json(scenario.at("track")));
   const double c_r =
-      check_soil(scenario.at("soil"), "/soil", scenario_dir, layout, registry, out, keep);
+      check_soil(scenario, scenario.at("soil"), "/soil", scenario_dir, layout, registry, out, keep);
   const json& coupling = scenario.at("coupling");
   const json extras = coupling.value("participants", json::object());
   for (const auto& [name, component] : extras.items())
-    check_soil(component, "/coupling/participants/" + name, scenario_dir, layout, registry, out,
-               keep);
+    check_soil(scenario, component, "/coupling/participants/" + name, scenario_dir, layout,
+               registry, out, keep);
   build(coupling, "/coupling", RUMBLE_KIND_COUPLER, registry, out,
         [&](const ComponentType& type, const json& params) {
           CouplerInstance(type, "/coupling", params, scenario_dir);

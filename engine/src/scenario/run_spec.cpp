@@ -13,6 +13,8 @@ ComponentSpec component(const json& j, std::string pointer) {
   return {std::move(pointer), j.at("type").get<std::string>(), j.value("params", json::object())};
 }
 
+}  // namespace
+
 std::vector<ReceiverSpec> receivers(const json& list, double x_mid) {
   std::vector<ReceiverSpec> out;
   for (const json& r : list) {
@@ -31,8 +33,6 @@ std::vector<ReceiverSpec> receivers(const json& list, double x_mid) {
   }
   return out;
 }
-
-}  // namespace
 
 double RunSpec::track_middle() const {
   return 0.5 * (track.sleeper_count - 1) * track.sleeper_spacing;

@@ -69,6 +69,9 @@ struct RunSpec {
   double track_middle() const;
 };
 
+/// /outputs/receivers as receivers, in order: a number is a surface distance at x_mid [m].
+std::vector<ReceiverSpec> receivers(const nlohmann::json& list, double x_mid);
+
 /// The name of a receiver given by its distance y [m] from the track axis: "d=2.5 m".
 std::string distance_receiver_name(double y);
 
