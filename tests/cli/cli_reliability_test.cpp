@@ -123,13 +123,13 @@ TEST(CliReliability, RunsBeyondTheSizeLimitsAreRefusedUnlessConfirmed) {
   const CliResult confirmed = run_rumble({"validate", path, "--yes"});
   EXPECT_EQ(confirmed.exit_code, 0) << confirmed.output;
   // Confirmed, the run is held against what this machine has free (issue #30 item 2): its
-  // histories (3.6e10 records: 268 GiB of memory, about 240 TiB on disk) fit neither, and --yes
+  // histories (3.6e10 records: 268 GiB of memory, 46 TiB on disk) fit neither, and --yes
   // does not waive that. Before, it began and wrote until the disk was full.
   const CliResult run_confirmed = run_rumble({"run", path, "--no-progress", "--yes"});
   EXPECT_EQ(run_confirmed.exit_code, 1) << run_confirmed.output;
   EXPECT_THAT(run_confirmed.output,
-              HasSubstr("error: /time/end: the run needs about 268 GiB of memory (15 KiB for the "
-                        "static state of 16 sleepers, 268 GiB for its histories), more than the "));
+              HasSubstr("error: /time/end: the run needs about 268 GiB of memory (22 KiB for the "
+                        "static state of 20 sleepers, 268 GiB for its histories), more than the "));
   EXPECT_THAT(run_confirmed.output,
               HasSubstr("this machine has available now (MemAvailable, or the cgroup's limit); "
                         "--yes does not waive this"));

@@ -33,7 +33,8 @@ int run_command(const std::vector<std::string>& args) {
   check.size_confirmed = a.flag("yes");  // a run beyond the size limits (scenario/run_size.hpp)
   check_results_directory(check, output.has_value(), a.flag("allow-outside-results"));
   check.machine_room = true;  // the memory and disk free now (scenario/run_size.hpp)
-  if (output) check.output_directory = std::filesystem::absolute(*output);
+  const std::filesystem::path output_directory = output ? std::filesystem::absolute(*output) : "";
+  if (output) check.output_directory = &output_directory;
   BuiltSoils built;  // the soils validation builds, for the run (a FEM soil is built once)
   check.keep_soils = &built;
   auto doc =

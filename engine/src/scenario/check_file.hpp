@@ -40,7 +40,7 @@ struct CheckOptions {
   /// machine has free now (check_machine_room), the disk's under `output_directory` when given,
   /// else under outputs.directory. Not in `validate`: a scenario may be meant for another machine.
   bool machine_room = false;
-  std::optional<std::filesystem::path> output_directory;
+  const std::filesystem::path* output_directory = nullptr;  // (a pointer: kNotARun is constexpr)
 };
 
 struct CheckedScenario {
