@@ -9,6 +9,8 @@
 #include <sstream>
 
 #include "core/errors.hpp"
+#include "core/logging.hpp"
+#include "core/number_text.hpp"
 #include "plugin/instance.hpp"
 #include "run/new_file.hpp"
 #include "run/results_directory.hpp"
@@ -55,6 +57,10 @@ void FieldWriter::check_projected_size(const fs::path& first) const {
   const double to_come = bytes * (snapshots - 1.0);
   const std::string dir = first.parent_path().string();
   const double free = free_disk_bytes(dir);
+  logger("engine")->info("fields: about {} bytes projected ({} snapshots of {} bytes; {} bytes free "
+                         "there)",
+                         number_text(bytes * snapshots, 3), number_text(snapshots, 3),
+                         number_text(bytes, 3), number_text(free, 3));
   std::ostringstream m;
   m.precision(3);
   m << "/outputs/fields/interval: the field snapshots would take about "

@@ -55,6 +55,11 @@ void ProbeRecorder::check_projected_size(double t) const {
   const double to_come = bytes * (1.0 - t / t_end_);
   const std::string dir = csv_->path().parent_path().string();
   const double free = free_disk_bytes(dir);
+  logger("engine")->info(
+      "receivers.csv: about {} bytes projected ({} samples a second over {} s; {} bytes free "
+      "there)",
+      number_text(bytes, 3), number_text(samples_ / t, 3), number_text(t_end_, 3),
+      number_text(free, 3));
   std::ostringstream m;
   m.precision(3);
   m << "/outputs/receiver_interval: receivers.csv would take about " << bytes / (1u << 30)
