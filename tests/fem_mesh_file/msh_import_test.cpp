@@ -366,7 +366,8 @@ TEST(FemMshImport, FootprintsNotTheTracksAreRefused) {
   const nlohmann::json soil = with_file(small_layered_soil(), dir / "soil.msh");
   write_generated(small_layered_soil(), footprints, dir / "soil.msh");
   expect_parts(layout_error(soil, sleeper_row(2)),
-               {"has 3 footprint rectangle(s) in its physical surface \"footprints\" (centred at "
+               {"fem: the track's footprints do not fit the mesh of params/mesh/file '",
+                "has 3 footprint rectangle(s) in its physical surface \"footprints\" (centred at "
                 "x = 0 .. 1.2 m); the track has 2 footprint(s)",
                 "mesh one rectangle per footprint"});
   auto moved = footprints;

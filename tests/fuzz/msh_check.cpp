@@ -151,6 +151,9 @@ std::string check_msh(std::string_view file_text) {
   const fs::path path = scratch_dir("msh") / "soil.msh";
   write_file(path, file_text);
   const std::string where = "fem: params/mesh/file: '" + path.string() + "'";
+  // A mesh that does not fit the track blames the track and names the file.
+  const std::string mismatch =
+      "fem: the track's footprints do not fit the mesh of params/mesh/file '" + path.string() + "'";
   const fem::FemSettings settings;  // a half-space, no layers; the default limits
   const std::vector<Footprint> track = {{0.0, 0.0, 2.6, 0.26}};
   try {
@@ -158,7 +161,8 @@ std::string check_msh(std::string_view file_text) {
     if (std::string bad = check_mesh(file, settings); !bad.empty()) return bad;
     fem::check_mesh_footprints(file, track);
   } catch (const std::invalid_argument& e) {
-    if (!starts_with(e.what(), where)) return std::string("refused without the file: ") + e.what();
+    if (!starts_with(e.what(), where) && !starts_with(e.what(), mismatch))
+      return std::string("refused without the file: ") + e.what();
   } catch (const std::runtime_error& e) {  // gmsh's errors, through gmsh_call
     if (!starts_with(e.what(), where) && !starts_with(e.what(), "fem: gmsh failed to "))
       return std::string("refused without the file: ") + e.what();

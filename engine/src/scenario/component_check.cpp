@@ -5,6 +5,7 @@
 #include <memory>
 #include <sstream>
 #include <string>
+#include <string_view>
 
 #include "plugin/built_soils.hpp"
 #include "plugin/instance.hpp"
@@ -24,17 +25,18 @@ std::string one_decimal(double x) {
   return s.str();
 }
 
-/// Where a plugin's refusal points. Plugins name the key they refuse "params/<key>" (the SDK's
-/// convention, docs/plugin-guide.md §6: "fem: params/mesh/radius: ..."): the finding goes to that
-/// key under `component` (as far down as its params, defaults filled, have it); without one, to
-/// `otherwise`.
+/// Where a plugin's refusal points. Plugins begin a refusal of one of their keys with
+/// "<plugin>: params/<key>:" (docs/plugin-guide.md §6: "fem: params/mesh/radius: ..."): the
+/// finding goes to that key under `component` (as far down as its params, defaults filled, have
+/// it); without one, to `otherwise`. A key named elsewhere in the text is not the one blamed.
 std::string refused_pointer(const std::string& component, const json& params,
                             const std::string& message, const std::string& otherwise) {
-  const std::size_t at = message.find("params/");
+  constexpr std::string_view kKey = ": params/";
+  const std::size_t at = message.find(kKey);
   if (at == std::string::npos) return otherwise;
   std::string pointer = component + "/params";
   const json* node = &params;
-  std::size_t begin = at + 7;
+  std::size_t begin = at + kKey.size();
   for (;;) {
     std::size_t end = begin;
     while (end < message.size() &&

@@ -478,7 +478,7 @@ MeshFile load_mesh_file(const FemSettings& s, const std::string& path) {
       << " GB per million DOFs at a run's peak)";
     throw std::invalid_argument(m.str());
   }
-  check_memory_for(static_cast<double>(mesh.dof_count()), "params/mesh/file",
+  check_memory_for(static_cast<double>(mesh.dof_count()), where,
                    "give a coarser mesh");
   file.footprints = patches(mesh, footprint_faces);
   return file;
@@ -494,6 +494,10 @@ double mesh_footprint_tolerance(const Footprint& f) {
 
 void check_mesh_footprints(const MeshFile& file, const std::vector<Footprint>& footprints) {
   const std::string where = where_file(file.path);
+  // A mesh made for another track: the track's footprints are blamed (the engine reports a
+  // layout refusal that names no "fem: params/<key>:" at /track/sleepers), the file named.
+  const std::string mismatch =
+      "fem: the track's footprints do not fit the mesh of params/mesh/file '" + file.path + "'";
   std::ostringstream track;
   track.precision(6);
   track << "the track has " << footprints.size() << " footprint(s)";
@@ -516,7 +520,7 @@ void check_mesh_footprints(const MeshFile& file, const std::vector<Footprint>& f
   if (file.footprints.size() != footprints.size()) {
     std::ostringstream m;
     m.precision(6);
-    m << where << " has " << file.footprints.size()
+    m << mismatch << " has " << file.footprints.size()
       << " footprint rectangle(s) in its physical surface \"footprints\"";
     if (!file.footprints.empty())
       m << " (centred at x = " << nm(file.footprints.front().centre_x()) << " .. "
@@ -544,7 +548,7 @@ void check_mesh_footprints(const MeshFile& file, const std::vector<Footprint>& f
       continue;
     std::ostringstream m;
     m.precision(6);
-    m << where << ": footprint " << j << " of the track (centre x " << f.x << " m, y " << f.y
+    m << mismatch << ": footprint " << j << " of the track (centre x " << f.x << " m, y " << f.y
       << " m, " << f.length << " m x " << f.width << " m) has no rectangle of the physical "
       << "surface \"footprints\" within " << tol << " m; the nearest is centred at x "
       << nm(p.centre_x()) << " m, y " << nm(p.centre_y()) << " m, " << nm(p.y1 - p.y0) << " m x "

@@ -128,7 +128,7 @@ MeshPlan plan_mesh(const FemSettings& s, const std::vector<Footprint>& footprint
       << kPeakBytesPerDof * 1e-3 << " GB per million DOFs at a run's peak)";
     throw std::invalid_argument(m.str());
   }
-  check_memory_for(3.0 * p.estimated_nodes, "params/mesh",
+  check_memory_for(3.0 * p.estimated_nodes, "fem: params/mesh",
                    "lower mesh.f_max or mesh.radius, raise mesh.h_near");
   return p;
 }

@@ -13,15 +13,15 @@ namespace rumble::fem {
 /// 4.15 GB with meshing, the static multigrid and the explicit step (docs/fem-soil.md §7).
 inline constexpr double kPeakBytesPerDof = 4.0e3;
 
-/// Throws std::invalid_argument ("fem: <where>: ..." with the estimate, what is available and
-/// `fix`) when `dofs` would need more memory at a run's peak than the machine has available now.
+/// Throws std::invalid_argument ("<where>: ..." with the estimate, what is available and `fix`;
+/// `where` names the key: "fem: params/mesh") when `dofs` would need more memory at a run's peak than the machine has available now.
 inline void check_memory_for(double dofs, const std::string& where, const std::string& fix) {
   const double need = dofs * kPeakBytesPerDof;
   const double available = available_memory_bytes();
   if (need <= available) return;
   std::ostringstream m;
   m.precision(3);
-  m << "fem: " << where << ": a mesh of about " << dofs << " degrees of freedom needs about "
+  m << where << ": a mesh of about " << dofs << " degrees of freedom needs about "
     << need / 1e9 << " GB at a run's peak (about " << kPeakBytesPerDof * 1e-3
     << " kB per DOF: meshing, the static multigrid and the step; docs/fem-soil.md §7), more "
     << "than the " << available / 1e9
