@@ -125,13 +125,41 @@ TEST(FemStaticFarField, SurfaceReceiversBesideALoadedTrackSettleAsTheHalfSpace) 
   EXPECT_GT(*std::max_element(liu.begin(), liu.end()), 1.05);
 }
 
-TEST(FemStaticFarField, ALoadChangeSettlesThroughTheSpringsAlone) {
-  // From the wheel's load to twice it: the change reaches the boundary through the springs
-  // alone (the far field's traction is the statics'), fitted to a uniform pressure on the
-  // footprints, not to this load 5 m off the centre. What this bounds is what is left of the
-  // issue (docs/fem-soil.md section 3.2): measured after 0.5 s, 0.99 at the centre, 1.07 and
-  // 1.13 abreast of the wheel at 2.5 and 5 m (Liu's springs: 1.04, 1.00, 1.13, 1.13). Tighten
-  // the bounds when the boundary's static stiffness becomes the exterior's.
+/// Largest |Re H(f) F - u| over the footprints, relative to the largest |u| [-]: the
+/// receptance's quasi-static limit against the soil's static footprint settlements u under F.
+double receptance_against_statics(const nlohmann::json& params, double f_hz) {
+  TestSoil soil("fem", params.dump());
+  soil.accept_layout(sleeper_row(30));
+  const VectorXd F = wheel_over_sleeper_six();
+  const VectorXd u = soil.initialize(F);
+  const VectorXd from_receptance = (soil.receptance(f_hz) * F).real();
+  return (from_receptance - u).cwiseAbs().maxCoeff() / u.cwiseAbs().maxCoeff();
+}
+
+// The receptance takes the far field as the steps do (B + G / (1 + i w tau) on the right-hand
+// side), so at a low frequency it gives the soil's static footprint settlements, the
+// half-space's; held at the statics' ("static", what the linear matrices describe), it gives
+// the springs' softer answer.
+TEST(FemStaticFarField, TheReceptancesLowFrequencyLimitIsTheStatics) {
+  nlohmann::json params = track_soil("half_space");
+  params["mesh"]["f_max"] = 20.0;  // Hz: coarser than the other checks' (two LUs)
+  const double follows = receptance_against_statics(params, 0.05);
+  params["boundary"]["far_field"] = "static";
+  const double held = receptance_against_statics(params, 0.05);
+  std::printf("receptance at 0.05 Hz times F against the statics: %.2e (far field follows), "
+              "%.2e (static)\n",
+              follows, held);
+  EXPECT_LT(follows, 2e-3);
+  EXPECT_GT(held, 5.0 * follows);
+}
+
+TEST(FemStaticFarField, ALoadChangeSettlesAsTheHalfSpace) {
+  // From the wheel's load to twice it, held 0.5 s: the far field's traction follows the forces
+  // with its lag (about 0.07 s here; docs/fem-soil.md section 3.2), so the change settles as
+  // the statics do: measured 1.001 at the centre, 1.015 and 1.005 abreast of the wheel at 2.5
+  // and 5 m. When the traction was the statics' alone, the change reached the boundary through
+  // the springs, fitted to a uniform pressure, not to this load 5 m off the centre: 1.077 and
+  // 1.133 abreast of the wheel (Liu's springs: 1.13, 1.13).
   const VectorXd F0 = wheel_over_sleeper_six(), F1 = 2.0 * F0;
   TestSoil soil("fem", track_soil("half_space").dump());
   soil.accept_layout(sleeper_row(30));
@@ -142,10 +170,7 @@ TEST(FemStaticFarField, ALoadChangeSettlesThroughTheSpringsAlone) {
   for (double t = 0.0; t < 0.5 - 1e-9; t += H) soil.advance_linear(t, H, F1, F1);
   const std::vector<double> ratios =
       ratios_to_half_space(newest_probe_settlements(soil, probes.size()), F1, "after the change");
-  EXPECT_NEAR(ratios[0], 1.0, 0.02);
-  EXPECT_NEAR(ratios[1], 1.0, 0.02);
-  EXPECT_NEAR(ratios[2], 1.0, 0.15);
-  EXPECT_NEAR(ratios[3], 1.0, 0.15);
+  for (double ratio : ratios) EXPECT_NEAR(ratio, 1.0, 0.03);
 }
 
 double square_footing_settlement(double nu, double h_near) {

@@ -48,6 +48,9 @@ struct MeshRequest {
 struct BoundaryRequest {
   BoundaryKind kind = BoundaryKind::kViscousSpring;
   SpringModel spring_model = SpringModel::kHalfSpace;
+  /// kHalfSpace: the far field's traction follows the footprint forces in the motion (lagged,
+  /// docs/fem-soil.md §3.2); false ("static"): held at the statics', as the linear matrices are.
+  bool far_field_follows = true;
   double alpha_normal = 4.0 / 3.0;      // kLiu: spring K_N = alpha_N G / r per unit area [-]
   double alpha_tangential = 2.0 / 3.0;  // spring K_T = alpha_T G / r per unit area [-], kLiu's
                                         // tangents and kHalfSpace's directions across the field

@@ -4,6 +4,7 @@
 // sparse Cholesky solve, the motion about it by explicit central differences sub-cycled inside
 // each macro step. The footprint forces act as uniform pressures on the footprints; the track
 // sees their area-averaged vertical motion (footprint_loads.hpp).
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
@@ -182,6 +183,7 @@ class FemSoil final : public rumble::Soil {
     state_.a.setZero();
     state_.pml.setZero();      // the layer at rest
     state_.maxwell.setZero();  // the mechanisms relaxed
+    far_lag_.lagged.assign(footprints_.size(), 0.0);  // the boundary holds the static traction
     for (std::size_t j = 0; j < footprints_.size(); ++j) static_u[j] = average(j, u_static_);
   }
 
@@ -214,6 +216,7 @@ class FemSoil final : public rumble::Soil {
     // The force may jump at the step's start (a held or extrapolated waveform): the acceleration
     // at t follows it.
     footprint_forces(force, 0.0, df_, force_last_.data());
+    if (far_field_ && settings_.boundary.far_field_follows) follow_far_field(force, H);
     op_->force_jump(state_, df_);
     auto last_check = std::chrono::steady_clock::now();
     for (int k = 1; k <= sub_steps; ++k) {
@@ -309,10 +312,13 @@ class FemSoil final : public rumble::Soil {
       if (!impulse_) impulse_ = impulse_responses();
       impulse_->at(f_hz, receptance);
     } else {
-      if (!receptance_)
+      if (!receptance_) {
         receptance_ =
             std::make_unique<Receptance>(*op_, weights_, settings_.damping.mass_coefficient(),
                                          settings_.damping.stiffness_coefficient());
+        if (settings_.boundary.far_field_follows)
+          receptance_->set_far_field(far_field(), &far_lag_);
+      }
       receptance_->at(f_hz, receptance);
     }
     if (dir && !write_cached_receptance(cached, f_hz, footprints_.size(), receptance) &&
@@ -334,6 +340,13 @@ class FemSoil final : public rumble::Soil {
           "got \"maxwell\"");
     rumble::fem::linear_matrix(*op_, weights_, settings_.damping.mass_coefficient(),
                                settings_.damping.stiffness_coefficient(), which, out);
+    if (which == RUMBLE_MATRIX_STIFFNESS && settings_.boundary.far_field_follows &&
+        rumble::fem::static_far_field_applies(settings_))
+      host_.info(
+          "fem: the linear matrices hold the far field's traction at the statics' (a load "
+          "change settles through the springs alone); the soil's own steps follow the forces: "
+          "set params/boundary/far_field \"static\" for the same motion both ways "
+          "(docs/fem-soil.md section 3.2)");
   }
 
   void wave_speeds(double& c_s_min, double& c_r_min) const override {
@@ -352,6 +365,7 @@ class FemSoil final : public rumble::Soil {
     Checkpoint& c = checkpoints_.at(slot);
     c.state = state_;
     c.force_last = force_last_;
+    c.far_lagged = far_lag_.lagged;
     c.next_sample = next_sample_;
     c.valid = true;
   }
@@ -361,6 +375,7 @@ class FemSoil final : public rumble::Soil {
       throw std::logic_error("fem: checkpoint slot " + std::to_string(slot) + " is empty");
     state_ = c.state;
     force_last_ = c.force_last;
+    far_lag_.lagged = c.far_lagged;
     next_sample_ = c.next_sample;
   }
   void checkpoint_free(std::uint32_t slot) override { checkpoints_.at(slot) = {}; }
@@ -369,6 +384,7 @@ class FemSoil final : public rumble::Soil {
   struct Checkpoint {
     ExplicitState state;
     std::vector<double> force_last;
+    std::vector<double> far_lagged;  // FarFieldLag::lagged
     double next_sample = -1.0;
     bool valid = false;
   };
@@ -382,7 +398,9 @@ class FemSoil final : public rumble::Soil {
   }
 
   /// One explicit run per footprint (impulse_receptance.hpp), with progress and Ctrl-C.
-  std::unique_ptr<rumble::fem::ImpulseReceptance> impulse_responses() const {
+  std::unique_ptr<rumble::fem::ImpulseReceptance> impulse_responses() {
+    const rumble::fem::StaticFarField* far =
+        settings_.boundary.far_field_follows ? far_field() : nullptr;
     const double dt = settings_.courant * op_->stable_step();
     const double duration = settings_.receptance.duration;
     const std::size_t n = footprints_.size();
@@ -402,7 +420,8 @@ class FemSoil final : public rumble::Soil {
           const double elapsed = seconds_since(start);
           host_.info("fem: impulse response " + std::to_string(j + 1) + " of " + std::to_string(n) +
                      ", about " + format(elapsed / j * static_cast<double>(n - j), 2) + " s left");
-        });
+        },
+        far, far_lag_.tau);
     host_.info("fem: impulse responses done in " + format(seconds_since(start), 3) +
                " s; the motion in the records' last tenth is " +
                format(responses->decay_ratio(), 2) + " of its peak");
@@ -476,15 +495,50 @@ class FemSoil final : public rumble::Soil {
   /// f += the half-space's traction beyond the truncation surface under the footprint forces
   /// (static_far_field.hpp): the static state is the half-space's, not the springs'.
   void add_static_far_field(const double* force, Eigen::VectorXd& f) {
-    if (!rumble::fem::static_far_field_applies(settings_)) return;
+    if (const rumble::fem::StaticFarField* far = far_field()) far->add(force, f);
+  }
+
+  /// The far field (static_far_field.hpp), built at the first call after a layout; nullptr
+  /// where it does not apply (a layered soil, Liu's springs, no springs).
+  const rumble::fem::StaticFarField* far_field() {
+    if (!rumble::fem::static_far_field_applies(settings_)) return nullptr;
     if (!far_field_) {
       const auto start = std::chrono::steady_clock::now();
       far_field_.emplace(mesh_, settings_, footprints_, op_->boundary());
+      // Its traction changes with the forces, so a force jump acts at its nodes too.
+      std::vector<std::int32_t> loaded = rumble::fem::loaded_nodes(weights_);
+      loaded.insert(loaded.end(), far_field_->nodes().begin(), far_field_->nodes().end());
+      std::sort(loaded.begin(), loaded.end());
+      loaded.erase(std::unique(loaded.begin(), loaded.end()), loaded.end());
+      op_->set_loaded_nodes(std::move(loaded));
+      far_lag_.tau = far_field_->mean_distance() / rumble::soils::slowest_wave_speeds(settings_.layers,
+                                                                              settings_.half_space)
+                                                       .shear;
+      far_lag_.lagged.assign(footprints_.size(), 0.0);
+      far_change_.assign(footprints_.size(), 0.0);
+      far_step_.assign(footprints_.size(), 0.0);
       host_.log(RUMBLE_LOG_DEBUG, "fem: the half-space's static far field in " +
                                       format(seconds_since(start), 2) + " s, " +
-                                      format(far_field_->bytes() / 1048576.0) + " MiB");
+                                      format(far_field_->bytes() / 1048576.0) +
+                                      " MiB; it follows the forces with a lag of " +
+                                      format(far_lag_.tau, 3) + " s");
     }
-    far_field_->add(force, f);
+    return &*far_field_;
+  }
+
+  /// The boundary's traction follows the footprint forces' change from the static state, lagged
+  /// (FarFieldLag, docs/fem-soil.md §3.2): held over the macro step, its jump at the step's
+  /// start acts as the footprints' does.
+  void follow_far_field(const rumble::Waveform& force, double H) {
+    for (std::size_t j = 0; j < footprints_.size(); ++j) {
+      far_change_[j] = force.at(j, 0.5) - force_static_[j];
+      far_step_[j] = far_lag_.lagged[j];
+    }
+    far_lag_.advance(far_change_, H);
+    for (std::size_t j = 0; j < footprints_.size(); ++j)
+      far_step_[j] = far_lag_.lagged[j] - far_step_[j];
+    far_field_->set(far_step_.data(), df_);
+    far_field_->set(far_lag_.lagged.data(), f_);
   }
 
   void spread(const double* force, Eigen::VectorXd& out) const {
@@ -656,6 +710,8 @@ class FemSoil final : public rumble::Soil {
   std::optional<rumble::fem::ExplicitSolver> op_;
   std::unique_ptr<rumble::fem::StaticSolver> statics_;
   std::optional<rumble::fem::StaticFarField> far_field_;  // at the first static solve
+  rumble::fem::FarFieldLag far_lag_;                      // how its traction follows the forces
+  std::vector<double> far_change_, far_step_;             // scratch [N] per footprint
   std::unique_ptr<rumble::fem::ImplicitSolver> implicit_;
   std::unique_ptr<rumble::fem::Receptance> receptance_;
   std::unique_ptr<rumble::fem::ImpulseReceptance> impulse_;

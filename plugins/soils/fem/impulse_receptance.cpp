@@ -10,7 +10,8 @@ namespace rumble::fem {
 
 ImpulseReceptance::ImpulseReceptance(const ExplicitSolver& op, const FootprintWeights& weights,
                                      double dt, double duration, double f_top,
-                                     const std::function<void(std::size_t, std::size_t)>& progress)
+                                     const std::function<void(std::size_t, std::size_t)>& progress,
+                                     const StaticFarField* far, double tau)
     : n_(weights.size()), dt_(dt), f_top_(3.0 * f_top) {
   const std::size_t steps = static_cast<std::size_t>(std::ceil(duration / dt));
   const double pulse = 0.5 / f_top;  // s: a Hann pulse's spectrum is half its peak at 1 / length
@@ -24,11 +25,17 @@ ImpulseReceptance::ImpulseReceptance(const ExplicitSolver& op, const FootprintWe
   Eigen::VectorXd f = Eigen::VectorXd::Zero(dofs);
   const std::size_t tail = steps - steps / 10;
   double peak = 0.0, late = 0.0;
+  const double keep = far != nullptr ? std::exp(-dt / tau) : 0.0;  // the lag over a step
   for (std::size_t j = 0; j < n_; ++j) {
     ExplicitState s = op.rest_state();
+    double lagged = 0.0;  // [N] the force the far field follows
     for (std::size_t k = 0; k < steps; ++k) {
       if (k % 64 == 0) progress(j, k);
       for (const NodalWeight& w : weights[j]) f[3 * w.node + 2] = w.weight * force_[k];
+      if (far != nullptr) {
+        lagged = force_[k] + (lagged - force_[k]) * keep;
+        far->set_column(j, lagged, f);
+      }
       op.step(s, f, dt);
       for (std::size_t i = 0; i < n_; ++i) {
         const double u = footprint_average(weights[i], s.w.data());

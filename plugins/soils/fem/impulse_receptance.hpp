@@ -17,6 +17,7 @@
 
 #include "explicit_solver.hpp"
 #include "footprint_loads.hpp"
+#include "static_far_field.hpp"
 
 namespace rumble::fem {
 
@@ -26,9 +27,12 @@ class ImpulseReceptance {
   /// duration [s]; the pulse (0.5 / f_top long) carries energy to 4 f_top, half its peak at
   /// 2 f_top [Hz]. progress(j, k) is called before step k of footprint j's run, every 64 steps (and
   /// may throw to stop).
+  /// far (nullptr: none): the far field's traction follows each run's pulse through a lag of
+  /// tau [s] (FarFieldLag, docs/fem-soil.md §3.2), as in the soil's own steps.
   ImpulseReceptance(const ExplicitSolver& op, const FootprintWeights& weights, double dt,
                     double duration, double f_top,
-                    const std::function<void(std::size_t, std::size_t)>& progress);
+                    const std::function<void(std::size_t, std::size_t)>& progress,
+                    const StaticFarField* far = nullptr, double tau = 0.0);
 
   /// H(f), n x n column-major [m/N]. Throws std::invalid_argument beyond the pulse's band.
   void at(double f_hz, std::complex<double>* H) const;

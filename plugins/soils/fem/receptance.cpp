@@ -130,7 +130,14 @@ void Receptance::at(double f_hz, std::complex<double>* H) {
         "fem: the receptance's LU failed at " + std::to_string(f_hz) +
         " Hz (UMFPACK: " + umfpack_status(lu_->lu.umfpackFactorizeReturncode()) + ", " +
         std::to_string(op_.stiffness().rows()) + " DOFs)");
-  const Eigen::MatrixXcd x = lu_->lu.solve(lu_->rhs);
+  Eigen::MatrixXcd x;
+  if (far_ != nullptr && lag_ != nullptr) {
+    Eigen::MatrixXcd rhs = lu_->rhs;
+    far_->add_columns(lag_->at(w), rhs);
+    x = lu_->lu.solve(rhs);
+  } else {
+    x = lu_->lu.solve(lu_->rhs);
+  }
   const Eigen::Index m = lu_->rhs.cols();
   for (Eigen::Index j = 0; j < m; ++j)
     for (Eigen::Index i = 0; i < m; ++i) {

@@ -20,8 +20,9 @@ std::uint64_t hash_all(const std::vector<T>& v, std::uint64_t h) {
 
 std::uint64_t receptance_soil_key(const TetMesh& mesh, const std::string& params_json,
                                   const FootprintWeights& weights) {
-  // (2: the boundary springs fitted to the half-space, docs/fem-soil.md section 3.2)
-  const std::string version = "rumble-fem-receptance-2";
+  // (2: the boundary springs fitted to the half-space; 3: the far field following the forces,
+  // docs/fem-soil.md section 3.2)
+  const std::string version = "rumble-fem-receptance-3";
   std::uint64_t h = cache::fnv1a(version.data(), version.size());
   h = cache::fnv1a(mesh.nodes.data(), static_cast<std::size_t>(mesh.nodes.size()) * 8, h);
   h = hash_all(mesh.tets, h);

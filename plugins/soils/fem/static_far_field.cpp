@@ -44,6 +44,11 @@ StaticFarField::StaticFarField(const TetMesh& mesh, const FemSettings& settings,
              static_cast<Eigen::Index>(footprints.size())) {
   nodes_.reserve(boundary.size());
   for (const BoundaryNode& b : boundary) nodes_.push_back(b.node);
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  for (const Footprint& f : footprints) centre += Eigen::Vector3d(f.x, f.y, 0.0);
+  if (!footprints.empty()) centre /= static_cast<double>(footprints.size());
+  for (const BoundaryNode& b : boundary) mean_distance_ += (mesh.node(b.node) - centre).norm();
+  if (!boundary.empty()) mean_distance_ /= static_cast<double>(boundary.size());
   const soils::SoilProperties& p = settings.properties_at(0.0);  // (homogeneous)
   for (std::size_t j = 0; j < footprints.size(); ++j) {
     std::vector<LoadPoint> points;
@@ -63,6 +68,27 @@ void StaticFarField::add(const double* F, Eigen::VectorXd& f) const {
   for (std::size_t k = 0; k < nodes_.size(); ++k)
     f.segment<3>(3 * static_cast<Eigen::Index>(nodes_[k])) +=
         g.segment<3>(3 * static_cast<Eigen::Index>(k));
+}
+
+void StaticFarField::set(const double* F, Eigen::VectorXd& f) const {
+  g_.resize(loads_.rows());
+  g_.noalias() = loads_ * Eigen::Map<const Eigen::VectorXd>(F, loads_.cols());
+  for (std::size_t k = 0; k < nodes_.size(); ++k)
+    f.segment<3>(3 * static_cast<Eigen::Index>(nodes_[k])) =
+        g_.segment<3>(3 * static_cast<Eigen::Index>(k));
+}
+
+void StaticFarField::set_column(std::size_t j, double F_j, Eigen::VectorXd& f) const {
+  const auto column = loads_.col(static_cast<Eigen::Index>(j));
+  for (std::size_t k = 0; k < nodes_.size(); ++k)
+    f.segment<3>(3 * static_cast<Eigen::Index>(nodes_[k])) =
+        F_j * column.segment<3>(3 * static_cast<Eigen::Index>(k));
+}
+
+void StaticFarField::add_columns(std::complex<double> factor, Eigen::MatrixXcd& rhs) const {
+  for (std::size_t k = 0; k < nodes_.size(); ++k)
+    rhs.middleRows<3>(3 * static_cast<Eigen::Index>(nodes_[k])) +=
+        factor * loads_.middleRows<3>(3 * static_cast<Eigen::Index>(k)).cast<std::complex<double>>();
 }
 
 }  // namespace rumble::fem

@@ -6,6 +6,8 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cmath>
+#include <complex>
 #include <cstdint>
 #include <rumble/plugin.hpp>
 #include <vector>
@@ -50,12 +52,44 @@ class StaticFarField {
                  const std::vector<BoundaryNode>& boundary);
   /// f += G F (F: one force per footprint [N]).
   void add(const double* F, Eigen::VectorXd& f) const;
+  /// f = G F at the boundary nodes' DOFs, overwriting them; nothing elsewhere. Allocates nothing
+  /// (the dynamic step calls it every macro step).
+  void set(const double* F, Eigen::VectorXd& f) const;
+  /// f = g_j F_j at the boundary nodes' DOFs, overwriting them (one footprint's force alone).
+  void set_column(std::size_t j, double F_j, Eigen::VectorXd& f) const;
+  /// rhs(:, j) += factor g_j (the receptance's right-hand sides, one column per footprint).
+  void add_columns(std::complex<double> factor, Eigen::MatrixXcd& rhs) const;
+  const std::vector<std::int32_t>& nodes() const { return nodes_; }
+  /// Mean distance [m] of the boundary nodes from the footprints' centre.
+  double mean_distance() const { return mean_distance_; }
   /// Bytes held.
   double bytes() const { return 8.0 * static_cast<double>(loads_.size()); }
 
  private:
   std::vector<std::int32_t> nodes_;  // the boundary nodes, in the columns' order
   Eigen::MatrixXd loads_;            // 3 per node x footprints [N/N]
+  double mean_distance_ = 0.0;       // m
+  mutable Eigen::VectorXd g_;        // scratch of set(): G F
+};
+
+/// How the far field's traction follows the footprint forces in time (docs/fem-soil.md §3.2):
+/// the boundary holds G dF_lag, dF_lag the forces' change from the static state lagged by tau,
+/// the time shear waves take to reach the truncation surface:
+///   d(dF_lag)/dt = (dF - dF_lag) / tau,
+/// advanced exactly over each macro step with dF held at the step's middle. A load held long
+/// enough settles to the half-space's static state, as the statics do.
+struct FarFieldLag {
+  double tau = 0.0;            // s
+  std::vector<double> lagged;  // [N] per footprint: the change the boundary holds now
+
+  /// Over a macro step of H [s] towards `change` [N per footprint].
+  void advance(const std::vector<double>& change, double H) {
+    const double keep = std::exp(-H / tau);
+    for (std::size_t j = 0; j < lagged.size(); ++j)
+      lagged[j] = change[j] + (lagged[j] - change[j]) * keep;
+  }
+  /// The lag's frequency response at w [rad/s] (e^{+i w t}): 1 / (1 + i w tau).
+  std::complex<double> at(double w) const { return 1.0 / std::complex<double>(1.0, w * tau); }
 };
 
 }  // namespace rumble::fem
