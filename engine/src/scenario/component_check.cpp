@@ -86,11 +86,14 @@ void check_receivers(SoilInstance& soil, const json& scenario, std::vector<Diagn
   std::vector<rumble_probe> all;
   for (const ReceiverSpec& r : receivers) all.push_back(probe(r));
   const double interval = outputs.value("receiver_interval", 0.0);
+  std::string refusal;
   try {
     soil.set_probes(all, interval);
     return;
-  } catch (const std::exception&) {
+  } catch (const std::exception& e) {
+    refusal = e.what();
   }
+  const std::size_t before = out.size();
   for (std::size_t i = 0; i < receivers.size(); ++i) {
     try {
       soil.set_probes({probe(receivers[i])}, interval);
@@ -104,6 +107,9 @@ void check_receivers(SoilInstance& soil, const json& scenario, std::vector<Diagn
                             "(a FEM soil's /soil/params/mesh/radius)"));
     }
   }
+  if (out.size() == before)  // each alone is recorded, the list is not
+    out.push_back(finding("/outputs/receivers", "the receivers together cannot be recorded by " +
+                                                    refusal));
 }
 
 /// The soil at pointer accepts the layout; returns its slowest Rayleigh speed [m/s] (0: unknown).
