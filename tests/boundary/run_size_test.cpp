@@ -3,6 +3,8 @@
 // the CSV time histories (validation's estimate, from the scenario alone), receivers.csv and the
 // field snapshots (projected by the run at its first step and snapshot, from the soil's own
 // sampling rate and snapshot size), and the statics' memory (56 n^2 bytes for n sleepers).
+#include "scenario/run_size.hpp"
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <sys/resource.h>
@@ -13,7 +15,6 @@
 #include <string>
 
 #include "boundary_support.hpp"
-#include "scenario/run_size.hpp"
 
 namespace rumble::testing {
 namespace {

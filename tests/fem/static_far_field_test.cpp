@@ -146,9 +146,10 @@ TEST(FemStaticFarField, TheReceptancesLowFrequencyLimitIsTheStatics) {
   const double follows = receptance_against_statics(params, 0.05);
   params["boundary"]["far_field"] = "static";
   const double held = receptance_against_statics(params, 0.05);
-  std::printf("receptance at 0.05 Hz times F against the statics: %.2e (far field follows), "
-              "%.2e (static)\n",
-              follows, held);
+  std::printf(
+      "receptance at 0.05 Hz times F against the statics: %.2e (far field follows), "
+      "%.2e (static)\n",
+      follows, held);
   EXPECT_LT(follows, 2e-3);
   EXPECT_GT(held, 5.0 * follows);
 }

@@ -57,10 +57,11 @@ void FieldWriter::check_projected_size(const fs::path& first) const {
   const double to_come = bytes * (snapshots - 1.0);
   const std::string dir = first.parent_path().string();
   const double free = free_disk_bytes(dir);
-  logger("engine")->info("fields: about {} bytes projected ({} snapshots of {} bytes; {} bytes free "
-                         "there)",
-                         number_text(bytes * snapshots, 3), number_text(snapshots, 3),
-                         number_text(bytes, 3), number_text(free, 3));
+  logger("engine")->info(
+      "fields: about {} bytes projected ({} snapshots of {} bytes; {} bytes free "
+      "there)",
+      number_text(bytes * snapshots, 3), number_text(snapshots, 3), number_text(bytes, 3),
+      number_text(free, 3));
   std::ostringstream m;
   m.precision(3);
   m << "/outputs/fields/interval: the field snapshots would take about "

@@ -108,8 +108,8 @@ void check_receivers(SoilInstance& soil, const json& scenario, std::vector<Diagn
     }
   }
   if (out.size() == before)  // each alone is recorded, the list is not
-    out.push_back(finding("/outputs/receivers", "the receivers together cannot be recorded by " +
-                                                    refusal));
+    out.push_back(
+        finding("/outputs/receivers", "the receivers together cannot be recorded by " + refusal));
 }
 
 /// The soil at pointer accepts the layout; returns its slowest Rayleigh speed [m/s] (0: unknown).

@@ -181,8 +181,8 @@ class FemSoil final : public rumble::Soil {
     state_.w.setZero();
     state_.v.setZero();
     state_.a.setZero();
-    state_.pml.setZero();      // the layer at rest
-    state_.maxwell.setZero();  // the mechanisms relaxed
+    state_.pml.setZero();                             // the layer at rest
+    state_.maxwell.setZero();                         // the mechanisms relaxed
     far_lag_.lagged.assign(footprints_.size(), 0.0);  // the boundary holds the static traction
     for (std::size_t j = 0; j < footprints_.size(); ++j) static_u[j] = average(j, u_static_);
   }
@@ -410,7 +410,8 @@ class FemSoil final : public rumble::Soil {
     const auto start = std::chrono::steady_clock::now();
     auto last_check = start;
     auto responses = std::make_unique<rumble::fem::ImpulseReceptance>(
-        *op_, weights_, dt, duration, settings_.mesh.f_max, [&](std::size_t j, std::size_t k) {
+        *op_, weights_, dt, duration, settings_.mesh.f_max,
+        [&](std::size_t j, std::size_t k) {
           const auto now = std::chrono::steady_clock::now();
           if (now - last_check > std::chrono::milliseconds(100)) {  // Ctrl-C, as in advance()
             host_.check_stop(static_cast<double>(j) / n);
@@ -511,17 +512,16 @@ class FemSoil final : public rumble::Soil {
       std::sort(loaded.begin(), loaded.end());
       loaded.erase(std::unique(loaded.begin(), loaded.end()), loaded.end());
       op_->set_loaded_nodes(std::move(loaded));
-      far_lag_.tau = far_field_->mean_distance() / rumble::soils::slowest_wave_speeds(settings_.layers,
-                                                                              settings_.half_space)
-                                                       .shear;
+      far_lag_.tau =
+          far_field_->mean_distance() /
+          rumble::soils::slowest_wave_speeds(settings_.layers, settings_.half_space).shear;
       far_lag_.lagged.assign(footprints_.size(), 0.0);
       far_change_.assign(footprints_.size(), 0.0);
       far_step_.assign(footprints_.size(), 0.0);
-      host_.log(RUMBLE_LOG_DEBUG, "fem: the half-space's static far field in " +
-                                      format(seconds_since(start), 2) + " s, " +
-                                      format(far_field_->bytes() / 1048576.0) +
-                                      " MiB; it follows the forces with a lag of " +
-                                      format(far_lag_.tau, 3) + " s");
+      host_.log(RUMBLE_LOG_DEBUG,
+                "fem: the half-space's static far field in " + format(seconds_since(start), 2) +
+                    " s, " + format(far_field_->bytes() / 1048576.0) +
+                    " MiB; it follows the forces with a lag of " + format(far_lag_.tau, 3) + " s");
     }
     return &*far_field_;
   }

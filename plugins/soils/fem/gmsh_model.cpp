@@ -478,8 +478,7 @@ MeshFile load_mesh_file(const FemSettings& s, const std::string& path) {
       << " GB per million DOFs at a run's peak)";
     throw std::invalid_argument(m.str());
   }
-  check_memory_for(static_cast<double>(mesh.dof_count()), where,
-                   "give a coarser mesh");
+  check_memory_for(static_cast<double>(mesh.dof_count()), where, "give a coarser mesh");
   file.footprints = patches(mesh, footprint_faces);
   return file;
 }

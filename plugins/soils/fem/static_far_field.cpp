@@ -88,7 +88,8 @@ void StaticFarField::set_column(std::size_t j, double F_j, Eigen::VectorXd& f) c
 void StaticFarField::add_columns(std::complex<double> factor, Eigen::MatrixXcd& rhs) const {
   for (std::size_t k = 0; k < nodes_.size(); ++k)
     rhs.middleRows<3>(3 * static_cast<Eigen::Index>(nodes_[k])) +=
-        factor * loads_.middleRows<3>(3 * static_cast<Eigen::Index>(k)).cast<std::complex<double>>();
+        factor *
+        loads_.middleRows<3>(3 * static_cast<Eigen::Index>(k)).cast<std::complex<double>>();
 }
 
 }  // namespace rumble::fem
