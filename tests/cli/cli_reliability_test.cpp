@@ -324,7 +324,7 @@ TEST(CliReliability, MbsDefinitionFileMustBeARegularFile) {
   const CliResult r =
       run_rumble({"validate", write_scenario(scratch_directory("mbs_dev_zero"), s).string()});
   EXPECT_EQ(r.exit_code, 1) << r.output;
-  EXPECT_THAT(r.output, HasSubstr("error: /vehicles/0/params: "));
+  EXPECT_THAT(r.output, HasSubstr("error: /vehicles/0/params/file: "));  // the key it names
   EXPECT_THAT(r.output, HasSubstr("params/file: \"/dev/zero\" is not a regular file (a directory, "
                                   "device or pipe), got \"/dev/zero\"; name a vehicle definition "
                                   "file (JSON)"));

@@ -99,15 +99,6 @@ CheckedScenario check_scenario_document(Document document, std::vector<Override>
     sort_diagnostics(size);
     c.diagnostics.insert(c.diagnostics.end(), size.begin(), size.end());
   }
-  // What the machine has free, whatever --yes says (past it the run cannot end well).
-  if (no_errors(c.diagnostics) && options.machine_room) {
-    const fs::path dir = options.output_directory ? *options.output_directory
-                                                  : results_directory(doc.json, doc.path);
-    const MachineRoom room{available_memory_bytes(), free_disk_bytes(dir.string()),
-                           dir.lexically_normal().string()};
-    for (Diagnostic& d : check_machine_room(doc.json, room))
-      c.diagnostics.push_back(make_diagnostic(doc, d.pointer, d.message, d.hint, d.severity));
-  }
   // A directory outside the scenario's folder is the command line's to allow (rumble run
   // refuses it, or the user consents and the run reports what it cannot create).
   if (no_errors(c.diagnostics) && options.results_directory) {
@@ -118,6 +109,15 @@ CheckedScenario check_scenario_document(Document document, std::vector<Override>
     } else if (auto d = results_directory_unusable(doc)) {
       c.diagnostics.push_back(make_diagnostic(doc, d->pointer, d->message, d->hint));
     }
+  }
+  // What the machine has free, whatever --yes says (past it the run cannot end well).
+  if (no_errors(c.diagnostics) && options.machine_room) {
+    const fs::path dir = options.output_directory ? *options.output_directory
+                                                  : results_directory(doc.json, doc.path);
+    const MachineRoom room{available_memory_bytes(), free_disk_bytes(dir.string()),
+                           dir.lexically_normal().string()};
+    for (Diagnostic& d : check_machine_room(doc.json, room))
+      c.diagnostics.push_back(make_diagnostic(doc, d.pointer, d.message, d.hint, d.severity));
   }
   if (no_errors(c.diagnostics) && options.load_plugins) {  // built from a scenario that is right
     for (Diagnostic& d :

@@ -79,13 +79,16 @@ inline double available_memory_bytes() {
 
 /// Bytes an unprivileged user may still write on the file system that holds `path`, or its
 /// nearest existing parent when `path` does not exist yet (statvfs: f_bavail x f_frsize);
-/// infinity when that cannot be asked.
+/// infinity when that cannot be asked, or for a file system with no blocks at all (/proc,
+/// /sys: whether anything can be written there is for the write to say).
 inline double free_disk_bytes(std::string path) {
   if (path.empty()) path = ".";
   for (;;) {
     struct statvfs fs {};
-    if (::statvfs(path.c_str(), &fs) == 0)
+    if (::statvfs(path.c_str(), &fs) == 0) {
+      if (fs.f_blocks == 0) break;
       return static_cast<double>(fs.f_bavail) * static_cast<double>(fs.f_frsize);
+    }
     if (path == "/" || path == ".") break;
     while (path.size() > 1 && path.back() == '/') path.pop_back();
     const std::size_t slash = path.rfind('/');
