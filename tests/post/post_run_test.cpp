@@ -207,6 +207,42 @@ TEST(PostRun, ProbeReceiversGiveTheClosedFormNumbers) {
   EXPECT_EQ(report["cwt"][1]["receiver"], "d=5 m");
 }
 
+// Within the resolved band every indicator of the low-passed record stands beside the raw one
+// (issue #29 item 1): a 25 Hz tone under a band of 100 Hz keeps its KB_F,max, dominant frequency
+// and guide ratios (the zero-phase 4th-order low-pass passes 25 Hz with |H|^2 = 1 / (1 + 0.25^8),
+// 1.5e-5 off); a 10 Hz tone under a band of 2 Hz has little left (|H|^2 = 2.6e-6 at 10 Hz); a
+// receiver whose soil says no band has none (NaN, null).
+TEST(PostRun, TheResolvedBandGivesEveryIndicatorOfTheLowPassedRecord) {
+  const fs::path dir = probe_run();
+  json summary = json::parse(std::ifstream(dir / "summary.json"));
+  summary["ppv"][0]["resolved_f_hz"] = 100.0;
+  summary["ppv"][1]["resolved_f_hz"] = 2.0;
+  std::ofstream(dir / "summary.json") << summary.dump(2);
+  post_process(dir);
+  const auto ppv = read_rows(dir / "post" / "ppv.csv");
+  ASSERT_EQ(ppv.size(), 3u);
+  const auto& near = ppv[0];  // 25 Hz, band 100 Hz
+  EXPECT_NEAR(number(near, "KB_F,max resolved [m/s]"), number(near, "KB_F,max [m/s]"), 1e-3 * kA);
+  EXPECT_NEAR(number(near, "f_dom resolved [Hz]"), 25.0, 0.5);
+  EXPECT_NEAR(number(near, "PPV / DIN 4150-3 line 2 resolved [-]"),
+              number(near, "PPV / DIN 4150-3 line 2 [-]"), 2e-3);
+  EXPECT_NEAR(number(near, "PPV / BS 7385-2 line 1 resolved [-]"),
+              number(near, "PPV / BS 7385-2 line 1 [-]"), 2e-3);
+  const auto& far = ppv[2];  // 10 Hz, band 2 Hz
+  EXPECT_EQ(far.at("receiver"), "d=5 m");
+  // What is left is the record's abrupt start and end, which reach below 2 Hz (measured 0.037).
+  EXPECT_LT(number(far, "KB_F,max resolved [m/s]"), 0.1 * number(far, "KB_F,max [m/s]"));
+  EXPECT_EQ(ppv[1].at("receiver"), "deep");
+  EXPECT_TRUE(std::isnan(number(ppv[1], "KB_F,max resolved [m/s]")));
+  const json report = json::parse(std::ifstream(dir / "post" / "post.json"));
+  const json& band = report["receivers"][0]["resolved_band"];
+  EXPECT_NEAR(band["kb_f_max_m_s"].get<double>(), number(near, "KB_F,max resolved [m/s]"),
+              1e-9 * kA);
+  EXPECT_NEAR(band["din4150_3_ratios"][1].get<double>(),
+              number(near, "PPV / DIN 4150-3 line 2 resolved [-]"), 1e-9);
+  EXPECT_TRUE(report["receivers"][1]["resolved_band"]["kb_f_max_m_s"].is_null());
+}
+
 // The older surface receivers: one vertical column "d=<distance> m [m/s]" each, no summary.json
 // needed (the distance is in the name); PPV_3c is not available (nan, null in post.json).
 TEST(PostRun, DistanceColumnsGiveVerticalOnlyResults) {

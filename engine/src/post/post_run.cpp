@@ -275,6 +275,10 @@ struct ComponentResult {
   std::vector<BandLevel> bands;
 };
 
+constexpr Din4150Line kDinLines[3] = {Din4150Line::kCommercial, Din4150Line::kDwelling,
+                                      Din4150Line::kSensitive};
+constexpr Bs7385Line kBsLines[2] = {Bs7385Line::kReinforced, Bs7385Line::kUnreinforced};
+
 struct ReceiverResult {
   const Receiver* rx = nullptr;
   std::vector<ComponentResult> components;  // vx vy vz, or vz alone
@@ -285,6 +289,11 @@ struct ReceiverResult {
   // Within the resolved band (NaN when the soil did not say): the share of v_z's energy above
   // it [-], and the peaks of the record low-passed at it [m/s] (post/resolved_band.hpp).
   double energy_above_resolved = kNaN, ppv_z_resolved = kNaN, ppv_3c_resolved = kNaN;
+  // The other indicators of the low-passed record: KB_F,max over the components [m/s], the
+  // governing component's dominant frequency [Hz] and the guide values' ratios at it.
+  double kb_f_max_resolved = kNaN, dominant_f_resolved = kNaN;
+  GuideCheck din_resolved[3] = {{kNaN, kNaN}, {kNaN, kNaN}, {kNaN, kNaN}};
+  GuideCheck bs_resolved[2] = {{kNaN, kNaN}, {kNaN, kNaN}};
 
   const ComponentResult& vz() const { return components.back(); }
 };
@@ -293,8 +302,35 @@ GuideCheck nan_check() {
   return {kNaN, kNaN};
 }
 
-/// The share of rr's vertical energy above its resolved frequency and its PPV below it; a
-/// warning when the share passes kUnresolvedShare.
+/// KB_F,max, the dominant frequency and the guide ratios of the record low-passed at the
+/// resolved frequency (`low`, one per component, as rr.components), as the raw ones are found:
+/// the governing component is the one with the largest low-passed peak, its dominant frequency
+/// the zero crossings of that peak's half cycle (none: no guide ratio).
+void measure_band_indicators(ReceiverResult& rr, const std::vector<std::vector<double>>& low,
+                             double dt) {
+  rr.kb_f_max_resolved = 0.0;
+  std::size_t governing = 0;
+  Peak governing_peak;
+  for (std::size_t i = 0; i < low.size(); ++i) {
+    rr.kb_f_max_resolved =
+        std::max(rr.kb_f_max_resolved, kb_f(TimeSeries{0.0, dt, low[i]}).kb_f_max);
+    const Peak p = peak_abs(low[i]);
+    if (i == 0 || p.value > governing_peak.value) {
+      governing = i;
+      governing_peak = p;
+    }
+  }
+  const double f = peak_half_cycle_frequency(low[governing], governing_peak.index, dt);
+  if (!(f > 0.0) || !std::isfinite(f)) return;
+  rr.dominant_f_resolved = f;
+  for (int l = 0; l < 3; ++l)
+    rr.din_resolved[l] = check_din4150_3(kDinLines[l], governing_peak.value, f);
+  for (int l = 0; l < 2; ++l)
+    rr.bs_resolved[l] = check_bs7385_2(kBsLines[l], governing_peak.value, f);
+}
+
+/// The share of rr's vertical energy above its resolved frequency and its indicators below it;
+/// a warning when the share passes kUnresolvedShare.
 void measure_resolved_band(ReceiverResult& rr, double dt, SpectrumAnalyzer& rect,
                            std::vector<std::string>& warnings) {
   const double f = rr.rx->resolved_f;
@@ -306,6 +342,7 @@ void measure_resolved_band(ReceiverResult& rr, double dt, SpectrumAnalyzer& rect
     low.push_back(zero_phase_low_pass(c.v.values, dt, f));
   rr.ppv_z_resolved = peak_abs(low.back()).value;
   if (low.size() == 3) rr.ppv_3c_resolved = peak_vector(low[0], low[1], low[2]).value;
+  measure_band_indicators(rr, low, dt);
   if (rr.energy_above_resolved > kUnresolvedShare)
     warnings.push_back(
         "receiver '" + rr.rx->name + "': " + number_text(100.0 * rr.energy_above_resolved, 3) +
@@ -396,10 +433,6 @@ class CsvOut {
   std::string text_;
   bool first_ = true;
 };
-
-constexpr Din4150Line kDinLines[3] = {Din4150Line::kCommercial, Din4150Line::kDwelling,
-                                      Din4150Line::kSensitive};
-constexpr Bs7385Line kBsLines[2] = {Bs7385Line::kReinforced, Bs7385Line::kUnreinforced};
 
 }  // namespace
 
@@ -589,6 +622,11 @@ PostResult post_process(const fs::path& results_dir, const PostOptions& options)
       header.push_back(name(line) + " [m/s]");
       header.push_back("PPV / " + name(line) + " [-]");
     }
+    // Within the resolved band: the other indicators of the low-passed record.
+    header.push_back("KB_F,max resolved [m/s]");
+    header.push_back("f_dom resolved [Hz]");
+    for (auto line : kDinLines) header.push_back("PPV / " + name(line) + " resolved [-]");
+    for (auto line : kBsLines) header.push_back("PPV / " + name(line) + " resolved [-]");
     CsvOut out(result.directory / "ppv.csv", header);
     for (const ReceiverResult& rr : results) {
       const ComponentResult& g = rr.components[rr.governing];
@@ -598,6 +636,9 @@ PostResult post_process(const fs::path& results_dir, const PostOptions& options)
           << rr.ppv_3c_resolved;
       for (const GuideCheck& c : rr.din) out << c.guide << c.ratio;
       for (const GuideCheck& c : rr.bs) out << c.guide << c.ratio;
+      out << rr.kb_f_max_resolved << rr.dominant_f_resolved;
+      for (const GuideCheck& c : rr.din_resolved) out << c.ratio;
+      for (const GuideCheck& c : rr.bs_resolved) out << c.ratio;
       out.end_row();
     }
     out.close();
@@ -715,29 +756,37 @@ PostResult post_process(const fs::path& results_dir, const PostOptions& options)
       bs.push_back({{"line", l + 1},
                     {"guide_m_s", number_or_null(rr.bs[l].guide)},
                     {"ratio", number_or_null(rr.bs[l].ratio)}});
-    receivers.push_back({{"name", rr.rx->name},
-                         {"x_m", number_or_null(rr.rx->x)},
-                         {"distance_m", rr.rx->distance},
-                         {"depth_m", rr.rx->depth},
-                         {"ppv_z_m_s", number_or_null(rr.ppv_z)},
-                         {"t_ppv_z_s", rr.t_ppv_z},
-                         {"ppv_3c_m_s", number_or_null(rr.ppv_3c)},
-                         {"t_ppv_3c_s", number_or_null(rr.t_ppv_3c)},
-                         {"resolved_band",
-                          {{"f_hz", number_or_null(rr.rx->resolved_f)},
-                           {"energy_z_above", number_or_null(rr.energy_above_resolved)},
-                           {"ppv_z_m_s", number_or_null(rr.ppv_z_resolved)},
-                           {"ppv_3c_m_s", number_or_null(rr.ppv_3c_resolved)},
-                           {"low_pass", "zero-phase Butterworth order 4 (-3 dB at f_hz)"},
-                           {"warning_share", kUnresolvedShare}}},
-                         {"governing_component", g.component},
-                         {"ppv_max_component_m_s", number_or_null(g.peak.value)},
-                         {"dominant_frequency_hz", number_or_null(g.dominant_f)},
-                         {"kb_f_max_m_s", number_or_null(rr.kb_f_max)},
-                         {"v_eff_f_max_m_s", number_or_null(rr.v_eff_max)},
-                         {"din4150_3", din},
-                         {"bs7385_2", bs},
-                         {"components", components}});
+    receivers.push_back(
+        {{"name", rr.rx->name},
+         {"x_m", number_or_null(rr.rx->x)},
+         {"distance_m", rr.rx->distance},
+         {"depth_m", rr.rx->depth},
+         {"ppv_z_m_s", number_or_null(rr.ppv_z)},
+         {"t_ppv_z_s", rr.t_ppv_z},
+         {"ppv_3c_m_s", number_or_null(rr.ppv_3c)},
+         {"t_ppv_3c_s", number_or_null(rr.t_ppv_3c)},
+         {"resolved_band",
+          {{"f_hz", number_or_null(rr.rx->resolved_f)},
+           {"energy_z_above", number_or_null(rr.energy_above_resolved)},
+           {"ppv_z_m_s", number_or_null(rr.ppv_z_resolved)},
+           {"ppv_3c_m_s", number_or_null(rr.ppv_3c_resolved)},
+           {"kb_f_max_m_s", number_or_null(rr.kb_f_max_resolved)},
+           {"dominant_frequency_hz", number_or_null(rr.dominant_f_resolved)},
+           {"din4150_3_ratios",
+            {number_or_null(rr.din_resolved[0].ratio), number_or_null(rr.din_resolved[1].ratio),
+             number_or_null(rr.din_resolved[2].ratio)}},
+           {"bs7385_2_ratios",
+            {number_or_null(rr.bs_resolved[0].ratio), number_or_null(rr.bs_resolved[1].ratio)}},
+           {"low_pass", "zero-phase Butterworth order 4 (-3 dB at f_hz)"},
+           {"warning_share", kUnresolvedShare}}},
+         {"governing_component", g.component},
+         {"ppv_max_component_m_s", number_or_null(g.peak.value)},
+         {"dominant_frequency_hz", number_or_null(g.dominant_f)},
+         {"kb_f_max_m_s", number_or_null(rr.kb_f_max)},
+         {"v_eff_f_max_m_s", number_or_null(rr.v_eff_max)},
+         {"din4150_3", din},
+         {"bs7385_2", bs},
+         {"components", components}});
   }
   report["receivers"] = receivers;
   json bands_json = json::array();
