@@ -75,10 +75,9 @@ bool build(const json& component, const std::string& pointer, rumble_kind kind,
 /// at once first; when refused, one at a time to tell which.
 void check_receivers(SoilInstance& soil, const json& scenario, std::vector<Diagnostic>& out) {
   const json& outputs = scenario.at("outputs");
-  const auto track = TrackConfig::from_json(scenario.at("track"));
   const std::vector<ReceiverSpec> receivers =
       scenario::receivers(outputs.value("receivers", json::array()),
-                          0.5 * (track.sleeper_count - 1) * track.sleeper_spacing);
+                          TrackConfig::from_json(scenario.at("track")).middle_x());
   if (receivers.empty()) return;
   const auto probe = [](const ReceiverSpec& r) {
     return rumble_probe{r.name.c_str(), r.x, r.y, r.depth};

@@ -35,7 +35,7 @@ std::vector<ReceiverSpec> receivers(const json& list, double x_mid) {
 }
 
 double RunSpec::track_middle() const {
-  return 0.5 * (track.sleeper_count - 1) * track.sleeper_spacing;
+  return track.middle_x();
 }
 
 std::string distance_receiver_name(double y) {

@@ -46,6 +46,8 @@ struct TrackConfig {
   double rail_start() const { return -overhang_bays * sleeper_spacing; }  // m
   double rail_end() const { return rail_start() + element_count() * element_length(); }
   double sleeper_x(int i) const { return i * sleeper_spacing; }
+  /// x [m] of the middle of the sleepers: where distance receivers stand.
+  double middle_x() const { return 0.5 * (sleeper_count - 1) * sleeper_spacing; }
 };
 
 }  // namespace rumble
