@@ -6,7 +6,9 @@ PKGS=(cmake ninja-build g++ pkg-config clang-format
       libgmsh-dev libfftw3-dev libssl-dev libgtest-dev libgmock-dev libbenchmark-dev libvalijson-dev
       libopenblas0-pthread python3-matplotlib python3-numpy
       clang-14 libclang-rt-14-dev llvm-14  # the scenario fuzz target (preset fuzz): libFuzzer, llvm-symbolizer
-      chromium-headless-shell)  # the study report's test renders it in a headless browser
+      chromium-headless-shell  # the study report's test renders it in a headless browser
+      graphviz  # dot: tools/architecture_graph.sh draws docs/architecture.svg
+      universal-ctags)  # tools/check_function_length.py finds the functions
 missing=()
 for p in "${PKGS[@]}"; do
   dpkg-query -W -f='${db:Status-Status}' "$p" 2>/dev/null | grep -qx installed || missing+=("$p")

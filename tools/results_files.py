@@ -1,5 +1,5 @@
 """How Rumble's Python scripts write into a results directory, as the engine does
-(engine/src/run/new_file.hpp): every file is a new file; whatever stands at its name (an old
+(engine/results/include/results/new_file.hpp): every file is a new file; whatever stands at its name (an old
 plot, a symbolic link planted there) is removed first and never followed."""
 import os
 

@@ -136,7 +136,7 @@ TEST(Stop, CtrlCInAStaticSolveThatNeverLooksEndsTheRunAtTheDeadline) {
 TEST(Stop, SigtermInAStepThatNeverLooksEndsTheRunAtTheDeadlineWithItsRows) {
   const auto results = expect_stopped_at_deadline(
       "deadline_step", {{"stall_at", 0.0095}, {"deaf", true}}, SIGTERM, "the time stepping");
-  // t = 0 .. 0.01 s were recorded before the stall: on disk, row by row (run/csv_file.hpp).
+  // t = 0 .. 0.01 s were recorded before the stall: on disk, row by row (results/csv_file.hpp).
   EXPECT_EQ(csv_rows(results / "contact.csv"), 11u);
 }
 

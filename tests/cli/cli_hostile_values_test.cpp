@@ -77,7 +77,7 @@ const std::vector<HostileCase>& hostile_cases() {
        "/soil/params/k: must be in [10000, 1e+13], got 1e+300", "Gazetas"},
       {"WinklerSubStepTiny", Base::kSmall, "/soil/params/max_step", "1e-300",
        "/soil/params/max_step: must be in [1e-07, 1], got 1e-300", "far finer"},
-      // The scenario (engine/src/scenario/scenario_schema.cpp).
+      // The scenario (engine/scenario/src/scenario_schema.cpp).
       {"MacroStepTiny", Base::kSmall, "/time/macro_step", "1e-300",
        "/time/macro_step: must be in [1e-07, 1], got 1e-300", "micro-step"},
       {"EndHuge", Base::kSmall, "/time/end", "1e300",

@@ -12,8 +12,8 @@
 #include "fem_settings.hpp"
 #include "gmsh_model.hpp"
 #include "mesh_generator.hpp"
-#include "track/footprint_layout.hpp"
-#include "track/track_config.hpp"
+#include "track_spec/footprint_layout.hpp"
+#include "track_spec/track_config.hpp"
 
 int main(int argc, char** argv) {
   if (argc != 3) {

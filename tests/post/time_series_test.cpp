@@ -1,5 +1,5 @@
 // Uniform grids from recorded time columns, resampling, and reading results CSVs in the form
-// engine/src/run/csv_file.cpp writes them.
+// engine/results/src/csv_file.cpp writes them.
 #include "post/time_series.hpp"
 
 #include <gtest/gtest.h>

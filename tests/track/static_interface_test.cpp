@@ -1,5 +1,5 @@
-// The track/soil static interface iteration (engine/src/track/static_interface.hpp) on maps with
-// a known fixed point, and the half-space footprint flexibility it takes as its prior
+// The track/soil static interface iteration (engine/track/include/track/static_interface.hpp) on
+// maps with a known fixed point, and the half-space footprint flexibility it takes as its prior
 // (footprint_flexibility.hpp) against closed forms and fine quadrature.
 #include "track/static_interface.hpp"
 

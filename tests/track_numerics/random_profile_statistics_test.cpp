@@ -13,7 +13,7 @@
 
 #include "simpson_log.hpp"
 #include "track/unevenness.hpp"
-#include "track/unevenness_psd.hpp"
+#include "track_spec/unevenness_psd.hpp"
 
 namespace rumble {
 namespace {

@@ -7,7 +7,7 @@
 
 #include "expect_message.hpp"
 #include "simpson_log.hpp"
-#include "track/unevenness_psd.hpp"
+#include "track_spec/unevenness_psd.hpp"
 
 namespace rumble {
 namespace {

@@ -1,0 +1,143 @@
+#include "scenario/relation_checks.hpp"
+
+#include <cmath>
+#include <map>
+#include <sstream>
+#include <string>
+
+#include "core/number_text.hpp"
+#include "scenario/run_spec.hpp"
+#include "track_spec/track_config.hpp"
+#include "track_spec/unevenness_psd.hpp"
+
+namespace rumble {
+namespace {
+
+using scenario::Diagnostic;
+
+using scenario::finding;
+
+constexpr double kMaxSleepers = 100000;  // track.sleepers.count's maximum in the schema
+
+/// Each name of `list` (at `pointer`) once: a second one would take the first one's CSV columns.
+/// name_of(i) gives entry i's name ("": none to check).
+template <class NameOf>
+void check_unique_names(const nlohmann::json& list, const std::string& pointer, const char* what,
+                        NameOf name_of, std::vector<Diagnostic>& out) {
+  std::map<std::string, std::size_t> seen;
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const std::string name = name_of(i);
+    if (name.empty()) continue;
+    const auto [it, fresh] = seen.emplace(name, i);
+    if (!fresh)
+      out.push_back(finding(pointer + "/" + std::to_string(i),
+                            std::string(what) + " name \"" + name + "\" is taken by " + pointer +
+                                "/" + std::to_string(it->second),
+                            std::string("give each ") + what + " its own name"));
+  }
+}
+
+}  // namespace
+
+std::vector<Diagnostic> check_scenario_relations(const nlohmann::json& sc) {
+  std::vector<Diagnostic> out;
+  const double t_end = sc.at("time").at("end").get<double>();
+  const double H = sc.at("time").at("macro_step").get<double>();
+  if (H > t_end) {
+    out.push_back(finding("/time/macro_step",
+                          "the macro step " + number_text(H) +
+                              " s is longer than time.end = " + number_text(t_end) + " s",
+                          "use a macro step of 1e-4 to 1e-3 s"));
+  }
+  const TrackConfig track = TrackConfig::from_json(sc.at("track"));
+  if (track.micro_step && *track.micro_step > H) {
+    out.push_back(finding("/track/integrator/micro_step",
+                          "the micro-step " + number_text(*track.micro_step) +
+                              " s is longer than the macro step " + number_text(H) + " s",
+                          "give a micro-step <= time.macro_step, or leave it out to have it "
+                          "chosen from the contact stiffness"));
+  }
+  const auto& unevenness = sc.at("track").value("unevenness", nlohmann::json::object());
+  if (unevenness.value("type", "none") == "random" && unevenness.contains("wavelength_min") &&
+      unevenness.contains("wavelength_max") &&
+      !(unevenness["wavelength_max"].get<double>() > unevenness["wavelength_min"].get<double>())) {
+    out.push_back(finding(
+        "/track/unevenness/wavelength_max",
+        "must be > wavelength_min = " + number_text(unevenness["wavelength_min"].get<double>()) +
+            " m, got " + number_text(unevenness["wavelength_max"].get<double>()) + " m",
+        "the profile covers wavelengths from wavelength_min to wavelength_max, "
+        "e.g. 1 to 30 m for track geometry"));
+  } else if (unevenness.value("type", "none") == "random" && unevenness.contains("class") &&
+             unevenness.contains("wavelength_min") && unevenness.contains("wavelength_max")) {
+    // The band must lie where the spectrum is defined (ISO 3095 covers rail roughness only).
+    const auto spectrum = RoughnessSpectrum::from_name(unevenness["class"].get<std::string>());
+    const double lo = unevenness["wavelength_min"].get<double>();
+    const double hi = unevenness["wavelength_max"].get<double>();
+    const std::string range = "the " + spectrum.name() +
+                              " spectrum is defined for wavelengths "
+                              "from " +
+                              number_text(spectrum.min_wavelength()) + " m to " +
+                              number_text(spectrum.max_wavelength()) + " m";
+    const std::string hint = spectrum.name() == "ISO3095"
+                                 ? "ISO 3095 is rail roughness (short waves); for track "
+                                   "geometry (1 to 30 m) use an FRA class"
+                                 : "choose a band inside the spectrum's range";
+    if (!spectrum.above_min(lo)) {
+      out.push_back(finding("/track/unevenness/wavelength_min",
+                            range + ", got " + number_text(lo) + " m", hint));
+    }
+    if (!spectrum.below_max(hi)) {
+      out.push_back(finding("/track/unevenness/wavelength_max",
+                            range + ", got " + number_text(hi) + " m", hint));
+    }
+  }
+  // The vehicle reference must stay on the rail for the whole run (the wheels' offsets are
+  // checked again once the vehicle plugins are loaded).
+  const auto& vehicles = sc.at("vehicles");
+  check_unique_names(
+      vehicles, "/vehicles", "vehicle",
+      [&](std::size_t i) { return vehicles[i].value("name", "vehicle" + std::to_string(i)); }, out);
+  if (const auto& o = sc.at("outputs"); o.contains("receivers")) {
+    const auto& receivers = o.at("receivers");
+    check_unique_names(
+        receivers, "/outputs/receivers", "receiver",
+        [&](std::size_t i) {
+          return receivers[i].is_object()
+                     ? receivers[i].value("name", std::string())
+                     : scenario::distance_receiver_name(receivers[i].get<double>());
+        },
+        out);
+  }
+  for (std::size_t i = 0; i < vehicles.size(); ++i) {
+    const std::string ptr = "/vehicles/" + std::to_string(i);
+    const double start = vehicles[i].at("start").get<double>();
+    const double speed = vehicles[i].at("speed").get<double>();
+    const double x_end = start + speed * t_end;
+    if (start < track.rail_start() || start > track.rail_end()) {
+      out.push_back(finding(ptr + "/start",
+                            "the vehicle starts at x = " + number_text(start) +
+                                " m, off the rail [" + number_text(track.rail_start()) + ", " +
+                                number_text(track.rail_end()) + "] m",
+                            "sleeper i lies at x = i * spacing; start within the track"));
+    } else if (x_end > track.rail_end()) {
+      // In double: a long run at speed may need more sleepers than an int counts (the hint
+      // once read "use at least -2147483647 sleepers").
+      const double needed =
+          std::ceil((x_end + 2.0 * track.sleeper_spacing) / track.sleeper_spacing) + 1.0;
+      const std::string more =
+          needed <= kMaxSleepers
+              ? ", or use at least " + number_text(needed, 15) + " sleepers (track.sleepers.count)"
+              : " (the rail would need " + number_text(needed) + " sleepers, more than the " +
+                    number_text(kMaxSleepers) + " allowed)";
+      out.push_back(finding(
+          ptr + "/speed",
+          "at " + number_text(speed) + " m/s the vehicle reaches x = " + number_text(x_end) +
+              " m at t = " + number_text(t_end) + " s, past the end of the rail at " +
+              number_text(track.rail_end()) + " m",
+          "lower time.end or the speed" + more));
+    }
+  }
+  return out;
+}
+
+}  // namespace rumble

@@ -1,0 +1,53 @@
+#!/usr/bin/env python3
+"""The architecture check (tools/check_architecture.py) must fail on what docs/architecture.md
+forbids. Copies the source tree (what git tracks) to a scratch directory, breaks the rules there
+three ways, and expects one message per breach and exit status 1:
+  - the post room includes a header of the run room (an arrow the target graph lacks);
+  - the core room links FFTW (a package it does not use);
+  - the Winkler soil plugin links the engine's core room (plugins use the SDK only).
+
+    violations_test.py SOURCE_DIR SCRATCH_DIR
+"""
+import pathlib
+import shutil
+import subprocess
+import sys
+
+source, scratch = pathlib.Path(sys.argv[1]), pathlib.Path(sys.argv[2])
+shutil.rmtree(scratch, ignore_errors=True)
+tree = scratch / "tree"
+tracked = subprocess.run(["git", "ls-files", "-co", "--exclude-standard"], cwd=source,
+                         capture_output=True, text=True, check=True).stdout.split("\n")
+for name in filter(None, tracked):
+    if (source / name).is_file():
+        (tree / name).parent.mkdir(parents=True, exist_ok=True)
+        shutil.copy2(source / name, tree / name)
+
+
+def edit(path, old, new):
+    p = tree / path
+    text = p.read_text()
+    assert old in text, f"{path}: '{old}' not found: update this test"
+    p.write_text(text.replace(old, new, 1))
+
+
+edit("engine/post/src/ppv.cpp", '#include "post/ppv.hpp"\n',
+     '#include "post/ppv.hpp"\n#include "run/run_scenario.hpp"\n')
+edit("engine/CMakeLists.txt", "PUBLIC spdlog::spdlog Threads::Threads",
+     "PUBLIC spdlog::spdlog Threads::Threads PkgConfig::FFTW3")
+with open(tree / "plugins/soils/winkler/CMakeLists.txt", "a") as f:
+    f.write("target_link_libraries(winkler PRIVATE rumble_core)\n")
+
+check = subprocess.run([sys.executable, str(tree / "tools/check_architecture.py"),
+                        "--scratch", str(scratch / "check")], capture_output=True, text=True)
+print(check.stdout, check.stderr)
+expected = [
+    "engine/post/src/ppv.cpp includes run, which room post may not use",
+    "rumble_core links PkgConfig::FFTW3, which docs/architecture.md does not allow",
+    "winkler links the engine's rumble_core: plugins use the SDK only",
+]
+missing = [e for e in expected if e not in check.stdout]
+if check.returncode != 1 or missing:
+    print(f"exit status {check.returncode} (1 expected); not reported: {missing}")
+    sys.exit(1)
+print("each breach was reported")
