@@ -2,7 +2,7 @@
 """Rumble's FEM soil against CalculiX on the same mesh and the same loading (issue #9).
 
 CalculiX (Debian package calculix-ccx) is the open ABAQUS-like solver. Its explicit mode ignores
-dashpots and picks a step 19x below the stable one (../shared/reference/numerics.md §4.5), so the
+dashpots and picks a step 19x below the stable one (docs/numerics.md §6), so the
 peer is its implicit *DYNAMIC (HHT with alpha = 0: Newmark average acceleration) with the
 absorbing boundary as DASHPOTA and SPRINGA elements to fixed anchor nodes.
 

@@ -1,4 +1,5 @@
-// The FEM soil's static start at growing size (issue #9, docs/fem-soil.md §7): on the stiff
+// The FEM soil's static start at growing size (issue #9; the figures in
+// bench/fem/MEASUREMENTS.md, "Speed and memory"): on the stiff
 // example's graded hemisphere (scenarios/examples/stiff_soil_fem.json: R = 15 m, 30 sleeper
 // footprints, resolution near_distance 5 m) meshed at each F_MAX, the time and iterations of
 // one static solve under the sleepers' weight by each path StaticSolver has: the CHOLMOD factor
@@ -31,7 +32,7 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 
 FemSettings stiff_example(double f_max) {
   FemSettings s;
-  s.half_space = {750e6, 0.3, 1800.0};  // physics.md §4.1
+  s.half_space = {750e6, 0.3, 1800.0};  // docs/physics.md §1.4: stiff soil
   s.mesh.radius = 15.0;
   s.mesh.f_max = f_max;
   s.mesh.near_distance = 5.0;

@@ -1,5 +1,5 @@
-// The FEM soil's explicit step against the machine's memory bandwidth (numerics.md §5): the step
-// streams K's upper blocks once (4 or 8 B per value, one 4 B node index per 3 x 3 block:
+// The FEM soil's explicit step against the machine's memory bandwidth (docs/numerics.md §5): the
+// step streams K's upper blocks once (4 or 8 B per value, one 4 B node index per 3 x 3 block:
 // symmetric_blocks.hpp) plus its vectors, so its time is bounded below by bytes / bandwidth. Each
 // case measures a STREAM-like triad in the same process first and reports the step's effective
 // bandwidth as a fraction of it (roofline_fraction), with million DOF-updates per second (MDOF/s),
@@ -51,7 +51,7 @@ double timed_steps(benchmark::State& state, const ExplicitSolver& op, ExplicitSt
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-/// Medium soil (physics.md §4.1) on a Kuhn box of n^3 cubes; LK dashpots and springs on five
+/// Medium soil (docs/physics.md §1.4) on a Kuhn box of n^3 cubes; LK dashpots and springs on five
 /// sides, 2 % Rayleigh damping (or over 5-100 Hz by `mechanisms` Maxwell mechanisms): the step
 /// the plugin takes, with K read in double (single 0) or single precision (single 1).
 void BM_ExplicitStep(benchmark::State& state) {

@@ -65,7 +65,8 @@ std::vector<std::vector<double>> run_displacements(const std::string& name,
 
 // Gauss-Seidel and Jacobi are both consistent, first-order schemes: the largest difference of
 // their footprint displacement histories, relative to the largest displacement, shrinks about
-// 10x from H = 1 ms to 0.1 ms (physics.md §7); > 4x is required to stay robust.
+// 10x from H = 1 ms to 0.1 ms (docs/couplers.md, "Expected error of the explicit schemes"); > 4x
+// is required to stay robust.
 TEST(CliRun, CouplersConvergeTogetherAsTheMacroStepShrinks) {
   std::vector<double> differences;
   for (double H : {1e-3, 1e-4}) {

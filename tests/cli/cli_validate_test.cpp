@@ -103,7 +103,7 @@ TEST(CliValidate, Iso3095BandOutsideItsRange) {
   EXPECT_THAT(r.output, Not(HasSubstr("wavelength_min")));  // 1 m is inside the range
 }
 
-// Soft soil: c_R = 42.9 m/s (physics.md §4.1); 50 m/s is above it: a warning with the number,
+// Soft soil: c_R = 42.9 m/s (docs/physics.md §2); 50 m/s is above it: a warning with the number,
 // not an error (the run is allowed).
 TEST(CliValidate, SpeedAboveRayleighSpeedWarns) {
   nlohmann::json s = small_scenario();

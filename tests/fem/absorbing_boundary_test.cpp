@@ -58,9 +58,10 @@ double energy_left(BoundaryKind kind, double t_end) {
 
 TEST(FemAbsorbingBoundary, ViscousSpringBoundaryKeepsLittleOfTheEnergy) {
   // 0.15 s: the S wave crosses the 8 m radius 7 times, the P wave 14 times. Measured: 3e-3 of the
-  // energy left with the viscous-spring boundary (LK reflects below 1 % of the energy up to
-  // 45 degrees of incidence, numerics.md §2.2; the Rayleigh wave meets the rim at grazing
-  // incidence), and 0.9995 with a fixed one (no damping: energy is conserved).
+  // energy left with the viscous-spring boundary (LK reflects below 1 % of a plane P wave's
+  // energy up to 45 degrees of incidence and about 3 % of an S wave's, docs/numerics.md §3.1;
+  // the Rayleigh wave meets the rim at grazing incidence), and 0.9995 with a fixed one (no damping:
+  // energy is conserved).
   const double absorbing = energy_left(BoundaryKind::kViscousSpring, 0.15);
   const double fixed = energy_left(BoundaryKind::kFixed, 0.15);
   RecordProperty("energy_left_viscous_spring", std::to_string(absorbing));

@@ -2,7 +2,7 @@
 // square footprint of the FEM half-space, surface receivers at two distances, against the closed
 // form (tests/support/lamb_surface.hpp, Kausel / Pekeris): the motion before the P wave, the
 // Rayleigh pulse's time and depth, the static plateau, and the Rayleigh speed from the two
-// receivers (physics.md §8 cases 1 and 2).
+// receivers (docs/physics.md §10 cases 1 and 2).
 #include <gtest/gtest.h>
 #include <rumble/abi.h>
 

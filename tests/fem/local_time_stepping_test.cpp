@@ -40,7 +40,7 @@ TetMesh box_with_inclusion() {
 
 FemSettings inclusion_soil() {
   FemSettings s;
-  s.half_space = {155e6, 0.3, 1800.0};                            // physics.md §4.1, medium soil
+  s.half_space = {155e6, 0.3, 1800.0};  // docs/physics.md §1.4: medium soil
   s.layers = {{1.0, soils::SoilProperties{930e6, 0.3, 1800.0}}};  // the inclusion (layer 0)
   return s;
 }

@@ -72,7 +72,7 @@ TEST(MaxwellDamping, EIsTheModulusAtTheBandsCentre) {
   EXPECT_EQ(r.maxwell_mechanisms().mechanisms(), 0);
 }
 
-/// The medium soil (physics.md §4.1) on a Kuhn box of `n` cubes of h [m], free, with the
+/// The medium soil (docs/physics.md §1.4) on a Kuhn box of `n` cubes of h [m], free, with the
 /// default 2 % over 5-100 Hz by the mechanisms or by Rayleigh's terms.
 ExplicitSolver box_solver(int n, double h, bool maxwell) {
   FemSettings s;

@@ -1,7 +1,7 @@
 // Meshes from gmsh (mesh_generator.hpp): the plan's sizes and refusals, and what the operators
 // rely on: positive tetrahedra, footprints meshed exactly (weights summing to 1 over their
 // area), layer interfaces followed by element faces, the size field honoured (gmsh 4.8 ignores
-// misspelt field options silently, toolchain.md §8.11, so sizes are measured), the same mesh on
+// misspelt field options silently, docs/toolchain.md §5, so sizes are measured), the same mesh on
 // every run with the default algorithm.
 #include <gtest/gtest.h>
 
@@ -20,7 +20,7 @@ namespace {
 
 FemSettings stiff_soil(double radius, double f_max) {
   FemSettings s;
-  s.half_space = {750e6, 0.3, 1800.0};  // physics.md §4.1, stiff soil: c_R 371 m/s
+  s.half_space = {750e6, 0.3, 1800.0};  // docs/physics.md §2, stiff soil: c_R 371 m/s
   s.mesh.radius = radius;
   s.mesh.f_max = f_max;
   s.mesh.near_distance = 2.0;
@@ -52,7 +52,7 @@ double mean_edge(const TetMesh& m, const TrackRegion& region, double d0, double 
 
 TEST(FemMesh, PlanTakesTheNearSizeFromTheRayleighWavelength) {
   const MeshPlan p = plan_mesh(stiff_soil(10.0, 40.0), sleepers(5));
-  EXPECT_NEAR(p.h_near, 371.3 / (40.0 * 10.0), 0.01);  // c_R / (f_max x 10), physics.md §4.1
+  EXPECT_NEAR(p.h_near, 371.3 / (40.0 * 10.0), 0.01);  // c_R / (f_max x 10), docs/physics.md §2
   EXPECT_DOUBLE_EQ(p.h_max, 2.5);                      // radius / 4
   EXPECT_DOUBLE_EQ(p.size_at(1.2, 0.0, 0.0), p.h_near);
   EXPECT_NEAR(p.size_at(1.2, 1.3 + 4.0, 0.0), 2.0 * p.h_near, 1e-12);  // 4 m out: twice
@@ -175,7 +175,7 @@ TEST(FemMesh, SizesFollowThePlan) {
   const std::vector<Footprint> fp = sleepers(3);
   const MeshPlan plan = plan_mesh(s, fp);
   const TetMesh m = generate_mesh(s, fp, plan);
-  // gmsh's edges come out near 1.0-1.3 times the requested size (toolchain.md §6): near the
+  // gmsh's edges come out near 1.0-1.3 times the requested size (docs/toolchain.md §5): near the
   // footprints h_near (0.93 m), at 6-8 m about 3.5 h_near (size grows as d / near_distance).
   const double near = mean_edge(m, plan.region, 0.0, 2.0);
   const double far = mean_edge(m, plan.region, 6.0, 8.0);

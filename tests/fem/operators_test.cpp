@@ -1,7 +1,7 @@
 // The FEM soil's operators on a structured Kuhn box (kuhn_box.hpp), against what must hold
 // exactly: rigid motions make no force, a linear displacement field is reproduced (patch test),
 // the lumped mass is the body's mass, the power-iteration stable step is the Kuhn mesh's known
-// 0.671 h / c_p (numerics.md §3.1), the scheme is stable below it and not above, and without
+// 0.671 h / c_p (docs/numerics.md §4.1), the scheme is stable below it and not above, and without
 // damping it conserves energy.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -25,7 +25,7 @@ namespace {
 
 FemSettings medium_soil() {
   FemSettings s;
-  s.half_space = {155e6, 0.3, 1800.0};  // physics.md §4.1, medium soil
+  s.half_space = {155e6, 0.3, 1800.0};  // docs/physics.md §1.4: medium soil
   return s;
 }
 
@@ -145,8 +145,8 @@ TEST(FemExplicit, StableStepOfTheKuhnBoxIs0671HOverCp) {
   const double c_p = soils::wave_speeds(155e6, 0.3, 1800.0).pressure;
   for (int n : {4, 6}) {
     const ExplicitSolver op = free_solver(kuhn_box(n, h), s);
-    // The solver keeps a 2 % margin on omega_max^2 (1 % on the step); numerics.md gives three
-    // digits for the box; the boundary nodes of a small box shift the top of the spectrum a
+    // The solver keeps a 2 % margin on omega_max^2 (1 % on the step); docs/numerics.md §4.1 gives
+    // three digits for the box; the boundary nodes of a small box shift the top of the spectrum a
     // little: 3 %.
     EXPECT_NEAR(op.stable_step() / (h / c_p), 0.671, 0.03 * 0.671) << "n = " << n;
   }

@@ -36,7 +36,7 @@ nlohmann::json small_stiff_soil(const std::string& boundary = "viscous_spring") 
 
 TEST(FemStatics, FlexibleSquareFootingSettlesAsTheClosedForm) {
   // Mean settlement of a uniform pressure q on a B x B square of a half-space:
-  // 0.946 q B (1 - nu^2) / E (physics.md §5.3, corner formula superposed and averaged). The
+  // 0.946 q B (1 - nu^2) / E (docs/physics.md §6.2, corner formula superposed and averaged). The
   // mesh converges to it from below: 11.0 % low at h = B/4 (here), 4.0 % at B/8 (the
   // validation suite, fem_validation_tests); the truncation at 12 m holds the half-space's
   // field (docs/fem-soil.md section 3.2).

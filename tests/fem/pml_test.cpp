@@ -2,7 +2,7 @@
 // reference that has no truncation within the time looked at: nested structured meshes
 // (kuhn_box.hpp), so the inner box is node for node the same mesh in every run and the
 // difference of the velocities there is what the truncation sent back, not a mesh difference
-// (numerics.md §2.3). Also: a layer without damping is the elastic soil, and the layer's own
+// (docs/numerics.md §3.2). Also: a layer without damping is the elastic soil, and the layer's own
 // step bound holds (bounded over a long run at it, growing beyond it).
 #include "pml.hpp"
 

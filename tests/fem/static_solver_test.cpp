@@ -24,7 +24,7 @@ namespace {
 TEST(FemStatics, ConjugateGradientsAgreeWithTheFactorAndStartFromTheLastSolution) {
   const TetMesh m = kuhn_box(4, 0.5);
   FemSettings s;
-  s.half_space = {155e6, 0.3, 1800.0};  // physics.md §4.1, medium soil
+  s.half_space = {155e6, 0.3, 1800.0};  // docs/physics.md §1.4: medium soil
   const TrackRegion centre{1.0, 1.0, 1.0, 1.0};
   const ExplicitSolver op(assemble_stiffness(m, s), lumped_mass(m, s),
                           absorbing_boundary(m, s, centre), true,

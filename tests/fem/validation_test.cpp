@@ -77,7 +77,7 @@ TEST(FemValidation, RayleighPulseSpeedBetweenFarReceivers) {
   // h_near 0.3 m), receivers on the surface at 4 and 8 m, a 12 m hemisphere. The speed is the
   // distance over the lag of the cross-correlation of the two u_z traces, up to 0.17 s (before
   // the Rayleigh wave's echo from the rim reaches 8 m). Measured: 87.67 m/s from the mesh,
-  // 87.93 m/s from the closed form's own traces (0.3 %; bound 2 %, physics.md §8 case 2); the
+  // 87.93 m/s from the closed form's own traces (0.3 %; bound 2 %, docs/physics.md §10 case 2); the
   // closed form's lag itself is 4.4 % below c_R: at 1-2 Rayleigh wavelengths the displacement
   // still carries the quasi-static (Boussinesq) part of the load, which does not travel at c_R
   // (a check of c_R itself needs receivers farther apart or the Rayleigh pulse alone).

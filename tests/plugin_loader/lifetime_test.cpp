@@ -1,6 +1,6 @@
 // A library stays mapped while anything made by it lives: every ComponentType, and through it
 // every instance, holds a shared_ptr to its LoadedLibrary. Destroying the registry first must
-// leave instances working (toolchain.md §3: an object outliving its library's code segfaults).
+// leave instances working (docs/toolchain.md §3: an object outliving its library's code segfaults).
 #include <gtest/gtest.h>
 
 #include <memory>

@@ -1,7 +1,7 @@
 // Every in-tree plugin exports exactly one dynamic symbol, rumble_plugin_entry, and no
 // STB_GNU_UNIQUE symbol. A second export can clash with the host or another plugin (RTLD_LOCAL
 // limits but does not remove that); a UNIQUE one makes glibc mark the library NODELETE, which
-// hides lifetime bugs in some builds and not in others (toolchain.md §8.2).
+// hides lifetime bugs in some builds and not in others (docs/toolchain.md §3).
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -36,8 +36,8 @@ std::size_t ridge(const Scalogram& s, std::size_t j) {
 TEST(Cwt, ScaleToFrequencyIsTorrenceAndCompo) {
   // T&C Table 1: Fourier period 4 pi s / (omega0 + sqrt(2 + omega0^2)) = 1.033 s for s = 1.
   EXPECT_NEAR(1.0 / morlet_frequency(1.0, 6.0), 1.033, 5e-4);
-  // A 20 Hz tone (period 0.05 s = 1.033 s) sits at s = 0.05 / 1.033 = 0.0484 s. (physics.md §8
-  // item 11 writes "s = 1.033/20 s", the ratio inverted; its §6 "f ~ 0.968/s" agrees with this.)
+  // A 20 Hz tone (period 0.05 s = 1.033 s) sits at s = 0.05 / 1.033 = 0.0484 s (docs/physics.md §9,
+  // "Morlet wavelet": a tone of f [Hz] peaks at s = 1 / (1.033 f) [s].)
   EXPECT_NEAR(morlet_scale(20.0, 6.0), 1.0 / (1.033 * 20.0), 5e-4 / 20.0);
   EXPECT_DOUBLE_EQ(morlet_frequency(morlet_scale(37.0, 6.0), 6.0), 37.0);
   const std::vector<double> f = log_spaced(5.0, 80.0, 61);

@@ -28,7 +28,7 @@ double max_after(const TimeSeries& x, double t_from) {
   return m;
 }
 
-// The gains physics.md §6 lists (3 digits there, so 5e-4) and the exact corner value.
+// The gains docs/physics.md §9 lists (3 digits there, so 5e-4) and the exact corner value.
 TEST(KbWeighting, GainIsTheFirstOrderHighPass) {
   EXPECT_NEAR(kb_gain(2.0), 0.336, 5e-4);
   EXPECT_NEAR(kb_gain(4.0), 0.581, 5e-4);

@@ -68,7 +68,7 @@ TEST(ThirdOctave, ResolvedBandsHoldABinAndStayBelowNyquist) {
 
 // A 16 Hz sine of 1 mm/s amplitude on a bin (10 s record: bins 0.1 Hz): all its power is in one
 // bin, so its band reads 20 log10((A/sqrt 2)/v_ref) to rounding: 116.99 dB re 1e-9 m/s and
-// 88.89 VdB (physics.md §8 item 11: 88.9). 1e-9 dB allowed; the next bands are empty (-inf
+// 88.89 VdB (docs/physics.md §10 case 11: 88.9). 1e-9 dB allowed; the next bands are empty (-inf
 // would mean exactly 0; rounding leaves < -100 dB below the tone).
 TEST(ThirdOctave, SineLevelInItsBand) {
   const std::size_t n = 10000;

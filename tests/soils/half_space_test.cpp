@@ -1,6 +1,6 @@
 // The half-space formulas behind the soil-derived parameters, from their headers: Boussinesq
-// influence of flexible rectangles (physics.md §5.3, §2.3), the centre stress, and the layered
-// equivalent soil. Reference numbers: physics.md (3 digits) and an independent Python script
+// influence of flexible rectangles (docs/physics.md §6.2, §6.3), the centre stress, and the layered
+// equivalent soil. Reference numbers: docs/physics.md (3 digits) and an independent Python script
 // (40 x 40 and 80 x 80 Gauss points, scipy-free) for the 5-digit ones.
 #include <gtest/gtest.h>
 
@@ -18,14 +18,14 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 TEST(SoilHalfSpace, SquareMeanSettlementFactor) {
-  // Mean settlement of a flexible square of side B: q B (1 - nu^2) / E * 0.946 (physics.md
-  // §5.3), i.e. an influence of 0.946 pi / B; Python: 0.946402.
+  // Mean settlement of a flexible square of side B: q B (1 - nu^2) / E * 0.946 (docs/physics.md
+  // §6.2), i.e. an influence of 0.946 pi / B; Python: 0.946402.
   EXPECT_NEAR(mean_flexible_influence(1.0, 1.0, 0.0) / std::numbers::pi, 0.946402, 1e-5);
   EXPECT_NEAR(mean_flexible_influence(2.0, 2.0, 0.0) / std::numbers::pi, 0.946402 / 2, 1e-5);
 }
 
 TEST(SoilHalfSpace, NeighbourRatiosOfTheTable) {
-  // physics.md §2.3: 0.395, 0.412, 0.513 and u2/u0 = 0.249; Python (80 x 80): 0.394742,
+  // docs/physics.md §6.3: 0.395, 0.412, 0.513 and u2/u0 = 0.249; Python (80 x 80): 0.394742,
   // 0.412464, 0.513439, 0.249256. 20 x 20 points are within 1e-5 of them.
   EXPECT_NEAR(neighbour_compliance_ratio(2.6, 0.26, 0.6), 0.394742, 1e-5);
   EXPECT_NEAR(neighbour_compliance_ratio(2.6, 0.30, 0.6), 0.412464, 1e-5);

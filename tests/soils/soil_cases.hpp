@@ -1,5 +1,5 @@
-// The seed's three soils (physics.md §4.1: E = 10, 155, 750 MPa; nu = 0.3 and rho = 1800 kg/m^3
-// assumed there) and helpers to write a soil's params.
+// The seed's three soils (docs/physics.md §1.4: E = 10, 155, 750 MPa; nu = 0.3 and
+// rho = 1800 kg/m^3 assumed there) and helpers to write a soil's params.
 #pragma once
 
 #include <array>

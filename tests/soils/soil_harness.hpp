@@ -23,7 +23,7 @@ const rumble_factory& soil_factory(const std::string& type);
 std::string creation_error(const std::string& type, const std::string& params_json);
 
 /// n whole-sleeper footprints on the track axis, x = i spacing [m], length (across) x width
-/// (along) [m]; by default the 2.6 x 0.26 m sleepers at 0.6 m of physics.md.
+/// (along) [m]; by default the 2.6 x 0.26 m sleepers at 0.6 m of docs/physics.md §1.1.
 std::vector<rumble_footprint> sleeper_row(std::size_t n, double spacing = 0.6, double length = 2.6,
                                           double width = 0.26);
 

@@ -1,6 +1,6 @@
 // Parameters derived from soil properties, read back through the C API (statics and receptance)
-// and compared with physics.md §5.3 (footing impedances), §2.3 (chain ratio r) and §8 cases 7-8.
-// The physics.md numbers have 3 significant digits: half a unit of the last digit is <= 0.4 %,
+// and compared with docs/physics.md §6.1 (footing impedances), §6.3 (chain ratio r) and §10
+// cases 7-8. Those numbers have 3 significant digits: half a unit of the last digit is <= 0.4 %,
 // hence the 0.5 % tolerances against them; closed forms re-typed here are met to 1e-12.
 #include <gtest/gtest.h>
 
@@ -17,13 +17,13 @@ namespace {
 
 constexpr double kTable = 5e-3;  // relative, 3-digit table values
 
-/// Gazetas (1991), rigid 2L x 2B, typed again from physics.md §5.3.
+/// Gazetas (1991), rigid 2L x 2B, typed again from docs/soils.md §3.
 double gazetas(const Soil& s, double length, double width) {
   const double G = s.E / (2 * (1 + s.nu)), L = length / 2, B = width / 2;
   return 2 * G * L / (1 - s.nu) * (0.73 + 1.54 * std::pow(B / L, 0.75));
 }
 
-/// Lysmer's analog dashpot, typed again from physics.md §5.3.
+/// Lysmer's analog dashpot, typed again from docs/soils.md §3.
 double lysmer(const Soil& s, double area) {
   const double cs = std::sqrt(s.E / (2 * (1 + s.nu)) / s.rho);
   return s.rho * 3.4 * cs / (std::numbers::pi * (1 - s.nu)) * area;
@@ -44,7 +44,7 @@ Footing winkler_footing(const nlohmann::json& params, double length, double widt
 }
 
 TEST(SoilStatics, WinklerFromSoilMatchesGazetasAndLysmer) {
-  // physics.md §5.3 table: (soil, footprint) -> K_z [N/m], C_z [N s/m].
+  // docs/physics.md §6.1 table: (soil, footprint) -> K_z [N/m], C_z [N s/m].
   struct Row {
     const Soil& soil;
     double length, width, K, C;
@@ -103,8 +103,8 @@ TEST(SoilStatics, CalibratedClmReproducesNeighbourRatioAndFootingStiffness) {
   for (const Soil& s : kSoils) {
     SCOPED_TRACE(s.name);
     const VectorXd u = clm_static_row(soil_params(s));
-    // physics.md §2.3 / §8 case 8: r = 0.395 (independent Python: 0.39474). The row's ends are
-    // 20 spacings away: their effect is r^20 ~ 1e-8.
+    // docs/physics.md §6.3 / §10 case 8: r = 0.395 (independent Python: 0.39474). The row's ends
+    // are 20 spacings away: their effect is r^20 ~ 1e-8.
     EXPECT_NEAR(u[21] / u[20], 0.395, kTable * 0.395);
     EXPECT_NEAR(u[19] / u[20], u[21] / u[20], 1e-12);
     // The loaded footprint alone is as stiff as a single rigid footing (G0 = 1 / K_z).
@@ -116,7 +116,7 @@ TEST(SoilStatics, CalibratedClmReproducesNeighbourRatioAndFootingStiffness) {
 }
 
 TEST(SoilStatics, NeighbourRatioDependsOnGeometryAsTabulated) {
-  // physics.md §2.3 rows 2 and 3.
+  // docs/physics.md §6.3 rows 2 and 3.
   const nlohmann::json medium = soil_params(kSoils[1]);
   const VectorXd a = clm_static_row(medium, 2.6, 0.30);
   EXPECT_NEAR(a[21] / a[20], 0.412, kTable * 0.412);

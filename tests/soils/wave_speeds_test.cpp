@@ -1,5 +1,5 @@
-// Soil wave speeds against physics.md §4.1 (table of c_s, c_p, c_R for the seed's soils) and
-// §4.2 (c_R/c_s to 4 digits), the Pekeris closed form and the unrationalized Rayleigh equation.
+// Soil wave speeds against docs/physics.md §2 (table of c_s, c_p, c_R for the seed's soils, and
+// c_R/c_s to 4 digits), the Pekeris closed form and the unrationalized Rayleigh equation.
 #include "wave_speeds.hpp"
 
 #include <gtest/gtest.h>
@@ -37,7 +37,7 @@ TEST(WaveSpeeds, MatchTableOfSeedSoils) {
 }
 
 TEST(WaveSpeeds, RayleighRatioMatchesTableToFourDigits) {
-  // physics.md §4.2, exact values printed to 4 decimals: within half a unit (5e-5).
+  // docs/physics.md §2, exact values printed to 4 decimals: within half a unit (5e-5).
   const struct {
     double nu, ratio;
   } table[] = {{0.0, 0.8740},  {0.2, 0.9110}, {0.25, 0.9194}, {0.3, 0.9274}, {1.0 / 3.0, 0.9325},
@@ -73,7 +73,7 @@ TEST(WaveSpeeds, RootSolvesTheUnrationalizedRayleighEquation) {
     EXPECT_LT(xi, 0.9554);
     EXPECT_GT(xi, previous) << nu;
     previous = xi;
-    // Viktorov's approximation (0.862 + 1.14 nu)/(1 + nu) is within 1.4 % (physics.md §4.2:
+    // Viktorov's approximation (0.862 + 1.14 nu)/(1 + nu) is within 1.4 % (docs/physics.md §2:
     // 0.8620 against 0.8740 at nu = 0, closer above).
     EXPECT_NEAR(xi, (0.862 + 1.14 * nu) / (1.0 + nu), 0.014 * xi) << nu;
   }

@@ -1,7 +1,7 @@
 // Lamb's problem, surface response: a vertical step point load P H(t) on the surface of a
 // homogeneous, isotropic, linear elastic half-space, vertical displacement at distance r on the
-// surface. Kausel's closed form (physics.md §5.1; E. Kausel, "Lamb's problem at its simplest",
-// Proc. R. Soc. A 2012, and his Lamb_3D.m v3.3), written here from the formulas of physics.md.
+// surface. Kausel's closed form (docs/physics.md §4; E. Kausel, "Lamb's problem at its simplest",
+// Proc. R. Soc. A 2012, and his Lamb_3D.m v3.3), written here from the formulas restated there.
 // It is the independent reference for the 3D FEM soil tests, so it uses nothing of the engine
 // or the plugins (not even plugins/soils/common/wave_speeds.hpp).
 //

@@ -1,5 +1,5 @@
-// Lamb's problem surface response (lamb_surface.hpp) against physics.md §5.1 (Kausel's table for
-// nu = 0.25, 0.30, 1/3, the Pekeris nu = 1/4 form, the dimensional example) and §4.2 (c_R/c_s);
+// Lamb's problem surface response (lamb_surface.hpp) against docs/physics.md §4 (Kausel's table for
+// nu = 0.25, 0.30, 1/3, the Pekeris nu = 1/4 form, the dimensional example) and §2 (c_R/c_s);
 // the ramped-load response against its definition, integrated here by quadrature.
 #include "lamb_surface.hpp"
 
@@ -25,7 +25,7 @@ double tau_r(double nu) {
   return 1.0 / rayleigh_speed_ratio(nu);
 }
 
-// physics.md §5.1 reference values of U = u_z G r / P, printed to five decimals.
+// docs/physics.md §4 reference values of U = u_z G r / P, printed to five decimals.
 struct TableRow {
   double tau;
   double u[3];  // nu = 0.25, 0.30, 1/3
@@ -108,7 +108,7 @@ TEST(LambSurface, ContinuousInNuThroughComplexRoots) {
 }
 
 TEST(LambSurface, RayleighRatioMatchesTable) {
-  // physics.md §4.2, printed to four decimals.
+  // docs/physics.md §2, printed to four decimals.
   struct Row {
     double nu, ratio;
   };
@@ -119,7 +119,7 @@ TEST(LambSurface, RayleighRatioMatchesTable) {
   EXPECT_NEAR(rayleigh_speed_ratio(0.25), std::sqrt(4.0 / (3.0 + std::sqrt(3.0))), 1e-14);
 }
 
-// Pekeris (1955), nu = 1/4, physics.md §5.1.
+// Pekeris (1955), nu = 1/4, docs/physics.md §4.
 double pekeris_u(double tau) {
   const double s3 = std::sqrt(3.0), t2 = tau * tau;
   const double rayleigh = std::sqrt(3.0 * s3 + 5.0) / std::sqrt((3.0 + s3) / 4.0 - t2);
@@ -141,7 +141,7 @@ TEST(LambSurface, PekerisClosedFormAtQuarterPoisson) {
   }
 }
 
-// physics.md §5.1 dimensional example: E = 155 MPa, nu = 0.3, rho = 1800, r = 5 m, P = 1 kN.
+// docs/physics.md §4 dimensional example: E = 155 MPa, nu = 0.3, rho = 1800, r = 5 m, P = 1 kN.
 constexpr double kE = 155e6, kNu = 0.3, kRho = 1800.0, kR = 5.0, kP = 1000.0;
 const double kG = kE / (2.0 * (1.0 + kNu));
 const double kCs = std::sqrt(kG / kRho);

@@ -1,5 +1,5 @@
 // A wheel preloaded by P0 on a rigid rail makes small oscillations at (1/2 pi) sqrt(k_H / M),
-// k_H = 1.5 C_H^(2/3) P0^(1/3): 220 Hz for M = 750 kg, P0 = 100 kN (physics.md §8 case 6).
+// k_H = 1.5 C_H^(2/3) P0^(1/3): 220 Hz for M = 750 kg, P0 = 100 kN (docs/physics.md §10 case 6).
 // And the wheel never pulls on the rail: a large bump makes it lose contact with F = 0.
 #include <gtest/gtest.h>
 
@@ -52,7 +52,7 @@ TEST(HertzContact, SmallOscillationFrequencyOfPreloadedWheel) {
       (upward_crossings.back() - upward_crossings.front()) / (upward_crossings.size() - 1);
   const double k_h = linearized_stiffness(track->hertz_constant(0), P0);
   const double expected = std::sqrt(k_h / 750.0) / (2.0 * std::numbers::pi);
-  EXPECT_NEAR(expected, 220.0, 1.5);  // physics.md's rounded value
+  EXPECT_NEAR(expected, 220.0, 1.5);  // docs/physics.md §7's rounded value [Hz]
   // Newmark's period error (omega h)^2 / 12 ~ 2e-5 at h = 1e-5 s; support compliance 1.4e-4:
   // 0.1 % is an honest bound.
   EXPECT_NEAR(1.0 / period, expected, 0.001 * expected);

@@ -1,4 +1,4 @@
-// A constant load moving on a Winkler-supported EB rail (physics.md §5.2, §8 case 5): the
+// A constant load moving on a Winkler-supported EB rail (docs/physics.md §5, §10 case 5): the
 // steady-state deflection under the load is w_static / sqrt(1 - alpha^2), alpha = v / v_cr,
 // v_cr = (4 k EI / m^2)^(1/4). UIC60, k = 50 MN/m^2, P = 100 kN: w_static = 1.181 mm,
 // v_cr = 770.5 m/s. The continuous foundation is approximated by supports every 0.1 m

@@ -10,8 +10,8 @@
 
 namespace rumble::testing {
 
-/// The REF-A track of physics.md §5.5 (UIC60 on pads and half-sleepers on ballast, railFE
-/// values per rail), `sleepers` sleepers at 0.6 m.
+/// The REF-A track of docs/physics.md §1.1 and §8 (UIC60 on pads and half-sleepers on ballast,
+/// railFE values per rail), `sleepers` sleepers at 0.6 m.
 nlohmann::json ref_a_track(int sleepers, int elements_per_bay = 4);
 
 /// Registry with the in-tree plugins (loaded once per process).

@@ -1,7 +1,7 @@
-// Track receptance of the FE track against REF-A (physics.md §5.5, §8 case 4): an infinite EB
+// Track receptance of the FE track against REF-A (docs/physics.md §8, §10 case 4): an infinite EB
 // rail on 81 discrete supports, computed independently from the beam's Green's function. Here
 // the FE matrices of the finite track are solved in the frequency domain at each frequency
-// (a second method on the same model data). physics.md asks for +-3 %.
+// (a second method on the same model data). docs/physics.md §10 asks for +-3 %.
 #include <gtest/gtest.h>
 
 #include <Eigen/SparseLU>

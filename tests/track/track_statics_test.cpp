@@ -1,5 +1,5 @@
-// Static checks of the vehicle/track participant against closed forms (physics.md §5.4, §5.5,
-// §8 cases 3 and 6).
+// Static checks of the vehicle/track participant against closed forms (docs/physics.md §7, §8,
+// §10 cases 3 and 6).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -14,7 +14,7 @@ using testing::ref_a_track;
 using testing::single_wheel;
 
 // REF-A, 100 kN above a sleeper: the discretely supported infinite rail deflects 1.089 mm
-// (physics.md §8 case 3; reference computed with 81 supports, 4 digits). Our track is finite
+// (docs/physics.md §10 case 3; reference computed with 81 supports, 4 digits). Our track is finite
 // (61 sleepers, the load 18 m from either end, where the influence line has decayed as
 // e^(-lambda x) ~ 3e-10) and cubic Hermite elements are exact for an EB beam loaded at nodes,
 // so the only differences are the reference's rounding (0.05 %) and its own truncation:
@@ -31,7 +31,7 @@ TEST(TrackStatics, RailDeflectionUnderWheelMatchesDiscreteSupportReference) {
   const double ks = 1.0 / (1.0 / 2e8 + 1.0 / 4e7) / 0.6;  // N/m^2
   const double lambda = std::pow(ks / (4.0 * EI), 0.25);
   const double w_continuous = 1e5 / (8.0 * EI * lambda * lambda * lambda);
-  EXPECT_NEAR(w_continuous, 1.092e-3, 0.0005e-3);  // the formula as physics.md states it
+  EXPECT_NEAR(w_continuous, 1.092e-3, 0.0005e-3);  // the formula as docs/physics.md §8 states it
   EXPECT_LT(w, w_continuous);
   EXPECT_GT(w, 0.99 * w_continuous);
 }
@@ -50,7 +50,7 @@ TEST(TrackStatics, FootprintForcesCarryBothRails) {
 }
 
 // Hertz: C_H for R_w = 0.46 m on R_r = 0.30 m steel is 9.41e10 N/m^1.5 and the static approach
-// at 100 kN is 104 um (physics.md §5.4, 3 digits): the static state must have exactly that
+// at 100 kN is 104 um (docs/physics.md §7, 3 digits): the static state must have exactly that
 // wheel/rail approach (the table's rounding: 0.5 %).
 TEST(TrackStatics, HertzApproachAtStaticLoad) {
   auto track =

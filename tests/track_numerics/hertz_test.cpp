@@ -1,5 +1,5 @@
 // Hertz contact constant, contact patch, static approach and linearized stiffness against
-// physics.md §5.4 (values computed there with an independent script: AGM elliptic integrals
+// docs/physics.md §7 (values computed there with an independent script: AGM elliptic integrals
 // and bisection on e), plus limits and symmetries of the exact solution.
 #include "track/hertz.hpp"
 
@@ -23,7 +23,7 @@ struct TableRow {
   double a_mm, b_mm;                 // semi-axes at 100 kN
 };
 
-// physics.md §5.4, printed to 3 significant digits.
+// docs/physics.md §7, printed to 3 significant digits.
 constexpr TableRow kTable[] = {
     {0.46, 0.30, 9.41e10, 9.38e10, 104.0, 7.16, 5.39},
     {0.42, 0.30, 9.19e10, 9.17e10, 106.0, 6.85, 5.47},
@@ -128,7 +128,7 @@ TEST(HertzConstant, ExtremeRadiiRatioStillSolves) {
 }
 
 TEST(HertzStatics, StaticApproachAndStiffnessAt100kN) {
-  // physics.md §5.4: C_H = 9.4e10 -> 104 um at 100 kN; k_H = 1.44e9 N/m at 100 kN and
+  // docs/physics.md §7: C_H = 9.4e10 -> 104 um at 100 kN; k_H = 1.44e9 N/m at 100 kN and
   // 1.14e9 N/m at 50 kN (3 digits: tolerance half a unit of the last digit).
   const double c_h = hertz_constant(0.46, 0.30, kE, kNu);
   EXPECT_NEAR(static_approach(c_h, 1e5) * 1e6, 104.0, 0.5);

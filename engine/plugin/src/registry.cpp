@@ -139,7 +139,8 @@ void PluginRegistry::load_library(const fs::path& requested, const std::string& 
 
   auto library = std::make_shared<dll::shared_library>();
   try {
-    // rtld_now: an unresolved symbol is a load error here, not a crash later (toolchain.md §8.4).
+    // rtld_now: an unresolved symbol is a load error here, not a crash later
+    // (docs/toolchain.md §3).
     library->load(dll::fs::path(path), dll::load_mode::rtld_now | dll::load_mode::rtld_local);
   } catch (const std::exception& e) {
     throw PluginLoadError("plugin " + quoted(path) +

@@ -1,5 +1,5 @@
 // The CLM's five parameters from soil properties, footprint size and spacing: the static chain
-// rule of physics.md §2.3(b) (docs/soils.md, "Coupled lumped mass"). A nearest-neighbour chain
+// rule of docs/physics.md §6.3 (docs/soils.md, "Coupled lumped mass"). A nearest-neighbour chain
 //   k_f u_i + k_c (2 u_i - u_{i-1} - u_{i+1}) = F_i
 // loaded at one footprint deflects as u_i = G0 r^|i|. Choosing
 //   k_f = (1/G0) (1 - r) / (1 + r),   k_c = (1/G0) r / (1 - r^2)

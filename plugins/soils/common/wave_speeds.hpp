@@ -1,5 +1,5 @@
 // Body and surface wave speeds of a homogeneous, isotropic, linear elastic soil
-// (physics.md §4.1-4.2), and the slowest of a layered profile. A soil that knows them reports
+// (docs/physics.md §2), and the slowest of a layered profile. A soil that knows them reports
 // them through the boundary (ABI 1.1 wave_speeds): the engine warns when a vehicle runs faster
 // than the slowest Rayleigh speed (critical-speed regime) without reading the soil's params.
 #pragma once
@@ -36,8 +36,8 @@ inline void check_poisson_ratio(double nu) {
 
 /// c_R / c_s: the root in (0, 1) of the Rayleigh equation
 ///   (2 - xi^2)^2 = 4 sqrt(1 - xi^2) sqrt(1 - kappa xi^2),  kappa = c_s^2/c_p^2,
-/// solved as the cubic in x = xi^2 that squaring it gives (Rayleigh 1885; the form physics.md §9
-/// calls Kausel's cubic):
+/// solved as the cubic in x = xi^2 that squaring it gives (Rayleigh 1885; Kausel's Lamb solution
+/// uses the equivalent cubic in 1 / x, docs/physics.md §2 and §4):
 ///   x^3 - 8 x^2 + (24 - 16 kappa) x - 16 (1 - kappa) = 0,
 /// which has exactly one root in (0, 1) (the others, when real, exceed 1 and are spurious).
 /// 0.8740 at nu = 0, 0.9194 at nu = 1/4, 0.9553 as nu -> 1/2.

@@ -1,6 +1,6 @@
 // Smoothed-aggregation algebraic multigrid (Vanek, Mandel and Brezina 1996) for the static
 // stiffness K + S, as the preconditioner of conjugate gradients on meshes whose Cholesky factor
-// does not fit (StaticSolver above its factor limit; numerics.md §3.2: 17 GB at 1e6 DOFs).
+// does not fit (StaticSolver above its factor limit; docs/numerics.md §4.2: 17 GB at 1e6 DOFs).
 // Jacobi-preconditioned CG needs a number of iterations that grows with the mesh (613 at 6.8e4
 // DOFs, 886 at 2.1e5 on the stiff example, bench/fem/fem_static_bench.cpp) and the engine's
 // static iteration asks for a solve per track/soil iteration; multigrid's count stays nearly

@@ -1,6 +1,6 @@
 // A symmetric sparse matrix over the 3 DOFs per node of a mesh (DOF 3 i + c, c = x, y, z), in
 // compressed rows: 8 B values + 4 B column indices per nonzero, the layout the explicit step
-// streams once per sub-step (numerics.md §5: memory-bound at 12 B/nnz). Row 3 i + c holds the
+// streams once per sub-step (docs/numerics.md §5: memory-bound at 12 B/nnz). Row 3 i + c holds the
 // 3 x deg(i) entries of node i's neighbours j (sorted, i included), columns 3 j + d.
 #pragma once
 
@@ -32,7 +32,7 @@ class CsrMatrix {
 
   /// Node i's three rows times x: out[c] = row 3 i + c . x. Reads one index per 3 x 3 block
   /// (the node graph's) instead of one per value: 4 B per 9 nonzeros, not 36, which is a quarter
-  /// of the memory traffic of a product (numerics.md §5: 12 B/nnz becomes 8.4).
+  /// of the memory traffic of a product (docs/numerics.md §5: 12 B/nnz becomes 8.4).
   void node_rows_dot(std::int32_t i, const double* x, double out[3]) const {
     const std::int64_t first = neighbour_start_[i], deg = neighbour_start_[i + 1] - first;
     const double* r0 = value_.data() + 9 * first;  // row 3 i (layout: the constructor's)

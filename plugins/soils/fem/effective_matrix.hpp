@@ -19,7 +19,7 @@
 
 namespace rumble::fem {
 
-/// CHOLMOD's 64-bit interface (cholmod_l): numerics.md §3.2, the int one fails near 1e6 DOFs.
+/// CHOLMOD's 64-bit interface (cholmod_l): docs/numerics.md §4.2, the int one fails near 1e6 DOFs.
 using LongSparse = Eigen::SparseMatrix<double, Eigen::ColMajor, SuiteSparse_long>;
 
 struct Combination {

@@ -1,5 +1,5 @@
 // Central-difference time stepping of  M w'' + C w' + K w = f  (velocity Verlet form; second
-// order, except first order in the a1 K damping: docs/fem-soil.md §4; numerics.md §3.1) with M
+// order, except first order in the a1 K damping: docs/fem-soil.md §4; docs/numerics.md §4.1) with M
 // the lumped mass, C = a0 M + a1 K + D (Rayleigh damping and the boundary's dashpot blocks) and
 // K the elastic stiffness plus the boundary's spring blocks:
 //   v+ = v + dt/2 a;   w += dt v+;   r = f - K (w + a1 v+) - S w

@@ -65,7 +65,7 @@ struct BoundaryRequest {
 };
 
 /// Material damping with the ratio `ratio` at f_low and f_high: Rayleigh's C = a0 M + a1 K
-/// (physics.md §4.4), or generalized Maxwell mechanisms flat over the band between them
+/// (docs/physics.md §3), or generalized Maxwell mechanisms flat over the band between them
 /// (maxwell_damping.hpp), with E the modulus at the band's centre sqrt(f_low f_high).
 struct DampingRequest {
   double ratio = 0.02;                   // [-]; 0: no material damping

@@ -1,6 +1,6 @@
 // Newmark's average-acceleration scheme (beta = 1/4, gamma = 1/2: unconditionally stable, second
 // order, no numerical damping) on the same equations as ExplicitSolver, for meshes with a few
-// elements much smaller than the waves need (numerics.md §3.3: implicit pays only there):
+// elements much smaller than the waves need (docs/numerics.md §1: implicit pays only there):
 //   K_eff w' = f' + M (c0 w + c2 v + c3 a) + C (c1 w + c4 v + c5 a),
 //   K_eff = K + S + c0 M + c1 C,  C = a0 M + a1 K + D,
 // and with op's Maxwell mechanisms (a0 = a1 = 0) K's factor 1 + sum c_l g_l and K h on the right

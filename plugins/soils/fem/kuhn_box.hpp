@@ -1,7 +1,7 @@
 // A structured mesh for the FEM soil's operator tests and benchmarks: an n x n x n box of cubes
-// of edge h [m], each cut into the 6 Kuhn tetrahedra around its main diagonal (numerics.md §3.1:
-// the stable step of this mesh with lumped mass is 0.671 h / c_p whatever n). Ground at depth 0
-// (the top faces), truncation on the other five sides. Deterministic, no gmsh.
+// of edge h [m], each cut into the 6 Kuhn tetrahedra around its main diagonal (docs/numerics.md
+// §4.1: the stable step of this mesh with lumped mass is 0.671 h / c_p whatever n). Ground at depth
+// 0 (the top faces), truncation on the other five sides. Deterministic, no gmsh.
 #pragma once
 
 #include <array>

@@ -1,5 +1,5 @@
 // Frequency-flat material damping by generalized Maxwell (Zener) mechanisms: memory variables,
-// the constant-Q damping of seismology (Emmerich and Korn 1987; numerics.md §3.4), written on
+// the constant-Q damping of seismology (Emmerich and Korn 1987; docs/numerics.md §4.3), written on
 // the assembled stiffness. With every mechanism scaling the whole elasticity tensor (the same
 // ratio for P and S waves, as Rayleigh's a1 K), each one's memory is a nodal vector:
 //   internal force  K (w + sum_l c_l z_l),   z_l' + omega_l z_l = w',

@@ -2,7 +2,7 @@
 // track announces: a hemisphere (or a box) under the footprints, the footprint rectangles and the
 // layer interfaces embedded so that element faces follow them, and an element size that is
 // h_near within near_distance of the footprints and grows in proportion to the distance beyond
-// (numerics.md §1: gentle grading, the frequency resolved falls as near_distance / distance),
+// (docs/numerics.md §2: gentle grading, the frequency resolved falls as near_distance / distance),
 // capped by h_max.
 #pragma once
 

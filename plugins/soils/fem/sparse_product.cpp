@@ -25,7 +25,7 @@ RowSparse sparse_product(const RowSparse& a, const RowSparse& b, unsigned thread
 
   // Two passes, the pattern's sizes and then the entries, so that the result is written once
   // in place: no growing buffers (pages first touched cost more than the arithmetic on a
-  // virtual machine: docs/fem-soil.md §7).
+  // virtual machine: bench/fem/MEASUREMENTS.md, "Speed and memory").
   RowSparse c(rows, cols);
   int* start = c.outerIndexPtr();
 #pragma omp parallel num_threads(teams)

@@ -1,7 +1,7 @@
 // The static state: (K + S) u = f with the truncation surface held by the boundary springs (or
-// fixed). A sparse Cholesky factor from CHOLMOD's 64-bit interface (cholmod_l, toolchain.md §4
-// and numerics.md §3.2: the int interface fails near 1e6 DOFs), computed once and reused by every
-// solve (the engine iterates the static state with the track); above kFactorLimit DOFs, where
+// fixed). A sparse Cholesky factor from CHOLMOD's 64-bit interface (cholmod_l, docs/toolchain.md §4
+// and docs/numerics.md §4.2: the int interface fails near 1e6 DOFs), computed once and reused by
+// every solve (the engine iterates the static state with the track); above kFactorLimit DOFs, where
 // the factor would take more memory than the soil itself by far, conjugate gradients
 // preconditioned by smoothed-aggregation multigrid (amg_preconditioner.hpp), or by the diagonal
 // (Jacobi, kept as the baseline bench/fem/fem_static_bench.cpp measures against).

@@ -1,6 +1,6 @@
 // K's upper block triangle, for the explicit step's product: each off-diagonal 3 x 3 block
 // (i, j > i) is read once and used twice, K_ij x_j into node i's row and K_ij^T x_i into node
-// j's, so the step streams half of K's values and node indices (numerics.md §5: the step is
+// j's, so the step streams half of K's values and node indices (docs/numerics.md §5: the step is
 // bound by memory traffic, and K's values were 2/3 of it). The operator is symmetric by
 // construction.
 //

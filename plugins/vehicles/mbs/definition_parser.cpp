@@ -15,7 +15,7 @@ using vehicles::fail;
 using vehicles::ObjectReader;
 using vehicles::shown;
 
-constexpr double kDefaultWheelRadius = 0.46;  // m, main-line stock (physics.md 3.5)
+constexpr double kDefaultWheelRadius = 0.46;  // m, main-line stock (docs/physics.md §1.2)
 constexpr const char* kReferenceName = "reference";
 
 std::string index_pointer(const std::string& array_where, std::size_t i) {

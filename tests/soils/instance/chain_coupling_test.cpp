@@ -1,4 +1,4 @@
-// The clm calibrated from soil properties, statically (physics.md §2.3(b), §8 case 8). A
+// The clm calibrated from soil properties, statically (docs/physics.md §6.3, §10 case 8). A
 // nearest-neighbour chain k_f u_i + k_c (2 u_i - u_{i-1} - u_{i+1}) = F delta_i0 deflects as
 //   u_i = F G0 r^|i|,  G0 = 1 / sqrt(k_f^2 + 4 k_f k_c),
 //   r = ((k_f + 2 k_c) - sqrt(k_f^2 + 4 k_f k_c)) / (2 k_c),
@@ -39,7 +39,7 @@ TEST(SoilChainCoupling, NeighbourRatioIsTheHalfSpaceValueAndTheChainsClosedForm)
   const Chain c = loaded_chain(soil_properties());  // medium soil
   const double r = c.u[kChainMid + 1] / c.u[kChainMid];
   std::printf(
-      "  u1/u0 = %.5f (physics.md 0.395), u2/u0 = %.5f (chain r^2 0.156; half-space "
+      "  u1/u0 = %.5f (docs/physics.md 0.395), u2/u0 = %.5f (chain r^2 0.156; half-space "
       "0.249)\n",
       r, c.u[kChainMid + 2] / c.u[kChainMid]);
   EXPECT_NEAR(r, 0.395, 0.02 * 0.395);
@@ -87,7 +87,7 @@ TEST(SoilChainCoupling, RatioDependsOnGeometryOnly) {
           << "E = " << E << ", nu = " << nu;
     }
   }
-  // ... and the table's other footprints (physics.md §2.3): 2.6 x 0.30 m and 3.0 x 0.50 m at
+  // ... and the table's other footprints (docs/physics.md §6.3): 2.6 x 0.30 m and 3.0 x 0.50 m at
   // 0.6 m give 0.412 and 0.513.
   const struct { double length, width, r; } rows[] = {{2.6, 0.30, 0.412}, {3.0, 0.50, 0.513}};
   for (const auto& row : rows) {

@@ -1,5 +1,5 @@
 // The parameter tables of docs/soils.md, recomputed through the plugins: winkler's k, c, m and
-// the clm's m_f, k_f, c_f, k_c, c_c for the three soils of physics.md §4.1 (E = 10, 155, 750
+// the clm's m_f, k_f, c_f, k_c, c_c for the three soils of docs/physics.md §1.4 (E = 10, 155, 750
 // MPa, nu = 0.3, rho = 1800 kg/m^3) under 2.6 x 0.26 m sleepers at 0.6 m. Every table row whose
 // first cell is soft, medium or stiff is read; each column whose header names one of those
 // quantities must agree to half a unit of the last digit written. Every quantity of every soil

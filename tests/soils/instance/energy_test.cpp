@@ -1,4 +1,4 @@
-// Energy of the clm chain in free vibration, for the three soils of physics.md §4.1 (E = 10,
+// Energy of the clm chain in free vibration, for the three soils of docs/physics.md §1.4 (E = 10,
 // 155, 750 MPa, nu = 0.3, rho = 1800 kg/m^3) on 9 sleeper footprints.
 //  * Undamped (the calibrated k_f, k_c with c_f = c_c = 0 and a mass m_f): Newmark's average
 //    acceleration is the trapezoidal rule, which for a linear system is the implicit midpoint

@@ -1,5 +1,5 @@
 // winkler from soil properties against the closed forms it implements and the numbers of
-// physics.md §5.3 / §8 case 7 (2.6 x 0.26 m footprint, nu = 0.3, rho = 1800 kg/m^3):
+// docs/physics.md §6.1 / §10 case 7 (2.6 x 0.26 m footprint, nu = 0.3, rho = 1800 kg/m^3):
 //   K_z = 2 G L / (1 - nu) (0.73 + 1.54 (B/L)^0.75)   Gazetas (1991), 2L x 2B = 2.6 x 0.26 m
 //   C_z = rho V_La A, V_La = 3.4 c_s / (pi (1 - nu))   Lysmer's analog
 //   m   = 2.4 (nu - 1/3) rho pi r0^3, r0 = sqrt(A/pi)  Wolf's cone trapped mass, 0 for nu <= 1/3
@@ -21,8 +21,8 @@ constexpr double kLength = 2.6, kWidth = 0.26;  // m
 struct TableRow {
   const char* name;
   double E;        // Pa
-  double K_table;  // N/m, physics.md §5.3 (3 significant digits)
-  double C_table;  // N s/m, physics.md §5.3
+  double K_table;  // N/m, docs/physics.md §6.1 (3 significant digits)
+  double C_table;  // N s/m, docs/physics.md §6.1
 };
 constexpr TableRow kTable[] = {{"soft", 10e6, 1.43e7, 8.70e4},
                                {"medium", 155e6, 2.22e8, 3.42e5},
@@ -57,7 +57,7 @@ TEST(SoilFootingStiffness, WinklerFromSoilIsGazetasThroughInitialize) {
       EXPECT_NEAR(K, gazetas(row.E, 0.3), 1e-12 * K) << row.name << ", footprint " << i;
       EXPECT_NEAR(K, row.K_table, three_digit_rounding(row.K_table)) << row.name;
     }
-    std::printf("  %-6s K = F/u = %.4e N/m (physics.md %.3g)\n", row.name, F[0] / u[0],
+    std::printf("  %-6s K = F/u = %.4e N/m (docs/physics.md %.3g)\n", row.name, F[0] / u[0],
                 row.K_table);
   }
 }
@@ -73,7 +73,7 @@ TEST(SoilFootingStiffness, WinklerDashpotIsLysmerAndNoMassBelowOneThird) {
     EXPECT_NEAR(C, row.C_table, three_digit_rounding(row.C_table)) << row.name;
     // nu = 0.3 <= 1/3: no trapped mass, so Re(1/H) is the static stiffness at any frequency.
     EXPECT_NEAR(D.real(), gazetas(row.E, 0.3), 1e-12 * D.real()) << row.name;
-    std::printf("  %-6s C = %.4e N s/m (physics.md %.3g)\n", row.name, C, row.C_table);
+    std::printf("  %-6s C = %.4e N s/m (docs/physics.md %.3g)\n", row.name, C, row.C_table);
   }
 }
 

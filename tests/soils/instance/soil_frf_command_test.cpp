@@ -96,7 +96,7 @@ TEST(SoilFrfCommand, WritesDrivingPointAndTransferTermsForBothModels) {
   EXPECT_NEAR(c.rows.front()[1] * Kz, 1.0, 1e-4);
   const double r1 = c.rows.front()[3] / c.rows.front()[1],
                r2 = c.rows.front()[5] / c.rows.front()[1];
-  EXPECT_NEAR(r1, 0.395, 0.02 * 0.395);  // physics.md §2.3
+  EXPECT_NEAR(r1, 0.395, 0.02 * 0.395);  // docs/physics.md §6.3
   EXPECT_NEAR(r2, r1 * r1, 1e-6);
   // A downward force moves the footprint down, later (phase in (-90, 0] degrees for a soil
   // without mass: H = 1 / (K + i w C)).

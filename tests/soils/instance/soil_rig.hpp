@@ -26,7 +26,7 @@ const PluginRegistry& registry();
 const ComponentType& soil_type(const std::string& name);
 
 /// n sleeper footprints on the track axis at x = i spacing [m], length (across) x width (along)
-/// [m]; by default the 2.6 x 0.26 m sleepers at 0.6 m of physics.md §2.3.
+/// [m]; by default the 2.6 x 0.26 m sleepers at 0.6 m of docs/physics.md §6.3.
 std::vector<rumble_footprint> sleeper_row(std::size_t n, double spacing = 0.6, double length = 2.6,
                                           double width = 0.26);
 
@@ -34,7 +34,8 @@ std::vector<rumble_footprint> sleeper_row(std::size_t n, double spacing = 0.6, d
 std::unique_ptr<SoilInstance> make_soil(const std::string& type, const nlohmann::json& params,
                                         const std::vector<rumble_footprint>& layout);
 
-/// The medium soil of physics.md §4.1 (E = 155 MPa, nu = 0.3, rho = 1800 kg/m^3), or another E.
+/// The medium soil of docs/physics.md §1.4 (E = 155 MPa, nu = 0.3, rho = 1800 kg/m^3), or
+/// another E.
 nlohmann::json soil_properties(double E = 155e6, double nu = 0.3, double rho = 1800.0);
 
 /// Static displacements [m] under the footprint forces F [N] (SoilInstance::initialize).

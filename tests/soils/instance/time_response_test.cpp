@@ -45,7 +45,7 @@ struct Model {
   nlohmann::json params;
 };
 
-// winkler with a mass: medium-soil k and c (physics.md §5.3) and 500 kg, f_n = 106 Hz, damping
+// winkler with a mass: medium-soil k and c (docs/physics.md §6.1) and 500 kg, f_n = 106 Hz, damping
 // ratio 0.51, decay c / 2m = 342 1/s. The clm from the medium soil: massless (nu = 0.3 < 1/3),
 // C proportional to K, every free motion decays at K_z / C_z = 650 1/s. A massive clm: modes
 // 90 to 210 Hz, decay >= c_f / 2 m_f = 250 1/s.

@@ -6,7 +6,7 @@
 //
 // KB weighting: a first-order high-pass on velocity with corner f0 = 5.6 Hz,
 //   H_KB(s) = s / (s + 2 pi f0),   |H_KB(f)| = 1 / sqrt(1 + (f0 / f)^2)
-// (gains 0.336 at 2 Hz, 0.707 at 5.6 Hz, 0.944 at 16 Hz; ../shared/reference/physics.md §6).
+// (gains 0.336 at 2 Hz, 0.707 at 5.6 Hz, 0.944 at 16 Hz; docs/physics.md §9).
 // It is discretised by the bilinear transform with the corner pre-warped,
 //   s -> K (1 - z^-1) / (1 + z^-1),  K = 2 pi f0 / tan(pi f0 dt),
 //   y_n = b (x_n - x_{n-1}) - a y_{n-1},  b = K / (K + 2 pi f0),  a = (2 pi f0 - K) / (K + 2 pi

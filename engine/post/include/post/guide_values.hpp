@@ -24,9 +24,10 @@
 //   For continuous vibration that may amplify by resonance, BS 7385-2 reduces these by up to
 //   50 %; that judgement is the user's (multiply the guide value by the factor).
 //
-// Sources: the numbers above as listed in ../shared/reference/physics.md §6 (DIN 4150-3) and as
-// transcribed, identically, in public monitoring software (e.g. the DIN 4150-3:2016 Table 1 and
-// BS 7385-2:1993 Table 1 tables of the receiver-criteria module found in the public code index;
+// Sources: the DIN 4150-3 values as the vibration literature quotes them, gathered without the
+// standard's text (docs/post-processing.md, "Guide values"), and as transcribed, identically,
+// in public monitoring software (e.g. the DIN 4150-3:2016 Table 1 and BS 7385-2:1993 Table 1
+// tables of the receiver-criteria module found in the public code index;
 // BS 7385-2's line-2 interpolation written there as 15 + 5/11 (f - 4) and 20 + 30/25 (f - 15)).
 // The standards themselves are not freely available: a user with the published text should
 // confirm the values before relying on them for an assessment.

@@ -1,6 +1,6 @@
 // Hertz wheel/rail contact: F = C_H delta^1.5 (delta > 0), the constant C_H from the wheel's
 // rolling radius and the rail crown's transverse radius (Johnson, Contact Mechanics, 1985, §4.2;
-// physics.md §5.4). Both bodies are of the same material (E, nu).
+// docs/physics.md §7). Both bodies are of the same material (E, nu).
 #pragma once
 
 namespace rumble {
