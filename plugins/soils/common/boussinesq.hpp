@@ -5,10 +5,9 @@
 // (x), as in rumble_footprint. Lengths in m.
 #pragma once
 
+#include <boost/math/quadrature/gauss.hpp>
 #include <cmath>
 #include <numbers>
-
-#include "gauss_legendre.hpp"
 
 namespace rumble::soils {
 
@@ -31,14 +30,13 @@ inline double inverse_distance_integral(double x1, double x2, double y1, double 
 /// footprint itself (square: 0.946 pi / side, the known mean settlement factor 0.946).
 inline double mean_flexible_influence(double length, double width, double dx) {
   const double a = 0.5 * width, b = 0.5 * length;  // half sides along x and y
-  const double mean_integral =
-      gauss_legendre_20(dx - a, dx + a,
-                        [&](double x) {
-                          return gauss_legendre_20(-b, b, [&](double y) {
-                            return inverse_distance_integral(-a - x, a - x, -b - y, b - y);
-                          });
-                        }) /
-      (4.0 * a * b);
+  // 20 x 20 Gauss-Legendre points (Boost.Math: exact for polynomials up to degree 39).
+  using Gauss = boost::math::quadrature::gauss<double, 20>;
+  const auto along_y = [&](double x) {
+    return Gauss::integrate(
+        [&](double y) { return inverse_distance_integral(-a - x, a - x, -b - y, b - y); }, -b, b);
+  };
+  const double mean_integral = Gauss::integrate(along_y, dx - a, dx + a) / (4.0 * a * b);
   return mean_integral / (4.0 * a * b);
 }
 

@@ -7,12 +7,12 @@
 // weights. First-order: calibrate against a layered FEM soil where it matters.
 #pragma once
 
+#include <boost/math/quadrature/gauss.hpp>
 #include <cmath>
 #include <limits>
 #include <vector>
 
 #include "boussinesq.hpp"
-#include "gauss_legendre.hpp"
 #include "half_space.hpp"
 
 namespace rumble::soils {
@@ -34,9 +34,12 @@ inline double stress_weight(double length, double width, double z_top, double z_
   double sum = 0.0;
   for (int p = 0; p < kPanels; ++p) {
     const double a = t0 + (t1 - t0) * p / kPanels, b = t0 + (t1 - t0) * (p + 1) / kPanels;
-    sum += gauss_legendre_20(a, b, [&](double t) {
-      return centre_vertical_stress(length, width, s * t / (1.0 - t)) * s / ((1.0 - t) * (1.0 - t));
-    });
+    sum += boost::math::quadrature::gauss<double, 20>::integrate(
+        [&](double t) {
+          return centre_vertical_stress(length, width, s * t / (1.0 - t)) * s /
+                 ((1.0 - t) * (1.0 - t));
+        },
+        a, b);
   }
   return sum;
 }
