@@ -29,6 +29,7 @@ PACKAGE_HEADERS = {
     "Boost::headers": r"<boost/",
     "spdlog::spdlog": r"<spdlog/",
     "PkgConfig::FFTW3": r"<fftw3\.h>",
+    "PkgConfig::LAPACKE": r"<lapacke\.h>",
     "OpenSSL::Crypto": r"<openssl/",
 }
 ALWAYS_LINKED = {"rumble_engine_options"}  # compile settings every room shares, not an arrow
@@ -142,7 +143,8 @@ def write_dot(rooms, edges, out):
     implied by others (A -> B -> C makes A -> C) are left to `tred` to drop for the picture."""
     short = {"nlohmann_json::nlohmann_json": "json", "rumble_sdk": "sdk", "Eigen3::Eigen": "Eigen",
              "Boost::headers": "Boost", "spdlog::spdlog": "spdlog", "Threads::Threads": "threads",
-             "PkgConfig::FFTW3": "FFTW", "OpenSSL::Crypto": "OpenSSL"}
+             "PkgConfig::FFTW3": "FFTW", "PkgConfig::LAPACKE": "LAPACKE",
+             "OpenSSL::Crypto": "OpenSSL"}
     lines = ["digraph rumble_engine {",
              '  rankdir=BT; node [shape=box, style=rounded, fontname="Helvetica", fontsize=11];']
     for room in rooms:

@@ -4,6 +4,7 @@ set -euo pipefail
 PKGS=(cmake ninja-build g++ pkg-config clang-format
       libeigen3-dev libsuitesparse-dev libboost-dev nlohmann-json3-dev libspdlog-dev
       libgmsh-dev libfftw3-dev libssl-dev libgtest-dev libgmock-dev libbenchmark-dev libvalijson-dev
+      liblapacke-dev  # the track's band Cholesky; bench/numerics compares our solvers with LAPACK's
       libopenblas0-pthread python3-matplotlib python3-numpy
       clang-14 libclang-rt-14-dev llvm-14  # the scenario fuzz target (preset fuzz): libFuzzer, llvm-symbolizer
       chromium-headless-shell  # the study report's test renders it in a headless browser

@@ -4,6 +4,9 @@
 // costs O(n^2) instead of the O(n^3) of a dense LU. Pivoting keeps it exact near the resonances
 // of the complex dynamic stiffness K - w^2 M + i w C, whose real part is indefinite there.
 // Storage is sized once by resize(); factor() and solve() never allocate.
+// Ours rather than LAPACK's ?gttrf/?gttrs (bench/numerics/lapack_compare_bench, factor + solve,
+// n = 100-7000): real, in every step of the reduced soils, ours is 1.2-1.3x faster; complex, once
+// per frequency for the receptance, LAPACK's is 1.25-1.3x faster, a few microseconds per solve.
 #pragma once
 
 #include <Eigen/Core>
