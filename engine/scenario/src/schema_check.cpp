@@ -16,6 +16,7 @@
 
 #include "scenario/did_you_mean.hpp"
 #include "scenario/json_position.hpp"
+#include "scenario/local_ref.hpp"
 #include "scenario/value_text.hpp"
 
 namespace rumble::scenario {
@@ -254,16 +255,9 @@ const json* declared(const json& root, const json* node, const char* keyword) {
   for (int i = 0; node != nullptr && i < kMaxClosureDepth; ++i) {
     if (!node->is_object()) return nullptr;
     if (const auto it = node->find(keyword); it != node->end()) return &*it;
-    const auto ref = node->find("$ref");
-    if (ref == node->end() || !ref->is_string()) return nullptr;
-    const std::string& target = ref->get_ref<const std::string&>();
-    if (!starts_with(target, "#")) return nullptr;
-    try {
-      const json::json_pointer p(target.substr(1));
-      node = root.contains(p) ? &root.at(p) : nullptr;
-    } catch (const std::exception&) {
-      return nullptr;
-    }
+    const std::optional<const json*> target = local_ref(root, *node);
+    if (!target) return nullptr;
+    node = *target;
   }
   return nullptr;
 }

@@ -10,6 +10,7 @@
 
 #include "plugin/registry.hpp"
 #include "scenario/did_you_mean.hpp"
+#include "scenario/local_ref.hpp"
 #include "scenario/value_text.hpp"
 
 namespace rumble::scenario {
@@ -27,17 +28,10 @@ std::string value_text(const ojson& v) {
 }
 
 const ojson* follow(const ojson& root, const ojson* node) {
-  for (int i = 0; i < 32 && node != nullptr && node->is_object(); ++i) {
-    const auto ref = node->find("$ref");
-    if (ref == node->end() || !ref->is_string()) return node;
-    const std::string target = ref->get<std::string>();
-    if (target.empty() || target[0] != '#') return node;
-    try {
-      const ojson::json_pointer p(target.substr(1));
-      node = root.contains(p) ? &root.at(p) : nullptr;
-    } catch (const std::exception&) {
-      return nullptr;
-    }
+  for (int i = 0; i < 32 && node != nullptr; ++i) {
+    const std::optional<const ojson*> target = local_ref(root, *node);
+    if (!target) return node;
+    node = *target;
   }
   return node;
 }
