@@ -15,10 +15,10 @@
 #include <utility>
 #include <vector>
 
-#include "absorbing_boundary.hpp"
-#include "elasticity.hpp"
-#include "mesh_generator.hpp"
-#include "static_solver.hpp"
+#include "boundary/absorbing_boundary.hpp"
+#include "mesh/mesh_generator.hpp"
+#include "operator/elasticity.hpp"
+#include "statics/static_solver.hpp"
 
 namespace {
 

@@ -13,11 +13,11 @@
 #include <stdexcept>
 #include <vector>
 
-#include "absorbing_boundary.hpp"
-#include "elasticity.hpp"
-#include "explicit_solver.hpp"
-#include "kuhn_box.hpp"
+#include "boundary/absorbing_boundary.hpp"
+#include "mesh/kuhn_box.hpp"
+#include "operator/elasticity.hpp"
 #include "random_state.hpp"
+#include "time/explicit_solver.hpp"
 #include "wave_speeds.hpp"
 
 namespace rumble::fem {

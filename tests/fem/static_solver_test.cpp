@@ -3,7 +3,7 @@
 // diagonal or by smoothed-aggregation multigrid; CG started from the last solution needs fewer
 // iterations when the engine's static iteration asks again with a slightly changed load, and
 // multigrid needs far fewer than the diagonal.
-#include "static_solver.hpp"
+#include "statics/static_solver.hpp"
 
 #include <gtest/gtest.h>
 
@@ -13,10 +13,10 @@
 #include <optional>
 #include <vector>
 
-#include "absorbing_boundary.hpp"
-#include "effective_matrix.hpp"
-#include "elasticity.hpp"
-#include "kuhn_box.hpp"
+#include "boundary/absorbing_boundary.hpp"
+#include "mesh/kuhn_box.hpp"
+#include "operator/effective_matrix.hpp"
+#include "operator/elasticity.hpp"
 
 namespace rumble::fem {
 namespace {
