@@ -13,6 +13,7 @@
 #include <cmath>
 #include <vector>
 
+#include "boundary/absorbing_boundary.hpp"
 #include "boundary/pml.hpp"
 #include "mesh/kuhn_box.hpp"
 #include "operator/elasticity.hpp"

@@ -11,7 +11,7 @@ namespace {
 /// Visits the combination's entries row by row, each row's columns ascending:
 /// visit(row, column, value). A fixed DOF's row and column hold only its diagonal 1.
 template <class Visit>
-void for_each_entry(const ExplicitSolver& op, const Combination& c, Visit visit) {
+void for_each_entry(const SoilOperator& op, const Combination& c, Visit visit) {
   const CsrMatrix& K = op.stiffness();
   // The boundary blocks per node, row-major 3 x 3: c.springs S + c.dashpots D.
   std::vector<double> block(9 * op.mass().size(), 0.0);
@@ -47,7 +47,7 @@ void for_each_entry(const ExplicitSolver& op, const Combination& c, Visit visit)
 
 }  // namespace
 
-LongSparse lower_combination(const ExplicitSolver& op, const Combination& c) {
+LongSparse lower_combination(const SoilOperator& op, const Combination& c) {
   const CsrMatrix& K = op.stiffness();
   const std::int64_t n = K.rows();
   // The combination is symmetric: row `row`'s entries right of the diagonal are column `row`'s
@@ -65,7 +65,7 @@ LongSparse lower_combination(const ExplicitSolver& op, const Combination& c) {
   return A;
 }
 
-RowSparse full_combination(const ExplicitSolver& op, const Combination& c) {
+RowSparse full_combination(const SoilOperator& op, const Combination& c) {
   const CsrMatrix& K = op.stiffness();
   if (K.nonzeros() > std::numeric_limits<int>::max())
     throw std::length_error("fem: the stiffness has too many nonzeros for 32-bit indices");

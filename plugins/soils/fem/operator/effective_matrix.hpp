@@ -14,8 +14,8 @@
 #pragma GCC diagnostic pop
 #include <SuiteSparse_config.h>
 
+#include "operator/soil_operator.hpp"
 #include "operator/sparse_product.hpp"
-#include "time/explicit_solver.hpp"
 
 namespace rumble::fem {
 
@@ -30,9 +30,9 @@ struct Combination {
 };
 
 /// The lower triangle of the combination, CSC (for CHOLMOD).
-LongSparse lower_combination(const ExplicitSolver& op, const Combination& c);
+LongSparse lower_combination(const SoilOperator& op, const Combination& c);
 /// The whole combination, compressed rows with 32-bit indices (for multigrid, whose products
 /// read rows): built directly, without the lower triangle's 16 B per nonzero on the way.
-RowSparse full_combination(const ExplicitSolver& op, const Combination& c);
+RowSparse full_combination(const SoilOperator& op, const Combination& c);
 
 }  // namespace rumble::fem

@@ -16,7 +16,7 @@ using Triplets = std::vector<Eigen::Triplet<double, std::int64_t>>;
 using Sparse = Eigen::SparseMatrix<double, Eigen::ColMajor, std::int64_t>;
 
 /// factor x K (the elastic stiffness) without the rows and columns of fixed nodes.
-void add_stiffness(const ExplicitSolver& op, double factor, Triplets& t) {
+void add_stiffness(const SoilOperator& op, double factor, Triplets& t) {
   const CsrMatrix& K = op.stiffness();
   const auto& fixed = op.fixed();
   for (std::int64_t r = 0; r < K.rows(); ++r) {
@@ -29,7 +29,7 @@ void add_stiffness(const ExplicitSolver& op, double factor, Triplets& t) {
 }
 
 /// factor x the lumped mass.
-void add_mass(const ExplicitSolver& op, double factor, Triplets& t) {
+void add_mass(const SoilOperator& op, double factor, Triplets& t) {
   for (Eigen::Index node = 0; node < op.mass().size(); ++node) {
     if (op.fixed()[static_cast<std::size_t>(node)]) continue;
     for (int d = 0; d < 3; ++d)
@@ -38,7 +38,7 @@ void add_mass(const ExplicitSolver& op, double factor, Triplets& t) {
 }
 
 /// The boundary's 3 x 3 blocks, springs (S) or dashpots (D).
-void add_boundary(const ExplicitSolver& op, bool springs, Triplets& t) {
+void add_boundary(const SoilOperator& op, bool springs, Triplets& t) {
   for (const BoundaryNode& b : op.boundary()) {
     if (op.fixed()[static_cast<std::size_t>(b.node)]) continue;
     for (int d = 0; d < 3; ++d) {
@@ -64,7 +64,7 @@ void to_csc(const Sparse& a, CscMatrix& out) {
 
 }  // namespace
 
-void linear_matrix(const ExplicitSolver& op, const FootprintWeights& weights, double a0, double a1,
+void linear_matrix(const SoilOperator& op, const FootprintWeights& weights, double a0, double a1,
                    rumble_matrix which, CscMatrix& out) {
   const std::int64_t n = op.dofs();
   Triplets t;

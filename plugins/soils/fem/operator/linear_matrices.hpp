@@ -13,12 +13,12 @@
 #include <rumble/plugin.hpp>
 
 #include "operator/footprint_loads.hpp"
-#include "time/explicit_solver.hpp"
+#include "operator/soil_operator.hpp"
 
 namespace rumble::fem {
 
 /// One of M, C, K, B as a CSC matrix (rows sorted per column). a0 [1/s], a1 [s]: Rayleigh.
-void linear_matrix(const ExplicitSolver& op, const FootprintWeights& weights, double a0, double a1,
+void linear_matrix(const SoilOperator& op, const FootprintWeights& weights, double a0, double a1,
                    rumble_matrix which, CscMatrix& out);
 
 }  // namespace rumble::fem

@@ -35,7 +35,7 @@ class AmgPreconditioner {
   /// a: a symmetric positive definite matrix over 3 DOFs per node, whole (as full_combination
   /// gives); nodes: their coordinates [m] (3 x nodes). Rows that are
   /// identity (fixed DOFs) are handled: the rigid-body modes vanish there. fine_product, when
-  /// given, takes the V-cycle's products on the mesh's level (ExplicitSolver's threaded block
+  /// given, takes the V-cycle's products on the mesh's level (the soil operator's threaded
   /// rows, with K in the step's precision: a symmetric operator within 6e-8 of A, which keeps
   /// the V-cycle a fixed symmetric preconditioner); that level's own copy of A is then freed
   /// after the set-up. It must agree with A on the free DOFs and give 0 or x on fixed ones

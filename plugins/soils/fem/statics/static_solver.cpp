@@ -14,7 +14,7 @@ struct StaticSolver::Factor {
   Eigen::CholmodSupernodalLLT<LongSparse, Eigen::Lower> llt;
 };
 
-StaticSolver::StaticSolver(const ExplicitSolver& op, const Eigen::Matrix3Xd& nodes,
+StaticSolver::StaticSolver(const SoilOperator& op, const Eigen::Matrix3Xd& nodes,
                            Eigen::Index factor_limit, CgPreconditioner preconditioner)
     : op_(op), nodes_(nodes), factor_limit_(factor_limit), preconditioner_(preconditioner) {}
 StaticSolver::~StaticSolver() = default;

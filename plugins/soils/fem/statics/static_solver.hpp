@@ -10,8 +10,8 @@
 #include <Eigen/Core>
 #include <memory>
 
+#include "operator/soil_operator.hpp"
 #include "statics/amg_preconditioner.hpp"
-#include "time/explicit_solver.hpp"
 
 namespace rumble::fem {
 
@@ -24,7 +24,7 @@ class StaticSolver {
   /// Uses the operator's K, boundary springs (always: they carry the static load) and fixed
   /// nodes; nodes: the mesh's coordinates [m] (multigrid's rigid-body modes). Factors on first
   /// use when op has at most factor_limit DOFs, else uses CG with the given preconditioner.
-  StaticSolver(const ExplicitSolver& op, const Eigen::Matrix3Xd& nodes,
+  StaticSolver(const SoilOperator& op, const Eigen::Matrix3Xd& nodes,
                Eigen::Index factor_limit = kFactorLimit,
                CgPreconditioner preconditioner = CgPreconditioner::kMultigrid);
   ~StaticSolver();
@@ -48,7 +48,7 @@ class StaticSolver {
 
   void precondition(const Eigen::VectorXd& r, Eigen::VectorXd& z) const;
 
-  const ExplicitSolver& op_;
+  const SoilOperator& op_;
   const Eigen::Matrix3Xd& nodes_;
   Eigen::Index factor_limit_;
   CgPreconditioner preconditioner_;

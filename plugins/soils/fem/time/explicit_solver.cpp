@@ -8,44 +8,37 @@
 #include <stdexcept>
 #include <string>
 
+#include "operator/csr_operator.hpp"
+
 namespace rumble::fem {
 
 ExplicitSolver::ExplicitSolver(CsrMatrix K, Eigen::VectorXd mass,
                                std::vector<BoundaryNode> boundary, bool springs,
                                std::vector<char> fixed, double a0, double a1, unsigned threads,
                                StepPrecision precision)
-    : K_(std::move(K)),
-      mass_(std::move(mass)),
-      boundary_(std::move(boundary)),
-      boundary_of_(mass_.size(), -1),
-      springs_(springs),
-      fixed_(std::move(fixed)),
+    : ExplicitSolver(
+          std::make_unique<CsrOperator>(std::move(K), std::move(mass), std::move(boundary), springs,
+                                        std::move(fixed), threads, precision),
+          a0, a1) {}
+
+ExplicitSolver::ExplicitSolver(std::unique_ptr<SoilOperator> op, double a0, double a1)
+    : op_(std::move(op)),
+      csr_(dynamic_cast<const CsrOperator*>(op_.get())),
+      mass_(op_->mass().data()),
+      boundary_(op_->boundary().data()),
+      boundary_of_(op_->boundary_of().data()),
+      fixed_(op_->fixed().data()),
+      springs_(op_->springs_act()),
       a0_(a0),
       a1_(a1),
-      threads_(threads < 1 ? 1 : threads),
-      y_(Eigen::VectorXd::Zero(3 * mass_.size())) {
-  for (std::size_t k = 0; k < boundary_.size(); ++k)
-    boundary_of_[boundary_[k].node] = static_cast<std::int32_t>(k);
-  if (precision == StepPrecision::kSingle)
-    single_blocks_.emplace(K_, threads_);
-  else
-    double_blocks_.emplace(K_, threads_);
-  product_scratch_.assign(3 * static_cast<std::size_t>(mass_.size()), 0.0);
+      y_(Eigen::VectorXd::Zero(op_->dofs())) {
   estimate_stable_step();
 }
 
-void ExplicitSolver::set_threads(unsigned threads) {
-  threads_ = threads < 1 ? 1 : threads;
-  if (single_blocks_) single_blocks_->set_parts(threads_);
-  if (double_blocks_) double_blocks_->set_parts(threads_);
-}
-
 std::size_t ExplicitSolver::bytes() const {
-  return K_.bytes() + (single_blocks_ ? single_blocks_->bytes() : double_blocks_->bytes()) +
-         product_scratch_.size() * 8 +
-         static_cast<std::size_t>(maxwell_.mechanisms()) * 3 * mass_.size() * 4 +
-         static_cast<std::size_t>(mass_.size()) * (8 + 4 + 1 + 3 * 8) +
-         boundary_.size() * sizeof(BoundaryNode) + (pml_ ? pml_->bytes() : 0) +
+  const auto nodes = static_cast<std::size_t>(op_->nodes());
+  return op_->bytes() + static_cast<std::size_t>(maxwell_.mechanisms()) * 3 * nodes * 4 +
+         nodes * 3 * 8 + (pml_ ? pml_->bytes() : 0) +
          (lts_ ? lts_->bytes() + halo_of_.size() * 4 + halo_forces_.size() * 8 : 0);
 }
 
@@ -69,41 +62,6 @@ void ExplicitSolver::set_pml(PmlLayer layer) {
   if (pml_->max_damping() > 0.0) pml_step_ = PmlLayer::kStableDampingStep / pml_->max_damping();
 }
 
-void ExplicitSolver::stiffness_times(const Eigen::VectorXd& x, Eigen::VectorXd& y,
-                                     bool with_springs) const {
-  times(x, y, with_springs, false);
-}
-
-void ExplicitSolver::times(const Eigen::VectorXd& x, Eigen::VectorXd& y, bool with_springs,
-                           bool stepped) const {
-  const std::int64_t n = mass_.size();
-  y.resize(x.size());
-  const auto finish = [&](std::int64_t i, const double* product) {
-    double* out = y.data() + 3 * i;
-    if (fixed_[i]) {
-      out[0] = out[1] = out[2] = 0.0;
-      return;
-    }
-    std::copy_n(product, 3, out);
-    const std::int32_t b = boundary_of_[i];
-    if (with_springs && b >= 0) {
-      const BoundaryNode& node = boundary_[b];
-      node.apply_spring(x.data() + 3 * i, out);
-    }
-  };
-  if (stepped) {
-#pragma omp parallel num_threads(threads_)
-    stepped_product(x.data(), finish);
-    return;
-  }
-#pragma omp parallel for num_threads(threads_) schedule(static)
-  for (std::int64_t i = 0; i < n; ++i) {
-    double product[3];
-    K_.node_rows_dot(static_cast<std::int32_t>(i), x.data(), product);
-    finish(i, product);
-  }
-}
-
 namespace {
 
 // The largest stable step [s] of the central difference with the damping a1 K at the half-step
@@ -124,7 +82,8 @@ double ExplicitSolver::largest_eigenvalue(
   // iteration's was) converges to it in far fewer products (lost orthogonality only repeats
   // converged eigenvalues). Three vectors; T_j's eigenvalues by Eigen's tridiagonal QR, O(j^2) per
   // iteration.
-  const std::int64_t n = mass_.size();
+  const std::int64_t n = op_->nodes();
+  const unsigned threads = op_->threads();
   Eigen::VectorXd q(3 * n), q_prev = Eigen::VectorXd::Zero(3 * n), w;
   std::uint64_t seed = 0x9E3779B97F4A7C15ull;  // fixed: the same step on every run
   for (std::int64_t k = 0; k < 3 * n; ++k) {
@@ -133,7 +92,7 @@ double ExplicitSolver::largest_eigenvalue(
   }
   const auto mass_norm = [&](const Eigen::VectorXd& z) {
     double s = 0.0;
-#pragma omp parallel for num_threads(threads_) reduction(+ : s) schedule(static)
+#pragma omp parallel for num_threads(threads) reduction(+ : s) schedule(static)
     for (std::int64_t k = 0; k < 3 * n; ++k) s += mass_[k / 3] * z[k] * z[k];
     return std::sqrt(s);
   };
@@ -145,7 +104,7 @@ double ExplicitSolver::largest_eigenvalue(
     check_stop();
     op(q, w);                   // K q
     const double a = q.dot(w);  // q^T K q, q M-normalized
-#pragma omp parallel for num_threads(threads_) schedule(static)
+#pragma omp parallel for num_threads(threads) schedule(static)
     for (std::int64_t k = 0; k < 3 * n; ++k)
       w[k] = w[k] / mass_[k / 3] - a * q[k] - (beta.empty() ? 0.0 : beta.back() * q_prev[k]);
     alpha.push_back(a);
@@ -179,7 +138,9 @@ double ExplicitSolver::largest_eigenvalue(
 
 void ExplicitSolver::estimate_stable_step() {
   const double lambda = largest_eigenvalue(
-      [this](const Eigen::VectorXd& x, Eigen::VectorXd& y) { times(x, y, springs_, true); },
+      [this](const Eigen::VectorXd& x, Eigen::VectorXd& y) {
+        op_->stepped_stiffness_times(x, y, springs_);
+      },
       eigen_iterations_);
   lambda_max_ = 1.02 * lambda;  // 2 % margin for what the iteration has not reached
   omega_max_ = std::sqrt(lambda_max_ * maxwell_.unrelaxed());
@@ -192,7 +153,7 @@ double ExplicitSolver::step_limit(double lambda) const {
 
 void ExplicitSolver::effective_stiffness_times(const Eigen::VectorXd& x, Eigen::VectorXd& y,
                                                double dt) const {
-  times(x, y, springs_, true);
+  op_->stepped_stiffness_times(x, y, springs_);
   if (!lts_ || dt <= one_rate_limit_) return;
   prepare_local_steps(dt);
   filter_halo(y.data(), [&](std::int64_t node, const double* filtered) {
@@ -205,7 +166,7 @@ void ExplicitSolver::filter_halo(const double* forces, Take&& take) const {
   const std::vector<std::int32_t>& halo = lts_->halo();
   const auto count = static_cast<std::int64_t>(halo.size());
   double* buffer = halo_forces_.data();
-#pragma omp parallel num_threads(threads_)
+#pragma omp parallel num_threads(op_->threads())
   {
 #pragma omp for schedule(static)
     for (std::int64_t h = 0; h < count; ++h)
@@ -243,10 +204,11 @@ bool ExplicitSolver::enable_local_steps(int substeps, double macro_step, double 
     return false;
   // Each node's Gershgorin bound of M^-1 K, scaled so that the largest is the mesh's largest
   // eigenvalue: a node whose scaled bound exceeds the coarse step's limit is fine.
-  const std::int64_t n = mass_.size();
+  const std::int64_t n = op_->nodes();
+  const CsrMatrix& K = op_->stiffness();
   std::vector<double> bound(n, 0.0);
-  const std::vector<std::int64_t>& start = K_.row_start();
-  const std::vector<double>& value = K_.value();
+  const std::vector<std::int64_t>& start = K.row_start();
+  const std::vector<double>& value = K.value();
   for (std::int64_t i = 0; i < n; ++i) {
     if (fixed_[i]) continue;
     for (std::int64_t r = 3 * i; r < 3 * i + 3; ++r) {
@@ -267,8 +229,8 @@ bool ExplicitSolver::enable_local_steps(int substeps, double macro_step, double 
     const auto node = static_cast<std::int32_t>(i);
     if (fixed_[i] || boundary_of_[i] >= 0) may_be_fine[i] = 0;
     if (!pml_) continue;
-    const std::int32_t* nb = K_.neighbours(node);
-    for (std::int64_t q = 0; q < K_.degree(node); ++q)
+    const std::int32_t* nb = K.neighbours(node);
+    for (std::int64_t q = 0; q < K.degree(node); ++q)
       if (pml_->layer_node(nb[q]) >= 0) may_be_fine[i] = 0;
   }
   constexpr double kSafety = 0.7;  // a node is fine above this share of the coarse limit
@@ -288,11 +250,11 @@ bool ExplicitSolver::enable_local_steps(int substeps, double macro_step, double 
     std::int64_t blocks = 0, halo_blocks = 0;
     for (std::int64_t i = 0; i < n; ++i) {
       const auto node = static_cast<std::int32_t>(i);
-      const std::int32_t* nb = K_.neighbours(node);
+      const std::int32_t* nb = K.neighbours(node);
       std::int64_t fine_columns = 0;
-      for (std::int64_t q = 0; q < K_.degree(node); ++q) fine_columns += fine[nb[q]];
-      blocks += K_.degree(node);
-      if (fine_columns > 0 && !fixed_[i]) halo_blocks += fine_columns + K_.degree(node) / 4;
+      for (std::int64_t q = 0; q < K.degree(node); ++q) fine_columns += fine[nb[q]];
+      blocks += K.degree(node);
+      if (fine_columns > 0 && !fixed_[i]) halo_blocks += fine_columns + K.degree(node) / 4;
     }
     return static_cast<double>(halo_blocks) / static_cast<double>(blocks);
   };
@@ -343,7 +305,7 @@ bool ExplicitSolver::enable_local_steps(int substeps, double macro_step, double 
   // The recurrence integrates the fine nodes' fastest modes, which with the Maxwell mechanisms
   // see the unrelaxed stiffness: its polynomial is built on (1 + sum c_l) M^-1 K, by a mass
   // scaled down by that factor (M R(A P) M^-1 is unchanged otherwise).
-  const Eigen::VectorXd recurrence_mass = mass_ / maxwell_.unrelaxed();
+  const Eigen::VectorXd recurrence_mass = op_->mass() / maxwell_.unrelaxed();
   for (int t = 0; t < tries; ++t) {
     if (dt == 0.0) {
       if (next == candidates.size()) break;
@@ -351,7 +313,7 @@ bool ExplicitSolver::enable_local_steps(int substeps, double macro_step, double 
       fine = fine_at(dt, candidates[next].safety);
       ++next;
     }
-    lts_.emplace(K_, recurrence_mass, fine, fixed_, substeps,
+    lts_.emplace(K, recurrence_mass, fine, op_->fixed(), substeps,
                  precision() == StepPrecision::kSingle);
     halo_of_.assign(n, -1);
     for (std::size_t h = 0; h < lts_->halo().size(); ++h)
@@ -374,7 +336,7 @@ bool ExplicitSolver::enable_local_steps(int substeps, double macro_step, double 
 }
 
 void ExplicitSolver::step(ExplicitState& s, const Eigen::VectorXd& f, double dt) const {
-  const std::int64_t n = mass_.size();
+  const std::int64_t n = op_->nodes();
   double* w = s.w.data();
   double* v = s.v.data();
   double* a = s.a.data();
@@ -398,7 +360,7 @@ void ExplicitSolver::step(ExplicitState& s, const Eigen::VectorXd& f, double dt)
     gain[l] = -std::expm1(-rate_dt) / rate_dt;
     weight[l] = maxwell_.weights[l];
   }
-#pragma omp parallel num_threads(threads_)
+#pragma omp parallel num_threads(op_->threads())
   {
     if (mechanisms == 0) {
 #pragma omp for schedule(static)
@@ -430,15 +392,23 @@ void ExplicitSolver::step(ExplicitState& s, const Eigen::VectorXd& f, double dt)
     }
     // (the implicit barrier of omp for: every w and y is updated before K reads them)
     if (pml_) pml_->update_tetrahedra(w, dt, memory, pml_forces_.data());  // (omp for: barrier)
-    stepped_product(y, [&](std::int64_t i, const double* product) {
+    // Each node once the product has handed over its K y: the residual, then the node's velocity
+    // and acceleration, or at the halo under local steps the residual kept for the filter below.
+    const auto finish = [&](std::int64_t i, const double* product) {
       if (fixed_[i]) return;
       double r[3] = {product[0], product[1], product[2]};
       residual(i, w, f, r);
-      if (local && halo_of_[i] >= 0)  // finished below, once the residual is filtered
+      if (local && halo_of_[i] >= 0)
         std::copy_n(r, 3, halo_forces_.data() + 3 * halo_of_[i]);
       else
         finish_node(i, r, dt, s, memory);
-    });
+    };
+    if (csr_) {  // the CSR back end's fused product: the finish inlined in its loop
+      csr_->fused_product(y, finish);
+    } else {
+      NodeProductsOf take(finish);
+      op_->stepped_product(y, take);
+    }
     if (local) {
 #pragma omp barrier
       // (every halo residual is in: the product hands nodes over with no barrier of its own)
@@ -506,7 +476,7 @@ void ExplicitSolver::finish_node(std::int64_t i, const double residual[3], doubl
 }
 
 void ExplicitSolver::set_loaded_nodes(std::vector<std::int32_t> nodes) {
-  std::vector<char> seen(static_cast<std::size_t>(mass_.size()), 0);
+  std::vector<char> seen(static_cast<std::size_t>(op_->nodes()), 0);
   for (const std::int32_t i : nodes) {
     if (seen[i]) throw std::invalid_argument("ExplicitSolver: a loaded node given twice");
     seen[i] = 1;
@@ -525,7 +495,7 @@ void ExplicitSolver::force_jump(ExplicitState& s, const Eigen::VectorXd& df) con
     for (int c = 0; c < 3; ++c) s.a[3 * i + c] += df[3 * i + c] / mass_[i];
   };
   if (every_node_loaded_)
-    for (std::int64_t i = 0; i < mass_.size(); ++i) add(i);
+    for (std::int64_t i = 0; i < op_->nodes(); ++i) add(i);
   else
     for (const std::int32_t i : loaded_nodes_) add(i);
   if (!local) return;
@@ -542,7 +512,7 @@ double ExplicitSolver::kinetic_energy(const ExplicitState& s) const {
 
 double ExplicitSolver::strain_energy(const ExplicitState& s) const {
   Eigen::VectorXd y;
-  times(s.w, y, springs_, true);
+  op_->stepped_stiffness_times(s.w, y, springs_);
   return 0.5 * s.w.dot(y);
 }
 

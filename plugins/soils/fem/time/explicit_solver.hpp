@@ -12,29 +12,30 @@
 // exactly at the new displacement (nothing lags). Fixed nodes never move. With a perfectly
 // matched layer (pml.hpp), its tetrahedra add their stretched-minus-elastic forces to K w and its
 // nodes their lumped damping (at the new velocity, with a0 M) and springs.
-// This class is the soil's operator back end: a distributed (MPI) or matrix-free kernel
-// replaces it behind the same calls (docs/decisions/0006-fem-soil.md).
+// K, M, S, D and the fixed nodes are the soil operator's (operator/soil_operator.hpp): the step
+// reads them through its small interface, K x by one virtual call per thread per step
+// (SoilOperator::stepped_product), so that another back end (a distributed one, issue #33) steps
+// with this class unchanged (docs/decisions/0006-fem-soil.md). The CSR back end, recognized
+// once at construction, is called without it: its fused product takes the node's finish inlined
+// (the step is memory-bound, and the handover in runs cost 15-35 % on bench/fem).
 #pragma once
 
 #include <Eigen/Core>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <vector>
 
-#include "boundary/absorbing_boundary.hpp"
 #include "boundary/pml.hpp"
 #include "maxwell_damping.hpp"
+#include "operator/boundary_blocks.hpp"
 #include "operator/csr_matrix.hpp"
-#include "operator/symmetric_blocks.hpp"
+#include "operator/csr_operator.hpp"
+#include "operator/soil_operator.hpp"
 #include "time/local_time_stepping.hpp"
 
 namespace rumble::fem {
-
-/// How the step streams K: its values rounded to single precision (4 B each, the sums in double)
-/// or in double. Rounding moves each entry by at most 6e-8 of itself, far below the step's
-/// O(dt^2) error; K stays symmetric, so the step keeps its energy (docs/fem-soil.md §4.2).
-enum class StepPrecision { kDouble, kSingle };
 
 struct ExplicitState {
   Eigen::VectorXd w, v, a;  // displacement from the static state [m], velocity, acceleration
@@ -50,11 +51,17 @@ class ExplicitSolver {
   /// K: elastic stiffness; mass per node [kg]; boundary blocks (springs used when
   /// `springs`); fixed: per node, never moves; a0 [1/s], a1 [s]: Rayleigh coefficients;
   /// precision: how the step reads K (the statics and the implicit step read it in double).
+  /// The operator's back end is the CSR one (operator/csr_operator.hpp).
   ExplicitSolver(CsrMatrix K, Eigen::VectorXd mass, std::vector<BoundaryNode> boundary,
                  bool springs, std::vector<char> fixed, double a0, double a1, unsigned threads,
                  StepPrecision precision = StepPrecision::kDouble);
+  /// The step on any back end of the soil operator.
+  ExplicitSolver(std::unique_ptr<SoilOperator> op, double a0, double a1);
 
-  Eigen::Index dofs() const { return 3 * mass_.size(); }
+  /// The soil operator (K, M, S, D, fixed nodes) the step reads: what the statics, the implicit
+  /// step's matrix and the exported matrices take.
+  const SoilOperator& soil() const { return *op_; }
+  Eigen::Index dofs() const { return op_->dofs(); }
   /// Largest stable step [s]: 2 / omega_max (sqrt(1 + xi^2) - xi), xi = a1 omega_max / 2,
   /// omega_max^2 the largest eigenvalue of M^-1 K from Lanczos iterations (to 1e-9, 2 % margin);
   /// with local time stepping, the longer step it verified (enable_local_steps).
@@ -109,33 +116,31 @@ class ExplicitSolver {
   /// at step dt [s] when they act there: the effective stiffness K_p of local_time_stepping.hpp
   /// (S is zero at the fine nodes).
   void effective_stiffness_times(const Eigen::VectorXd& x, Eigen::VectorXd& y, double dt) const;
-  /// y = K x + S x (the boundary springs when they act), K in double: the static operator.
-  void stiffness_times(const Eigen::VectorXd& x, Eigen::VectorXd& y, bool with_springs) const;
-  /// The same with K in the step's precision (no local steps' filter): the multigrid smoother's
-  /// product on the mesh (static_solver.cpp), threaded and reading half the bytes.
+  /// The operator's (soil_operator.hpp), for the callers that hold the solver.
+  void stiffness_times(const Eigen::VectorXd& x, Eigen::VectorXd& y, bool with_springs) const {
+    op_->stiffness_times(x, y, with_springs);
+  }
   void stepped_stiffness_times(const Eigen::VectorXd& x, Eigen::VectorXd& y,
                                bool with_springs) const {
-    times(x, y, with_springs, true);
+    op_->stepped_stiffness_times(x, y, with_springs);
   }
-  StepPrecision precision() const {
-    return single_blocks_ ? StepPrecision::kSingle : StepPrecision::kDouble;
-  }
-  const CsrMatrix& stiffness() const { return K_; }
-  const std::vector<BoundaryNode>& boundary() const { return boundary_; }
-  const std::vector<char>& fixed() const { return fixed_; }
-  bool springs_act() const { return springs_; }
-  const Eigen::VectorXd& mass() const { return mass_; }
+  StepPrecision precision() const { return op_->precision(); }
+  const CsrMatrix& stiffness() const { return op_->stiffness(); }
+  const std::vector<BoundaryNode>& boundary() const { return op_->boundary(); }
+  const std::vector<char>& fixed() const { return op_->fixed(); }
+  bool springs_act() const { return op_->springs_act(); }
+  const Eigen::VectorXd& mass() const { return op_->mass(); }
+  /// The operator's and the step's own memory [bytes].
   std::size_t bytes() const;
   /// Called between the iterations of the long set-up loops (the eigenvalue iterations of
   /// enable_local_steps, the static solver's conjugate gradients): the plugin's Ctrl-C check,
   /// which throws to stop. None by default.
-  void set_stop_check(std::function<void()> check) { stop_check_ = std::move(check); }
-  void check_stop() const {
-    if (stop_check_) stop_check_();
-  }
-  /// Threads for the step's loops (the host grants them per run, after the layout).
-  void set_threads(unsigned threads);
-  unsigned threads() const { return threads_; }
+  void set_stop_check(std::function<void()> check) { op_->set_stop_check(std::move(check)); }
+  void check_stop() const { op_->check_stop(); }
+  /// Threads for the step's loops and the operator's products (the host grants them per run,
+  /// after the layout).
+  void set_threads(unsigned threads) { op_->set_threads(threads); }
+  unsigned threads() const { return op_->threads(); }
   /// Energies of a state [J]: kinetic 1/2 v^T M v and strain 1/2 w^T (K + S) w (K as the step
   /// reads it).
   double kinetic_energy(const ExplicitState& s) const;
@@ -146,18 +151,6 @@ class ExplicitSolver {
   /// The stable step [s] for the largest eigenvalue lambda [1/s^2] of M^-1 K from Lanczos:
   /// with its 2 % margin, the unrelaxed stiffness of the Maxwell mechanisms and the lag of a1 K.
   double step_limit(double lambda) const;
-  /// y = K x + S x with K read as the step reads it (stepped) or in double.
-  void times(const Eigen::VectorXd& x, Eigen::VectorXd& y, bool with_springs, bool stepped) const;
-  /// For each node i, finish(i, out) with out = (K x) at node i, K as the step reads it (its
-  /// upper blocks in the step's precision): called by every thread of a team; no barrier at
-  /// the end (symmetric_blocks.hpp).
-  template <class Finish>
-  void stepped_product(const double* x, Finish&& finish) const {
-    if (single_blocks_)
-      single_blocks_->multiply(x, product_scratch_.data(), finish);
-    else
-      double_blocks_->multiply(x, product_scratch_.data(), finish);
-  }
   /// The largest eigenvalue of M^-1 op over the free DOFs (Lanczos, to 1e-9), from a fixed
   /// pseudo-random start.
   double largest_eigenvalue(const std::function<void(const Eigen::VectorXd&, Eigen::VectorXd&)>& op,
@@ -175,21 +168,19 @@ class ExplicitSolver {
   void finish_node(std::int64_t i, const double residual[3], double dt, ExplicitState& s,
                    double* memory) const;
 
-  CsrMatrix K_;
-  // K's upper blocks as the step reads them: rounded to float, or in double (one of the two).
-  std::optional<SymmetricBlocks<float>> single_blocks_;
-  std::optional<SymmetricBlocks<double>> double_blocks_;
-  mutable std::vector<double> product_scratch_;  // the blocks' product's; zero between products
-  Eigen::VectorXd mass_;                         // per node [kg]
-  std::vector<BoundaryNode> boundary_;
-  std::vector<std::int32_t> boundary_of_;   // per node: index into boundary_, or -1
+  std::unique_ptr<SoilOperator> op_;
+  const CsrOperator* csr_;  // op_ when it is the CSR back end (the step's fast path), else null
+  // The operator's node data, read node by node in the step's loops (no call there): mass per
+  // node [kg], boundary blocks, per node the index into them or -1, fixed per node.
+  const double* mass_;
+  const BoundaryNode* boundary_;
+  const std::int32_t* boundary_of_;
+  const char* fixed_;
+  bool springs_;
   std::vector<std::int32_t> loaded_nodes_;  // set_loaded_nodes()
   bool every_node_loaded_ = true;           // until set_loaded_nodes()
-  bool springs_;
-  std::vector<char> fixed_;  // per node
   double a0_, a1_;
-  MaxwellDamping maxwell_;  // none unless set_maxwell_damping
-  unsigned threads_;
+  MaxwellDamping maxwell_;   // none unless set_maxwell_damping
   double lambda_max_ = 0.0;  // the largest eigenvalue of M^-1 (K + S) from Lanczos [1/s^2]
   double omega_max_ = 0.0, single_rate_step_ = 0.0;
   double local_step_ = 0.0;      // verified with local time stepping [s]; 0: off
@@ -204,7 +195,6 @@ class ExplicitSolver {
   std::vector<std::int32_t> halo_of_;        // per node: its place in lts_->halo(), or -1
   mutable std::vector<double> halo_forces_;  // scratch: the residual at the halo [N]
   mutable bool last_step_local_ = false;     // the last step filtered the halo (force_jump)
-  std::function<void()> stop_check_;         // set_stop_check()
 };
 
 }  // namespace rumble::fem

@@ -43,10 +43,11 @@ void ImplicitSolver::step(ExplicitState& s, const Eigen::VectorXd& f, double dt)
     memory_stiffness += maxwell.weights[l] * gain[l];
   }
   if (dt != factored_dt_) {
-    factor_->llt.compute(lower_combination(op_, {.stiffness = 1.0 + c1 * a1_ + memory_stiffness,
-                                                 .mass = c0 + c1 * a0_,
-                                                 .springs = op_.springs_act(),
-                                                 .dashpots = c1}));
+    factor_->llt.compute(
+        lower_combination(op_.soil(), {.stiffness = 1.0 + c1 * a1_ + memory_stiffness,
+                                       .mass = c0 + c1 * a0_,
+                                       .springs = op_.springs_act(),
+                                       .dashpots = c1}));
     if (factor_->llt.info() != Eigen::Success) {
       std::ostringstream m;
       m << "fem: the implicit step's matrix could not be factored at dt = " << dt
