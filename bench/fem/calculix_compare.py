@@ -13,7 +13,7 @@ What is compared:
    receivers' velocities, and its wall time in the FEM soil (statics and dynamics).
 2. `rumble mesh` writes the very mesh the run used (mesh.vtu; the mesh cache keys on the soil's
    parameters). From it this script writes a CalculiX deck: C3D4 elements; per node of the
-   truncation surface, the viscous-spring boundary exactly as plugins/soils/fem/absorbing_boundary.cpp
+   truncation surface, the viscous-spring boundary exactly as plugins/soils/fem/boundary/absorbing_boundary.cpp
    builds it (nodal area a third of each adjacent triangle, the area-weighted outward normal,
    dashpots rho c_p A and rho c_s A, springs alpha G / r A), as one dashpot and one spring from
    the node to an anchor along the normal and along two tangents; the footprint forces as

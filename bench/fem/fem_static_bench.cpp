@@ -16,10 +16,11 @@
 #include <utility>
 #include <vector>
 
-#include "absorbing_boundary.hpp"
-#include "elasticity.hpp"
-#include "mesh_generator.hpp"
-#include "static_solver.hpp"
+#include "boundary/absorbing_boundary.hpp"
+#include "mesh/mesh_generator.hpp"
+#include "operator/elasticity.hpp"
+#include "statics/static_solver.hpp"
+#include "time/explicit_solver.hpp"
 
 namespace {
 
@@ -69,7 +70,7 @@ void run(double f_max, Eigen::Index factor_limit) {
               static_cast<long>(op.dofs()), static_cast<double>(op.stiffness().nonzeros()), mesh_s);
   Eigen::VectorXd reference;
   if (op.dofs() <= factor_limit) {
-    StaticSolver factor(op, mesh.nodes);
+    StaticSolver factor(op.soil(), mesh.nodes);
     start = std::chrono::steady_clock::now();
     reference = factor.solve(f);
     const double first = seconds_since(start);
@@ -80,7 +81,7 @@ void run(double f_max, Eigen::Index factor_limit) {
   }
   for (const auto& [name, kind] : {std::pair{"multigrid-cg", CgPreconditioner::kMultigrid},
                                    std::pair{"jacobi-cg", CgPreconditioner::kJacobi}}) {
-    StaticSolver cg(op, mesh.nodes, 0, kind);
+    StaticSolver cg(op.soil(), mesh.nodes, 0, kind);
     start = std::chrono::steady_clock::now();
     const Eigen::VectorXd u = cg.solve(f);
     const double first = seconds_since(start);

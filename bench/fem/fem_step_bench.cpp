@@ -13,10 +13,11 @@
 #include <cmath>
 #include <vector>
 
-#include "elasticity.hpp"
-#include "explicit_solver.hpp"
-#include "kuhn_box.hpp"
-#include "pml.hpp"
+#include "boundary/absorbing_boundary.hpp"
+#include "boundary/pml.hpp"
+#include "mesh/kuhn_box.hpp"
+#include "operator/elasticity.hpp"
+#include "time/explicit_solver.hpp"
 
 namespace {
 

@@ -6,17 +6,17 @@
 // excites the mesh's shortest waves, whose group velocity is near zero, which never reach any
 // boundary (measured: 2 % of the energy stays with a 4 ms triangle, whatever the boundary; the
 // default material damping removes it, docs/fem-soil.md §4).
-#include "absorbing_boundary.hpp"
+#include "boundary/absorbing_boundary.hpp"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <vector>
 
-#include "elasticity.hpp"
-#include "explicit_solver.hpp"
-#include "footprint_loads.hpp"
-#include "mesh_generator.hpp"
+#include "mesh/mesh_generator.hpp"
+#include "operator/elasticity.hpp"
+#include "operator/footprint_loads.hpp"
+#include "time/explicit_solver.hpp"
 
 namespace rumble::fem {
 namespace {

@@ -34,12 +34,12 @@
 #include <string>
 #include <vector>
 
-#include "absorbing_boundary.hpp"
-#include "elasticity.hpp"
-#include "explicit_solver.hpp"
-#include "footprint_loads.hpp"
-#include "implicit_solver.hpp"
-#include "mesh_generator.hpp"
+#include "boundary/absorbing_boundary.hpp"
+#include "mesh/mesh_generator.hpp"
+#include "operator/elasticity.hpp"
+#include "operator/footprint_loads.hpp"
+#include "time/explicit_solver.hpp"
+#include "time/implicit_solver.hpp"
 
 namespace rumble::fem {
 namespace {

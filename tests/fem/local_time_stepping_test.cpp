@@ -4,7 +4,7 @@
 // K_p against an independent evaluation of its polynomial, its symmetry and its order in dt, the
 // step's shadow energy with K_p, a stable step longer than one rate allows and stability below
 // it, and agreement with a single-rate run at a small step.
-#include "local_time_stepping.hpp"
+#include "time/local_time_stepping.hpp"
 
 #include <gtest/gtest.h>
 
@@ -13,12 +13,12 @@
 #include <cstdio>
 #include <vector>
 
-#include "absorbing_boundary.hpp"
-#include "elasticity.hpp"
-#include "explicit_solver.hpp"
-#include "kuhn_box.hpp"
-#include "pml.hpp"
+#include "boundary/absorbing_boundary.hpp"
+#include "boundary/pml.hpp"
+#include "mesh/kuhn_box.hpp"
+#include "operator/elasticity.hpp"
 #include "random_state.hpp"
+#include "time/explicit_solver.hpp"
 
 namespace rumble::fem {
 namespace {

@@ -12,11 +12,11 @@
 #include <cstdio>
 #include <numbers>
 
-#include "elasticity.hpp"
-#include "explicit_solver.hpp"
 #include "fem_settings.hpp"
-#include "kuhn_box.hpp"
+#include "mesh/kuhn_box.hpp"
+#include "operator/elasticity.hpp"
 #include "random_state.hpp"
+#include "time/explicit_solver.hpp"
 
 namespace rumble::fem {
 namespace {

@@ -1,6 +1,6 @@
 // The mesh cache: a stored mesh reads back identical, other inputs give another name, and a
 // damaged or foreign file is refused (read_cached_mesh returns nothing: the mesh is made again).
-#include "mesh_cache.hpp"
+#include "mesh/mesh_cache.hpp"
 
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "kuhn_box.hpp"
+#include "mesh/kuhn_box.hpp"
 
 namespace rumble::fem {
 namespace {

@@ -9,8 +9,8 @@
 #include <string>
 
 #include "expect_message.hpp"
-#include "footprint_loads.hpp"
-#include "gmsh_model.hpp"
+#include "mesh/gmsh_model.hpp"
+#include "operator/footprint_loads.hpp"
 
 namespace rumble::fem {
 namespace {

@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "expect_message.hpp"
-#include "footprint_loads.hpp"
-#include "mesh_generator.hpp"
+#include "mesh/mesh_generator.hpp"
+#include "operator/footprint_loads.hpp"
 
 namespace rumble::fem {
 namespace {

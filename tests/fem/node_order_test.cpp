@@ -2,7 +2,7 @@
 // same way, the same faces) and brings neighbours close in memory: the mean index distance along
 // the edges of a box whose nodes were shuffled falls from about n / 3 to a tenth of that
 // (measured: 1644 to 170, n = 4913 nodes; a Morton curve still jumps between octants).
-#include "node_order.hpp"
+#include "mesh/node_order.hpp"
 
 #include <gtest/gtest.h>
 
@@ -13,7 +13,7 @@
 #include <set>
 #include <vector>
 
-#include "kuhn_box.hpp"
+#include "mesh/kuhn_box.hpp"
 
 namespace rumble::fem {
 namespace {

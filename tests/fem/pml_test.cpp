@@ -4,7 +4,7 @@
 // difference of the velocities there is what the truncation sent back, not a mesh difference
 // (docs/numerics.md §3.2). Also: a layer without damping is the elastic soil, and the layer's own
 // step bound holds (bounded over a long run at it, growing beyond it).
-#include "pml.hpp"
+#include "boundary/pml.hpp"
 
 #include <gtest/gtest.h>
 
@@ -12,11 +12,11 @@
 #include <memory>
 #include <vector>
 
-#include "absorbing_boundary.hpp"
-#include "elasticity.hpp"
-#include "explicit_solver.hpp"
-#include "footprint_loads.hpp"
-#include "kuhn_box.hpp"
+#include "boundary/absorbing_boundary.hpp"
+#include "mesh/kuhn_box.hpp"
+#include "operator/elasticity.hpp"
+#include "operator/footprint_loads.hpp"
+#include "time/explicit_solver.hpp"
 
 namespace rumble::fem {
 namespace {

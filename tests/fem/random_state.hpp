@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cstdlib>
 
-#include "explicit_solver.hpp"
+#include "time/explicit_solver.hpp"
 
 namespace rumble::fem::test {
 

@@ -1,7 +1,7 @@
 // The receptance cache (receptance_cache.hpp): a stored receptance reads back to the bit, another
 // soil, params text, footprint weights or frequency gives another name, and a damaged or
 // mismatched file is refused (the frequency is then solved again).
-#include "receptance_cache.hpp"
+#include "frequency/receptance_cache.hpp"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "kuhn_box.hpp"
+#include "mesh/kuhn_box.hpp"
 
 namespace rumble::fem {
 namespace {

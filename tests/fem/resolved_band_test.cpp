@@ -2,14 +2,14 @@
 // c_R / (n h_mean) exactly, h_mean = (3 + 2 sqrt 2 + sqrt 3) / 6 a for cubes of edge a; where the
 // path crosses coarser elements the band is theirs, found by locating every sample of the path
 // one by one; a point beyond the mesh has none.
-#include "resolved_band.hpp"
+#include "frequency/resolved_band.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "kuhn_box.hpp"
-#include "probe_locator.hpp"
+#include "mesh/kuhn_box.hpp"
+#include "output/probe_locator.hpp"
 
 namespace rumble::fem {
 namespace {

@@ -1,6 +1,6 @@
 // Multigrid's threaded sparse products (sparse_product.hpp) against Eigen's, on random matrices
 // with empty rows and columns, for one to three threads (more threads than rows included).
-#include "sparse_product.hpp"
+#include "operator/sparse_product.hpp"
 
 #include <gtest/gtest.h>
 

@@ -3,7 +3,7 @@
 // diagonal or by smoothed-aggregation multigrid; CG started from the last solution needs fewer
 // iterations when the engine's static iteration asks again with a slightly changed load, and
 // multigrid needs far fewer than the diagonal.
-#include "static_solver.hpp"
+#include "statics/static_solver.hpp"
 
 #include <gtest/gtest.h>
 
@@ -13,10 +13,11 @@
 #include <optional>
 #include <vector>
 
-#include "absorbing_boundary.hpp"
-#include "effective_matrix.hpp"
-#include "elasticity.hpp"
-#include "kuhn_box.hpp"
+#include "boundary/absorbing_boundary.hpp"
+#include "mesh/kuhn_box.hpp"
+#include "operator/effective_matrix.hpp"
+#include "operator/elasticity.hpp"
+#include "time/explicit_solver.hpp"
 
 namespace rumble::fem {
 namespace {
@@ -30,8 +31,8 @@ TEST(FemStatics, ConjugateGradientsAgreeWithTheFactorAndStartFromTheLastSolution
                           absorbing_boundary(m, s, centre), true,
                           std::vector<char>(m.node_count(), 0), 0.0, 0.0, 1);
   const Eigen::VectorXd f = Eigen::VectorXd::Constant(op.dofs(), 1e3);  // N per DOF
-  StaticSolver factor(op, m.nodes);
-  StaticSolver cg(op, m.nodes, /*factor_limit=*/0, CgPreconditioner::kJacobi);
+  StaticSolver factor(op.soil(), m.nodes);
+  StaticSolver cg(op.soil(), m.nodes, /*factor_limit=*/0, CgPreconditioner::kJacobi);
   const Eigen::VectorXd u = factor.solve(f);
   const Eigen::VectorXd u_cg = cg.solve(f);
   EXPECT_TRUE(factor.factored());
@@ -80,9 +81,9 @@ void expect_multigrid_agrees_and_beats_jacobi(bool fixed_bottom,
     if (box.mesh.nodes(2, i) == 0.0 && std::abs(box.mesh.nodes(0, i) - 2.0) <= 0.5 &&
         std::abs(box.mesh.nodes(1, i) - 2.0) <= 1.0)
       f[3 * i + 2] = 1e3;
-  StaticSolver factor(op, box.mesh.nodes);
-  StaticSolver multigrid(op, box.mesh.nodes, 0, CgPreconditioner::kMultigrid);
-  StaticSolver jacobi(op, box.mesh.nodes, 0, CgPreconditioner::kJacobi);
+  StaticSolver factor(op.soil(), box.mesh.nodes);
+  StaticSolver multigrid(op.soil(), box.mesh.nodes, 0, CgPreconditioner::kMultigrid);
+  StaticSolver jacobi(op.soil(), box.mesh.nodes, 0, CgPreconditioner::kJacobi);
   const Eigen::VectorXd u = factor.solve(f);
   const Eigen::VectorXd u_mg = multigrid.solve(f);
   jacobi.solve(f);
@@ -134,8 +135,8 @@ TEST(FemStatics, MultigridWithTheSinglePrecisionStepProductAgreesToo) {
 TEST(FemStatics, TheWholeCombinationIsTheLowerTriangleMirrored) {
   const Box box(3, true);
   const Combination c{.stiffness = 1.3, .mass = 7.0, .springs = true, .dashpots = 0.1};
-  const Eigen::MatrixXd whole(full_combination(*box.op, c));
-  const LongSparse lower = lower_combination(*box.op, c);
+  const Eigen::MatrixXd whole(full_combination(box.op->soil(), c));
+  const LongSparse lower = lower_combination(box.op->soil(), c);
   const Eigen::MatrixXd mirrored(LongSparse(lower.selfadjointView<Eigen::Lower>()));
   ASSERT_EQ(whole.rows(), box.op->dofs());
   const double largest = whole.cwiseAbs().maxCoeff();
@@ -163,7 +164,7 @@ TEST(FemStatics, TheStopCheckEndsALongSolveAndTheLocalStepsChoice) {
   op.set_stop_check([&calls] {
     if (++calls == 5) throw StopRequested{};
   });
-  StaticSolver cg(op, m.nodes, /*factor_limit=*/0, CgPreconditioner::kJacobi);
+  StaticSolver cg(op.soil(), m.nodes, /*factor_limit=*/0, CgPreconditioner::kJacobi);
   EXPECT_THROW(cg.solve(Eigen::VectorXd::Constant(op.dofs(), 1e3)), StopRequested);
   EXPECT_EQ(calls, 5);
   calls = 0;

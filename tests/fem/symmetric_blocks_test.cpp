@@ -1,7 +1,7 @@
 // The explicit step's product over K's upper blocks (symmetric_blocks.hpp) against the full
 // rows' product, for any number of parts and any team size (a team smaller than the parts takes
 // several each), with its scratch left zero.
-#include "symmetric_blocks.hpp"
+#include "operator/symmetric_blocks.hpp"
 
 #include <gtest/gtest.h>
 #include <omp.h>
@@ -11,8 +11,8 @@
 #include <cmath>
 #include <vector>
 
-#include "elasticity.hpp"
-#include "kuhn_box.hpp"
+#include "mesh/kuhn_box.hpp"
+#include "operator/elasticity.hpp"
 
 namespace rumble::fem {
 namespace {

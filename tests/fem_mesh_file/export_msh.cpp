@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "fem_settings.hpp"
-#include "gmsh_model.hpp"
-#include "mesh_generator.hpp"
+#include "mesh/gmsh_model.hpp"
+#include "mesh/mesh_generator.hpp"
 #include "track_spec/footprint_layout.hpp"
 #include "track_spec/track_config.hpp"
 

@@ -17,8 +17,8 @@
 
 #include "expect_message.hpp"
 #include "fem_settings.hpp"
-#include "gmsh_model.hpp"
-#include "mesh_generator.hpp"
+#include "mesh/gmsh_model.hpp"
+#include "mesh/mesh_generator.hpp"
 #include "soil_harness.hpp"
 
 namespace rumble::test {

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "fuzz_support.hpp"
-#include "gmsh_model.hpp"
+#include "mesh/gmsh_model.hpp"
 #include "msh_check.hpp"
 #include "post_check.hpp"
 #include "scenario_check.hpp"

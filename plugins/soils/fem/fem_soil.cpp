@@ -17,26 +17,26 @@
 #include <string>
 #include <vector>
 
-#include "absorbing_boundary.hpp"
-#include "elasticity.hpp"
-#include "explicit_solver.hpp"
+#include "boundary/absorbing_boundary.hpp"
+#include "boundary/pml.hpp"
+#include "boundary/static_far_field.hpp"
 #include "fem_settings.hpp"
-#include "footprint_loads.hpp"
-#include "gmsh_model.hpp"
-#include "implicit_solver.hpp"
-#include "impulse_receptance.hpp"
-#include "linear_matrices.hpp"
-#include "mesh_cache.hpp"
-#include "mesh_generator.hpp"
-#include "pml.hpp"
-#include "probe_locator.hpp"
-#include "receptance.hpp"
-#include "receptance_cache.hpp"
-#include "resolved_band.hpp"
+#include "frequency/impulse_receptance.hpp"
+#include "frequency/receptance.hpp"
+#include "frequency/receptance_cache.hpp"
+#include "frequency/resolved_band.hpp"
+#include "mesh/gmsh_model.hpp"
+#include "mesh/mesh_cache.hpp"
+#include "mesh/mesh_generator.hpp"
+#include "operator/elasticity.hpp"
+#include "operator/footprint_loads.hpp"
+#include "operator/linear_matrices.hpp"
+#include "output/probe_locator.hpp"
+#include "output/vtu_writer.hpp"
 #include "results_file.hpp"
-#include "static_far_field.hpp"
-#include "static_solver.hpp"
-#include "vtu_writer.hpp"
+#include "statics/static_solver.hpp"
+#include "time/explicit_solver.hpp"
+#include "time/implicit_solver.hpp"
 #include "wave_speeds.hpp"
 
 namespace {
@@ -135,7 +135,7 @@ class FemSoil final : public rumble::Soil {
     if (settings_.boundary.kind == BoundaryKind::kPml)
       op_->set_pml(PmlLayer(mesh_, settings_, pml_profile()));
     local_steps_chosen_ = false;  // (at the first macro step, whose length they are fitted to)
-    statics_ = std::make_unique<StaticSolver>(*op_, mesh_.nodes);
+    statics_ = std::make_unique<StaticSolver>(op_->soil(), mesh_.nodes);
     far_field_.reset();  // (built at the first static solve: validate needs none)
     if (settings_.boundary.spring_model == rumble::fem::SpringModel::kHalfSpace &&
         !settings_.layers.empty() && settings_.boundary.springs())
@@ -338,7 +338,7 @@ class FemSoil final : public rumble::Soil {
           "fem: params/damping/model: the Maxwell mechanisms' memory has no place in M, C and K "
           "(the monolithic coupler, rumble stability); use damping.model \"rayleigh\" for them, "
           "got \"maxwell\"");
-    rumble::fem::linear_matrix(*op_, weights_, settings_.damping.mass_coefficient(),
+    rumble::fem::linear_matrix(op_->soil(), weights_, settings_.damping.mass_coefficient(),
                                settings_.damping.stiffness_coefficient(), which, out);
     if (which == RUMBLE_MATRIX_STIFFNESS && settings_.boundary.far_field_follows &&
         rumble::fem::static_far_field_applies(settings_))

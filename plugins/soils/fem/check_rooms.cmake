@@ -1,0 +1,17 @@
+# Fails when a file of the room ROOM ("." for the root) includes a room ("room/file.hpp", from
+# the fem folder) that is not in ALLOWED (CMakeLists.txt: the arrows); else touches STAMP.
+cmake_minimum_required(VERSION 3.25)  # (IN_LIST)
+set(bad "")
+foreach(file IN LISTS FILES)
+  file(STRINGS "${file}" lines REGEX "^[ \t]*#[ \t]*include[ \t]*\"[a-z_]+/")
+  foreach(line IN LISTS lines)
+    string(REGEX REPLACE "^[^\"]*\"([a-z_]+)/.*$" "\\1" room "${line}")
+    if(NOT room STREQUAL ROOM AND NOT room IN_LIST ALLOWED)
+      string(APPEND bad "\n  ${file}: ${line} (no arrow ${ROOM} -> ${room})")
+    endif()
+  endforeach()
+endforeach()
+if(bad)
+  message(FATAL_ERROR "fem: an include between rooms without an arrow (plugins/soils/fem/CMakeLists.txt):${bad}")
+endif()
+file(TOUCH "${STAMP}")

@@ -1,0 +1,80 @@
+#include "operator/csr_operator.hpp"
+
+#include <algorithm>
+#include <cstdint>
+
+namespace rumble::fem {
+
+CsrOperator::CsrOperator(CsrMatrix K, Eigen::VectorXd mass, std::vector<BoundaryNode> boundary,
+                         bool springs, std::vector<char> fixed, unsigned threads,
+                         StepPrecision precision)
+    : SoilOperator(std::move(mass), std::move(boundary), springs, std::move(fixed), threads),
+      K_(std::move(K)) {
+  if (precision == StepPrecision::kSingle)
+    single_blocks_.emplace(K_, threads_);
+  else
+    double_blocks_.emplace(K_, threads_);
+  product_scratch_.assign(3 * static_cast<std::size_t>(mass_.size()), 0.0);
+}
+
+void CsrOperator::set_threads(unsigned threads) {
+  threads_ = threads < 1 ? 1 : threads;
+  if (single_blocks_) single_blocks_->set_parts(threads_);
+  if (double_blocks_) double_blocks_->set_parts(threads_);
+}
+
+std::size_t CsrOperator::bytes() const {
+  return K_.bytes() + (single_blocks_ ? single_blocks_->bytes() : double_blocks_->bytes()) +
+         product_scratch_.size() * 8 + node_bytes();
+}
+
+void CsrOperator::times(const Eigen::VectorXd& x, Eigen::VectorXd& y, bool with_springs,
+                        bool stepped) const {
+  const std::int64_t n = mass_.size();
+  y.resize(x.size());
+  const auto finish = [&](std::int64_t i, const double* product) {
+    double* out = y.data() + 3 * i;
+    if (fixed_[i]) {
+      out[0] = out[1] = out[2] = 0.0;
+      return;
+    }
+    std::copy_n(product, 3, out);
+    const std::int32_t b = boundary_of_[i];
+    if (with_springs && b >= 0) {
+      const BoundaryNode& node = boundary_[b];
+      node.apply_spring(x.data() + 3 * i, out);
+    }
+  };
+  if (stepped) {
+#pragma omp parallel num_threads(threads_)
+    fused_product(x.data(), finish);
+    return;
+  }
+#pragma omp parallel for num_threads(threads_) schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) {
+    double product[3];
+    K_.node_rows_dot(static_cast<std::int32_t>(i), x.data(), product);
+    finish(i, product);
+  }
+}
+
+void CsrOperator::stepped_product(const double* x, NodeProducts& take) const {
+  // The blocks hand a thread its nodes in ascending runs (one per part it owns): they are
+  // gathered in runs of up to kRun nodes (on the stack, in the cache) and handed over together,
+  // so that the virtual call is once per run, not per node.
+  constexpr std::int64_t kRun = 64;
+  double run[3 * kRun];
+  std::int64_t first = 0, count = 0;
+  fused_product(x, [&](std::int64_t i, const double* product) {
+    if (count == kRun || (count > 0 && i != first + count)) {
+      take.take(first, count, run);
+      count = 0;
+    }
+    if (count == 0) first = i;
+    std::copy_n(product, 3, run + 3 * count);
+    ++count;
+  });
+  if (count > 0) take.take(first, count, run);
+}
+
+}  // namespace rumble::fem

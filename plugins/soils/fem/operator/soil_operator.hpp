@@ -1,0 +1,131 @@
+// The soil's operator behind one small interface (docs/decisions/0006-fem-soil.md): the elastic
+// stiffness K, the lumped mass M, the truncation surface's spring and dashpot blocks S and D
+// (boundary_blocks.hpp) and the fixed nodes, as the time integrators (time/), the statics
+// (statics/), the receptance (frequency/) and the plugin use them. A back end keeps K its own way
+// and implements the virtual calls; csr_operator.hpp (K's CSR rows and upper symmetric blocks,
+// OpenMP threads) is the first. README.md in this folder has the rule for back ends.
+//
+// The node data (mass, boundary blocks, fixed nodes, threads, the stop check) are plain members:
+// the integrators read them node by node inside their loops, never through a virtual call. The
+// virtual calls are whole products and set-ups: one call per product, per thread per step for the
+// step's fused product (stepped_product), never one per node or DOF.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <utility>
+#include <vector>
+
+#include "operator/boundary_blocks.hpp"
+#include "operator/csr_matrix.hpp"
+
+namespace rumble::fem {
+
+/// How the step streams K: its values rounded to single precision (4 B each, the sums in double)
+/// or in double. Rounding moves each entry by at most 6e-8 of itself, far below the step's
+/// O(dt^2) error; K stays symmetric, so the step keeps its energy (docs/fem-soil.md §4.2).
+enum class StepPrecision { kDouble, kSingle };
+
+/// Takes the step's product (K x) in runs of consecutive nodes: products[3 k + c] is (K x) at
+/// node first + k, DOF c (K as the step reads it, without S). Called by the thread that owns
+/// those nodes; runs of one call never overlap.
+class NodeProducts {
+ public:
+  virtual ~NodeProducts() = default;
+  virtual void take(std::int64_t first, std::int64_t count, const double* products) = 0;
+};
+
+/// NodeProducts from a per-node function finish(node, product) (3 doubles).
+template <class Finish>
+class NodeProductsOf final : public NodeProducts {
+ public:
+  explicit NodeProductsOf(Finish& finish) : finish_(finish) {}
+  void take(std::int64_t first, std::int64_t count, const double* products) override {
+    for (std::int64_t k = 0; k < count; ++k) finish_(first + k, products + 3 * k);
+  }
+
+ private:
+  Finish& finish_;
+};
+
+class SoilOperator {
+ public:
+  virtual ~SoilOperator() = default;
+  SoilOperator(const SoilOperator&) = delete;
+  SoilOperator& operator=(const SoilOperator&) = delete;
+
+  // The node data, 3 DOFs per node.
+  Eigen::Index nodes() const { return mass_.size(); }
+  Eigen::Index dofs() const { return 3 * mass_.size(); }
+  /// Lumped mass per node [kg].
+  const Eigen::VectorXd& mass() const { return mass_; }
+  /// The truncation surface's blocks S (springs_act()) and D.
+  const std::vector<BoundaryNode>& boundary() const { return boundary_; }
+  /// Per node: its index into boundary(), or -1.
+  const std::vector<std::int32_t>& boundary_of() const { return boundary_of_; }
+  /// Whether S acts in the dynamics (the statics always take it).
+  bool springs_act() const { return springs_; }
+  /// Per node: never moves (its DOFs' rows and columns are identity in every matrix).
+  const std::vector<char>& fixed() const { return fixed_; }
+  unsigned threads() const { return threads_; }
+  /// Called between the iterations of long loops (eigenvalue iterations, conjugate gradients):
+  /// the plugin's Ctrl-C check, which throws to stop. None by default.
+  void set_stop_check(std::function<void()> check) { stop_check_ = std::move(check); }
+  void check_stop() const {
+    if (stop_check_) stop_check_();
+  }
+
+  // What a back end implements.
+  /// Threads for the products (the host grants them per run).
+  virtual void set_threads(unsigned threads) = 0;
+  /// y = K x + S x (S when with_springs), K in double; 0 on fixed nodes.
+  virtual void stiffness_times(const Eigen::VectorXd& x, Eigen::VectorXd& y,
+                               bool with_springs) const = 0;
+  /// The same with K as the step reads it (precision()): the statics' and the eigenvalue
+  /// iterations' product, threaded.
+  virtual void stepped_stiffness_times(const Eigen::VectorXd& x, Eigen::VectorXd& y,
+                                       bool with_springs) const = 0;
+  /// The explicit step's product: K x (as the step reads it) handed to `take` node by node,
+  /// every node once. Called by every thread of an OpenMP team, x complete before (a barrier)
+  /// and unchanged; no barrier at the end.
+  virtual void stepped_product(const double* x, NodeProducts& take) const = 0;
+  virtual StepPrecision precision() const = 0;
+  /// K's assembled rows in double (CSR, 3 DOFs per node): what the direct solvers factor
+  /// (effective_matrix.hpp), the matrices the plugin exports (linear_matrices.hpp), the
+  /// receptance's, and the local time stepping's set-up read.
+  virtual const CsrMatrix& stiffness() const = 0;
+  /// Memory held [bytes], the node data included.
+  virtual std::size_t bytes() const = 0;
+
+ protected:
+  SoilOperator(Eigen::VectorXd mass, std::vector<BoundaryNode> boundary, bool springs,
+               std::vector<char> fixed, unsigned threads)
+      : mass_(std::move(mass)),
+        boundary_(std::move(boundary)),
+        boundary_of_(mass_.size(), -1),
+        springs_(springs),
+        fixed_(std::move(fixed)),
+        threads_(threads < 1 ? 1 : threads) {
+    for (std::size_t k = 0; k < boundary_.size(); ++k)
+      boundary_of_[boundary_[k].node] = static_cast<std::int32_t>(k);
+  }
+  /// The node data's bytes.
+  std::size_t node_bytes() const {
+    return static_cast<std::size_t>(mass_.size()) * (8 + 4 + 1) +
+           boundary_.size() * sizeof(BoundaryNode);
+  }
+
+  Eigen::VectorXd mass_;
+  std::vector<BoundaryNode> boundary_;
+  std::vector<std::int32_t> boundary_of_;  // per node: index into boundary_, or -1
+  bool springs_;
+  std::vector<char> fixed_;
+  unsigned threads_;
+
+ private:
+  std::function<void()> stop_check_;
+};
+
+}  // namespace rumble::fem

@@ -1,0 +1,82 @@
+#include "operator/symmetric_blocks.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+#include <utility>
+
+namespace rumble::fem {
+
+template <class Value>
+SymmetricBlocks<Value>::SymmetricBlocks(const CsrMatrix& K, unsigned parts) {
+  const std::int64_t n = K.rows() / 3;
+  block_start_.assign(static_cast<std::size_t>(n) + 1, 0);
+  for (std::int64_t i = 0; i < n; ++i) {
+    const auto node = static_cast<std::int32_t>(i);
+    const std::int32_t* nb = K.neighbours(node);
+    const std::int64_t upper =
+        nb + K.degree(node) - std::lower_bound(nb, nb + K.degree(node), node);
+    block_start_[i + 1] = block_start_[i] + upper;  // (the diagonal and the nodes after i)
+  }
+  column_.resize(static_cast<std::size_t>(block_start_.back()));
+  value_.resize(9 * column_.size());
+  for (std::int64_t i = 0; i < n; ++i) {
+    const auto node = static_cast<std::int32_t>(i);
+    const std::int32_t* nb = K.neighbours(node);
+    const std::int64_t degree = K.degree(node);
+    const std::int64_t diagonal = std::lower_bound(nb, nb + degree, node) - nb;
+    if (diagonal == degree || nb[diagonal] != node)
+      throw std::invalid_argument("SymmetricBlocks: a node is not its own neighbour");
+    for (std::int64_t p = diagonal; p < degree; ++p) {
+      const std::int64_t q = block_start_[i] + (p - diagonal);
+      column_[static_cast<std::size_t>(q)] = nb[p];
+      for (int c = 0; c < 3; ++c)
+        for (int d = 0; d < 3; ++d)
+          value_[static_cast<std::size_t>(9 * q + 3 * c + d)] =
+              static_cast<Value>(K.block_entry(node, p, c, d));  // (rounded to nearest)
+    }
+  }
+  set_parts(parts);
+}
+
+template <class Value>
+void SymmetricBlocks<Value>::set_parts(unsigned parts) {
+  const std::int64_t n = nodes();
+  const std::int64_t count = std::max<std::int64_t>(1, parts);
+  // (The plugin sets the threads at every macro step: the lists are rebuilt only on a change.)
+  if (part_start_.size() == static_cast<std::size_t>(count) + 1) return;
+  part_start_.resize(static_cast<std::size_t>(count) + 1);
+  for (std::int64_t p = 0; p <= count; ++p) part_start_[p] = n * p / count;
+  // The cross blocks, grouped by the part of their column node.
+  const auto part_of = [&](std::int64_t node) {
+    return std::upper_bound(part_start_.begin(), part_start_.end(), node) - part_start_.begin() - 1;
+  };
+  std::vector<std::vector<std::pair<std::int32_t, std::int64_t>>> cross(
+      static_cast<std::size_t>(count));  // per part: (k, block)
+  for (std::int64_t p = 0; p + 1 < count; ++p)
+    for (std::int64_t k = part_start_[p]; k < part_start_[p + 1]; ++k)
+      for (std::int64_t q = block_start_[k] + 1; q < block_start_[k + 1]; ++q)
+        if (column_[q] >= part_start_[p + 1])
+          cross[part_of(column_[q])].emplace_back(static_cast<std::int32_t>(k), q);
+  cross_start_.assign(static_cast<std::size_t>(count) + 1, 0);
+  cross_from_.clear();
+  cross_block_.clear();
+  for (std::int64_t p = 0; p < count; ++p) {
+    for (const auto& [k, q] : cross[p]) {
+      cross_from_.push_back(k);
+      cross_block_.push_back(q);
+    }
+    cross_start_[p + 1] = static_cast<std::int64_t>(cross_block_.size());
+  }
+}
+
+template <class Value>
+std::size_t SymmetricBlocks<Value>::bytes() const {
+  return block_start_.size() * 8 + column_.size() * 4 + value_.size() * sizeof(Value) +
+         part_start_.size() * 8 + cross_start_.size() * 8 + cross_from_.size() * 4 +
+         cross_block_.size() * 8;
+}
+
+template class SymmetricBlocks<float>;
+template class SymmetricBlocks<double>;
+
+}  // namespace rumble::fem

@@ -1,0 +1,62 @@
+// The static state: (K + S) u = f with the truncation surface held by the boundary springs (or
+// fixed). A sparse Cholesky factor from CHOLMOD's 64-bit interface (cholmod_l, docs/toolchain.md §4
+// and docs/numerics.md §4.2: the int interface fails near 1e6 DOFs), computed once and reused by
+// every solve (the engine iterates the static state with the track); above kFactorLimit DOFs, where
+// the factor would take more memory than the soil itself by far, conjugate gradients
+// preconditioned by smoothed-aggregation multigrid (amg_preconditioner.hpp), or by the diagonal
+// (Jacobi, kept as the baseline bench/fem/fem_static_bench.cpp measures against).
+#pragma once
+
+#include <Eigen/Core>
+#include <memory>
+
+#include "operator/soil_operator.hpp"
+#include "statics/amg_preconditioner.hpp"
+
+namespace rumble::fem {
+
+enum class CgPreconditioner { kMultigrid, kJacobi };
+
+class StaticSolver {
+ public:
+  static constexpr Eigen::Index kFactorLimit = 400000;  // DOFs: a factor of about 5 GB
+
+  /// Uses the operator's K, boundary springs (always: they carry the static load) and fixed
+  /// nodes; nodes: the mesh's coordinates [m] (multigrid's rigid-body modes). Factors on first
+  /// use when op has at most factor_limit DOFs, else uses CG with the given preconditioner.
+  StaticSolver(const SoilOperator& op, const Eigen::Matrix3Xd& nodes,
+               Eigen::Index factor_limit = kFactorLimit,
+               CgPreconditioner preconditioner = CgPreconditioner::kMultigrid);
+  ~StaticSolver();
+  StaticSolver(const StaticSolver&) = delete;
+  StaticSolver& operator=(const StaticSolver&) = delete;
+
+  /// u with (K + S) u = f on the free DOFs, 0 on fixed ones. Throws std::runtime_error when the
+  /// matrix is not positive definite (a floating mesh) or CG does not converge. CG starts from
+  /// the last solution (the engine's static iteration asks again with a slightly changed load).
+  Eigen::VectorXd solve(const Eigen::VectorXd& f);
+  bool factored() const { return factor_ != nullptr; }
+  int last_cg_iterations() const { return cg_iterations_; }
+  /// Seconds the multigrid hierarchy took to build (0 before, or with the factor or Jacobi).
+  double multigrid_setup_seconds() const { return multigrid_seconds_; }
+  /// The multigrid hierarchy once CG has built it, else null.
+  const AmgPreconditioner* multigrid() const { return multigrid_.get(); }
+
+ private:
+  struct Factor;
+  Eigen::VectorXd conjugate_gradients(const Eigen::VectorXd& f);
+
+  void precondition(const Eigen::VectorXd& r, Eigen::VectorXd& z) const;
+
+  const SoilOperator& op_;
+  const Eigen::Matrix3Xd& nodes_;
+  Eigen::Index factor_limit_;
+  CgPreconditioner preconditioner_;
+  std::unique_ptr<Factor> factor_;
+  std::unique_ptr<AmgPreconditioner> multigrid_;
+  Eigen::VectorXd diagonal_, last_;  // CG: the Jacobi preconditioner; the last solution
+  int cg_iterations_ = 0;
+  double multigrid_seconds_ = 0.0;
+};
+
+}  // namespace rumble::fem

@@ -1,0 +1,139 @@
+#include "time/local_time_stepping.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace rumble::fem {
+
+LocalTimeStepping::LocalTimeStepping(const CsrMatrix& K, const Eigen::VectorXd& mass,
+                                     const std::vector<char>& fine, const std::vector<char>& fixed,
+                                     int substeps, bool single_precision)
+    : p_(substeps), t_(static_cast<std::size_t>(substeps) + 1, 1.0) {
+  if (p_ < 2) throw std::invalid_argument("local time stepping needs at least 2 sub-steps");
+  const auto n = static_cast<std::int32_t>(mass.size());
+  std::vector<std::int32_t> position(n, -1);  // per node: its place in halo_, or -1
+  for (std::int32_t i = 0; i < n; ++i)
+    if (fine[i] && !fixed[i]) {
+      position[i] = static_cast<std::int32_t>(halo_.size());
+      halo_.push_back(i);
+    }
+  fine_count_ = static_cast<std::int64_t>(halo_.size());
+  for (std::int32_t i = 0; i < n; ++i) {
+    if (position[i] >= 0 || fixed[i]) continue;
+    const std::int32_t* nb = K.neighbours(i);
+    for (std::int64_t q = 0; q < K.degree(i); ++q)
+      if (position[nb[q]] >= 0 && position[nb[q]] < fine_count_) {
+        position[i] = static_cast<std::int32_t>(halo_.size());
+        halo_.push_back(i);
+        break;
+      }
+  }
+  start_.assign(1, 0);
+  for (const std::int32_t i : halo_) {
+    inv_mass_.push_back(1.0 / mass[i]);
+    const std::int32_t* nb = K.neighbours(i);
+    for (std::int64_t q = 0; q < K.degree(i); ++q) {
+      const std::int32_t f = position[nb[q]];
+      if (f < 0 || f >= fine_count_) continue;
+      column_.push_back(f);
+      for (int c = 0; c < 3; ++c)
+        for (int d = 0; d < 3; ++d) {
+          const double k = K.block_entry(i, q, c, d);
+          block_.push_back(single_precision ? static_cast<double>(static_cast<float>(k)) : k);
+        }
+    }
+    start_.push_back(static_cast<std::int64_t>(column_.size()));
+  }
+  const std::size_t size = 3 * halo_.size();
+  for (auto* v : {&g_, &s_prev_, &s_cur_, &s_next_, &product_}) v->assign(size, 0.0);
+}
+
+double LocalTimeStepping::tau_for(double dt, double a1, double margin) {
+  // dt^2 l(M^-1 K_p) <= 2 (1 + 1/tau), i.e. c <= (1 + 1/tau) / 2, must meet c <= margin /
+  // (1 + 2 a1 / dt): the lag's limit dt w <= 2 (sqrt(1 + xi^2) - xi), xi = a1 w / 2, squared.
+  const double c = margin / (1.0 + 2.0 * a1 / dt);
+  const double inverse = 2.0 * c - 1.0;  // 1 / tau
+  return inverse > 0.0 ? std::max(1.0, 1.0 / inverse) : 0.0;
+}
+
+namespace {
+
+struct Chebyshev {
+  double theta, w0, w1;
+};
+
+// T_p(w0) = cosh(p theta) = tau; w1 = dt^2 tau / (2 T_p'(w0)), T_p'(w0) = p sinh(p theta) /
+// sinh(theta) (p^2 in the limit theta -> 0).
+Chebyshev chebyshev(double dt, double tau, int p) {
+  const double theta = std::acosh(tau) / p;
+  const double slope = theta < 1e-8 ? double(p) * p : p * std::sinh(p * theta) / std::sinh(theta);
+  return {theta, std::cosh(theta), dt * dt * tau / (2.0 * slope)};
+}
+
+}  // namespace
+
+double LocalTimeStepping::fine_range(double dt, double tau, int substeps) {
+  const Chebyshev c = chebyshev(dt, tau, substeps);
+  return (1.0 + c.w0) / c.w1;
+}
+
+void LocalTimeStepping::set_step(double dt, double tau) {
+  if (!(dt > 0.0) || !(tau >= 1.0))
+    throw std::invalid_argument("local time stepping: step and tau must be > 0 and >= 1");
+  dt_ = dt;
+  tau_ = tau;
+  const Chebyshev c = chebyshev(dt, tau, p_);
+  w0_ = c.w0;
+  w1_ = c.w1;
+  for (int k = 0; k <= p_; ++k) t_[k] = std::cosh(k * c.theta);
+}
+
+void LocalTimeStepping::apply(double* forces) const {
+  // S_k = s_k(A P) A y with T_k(w0 - w1 l) = T_k(w0) + l s_k(l):
+  //   S_0 = 0, S_1 = -w1 g, S_(k+1) = 2 w0 S_k - 2 w1 A P S_k - S_(k-1) - 2 w1 T_k(w0) g,
+  // g = M^-1 forces (A y for K y); then R(A P) g = S_p / tau, and the result is
+  // -(2 / dt^2) M S_p / tau (K_p y for K y).
+  const auto halo = static_cast<std::int64_t>(halo_.size());
+  double* buffer[3] = {s_prev_.data(), s_cur_.data(), s_next_.data()};
+  double* g = g_.data();
+#pragma omp for schedule(static)
+  for (std::int64_t h = 0; h < halo; ++h)
+    for (int c = 0; c < 3; ++c) {
+      const std::int64_t k = 3 * h + c;
+      g[k] = inv_mass_[h] * forces[k];
+      buffer[0][k] = 0.0;
+      buffer[1][k] = -w1_ * g[k];
+    }
+  for (int step = 1; step < p_; ++step) {
+    const double* previous = buffer[(step - 1) % 3];
+    const double* current = buffer[step % 3];
+    double* next = buffer[(step + 1) % 3];
+#pragma omp for schedule(static)
+    for (std::int64_t h = 0; h < halo; ++h) {
+      double sum[3] = {0.0, 0.0, 0.0};
+      for (std::int64_t e = start_[h]; e < start_[h + 1]; ++e) {
+        const double* b = block_.data() + 9 * e;
+        const double* x = current + 3 * static_cast<std::int64_t>(column_[e]);
+        for (int c = 0; c < 3; ++c)
+          sum[c] += b[3 * c] * x[0] + b[3 * c + 1] * x[1] + b[3 * c + 2] * x[2];
+      }
+      for (int c = 0; c < 3; ++c) {
+        const std::int64_t k = 3 * h + c;
+        next[k] = 2.0 * w0_ * current[k] - 2.0 * w1_ * inv_mass_[h] * sum[c] - previous[k] -
+                  2.0 * w1_ * t_[step] * g[k];
+      }
+    }
+  }
+  const double* last = buffer[p_ % 3];
+  const double scale = -2.0 / (dt_ * dt_ * tau_);
+#pragma omp for schedule(static)
+  for (std::int64_t h = 0; h < halo; ++h)
+    for (int c = 0; c < 3; ++c) forces[3 * h + c] = scale * last[3 * h + c] / inv_mass_[h];
+}
+
+std::size_t LocalTimeStepping::bytes() const {
+  return halo_.size() * (4 + 8 + 5 * 3 * 8) + start_.size() * 8 + column_.size() * 4 +
+         block_.size() * 8;
+}
+
+}  // namespace rumble::fem
