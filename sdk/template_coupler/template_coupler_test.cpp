@@ -158,6 +158,14 @@ struct StandIn {
     rumble_cosim_host h{};
     h.struct_size = sizeof(rumble_cosim_host);
     h.ctx = this;
+    set_functions_1_0(h);
+    set_functions_1_1(h);
+    return h;
+  }
+
+  /// The host's functions of ABI 1.0: the participants' sizes, outputs, inputs, steps and
+  /// checkpoints.
+  static void set_functions_1_0(rumble_cosim_host& h) {
     h.interface_size = [](void*) -> std::uint64_t { return kFootprints; };
     h.output_size = [](void*, std::uint32_t p) -> std::uint64_t {
       return p == kTrack ? kFootprints : 2 * kFootprints;
@@ -206,7 +214,10 @@ struct StandIn {
       return RUMBLE_ERROR;
     };
     h.log = [](void*, std::int32_t, const char*) {};
-    // ---- ABI 1.1
+  }
+
+  /// The host's functions ABI 1.1 added: names, channel groups, step reports, checkpoint care.
+  static void set_functions_1_1(rumble_cosim_host& h) {
     h.participant_count = [](void*) -> std::uint32_t { return 2; };
     h.participant_name = [](void*, std::uint32_t p) -> const char* {
       return p == kTrack ? "track" : p == kSoil ? "soil" : nullptr;
@@ -244,7 +255,6 @@ struct StandIn {
     h.can_checkpoint = [](void* ctx, std::uint32_t p) -> std::int32_t {
       return p == kTrack && of(ctx).track_checkpoints ? 1 : 0;
     };
-    return h;
   }
 };
 

@@ -8,9 +8,8 @@
 namespace rumble::cli {
 namespace {
 
-const std::map<std::string, const char*>& help_texts() {
-  static const std::map<std::string, const char*> texts{
-      {"run", R"(usage: rumble run FILE [options]
+// Each command's help (rumble help COMMAND, rumble COMMAND --help).
+constexpr const char kRunHelp[] = R"(usage: rumble run FILE [options]
 
 Validates the scenario FILE, then runs it. Results go to outputs.directory, inside the
 scenario's folder; the directory is locked for the run and a rerun replaces its own results.
@@ -29,8 +28,9 @@ options:
   --no-plots                no PNG/SVG plots (default: outputs.plots)
   --set POINTER=VALUE       replace the value at a JSON pointer first; repeatable, e.g.
                             --set /soil/params/E=1e7
-)"},
-      {"validate", R"(usage: rumble validate FILE [options]
+)";
+
+constexpr const char kValidateHelp[] = R"(usage: rumble validate FILE [options]
 
 Checks the scenario FILE without running it and prints every error at once (JSON pointer,
 line:column, value, fix): the schema, the plugins' params, the engine's relations, the run's
@@ -42,8 +42,9 @@ options:
   --no-load                 do not load the libraries in the scenario's "plugins" list nor
                             build the components: schema and relations only (default: load)
   --set POINTER=VALUE       replace the value at a JSON pointer first; repeatable
-)"},
-      {"study", R"(usage: rumble study FILE [options]
+)";
+
+constexpr const char kStudyHelp[] = R"(usage: rumble study FILE [options]
 
 Runs a study (docs/study.md): the product of scenario variations and/or a list, each run
 validated first, then run as child processes; runs whose results are up to date are skipped.
@@ -58,8 +59,9 @@ options:
                             bytes written (default: such a run is not valid)
   --allow-outside-results   accept an "output" that is absolute or leads out of the study file's
                             folder, with ".." or a symbolic link (default: refuse)
-)"},
-      {"plugins", R"(usage: rumble plugins [options]
+)";
+
+constexpr const char kPluginsHelp[] = R"(usage: rumble plugins [options]
 
 Lists the plugin libraries found (the engine's plugin directory, RUMBLE_PLUGIN_PATH), where each
 came from, the types each provides and their capabilities, and the libraries that could not be
@@ -67,15 +69,17 @@ loaded (skipped, with the reason).
 
 options:
   --format text|json        (default: text; json: one array of libraries on stdout)
-)"},
-      {"schema", R"(usage: rumble schema [TYPE] [options]
+)";
+
+constexpr const char kSchemaHelp[] = R"(usage: rumble schema [TYPE] [options]
 
 Prints the parameters of a plugin type: units, defaults, ranges. Without TYPE: the known types.
 
 options:
   --json                    the type's params schema as JSON (only JSON on stdout)
-)"},
-      {"mesh", R"(usage: rumble mesh FILE [options]
+)";
+
+constexpr const char kMeshHelp[] = R"(usage: rumble mesh FILE [options]
 
 Builds the scenario's soil on its footprints without running: its report in the log, its
 mesh in DIR/mesh.vtu (soils with field output, e.g. fem).
@@ -86,8 +90,9 @@ options:
                             scenario's folder (default: refuse; --output DIR also consents)
   --set POINTER=VALUE       replace the value at a JSON pointer first; repeatable, e.g.
                             --set /soil/params/mesh/f_max=50
-)"},
-      {"soil-frf", R"(usage: rumble soil-frf FILE [FILE...] [options]
+)";
+
+constexpr const char kSoilFrfHelp[] = R"(usage: rumble soil-frf FILE [FILE...] [options]
 
 Receptance of each scenario's soil at its footprints, one CSV per soil, plotted together.
 
@@ -103,8 +108,10 @@ options:
   --allow-outside-results   accept a first scenario's outputs.directory that is absolute or
                             leads out of its folder (default: refuse; --output DIR also consents)
   --no-plot                 no plot
-)"},
-      {"calibrate", R"(usage: rumble calibrate TARGET_SCENARIO --model TYPE [options]
+)";
+
+constexpr const char kCalibrateHelp[] =
+    R"(usage: rumble calibrate TARGET_SCENARIO --model TYPE [options]
 
 Fits a reduced soil's parameters to the receptance of the target scenario's soil over a
 frequency band; prints the fitted params (ready to paste) and the residual.
@@ -118,8 +125,9 @@ options:
   --points N                an integer from 2 to 100000 (default: 40)
   --terms N                 transfer terms, an integer >= 0 (default: 2)
   --output FILE             also write the report (JSON) to FILE
-)"},
-      {"stability", R"(usage: rumble stability FILE [options]
+)";
+
+constexpr const char kStabilityHelp[] = R"(usage: rumble stability FILE [options]
 
 Spectral radius of one gauss_seidel and one jacobi macro step, linearized at rest, for the
 scenario's track and linear soil (> 1: the run diverges).
@@ -131,8 +139,9 @@ options:
   --interpolation Q         gauss_seidel's force interpolation order, 0 or 1 (default: the
                             scenario's, else 0)
   --output FILE.json        also write the table as JSON
-)"},
-      {"post", R"(usage: rumble post RESULTS_DIR [options]
+)";
+
+constexpr const char kPostHelp[] = R"(usage: rumble post RESULTS_DIR [options]
 
 Recomputes a finished run's vibration indicators (PPV, spectra, KB, third-octave levels, guide
 values, wavelets) into RESULTS_DIR/post; the directory is locked meanwhile.
@@ -144,17 +153,26 @@ options:
                             0.4 / time step when above it)
   --reference iso|vdb       band level reference: iso 1e-9 m/s (ISO 1683), vdb 2.54e-8 m/s
                             (default: iso)
-)"},
-      {"new-plugin", R"(usage: rumble new-plugin KIND NAME [DIR]
+)";
+
+constexpr const char kNewPluginHelp[] = R"(usage: rumble new-plugin KIND NAME [DIR]
 
 Starts a plugin project from the SDK's template, with its own test. KIND: soil, vehicle or
 coupler; NAME: the type name (lower case, digits, _); DIR: default ./NAME.
-)"},
-      {"help", R"(usage: rumble help [COMMAND]
+)";
+
+constexpr const char kHelpHelp[] = R"(usage: rumble help [COMMAND]
 
 Prints the overview, or one command's arguments and options with their defaults (also
 rumble COMMAND --help).
-)"},
+)";
+
+const std::map<std::string, const char*>& help_texts() {
+  static const std::map<std::string, const char*> texts{
+      {"run", kRunHelp},          {"validate", kValidateHelp},    {"study", kStudyHelp},
+      {"plugins", kPluginsHelp},  {"schema", kSchemaHelp},        {"mesh", kMeshHelp},
+      {"soil-frf", kSoilFrfHelp}, {"calibrate", kCalibrateHelp},  {"stability", kStabilityHelp},
+      {"post", kPostHelp},        {"new-plugin", kNewPluginHelp}, {"help", kHelpHelp},
   };
   return texts;
 }

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <iostream>
 #include <map>
+#include <optional>
 
 #include "cli/arguments.hpp"
 #include "cli/exit_codes.hpp"
@@ -81,77 +82,104 @@ std::map<std::string, Command>& command_table() {
   return table;
 }
 
+/// Takes --log-level out of args and sets it: it is global and may stand anywhere ("rumble run
+/// x.json --log-level warn" too).
+void take_log_level(std::vector<std::string>& args) {
+  for (std::size_t j = 0; j < args.size();) {
+    std::string level;
+    if (args[j].rfind("--log-level=", 0) == 0) {
+      level = args[j].substr(12);
+      args.erase(args.begin() + static_cast<long>(j));
+    } else if (args[j] == "--log-level") {
+      if (j + 1 == args.size()) throw UsageError("--log-level needs a level; see rumble --help");
+      level = args[j + 1];
+      args.erase(args.begin() + static_cast<long>(j), args.begin() + static_cast<long>(j) + 2);
+    } else {
+      ++j;
+      continue;
+    }
+    if (!set_log_level(level)) {
+      throw UsageError("--log-level " + level +
+                       " is not a level; choose trace, debug, info, warn, error or off");
+    }
+  }
+}
+
+/// The other global options, which come before the command: --help and --version print and
+/// give the exit code; otherwise nullopt, and `command` is where the command stands.
+std::optional<int> global_options(const std::vector<std::string>& args, std::size_t& command) {
+  std::size_t& i = command;
+  for (; i < args.size() && (args[i].rfind("--", 0) == 0 || args[i] == "-h"); ++i) {
+    const std::string& a = args[i];
+    if (a == "--help" || a == "-h") {
+      std::cout << kUsage;
+      return kExitOk;
+    }
+    if (a == "--version") {
+      std::cout << "rumble " << RUMBLE_VERSION << " (plugin ABI " << RUMBLE_ABI_MAJOR << "."
+                << RUMBLE_ABI_MINOR << ")\n";
+      return kExitOk;
+    }
+    throw UsageError("unknown option '" + a + "'; see rumble --help");
+  }
+  return std::nullopt;
+}
+
+/// The command named `name` (nullptr for help); throws UsageError listing them for another name.
+Command find_command(const std::string& name) {
+  const auto it = command_table().find(name);
+  if (it == command_table().end() && name != "help") {
+    std::string known;
+    for (const auto& [k, v] : command_table()) known += (known.empty() ? "" : ", ") + k;
+    throw UsageError("unknown command '" + name + "'; commands: " + known + ", help");
+  }
+  return it == command_table().end() ? nullptr : it->second;
+}
+
+/// `rumble COMMAND --help`: prints that command's options, whatever else was given; false when
+/// --help is not among its arguments.
+bool printed_command_help(const std::string& name, const std::vector<std::string>& rest) {
+  for (const std::string& a : rest) {
+    if (a == "--help" || a == "-h") {
+      const char* text = command_help(name);
+      std::cout << (text != nullptr ? text : kUsage);
+      return true;
+    }
+  }
+  return false;
+}
+
+/// `rumble help [COMMAND]`.
+int help_command(const std::vector<std::string>& rest) {
+  if (rest.empty()) {
+    std::cout << kUsage;
+    return kExitOk;
+  }
+  const char* text = command_help(rest.front());
+  if (text == nullptr)
+    throw UsageError("help: unknown command '" + rest.front() + "'; see rumble --help");
+  std::cout << text;
+  return kExitOk;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   std::vector<std::string> args(argv + 1, argv + argc);
   try {
-    // --log-level is global and may stand anywhere ("rumble run x.json --log-level warn" too);
-    // the other global options come before the command.
-    for (std::size_t j = 0; j < args.size();) {
-      std::string level;
-      if (args[j].rfind("--log-level=", 0) == 0) {
-        level = args[j].substr(12);
-        args.erase(args.begin() + static_cast<long>(j));
-      } else if (args[j] == "--log-level") {
-        if (j + 1 == args.size()) throw UsageError("--log-level needs a level; see rumble --help");
-        level = args[j + 1];
-        args.erase(args.begin() + static_cast<long>(j), args.begin() + static_cast<long>(j) + 2);
-      } else {
-        ++j;
-        continue;
-      }
-      if (!set_log_level(level)) {
-        throw UsageError("--log-level " + level +
-                         " is not a level; choose trace, debug, info, warn, error or off");
-      }
-    }
+    take_log_level(args);
     std::size_t i = 0;
-    for (; i < args.size() && (args[i].rfind("--", 0) == 0 || args[i] == "-h"); ++i) {
-      const std::string& a = args[i];
-      if (a == "--help" || a == "-h") {
-        std::cout << kUsage;
-        return kExitOk;
-      }
-      if (a == "--version") {
-        std::cout << "rumble " << RUMBLE_VERSION << " (plugin ABI " << RUMBLE_ABI_MAJOR << "."
-                  << RUMBLE_ABI_MINOR << ")\n";
-        return kExitOk;
-      }
-      throw UsageError("unknown option '" + a + "'; see rumble --help");
-    }
+    if (const std::optional<int> exit = global_options(args, i)) return *exit;
     if (i == args.size()) {
       std::cerr << kUsage;
       return kExitConfig;
     }
     const std::string name = args[i];
     const std::vector<std::string> rest(args.begin() + static_cast<long>(i) + 1, args.end());
-    const auto it = command_table().find(name);
-    if (it == command_table().end() && name != "help") {
-      std::string known;
-      for (const auto& [k, v] : command_table()) known += (known.empty() ? "" : ", ") + k;
-      throw UsageError("unknown command '" + name + "'; commands: " + known + ", help");
-    }
-    // `rumble COMMAND --help`: that command's options, whatever else was given.
-    for (const std::string& a : rest) {
-      if (a == "--help" || a == "-h") {
-        const char* text = command_help(name);
-        std::cout << (text != nullptr ? text : kUsage);
-        return kExitOk;
-      }
-    }
-    if (name == "help") {  // `rumble help [COMMAND]`
-      if (rest.empty()) {
-        std::cout << kUsage;
-        return kExitOk;
-      }
-      const char* text = command_help(rest.front());
-      if (text == nullptr)
-        throw UsageError("help: unknown command '" + rest.front() + "'; see rumble --help");
-      std::cout << text;
-      return kExitOk;
-    }
-    return it->second(rest);
+    const Command command = find_command(name);
+    if (printed_command_help(name, rest)) return kExitOk;
+    if (name == "help") return help_command(rest);
+    return command(rest);
   } catch (const UsageError& e) {
     std::cerr << "rumble: error: " << e.what() << '\n';
     return kExitConfig;

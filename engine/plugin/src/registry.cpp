@@ -98,31 +98,9 @@ std::string capabilities_defect(const rumble_factory* f) {
   return "";
 }
 
-}  // namespace
-
-const char* kind_name(rumble_kind kind) {
-  switch (kind) {
-    case RUMBLE_KIND_VEHICLE:
-      return "vehicle";
-    case RUMBLE_KIND_SOIL:
-      return "soil";
-    case RUMBLE_KIND_COUPLER:
-      return "coupler";
-  }
-  return "unknown";
-}
-
-fs::path PluginRegistry::builtin_plugin_directory() {
-  const fs::path exe = dll::program_location();
-  return exe.parent_path().parent_path() / "lib" / "rumble" / "plugins";
-}
-
-bool PluginRegistry::already_loaded(const fs::path& canonical) const {
-  return std::any_of(libraries_.begin(), libraries_.end(),
-                     [&](const auto& lib) { return lib->path == canonical; });
-}
-
-void PluginRegistry::load_library(const fs::path& requested, const std::string& origin) {
+/// The canonical path of the plugin file `requested`, which must exist and be a regular file:
+/// dlopen on a FIFO blocks until a writer comes, on a device reads it.
+fs::path regular_library_file(const fs::path& requested) {
   std::error_code ec;
   if (!fs::exists(requested, ec)) {
     throw PluginLoadError("plugin " + quoted(requested) +
@@ -130,13 +108,15 @@ void PluginRegistry::load_library(const fs::path& requested, const std::string& 
                           "scenario file) or RUMBLE_PLUGIN_PATH");
   }
   const fs::path path = fs::canonical(requested, ec);
-  // dlopen on a FIFO blocks until a writer comes, on a device reads it: regular files only.
   if (const auto status = fs::status(path, ec); !fs::is_regular_file(status)) {
     throw PluginLoadError("plugin " + quoted(requested) + ": " + file_kind(status) +
                           ", not a regular file; name a shared library (.so) file");
   }
-  if (already_loaded(path)) return;
+  return path;
+}
 
+/// The library at `path` loaded, with Rumble's entry point.
+std::shared_ptr<dll::shared_library> open_plugin_library(const fs::path& path) {
   auto library = std::make_shared<dll::shared_library>();
   try {
     // rtld_now: an unresolved symbol is a load error here, not a crash later
@@ -152,7 +132,13 @@ void PluginRegistry::load_library(const fs::path& requested, const std::string& 
                           "' entry point); was it built with rumble_add_plugin() and "
                           "RUMBLE_PLUGIN()?");
   }
-  const auto entry = library->get<const rumble_plugin_descriptor*()>(RUMBLE_PLUGIN_ENTRY_SYMBOL);
+  return library;
+}
+
+/// The library's descriptor, of an ABI this engine reads, well formed and with factories.
+const rumble_plugin_descriptor* plugin_descriptor(const dll::shared_library& library,
+                                                  const fs::path& path) {
+  const auto entry = library.get<const rumble_plugin_descriptor*()>(RUMBLE_PLUGIN_ENTRY_SYMBOL);
   const rumble_plugin_descriptor* d = entry();
   if (d == nullptr) {
     throw PluginLoadError("plugin " + quoted(path) + ": entry point returned no descriptor");
@@ -183,87 +169,153 @@ void PluginRegistry::load_library(const fs::path& requested, const std::string& 
     throw PluginLoadError("plugin " + quoted(path) + ": malformed descriptor (" + defect +
                           "); build the plugin with RUMBLE_PLUGIN() from the Rumble SDK");
   }
+  if (d->n_factories == 0) {
+    throw PluginLoadError("plugin " + quoted(path) +
+                          ": provides no component types (n_factories is 0); list the plugin's "
+                          "classes in RUMBLE_PLUGIN(name, version, Classes...)");
+  }
+  return d;
+}
+
+constexpr std::size_t kFactoryV1_0 =
+    offsetof(rumble_factory, api) + sizeof(static_cast<rumble_factory*>(nullptr)->api);
+constexpr std::size_t kFactoryV1_1 =
+    offsetof(rumble_factory, capabilities) + sizeof(rumble_factory::capabilities);
+
+/// The factories lie the plugin's sizeof(rumble_factory) apart, which a later 1.x may make
+/// larger than this host's: step by the size the plugin states (the first factory's), read only
+/// the 1.0 fields.
+const rumble_factory& factory_at(const rumble_plugin_descriptor& d, std::uint64_t i) {
+  const std::size_t stride = d.factories[0].struct_size;
+  return *reinterpret_cast<const rumble_factory*>(reinterpret_cast<const char*>(d.factories) +
+                                                  i * std::max(stride, kFactoryV1_0));
+}
+
+/// A plugin's kind is an int32_t until it is known to be one of the enum's values: casting
+/// any other number to rumble_kind is undefined behaviour (Clang's UBSan stops there).
+bool known_kind(const rumble_factory& f) {
+  return f.kind == RUMBLE_KIND_VEHICLE || f.kind == RUMBLE_KIND_SOIL ||
+         f.kind == RUMBLE_KIND_COUPLER;
+}
+
+rumble_kind kind_of(const rumble_factory& f) {
+  return known_kind(f) ? static_cast<rumble_kind>(f.kind) : RUMBLE_KIND_VEHICLE;
+}
+
+/// "" when the factory is well formed for the descriptor's ABI, else what is wrong.
+std::string factory_defect(const rumble_factory& f, const rumble_plugin_descriptor& d) {
+  const std::size_t stride = d.factories[0].struct_size;
+  std::string defect;
+  if (f.struct_size < kFactoryV1_0) {
+    defect = "struct_size " + std::to_string(f.struct_size) + " bytes, ABI 1.0 needs " +
+             std::to_string(kFactoryV1_0);
+  } else if (f.struct_size != stride) {
+    defect = "struct_size " + std::to_string(f.struct_size) + " bytes, the first factory's is " +
+             std::to_string(stride) + " (all entries of the array have one size)";
+  } else if (f.type_name == nullptr) {
+    defect = "no type name";
+  } else if (!known_kind(f)) {
+    defect = "unknown kind " + std::to_string(f.kind);
+  } else if (f.create == nullptr) {
+    defect = "no create function";
+  } else if (f.api == nullptr) {
+    defect = "no function table";
+  } else {
+    defect = function_table_defect(kind_of(f), f.api, d.abi_minor);
+  }
+  if (defect.empty() && d.abi_minor >= 1 && f.struct_size < kFactoryV1_1)
+    defect = "struct_size " + std::to_string(f.struct_size) + " bytes, ABI 1.1 needs " +
+             std::to_string(kFactoryV1_1);
+  if (defect.empty()) defect = capabilities_defect(&f);
+  if (defect.empty() && d.abi_minor >= 1 && f.capabilities != nullptr)
+    defect = declared_functions_defect(kind_of(f), f.api, f.capabilities->offers);
+  return defect;
+}
+
+/// Throws when factory i of the library at `path` is malformed.
+void check_factory(const rumble_factory& f, std::uint64_t i, const rumble_plugin_descriptor& d,
+                   const fs::path& path) {
+  const std::string defect = factory_defect(f, d);
+  if (defect.empty()) return;
+  throw PluginLoadError("plugin " + quoted(path) + ": factory " + std::to_string(i) +
+                        (f.struct_size >= kFactoryV1_0 && f.type_name != nullptr
+                             ? " ('" + std::string(f.type_name) + "')"
+                             : std::string()) +
+                        " is malformed: " + defect +
+                        "; build the plugin with RUMBLE_PLUGIN() from the Rumble SDK");
+}
+
+/// Throws when a type of the name is among those loaded before or added from this library.
+void check_unique_type(const char* type_name, const std::vector<ComponentType>& loaded_before,
+                       const std::vector<ComponentType>& added, const fs::path& path) {
+  for (const auto* existing : {&loaded_before, &added}) {
+    for (const ComponentType& t : *existing) {
+      if (t.type_name == type_name) {
+        throw PluginLoadError("plugin " + quoted(path) + ": type '" + type_name +
+                              "' is already provided by " +
+                              quoted(t.library ? t.library->path : path) +
+                              "; type names must be unique: rename one, or remove one "
+                              "library from the plugin path");
+      }
+    }
+  }
+}
+
+ComponentType component_type(const rumble_factory& f, std::uint32_t abi_minor,
+                             const std::shared_ptr<LoadedLibrary>& library) {
+  ComponentType t;
+  t.kind = kind_of(f);
+  t.type_name = f.type_name;
+  t.summary = f.summary != nullptr ? f.summary : "";
+  t.params_schema = f.params_schema != nullptr ? f.params_schema : "{}";
+  t.factory = &f;
+  t.library = library;
+  t.abi_minor = abi_minor;
+  t.capabilities = declared_capabilities(t.kind, &f);
+  return t;
+}
+
+}  // namespace
+
+const char* kind_name(rumble_kind kind) {
+  switch (kind) {
+    case RUMBLE_KIND_VEHICLE:
+      return "vehicle";
+    case RUMBLE_KIND_SOIL:
+      return "soil";
+    case RUMBLE_KIND_COUPLER:
+      return "coupler";
+  }
+  return "unknown";
+}
+
+fs::path PluginRegistry::builtin_plugin_directory() {
+  const fs::path exe = dll::program_location();
+  return exe.parent_path().parent_path() / "lib" / "rumble" / "plugins";
+}
+
+bool PluginRegistry::already_loaded(const fs::path& canonical) const {
+  return std::any_of(libraries_.begin(), libraries_.end(),
+                     [&](const auto& lib) { return lib->path == canonical; });
+}
+
+void PluginRegistry::load_library(const fs::path& requested, const std::string& origin) {
+  const fs::path path = regular_library_file(requested);
+  if (already_loaded(path)) return;
+  const std::shared_ptr<dll::shared_library> library = open_plugin_library(path);
+  const rumble_plugin_descriptor* d = plugin_descriptor(*library, path);
 
   auto loaded = std::make_shared<LoadedLibrary>();
   loaded->path = path;
   loaded->library = library;
   loaded->descriptor = d;
   loaded->origin = origin;
-
-  if (d->n_factories == 0) {
-    throw PluginLoadError("plugin " + quoted(path) +
-                          ": provides no component types (n_factories is 0); list the plugin's "
-                          "classes in RUMBLE_PLUGIN(name, version, Classes...)");
-  }
-  // The factories lie the plugin's sizeof(rumble_factory) apart, which a later 1.x may make
-  // larger than this host's: step by the size the plugin states, read only the 1.0 fields.
-  constexpr std::size_t kFactoryV1_0 =
-      offsetof(rumble_factory, api) + sizeof(static_cast<rumble_factory*>(nullptr)->api);
-  const std::size_t stride = d->factories[0].struct_size;
   std::vector<ComponentType> added;
   for (std::uint64_t i = 0; i < d->n_factories; ++i) {
-    const auto& f = *reinterpret_cast<const rumble_factory*>(
-        reinterpret_cast<const char*>(d->factories) + i * std::max(stride, kFactoryV1_0));
-    // A plugin's kind is an int32_t until it is known to be one of the enum's values: casting
-    // any other number to rumble_kind is undefined behaviour (Clang's UBSan stops there).
-    const bool known_kind = f.kind == RUMBLE_KIND_VEHICLE || f.kind == RUMBLE_KIND_SOIL ||
-                            f.kind == RUMBLE_KIND_COUPLER;
-    const auto kind = known_kind ? static_cast<rumble_kind>(f.kind) : RUMBLE_KIND_VEHICLE;
-    std::string defect;
-    if (f.struct_size < kFactoryV1_0) {
-      defect = "struct_size " + std::to_string(f.struct_size) + " bytes, ABI 1.0 needs " +
-               std::to_string(kFactoryV1_0);
-    } else if (f.struct_size != stride) {
-      defect = "struct_size " + std::to_string(f.struct_size) + " bytes, the first factory's is " +
-               std::to_string(stride) + " (all entries of the array have one size)";
-    } else if (f.type_name == nullptr) {
-      defect = "no type name";
-    } else if (!known_kind) {
-      defect = "unknown kind " + std::to_string(f.kind);
-    } else if (f.create == nullptr) {
-      defect = "no create function";
-    } else if (f.api == nullptr) {
-      defect = "no function table";
-    } else {
-      defect = function_table_defect(kind, f.api, d->abi_minor);
-    }
-    constexpr std::size_t kFactoryV1_1 =
-        offsetof(rumble_factory, capabilities) + sizeof(rumble_factory::capabilities);
-    if (defect.empty() && d->abi_minor >= 1 && f.struct_size < kFactoryV1_1)
-      defect = "struct_size " + std::to_string(f.struct_size) + " bytes, ABI 1.1 needs " +
-               std::to_string(kFactoryV1_1);
-    if (defect.empty()) defect = capabilities_defect(&f);
-    if (defect.empty() && d->abi_minor >= 1 && f.capabilities != nullptr)
-      defect = declared_functions_defect(kind, f.api, f.capabilities->offers);
-    if (!defect.empty()) {
-      throw PluginLoadError("plugin " + quoted(path) + ": factory " + std::to_string(i) +
-                            (f.struct_size >= kFactoryV1_0 && f.type_name != nullptr
-                                 ? " ('" + std::string(f.type_name) + "')"
-                                 : std::string()) +
-                            " is malformed: " + defect +
-                            "; build the plugin with RUMBLE_PLUGIN() from the Rumble SDK");
-    }
-    for (const auto* existing : {&types_, &added}) {
-      for (const ComponentType& t : *existing) {
-        if (t.type_name == f.type_name) {
-          throw PluginLoadError("plugin " + quoted(path) + ": type '" + f.type_name +
-                                "' is already provided by " +
-                                quoted(t.library ? t.library->path : path) +
-                                "; type names must be unique: rename one, or remove one "
-                                "library from the plugin path");
-        }
-      }
-    }
-    ComponentType t;
-    t.kind = kind;
-    t.type_name = f.type_name;
-    t.summary = f.summary != nullptr ? f.summary : "";
-    t.params_schema = f.params_schema != nullptr ? f.params_schema : "{}";
-    t.factory = &f;
-    t.library = loaded;
-    t.abi_minor = d->abi_minor;
-    t.capabilities = declared_capabilities(kind, &f);
-    added.push_back(std::move(t));
+    const rumble_factory& f = factory_at(*d, i);
+    check_factory(f, i, *d, path);
+    check_unique_type(f.type_name, types_, added, path);
+    added.push_back(component_type(f, d->abi_minor, loaded));
   }
   libraries_.push_back(loaded);
   types_.insert(types_.end(), added.begin(), added.end());

@@ -434,6 +434,445 @@ class CsvOut {
   bool first_ = true;
 };
 
+// ---------------------------------------------------------------------------------------------
+// The steps of post_process
+
+/// The uniform grid the record is analysed on; a warning when it had to be resampled onto it.
+UniformGrid record_grid(const CsvTable& table, const fs::path& results_dir,
+                        const PostOptions& options, std::vector<std::string>& warnings) {
+  const UniformGrid grid =
+      uniform_grid(table.time, "receivers.csv in " + quoted(results_dir), options.max_step_ratio);
+  if (grid.resampled)
+    warnings.push_back(
+        "receivers.csv: the time step varies; the record was linearly "
+        "interpolated onto a uniform step of " +
+        number_text(grid.dt, 9) + " s (the median step)");
+  return grid;
+}
+
+void check_velocity_reference(const PostOptions& options) {
+  if (!(options.velocity_reference > 0.0))
+    throw std::runtime_error("post-processing option velocity_reference = " +
+                             number_text(options.velocity_reference, 9) +
+                             " m/s is not > 0; use 1e-9 (ISO 1683) or 2.54e-8 (VdB)");
+}
+
+/// What every record is measured with: its grid, the options, the spectrum analyzers (Hann for
+/// the amplitude spectra, rectangular for the band powers) and the third-octave bands.
+struct Measuring {
+  Measuring(const UniformGrid& g, const PostOptions& o)
+      : grid(g),
+        options(o),
+        hann(g.count, Window::kHann),
+        rect(g.count, Window::kRectangular),
+        bands(resolved_bands(third_octave_bands(o.third_octave_f_min, o.third_octave_f_max),
+                             g.count, g.dt)) {}
+  const UniformGrid& grid;
+  const PostOptions& options;
+  SpectrumAnalyzer hann, rect;
+  const std::vector<ThirdOctaveBand> bands;
+};
+
+/// One velocity component on the grid with its indicators: peak, amplitude spectrum, dominant
+/// frequency, KB_F,max, v_eff,max, rms and band levels.
+ComponentResult measure_component(const char* component, const std::vector<double>& time,
+                                  const std::vector<double>& values, Measuring& m) {
+  const double dt = m.grid.dt;
+  ComponentResult cr;
+  cr.component = component;
+  cr.v = on_grid(time, values, m.grid);
+  cr.peak = peak_abs(cr.v.values);
+  cr.amplitude = m.hann.amplitude(cr.v.values, dt);
+  // The peak's half cycle (event-bound); a peak whose half cycle never closes in the record
+  // falls back to the spectrum's largest amplitude.
+  // The frequency of a half cycle lasting 1e308 s is 0 Hz (underflow), where no guide value
+  // is defined (std::invalid_argument escaped; found by the post fuzz target): the spectrum's.
+  cr.dominant_f = peak_half_cycle_frequency(cr.v.values, cr.peak.index, dt);
+  if (!(cr.dominant_f > 0.0) || !std::isfinite(cr.dominant_f))
+    cr.dominant_f = dominant_frequency(cr.amplitude, m.options.dominant_f_min);
+  const KbResult kb = kb_f(cr.v);
+  cr.kb_f_max = kb.kb_f_max;
+  cr.t_kb_f_max = kb.t_max;
+  cr.v_eff_max = effective_velocity_max(cr.v);
+  cr.v_rms = effective_value(cr.v.values);
+  cr.bands = band_levels(m.rect.power(cr.v.values, dt), m.bands, m.options.velocity_reference);
+  return cr;
+}
+
+/// The receiver's indicators over its components: the vertical and vector peaks, the governing
+/// component (the largest peak), the largest KB_F,max and v_eff,max, and the guide values at the
+/// governing component's dominant frequency.
+void combine_components(ReceiverResult& rr) {
+  const ComponentResult& z = rr.vz();
+  rr.ppv_z = z.peak.value;
+  rr.t_ppv_z = z.v.time(z.peak.index);
+  if (rr.rx->three_component()) {
+    const Peak p = peak_vector(rr.components[0].v.values, rr.components[1].v.values,
+                               rr.components[2].v.values);
+    rr.ppv_3c = p.value;
+    rr.t_ppv_3c = z.v.time(p.index);
+  }
+  for (std::size_t i = 0; i < rr.components.size(); ++i) {
+    if (rr.components[i].peak.value > rr.components[rr.governing].peak.value) rr.governing = i;
+    rr.kb_f_max = std::max(rr.kb_f_max, rr.components[i].kb_f_max);
+    rr.v_eff_max = std::max(rr.v_eff_max, rr.components[i].v_eff_max);
+  }
+  const ComponentResult& g = rr.components[rr.governing];
+  for (int l = 0; l < 3; ++l)
+    rr.din[l] = std::isfinite(g.dominant_f)
+                    ? check_din4150_3(kDinLines[l], g.peak.value, g.dominant_f)
+                    : nan_check();
+  for (int l = 0; l < 2; ++l)
+    rr.bs[l] = std::isfinite(g.dominant_f) ? check_bs7385_2(kBsLines[l], g.peak.value, g.dominant_f)
+                                           : nan_check();
+}
+
+ReceiverResult measure_receiver(const Receiver& rx, const CsvTable& table, Measuring& m,
+                                std::vector<std::string>& warnings) {
+  ReceiverResult rr;
+  rr.rx = &rx;
+  for (int c = 0; c < 3; ++c)
+    if (rx.column[c])
+      rr.components.push_back(
+          measure_component(kComponents[c], table.time, table.columns[*rx.column[c]], m));
+  combine_components(rr);
+  measure_resolved_band(rr, m.grid.dt, m.rect, warnings);
+  if (!std::isfinite(rr.components[rr.governing].dominant_f))
+    warnings.push_back("receiver '" + rx.name + "': no spectral content above " +
+                       number_text(m.options.dominant_f_min, 9) +
+                       " Hz, so no dominant frequency and no guide values");
+  return rr;
+}
+
+/// Every receiver measured, in rows by distance (the PPV-versus-distance table), as
+/// ppv_versus_distance orders them.
+std::vector<ReceiverResult> measure_receivers(const RunRecord& run, Measuring& m,
+                                              std::vector<std::string>& warnings) {
+  std::vector<ReceiverResult> results;
+  for (const Receiver& rx : run.receivers)
+    results.push_back(measure_receiver(rx, run.table, m, warnings));
+  std::stable_sort(results.begin(), results.end(),
+                   [](const ReceiverResult& a, const ReceiverResult& b) {
+                     return std::tie(a.rx->distance, a.rx->depth, a.rx->name) <
+                            std::tie(b.rx->distance, b.rx->depth, b.rx->name);
+                   });
+  return results;
+}
+
+/// The receivers whose vertical velocity gets a CWT (indices into results): those the options
+/// name, else the nearest to each of the CWT distances.
+std::vector<std::size_t> choose_cwt_receivers(const std::vector<ReceiverResult>& results,
+                                              const PostOptions& options,
+                                              const fs::path& results_dir) {
+  std::vector<std::size_t> cwt_of;
+  if (options.cwt_receivers.empty()) {
+    std::vector<Receiver> ordered;
+    for (const ReceiverResult& rr : results) ordered.push_back(*rr.rx);
+    return default_cwt_receivers(ordered, options.cwt_distances);
+  }
+  for (const std::string& name : options.cwt_receivers) {
+    const auto it = std::find_if(results.begin(), results.end(),
+                                 [&](const ReceiverResult& rr) { return rr.rx->name == name; });
+    if (it == results.end()) {
+      std::vector<std::string> names;
+      for (const ReceiverResult& rr : results) names.push_back(rr.rx->name);
+      throw std::runtime_error("CWT receiver '" + name + "' is not in receivers.csv in " +
+                               quoted(results_dir) + "; its receivers are " + list_names(names) +
+                               ". Name one of them");
+    }
+    cwt_of.push_back(static_cast<std::size_t>(it - results.begin()));
+  }
+  return cwt_of;
+}
+
+/// The CWT's options within the record's sampling: f_max at most 0.4 of the sampling rate, f_min
+/// raised to what the allowed zero padding reaches (each change a warning); cwt_of is emptied
+/// when no frequency remains.
+CwtOptions cwt_options_for(const PostOptions& options, const UniformGrid& grid,
+                           std::vector<std::size_t>& cwt_of, std::vector<std::string>& warnings) {
+  const std::size_t n = grid.count;
+  CwtOptions cwt_options;
+  cwt_options.omega0 = options.cwt_omega0;
+  cwt_options.f_min = options.cwt_f_min;
+  cwt_options.f_max = std::min(options.cwt_f_max, 0.4 / grid.dt);
+  cwt_options.n_freq = options.cwt_n_freq;
+  cwt_options.time_stride = std::max<std::size_t>(
+      1, (n + options.cwt_max_times - 1) / std::max<std::size_t>(1, options.cwt_max_times));
+  if (cwt_options.f_max < options.cwt_f_max)
+    warnings.push_back("CWT: f_max lowered from " + number_text(options.cwt_f_max, 9) + " Hz to " +
+                       number_text(cwt_options.f_max, 9) + " Hz (0.4 of the sampling rate)");
+  // The zero padding for f_min's wavelet is 6 scales, 5.8 s at 1 Hz whatever the record's
+  // length: a step of 1e-300 s asked for 1e300 samples (found by the post fuzz target,
+  // docs/fuzzing.md). Beyond 64 records (and 65536 samples: 1 Hz at steps of 89 us or more) the
+  // wavelet at f_min outlasts the record tenfold and its |W| is all cone of influence: f_min rises
+  // to the lowest frequency within that padding (it falls as 1 / f).
+  const double padding_allowed =
+      std::min(kMaxCwtPadding, std::max(64.0 * static_cast<double>(n), 65536.0));
+  if (const double padding = cwt_padding(grid.dt, cwt_options);
+      !cwt_of.empty() && padding > padding_allowed) {
+    const double raised = cwt_options.f_min * padding / padding_allowed;
+    warnings.push_back("CWT: f_min raised from " + number_text(cwt_options.f_min, 9) + " Hz to " +
+                       number_text(raised, 9) + " Hz: at the record's step of " +
+                       number_text(grid.dt, 9) + " s its wavelet needs " + number_text(padding, 9) +
+                       " samples of zero padding, more than " + number_text(padding_allowed, 9) +
+                       " (64 times the record's samples, at least 65536)");
+    cwt_options.f_min = raised;
+  }
+  if (!cwt_of.empty() && !(cwt_options.f_min < cwt_options.f_max)) {
+    warnings.push_back("CWT skipped: f_min = " + number_text(cwt_options.f_min, 9) +
+                       " Hz is not below f_max = " + number_text(cwt_options.f_max, 9) + " Hz");
+    cwt_of.clear();
+  }
+  return cwt_options;
+}
+
+std::vector<std::string> ppv_header() {
+  std::vector<std::string> header = {"receiver", "x [m]", "distance [m]", "depth [m]",
+                                     "PPV_z [m/s]", "t(PPV_z) [s]", "PPV_3c [m/s]",
+                                     "PPV_max_component [m/s]", "component", "f_dom [Hz]",
+                                     "KB_F,max [m/s]", "v_eff,F,max [m/s]", "v_rms_z [m/s]",
+                                     // The resolved band (nan where the soil does not say).
+                                     "f_resolved [Hz]", "energy_z above f_resolved [-]",
+                                     "PPV_z resolved [m/s]", "PPV_3c resolved [m/s]"};
+  for (auto line : kDinLines) {
+    header.push_back(name(line) + " [m/s]");
+    header.push_back("PPV / " + name(line) + " [-]");
+  }
+  for (auto line : kBsLines) {
+    header.push_back(name(line) + " [m/s]");
+    header.push_back("PPV / " + name(line) + " [-]");
+  }
+  // Within the resolved band: the other indicators of the low-passed record.
+  header.push_back("KB_F,max resolved [m/s]");
+  header.push_back("f_dom resolved [Hz]");
+  for (auto line : kDinLines) header.push_back("PPV / " + name(line) + " resolved [-]");
+  for (auto line : kBsLines) header.push_back("PPV / " + name(line) + " resolved [-]");
+  return header;
+}
+
+/// ppv.csv: a row per receiver, by distance.
+void write_ppv_csv(const std::vector<ReceiverResult>& results, PostResult& result) {
+  CsvOut out(result.directory / "ppv.csv", ppv_header());
+  for (const ReceiverResult& rr : results) {
+    const ComponentResult& g = rr.components[rr.governing];
+    out << rr.rx->name << rr.rx->x << rr.rx->distance << rr.rx->depth << rr.ppv_z << rr.t_ppv_z
+        << rr.ppv_3c << g.peak.value << g.component << g.dominant_f << rr.kb_f_max << rr.v_eff_max
+        << rr.vz().v_rms << rr.rx->resolved_f << rr.energy_above_resolved << rr.ppv_z_resolved
+        << rr.ppv_3c_resolved;
+    for (const GuideCheck& c : rr.din) out << c.guide << c.ratio;
+    for (const GuideCheck& c : rr.bs) out << c.guide << c.ratio;
+    out << rr.kb_f_max_resolved << rr.dominant_f_resolved;
+    for (const GuideCheck& c : rr.din_resolved) out << c.ratio;
+    for (const GuideCheck& c : rr.bs_resolved) out << c.ratio;
+    out.end_row();
+  }
+  out.close();
+  result.files.push_back(result.directory / "ppv.csv");
+}
+
+/// spectra.csv: the amplitude spectra of every component up to f_max, a column each.
+void write_spectra_csv(const std::vector<ReceiverResult>& results, double f_max,
+                       PostResult& result) {
+  std::vector<std::string> header = {"f [Hz]"};
+  for (const ReceiverResult& rr : results)
+    for (const ComponentResult& c : rr.components)
+      header.push_back(rr.rx->name + " " + c.component + " [m/s]");
+  CsvOut out(result.directory / "spectra.csv", header);
+  const Spectrum& first = results.front().components.front().amplitude;
+  for (std::size_t k = 0; k < first.values.size(); ++k) {
+    if (first.frequency(k) > f_max) break;
+    out << first.frequency(k);
+    for (const ReceiverResult& rr : results)
+      for (const ComponentResult& c : rr.components) out << c.amplitude.values[k];
+    out.end_row();
+  }
+  out.close();
+  result.files.push_back(result.directory / "spectra.csv");
+}
+
+/// third_octave.csv: a row per band, the levels of every component in dB re the reference.
+void write_third_octave_csv(const std::vector<ReceiverResult>& results,
+                            const std::vector<ThirdOctaveBand>& bands, double velocity_reference,
+                            PostResult& result) {
+  const std::string ref_label = "dB re " + number_text(velocity_reference, 9) + " m/s";
+  std::vector<std::string> header = {"band [Hz]", "f_m [Hz]", "f_lower [Hz]", "f_upper [Hz]"};
+  for (const ReceiverResult& rr : results)
+    for (const ComponentResult& c : rr.components)
+      header.push_back(rr.rx->name + " " + c.component + " L_v [" + ref_label + "]");
+  CsvOut out(result.directory / "third_octave.csv", header);
+  for (std::size_t b = 0; b < bands.size(); ++b) {
+    out << bands[b].nominal << bands[b].centre << bands[b].lower << bands[b].upper;
+    for (const ReceiverResult& rr : results)
+      for (const ComponentResult& c : rr.components) out << c.bands[b].level;
+    out.end_row();
+  }
+  out.close();
+  result.files.push_back(result.directory / "third_octave.csv");
+}
+
+/// cwt_<name>.csv for each chosen receiver (names made distinct); post.json's "cwt" entries.
+json write_scalograms(const std::vector<ReceiverResult>& results,
+                      const std::vector<std::size_t>& cwt_of, const UniformGrid& grid,
+                      const CwtOptions& cwt_options, PostResult& result) {
+  json cwt_json = json::array();
+  if (cwt_of.empty()) return cwt_json;
+  MorletCwt cwt(grid.count, grid.dt, cwt_options);
+  std::set<std::string> used;
+  for (std::size_t i : cwt_of) {
+    const ReceiverResult& rr = results[i];
+    const Scalogram s = cwt.transform(rr.vz().v);
+    std::string file = file_name_for(rr.rx->name);
+    for (int k = 2; used.count(file); ++k)
+      file = file_name_for(rr.rx->name + "_" + std::to_string(k));
+    used.insert(file);
+    std::vector<std::string> header = {"t [s]", "f_coi [Hz]"};
+    for (double f : s.frequency) header.push_back("|W| " + number_text(f, 9) + " Hz [m/s]");
+    CsvOut out(result.directory / file, header);
+    for (std::size_t j = 0; j < s.time.size(); ++j) {
+      out << s.time[j] << s.coi_frequency[j];
+      for (std::size_t f = 0; f < s.frequency.size(); ++f) out << s.at(f, j);
+      out.end_row();
+    }
+    out.close();
+    result.files.push_back(result.directory / file);
+    double w_max = 0.0;
+    for (double w : s.magnitude) w_max = std::max(w_max, w);
+    cwt_json.push_back({{"receiver", rr.rx->name},
+                        {"component", "vz"},
+                        {"file", file},
+                        {"max_abs_w_m_s", number_or_null(w_max)}});
+  }
+  return cwt_json;
+}
+
+json options_json(const PostOptions& options, const CwtOptions& cwt_options) {
+  return {{"cwt_receivers", options.cwt_receivers},
+          {"cwt_distances_m", options.cwt_distances},
+          {"cwt_f_min_hz", cwt_options.f_min},
+          {"cwt_f_max_hz", cwt_options.f_max},
+          {"cwt_n_freq", cwt_options.n_freq},
+          {"cwt_omega0", cwt_options.omega0},
+          {"cwt_time_stride", cwt_options.time_stride},
+          {"velocity_reference_m_s", options.velocity_reference},
+          {"spectrum_window", "hann"},
+          {"third_octave_window", "rectangular"},
+          {"dominant_f_min_hz", options.dominant_f_min},
+          {"kb_tau_s", kFastTau},
+          {"kb_corner_hz", kKbCornerHz}};
+}
+
+/// post.json's "components" of a receiver: each component's indicators and band levels.
+json components_json(const ReceiverResult& rr) {
+  json components = json::object();
+  for (const ComponentResult& c : rr.components) {
+    json levels = json::array();
+    for (const BandLevel& b : c.bands)
+      levels.push_back(
+          {{"band_hz", b.band.nominal}, {"rms_m_s", b.rms}, {"level_db", number_or_null(b.level)}});
+    components[c.component] = {{"ppv_m_s", number_or_null(c.peak.value)},
+                               {"t_ppv_s", c.v.time(c.peak.index)},
+                               {"dominant_frequency_hz", number_or_null(c.dominant_f)},
+                               {"kb_f_max_m_s", number_or_null(c.kb_f_max)},
+                               {"t_kb_f_max_s", c.t_kb_f_max},
+                               {"v_eff_f_max_m_s", number_or_null(c.v_eff_max)},
+                               {"v_rms_m_s", number_or_null(c.v_rms)},
+                               {"third_octave", levels}};
+  }
+  return components;
+}
+
+/// post.json's "resolved_band" of a receiver.
+json resolved_band_json(const ReceiverResult& rr) {
+  return {{"f_hz", number_or_null(rr.rx->resolved_f)},
+          {"energy_z_above", number_or_null(rr.energy_above_resolved)},
+          {"ppv_z_m_s", number_or_null(rr.ppv_z_resolved)},
+          {"ppv_3c_m_s", number_or_null(rr.ppv_3c_resolved)},
+          {"kb_f_max_m_s", number_or_null(rr.kb_f_max_resolved)},
+          {"dominant_frequency_hz", number_or_null(rr.dominant_f_resolved)},
+          {"din4150_3_ratios",
+           {number_or_null(rr.din_resolved[0].ratio), number_or_null(rr.din_resolved[1].ratio),
+            number_or_null(rr.din_resolved[2].ratio)}},
+          {"bs7385_2_ratios",
+           {number_or_null(rr.bs_resolved[0].ratio), number_or_null(rr.bs_resolved[1].ratio)}},
+          {"low_pass", "zero-phase Butterworth order 4 (-3 dB at f_hz)"},
+          {"warning_share", kUnresolvedShare}};
+}
+
+/// post.json's entry of a receiver.
+json receiver_json(const ReceiverResult& rr) {
+  const ComponentResult& g = rr.components[rr.governing];
+  json din = json::array(), bs = json::array();
+  for (int l = 0; l < 3; ++l)
+    din.push_back({{"line", l + 1},
+                   {"guide_m_s", number_or_null(rr.din[l].guide)},
+                   {"ratio", number_or_null(rr.din[l].ratio)}});
+  for (int l = 0; l < 2; ++l)
+    bs.push_back({{"line", l + 1},
+                  {"guide_m_s", number_or_null(rr.bs[l].guide)},
+                  {"ratio", number_or_null(rr.bs[l].ratio)}});
+  return {{"name", rr.rx->name},
+          {"x_m", number_or_null(rr.rx->x)},
+          {"distance_m", rr.rx->distance},
+          {"depth_m", rr.rx->depth},
+          {"ppv_z_m_s", number_or_null(rr.ppv_z)},
+          {"t_ppv_z_s", rr.t_ppv_z},
+          {"ppv_3c_m_s", number_or_null(rr.ppv_3c)},
+          {"t_ppv_3c_s", number_or_null(rr.t_ppv_3c)},
+          {"resolved_band", resolved_band_json(rr)},
+          {"governing_component", g.component},
+          {"ppv_max_component_m_s", number_or_null(g.peak.value)},
+          {"dominant_frequency_hz", number_or_null(g.dominant_f)},
+          {"kb_f_max_m_s", number_or_null(rr.kb_f_max)},
+          {"v_eff_f_max_m_s", number_or_null(rr.v_eff_max)},
+          {"din4150_3", din},
+          {"bs7385_2", bs},
+          {"components", components_json(rr)}};
+}
+
+/// What post_process found, for post.json.
+struct Findings {
+  const RunRecord& run;
+  const UniformGrid& grid;
+  const std::vector<ThirdOctaveBand>& bands;
+  const std::vector<ReceiverResult>& receivers;
+  const CwtOptions& cwt_options;
+};
+
+/// post.json: the numbers of the CSV files with the options, the sampling and the files written
+/// (the report is also result.report).
+void write_post_json(const fs::path& results_dir, const PostOptions& options, const Findings& f,
+                     json cwt_json, PostResult& result) {
+  json& report = result.report;
+  report["results_directory"] = results_dir.string();
+  report["source"] = {{"file", "receivers.csv"}, {"form", f.run.form}};
+  const std::size_t n = f.grid.count;
+  report["sampling"] = {{"t0_s", f.grid.t0},
+                        {"dt_s", f.grid.dt},
+                        {"samples", n},
+                        {"duration_s", static_cast<double>(n) * f.grid.dt},
+                        {"resampled", f.grid.resampled}};
+  report["options"] = options_json(options, f.cwt_options);
+  json receivers = json::array();
+  for (const ReceiverResult& rr : f.receivers) receivers.push_back(receiver_json(rr));
+  report["receivers"] = receivers;
+  json bands_json = json::array();
+  for (const ThirdOctaveBand& b : f.bands)
+    bands_json.push_back({{"band_hz", b.nominal},
+                          {"f_m_hz", b.centre},
+                          {"f_lower_hz", b.lower},
+                          {"f_upper_hz", b.upper}});
+  report["third_octave_bands"] = bands_json;
+  report["cwt"] = std::move(cwt_json);
+  report["warnings"] = result.warnings;
+  json files = json::array();
+  for (const fs::path& file : result.files) files.push_back(file.filename().string());
+  files.push_back("post.json");
+  report["files"] = files;
+  const fs::path path = result.directory / "post.json";
+  write_whole(path, report.dump(2) + "\n");
+  result.files.push_back(path);
+}
+
 }  // namespace
 
 PostOptions options_from_scenario(const nlohmann::json& scenario, PostOptions base) {
@@ -465,348 +904,22 @@ PostResult post_process(const fs::path& results_dir, const PostOptions& options)
   RunRecord run = read_run(results_dir);
   result.warnings = run.table.warnings;
   cut_at_divergence(run, result.warnings, results_dir);
-  const CsvTable& table = run.table;
-  const UniformGrid grid =
-      uniform_grid(table.time, "receivers.csv in " + quoted(results_dir), options.max_step_ratio);
-  if (grid.resampled)
-    result.warnings.push_back(
-        "receivers.csv: the time step varies; the record was linearly "
-        "interpolated onto a uniform step of " +
-        number_text(grid.dt, 9) + " s (the median step)");
-  if (!(options.velocity_reference > 0.0))
-    throw std::runtime_error("post-processing option velocity_reference = " +
-                             number_text(options.velocity_reference, 9) +
-                             " m/s is not > 0; use 1e-9 (ISO 1683) or 2.54e-8 (VdB)");
+  const UniformGrid grid = record_grid(run.table, results_dir, options, result.warnings);
+  check_velocity_reference(options);
 
-  // --- per receiver and component
-  const std::size_t n = grid.count;
-  SpectrumAnalyzer hann(n, Window::kHann), rect(n, Window::kRectangular);
-  const std::vector<ThirdOctaveBand> bands = resolved_bands(
-      third_octave_bands(options.third_octave_f_min, options.third_octave_f_max), n, grid.dt);
-  std::vector<ReceiverResult> results;
-  for (const Receiver& rx : run.receivers) {
-    ReceiverResult rr;
-    rr.rx = &rx;
-    for (int c = 0; c < 3; ++c) {
-      if (!rx.column[c]) continue;
-      ComponentResult cr;
-      cr.component = kComponents[c];
-      cr.v = on_grid(table.time, table.columns[*rx.column[c]], grid);
-      cr.peak = peak_abs(cr.v.values);
-      cr.amplitude = hann.amplitude(cr.v.values, grid.dt);
-      // The peak's half cycle (event-bound); a peak whose half cycle never closes in the record
-      // falls back to the spectrum's largest amplitude.
-      // The frequency of a half cycle lasting 1e308 s is 0 Hz (underflow), where no guide value
-      // is defined (std::invalid_argument escaped; found by the post fuzz target): the spectrum's.
-      cr.dominant_f = peak_half_cycle_frequency(cr.v.values, cr.peak.index, grid.dt);
-      if (!(cr.dominant_f > 0.0) || !std::isfinite(cr.dominant_f))
-        cr.dominant_f = dominant_frequency(cr.amplitude, options.dominant_f_min);
-      const KbResult kb = kb_f(cr.v);
-      cr.kb_f_max = kb.kb_f_max;
-      cr.t_kb_f_max = kb.t_max;
-      cr.v_eff_max = effective_velocity_max(cr.v);
-      cr.v_rms = effective_value(cr.v.values);
-      cr.bands = band_levels(rect.power(cr.v.values, grid.dt), bands, options.velocity_reference);
-      rr.components.push_back(std::move(cr));
-    }
-    const ComponentResult& z = rr.vz();
-    rr.ppv_z = z.peak.value;
-    rr.t_ppv_z = z.v.time(z.peak.index);
-    if (rx.three_component()) {
-      const Peak p = peak_vector(rr.components[0].v.values, rr.components[1].v.values,
-                                 rr.components[2].v.values);
-      rr.ppv_3c = p.value;
-      rr.t_ppv_3c = z.v.time(p.index);
-    }
-    for (std::size_t i = 0; i < rr.components.size(); ++i) {
-      if (rr.components[i].peak.value > rr.components[rr.governing].peak.value) rr.governing = i;
-      rr.kb_f_max = std::max(rr.kb_f_max, rr.components[i].kb_f_max);
-      rr.v_eff_max = std::max(rr.v_eff_max, rr.components[i].v_eff_max);
-    }
-    const ComponentResult& g = rr.components[rr.governing];
-    for (int l = 0; l < 3; ++l)
-      rr.din[l] = std::isfinite(g.dominant_f)
-                      ? check_din4150_3(kDinLines[l], g.peak.value, g.dominant_f)
-                      : nan_check();
-    for (int l = 0; l < 2; ++l)
-      rr.bs[l] = std::isfinite(g.dominant_f)
-                     ? check_bs7385_2(kBsLines[l], g.peak.value, g.dominant_f)
-                     : nan_check();
-    measure_resolved_band(rr, grid.dt, rect, result.warnings);
-    if (!std::isfinite(g.dominant_f))
-      result.warnings.push_back("receiver '" + rx.name + "': no spectral content above " +
-                                number_text(options.dominant_f_min, 9) +
-                                " Hz, so no dominant frequency and no guide values");
-    results.push_back(std::move(rr));
-  }
-  // Rows by distance (the PPV-versus-distance table), as ppv_versus_distance orders them.
-  std::stable_sort(results.begin(), results.end(),
-                   [](const ReceiverResult& a, const ReceiverResult& b) {
-                     return std::tie(a.rx->distance, a.rx->depth, a.rx->name) <
-                            std::tie(b.rx->distance, b.rx->depth, b.rx->name);
-                   });
+  Measuring measuring(grid, options);
+  const std::vector<ReceiverResult> results = measure_receivers(run, measuring, result.warnings);
+  std::vector<std::size_t> cwt_of = choose_cwt_receivers(results, options, results_dir);
+  const CwtOptions cwt_options = cwt_options_for(options, grid, cwt_of, result.warnings);
 
-  // --- CWT receivers
-  std::vector<std::size_t> cwt_of;  // indices into results
-  if (options.cwt_receivers.empty()) {
-    std::vector<Receiver> ordered;
-    for (const ReceiverResult& rr : results) ordered.push_back(*rr.rx);
-    cwt_of = default_cwt_receivers(ordered, options.cwt_distances);
-  } else {
-    for (const std::string& name : options.cwt_receivers) {
-      const auto it = std::find_if(results.begin(), results.end(),
-                                   [&](const ReceiverResult& rr) { return rr.rx->name == name; });
-      if (it == results.end()) {
-        std::vector<std::string> names;
-        for (const ReceiverResult& rr : results) names.push_back(rr.rx->name);
-        throw std::runtime_error("CWT receiver '" + name + "' is not in receivers.csv in " +
-                                 quoted(results_dir) + "; its receivers are " + list_names(names) +
-                                 ". Name one of them");
-      }
-      cwt_of.push_back(static_cast<std::size_t>(it - results.begin()));
-    }
-  }
-  CwtOptions cwt_options;
-  cwt_options.omega0 = options.cwt_omega0;
-  cwt_options.f_min = options.cwt_f_min;
-  cwt_options.f_max = std::min(options.cwt_f_max, 0.4 / grid.dt);
-  cwt_options.n_freq = options.cwt_n_freq;
-  cwt_options.time_stride = std::max<std::size_t>(
-      1, (n + options.cwt_max_times - 1) / std::max<std::size_t>(1, options.cwt_max_times));
-  if (cwt_options.f_max < options.cwt_f_max)
-    result.warnings.push_back("CWT: f_max lowered from " + number_text(options.cwt_f_max, 9) +
-                              " Hz to " + number_text(cwt_options.f_max, 9) +
-                              " Hz (0.4 of the sampling rate)");
-  // The zero padding for f_min's wavelet is 6 scales, 5.8 s at 1 Hz whatever the record's
-  // length: a step of 1e-300 s asked for 1e300 samples (found by the post fuzz target,
-  // docs/fuzzing.md). Beyond 64 records (and 65536 samples: 1 Hz at steps of 89 us or more) the
-  // wavelet at f_min outlasts the record tenfold and its |W| is all cone of influence: f_min rises
-  // to the lowest frequency within that padding (it falls as 1 / f).
-  const double padding_allowed =
-      std::min(kMaxCwtPadding, std::max(64.0 * static_cast<double>(n), 65536.0));
-  if (const double padding = cwt_padding(grid.dt, cwt_options);
-      !cwt_of.empty() && padding > padding_allowed) {
-    const double raised = cwt_options.f_min * padding / padding_allowed;
-    result.warnings.push_back(
-        "CWT: f_min raised from " + number_text(cwt_options.f_min, 9) + " Hz to " +
-        number_text(raised, 9) + " Hz: at the record's step of " + number_text(grid.dt, 9) +
-        " s its wavelet needs " + number_text(padding, 9) + " samples of zero padding, more than " +
-        number_text(padding_allowed, 9) + " (64 times the record's samples, at least 65536)");
-    cwt_options.f_min = raised;
-  }
-  if (!cwt_of.empty() && !(cwt_options.f_min < cwt_options.f_max)) {
-    result.warnings.push_back("CWT skipped: f_min = " + number_text(cwt_options.f_min, 9) +
-                              " Hz is not below f_max = " + number_text(cwt_options.f_max, 9) +
-                              " Hz");
-    cwt_of.clear();
-  }
-
-  // --- write
   result.directory = results_dir / "post";
   make_directory(result.directory);
-  const std::string ref_label = "dB re " + number_text(options.velocity_reference, 9) + " m/s";
-
-  {  // ppv.csv
-    std::vector<std::string> header = {"receiver", "x [m]", "distance [m]", "depth [m]",
-                                       "PPV_z [m/s]", "t(PPV_z) [s]", "PPV_3c [m/s]",
-                                       "PPV_max_component [m/s]", "component", "f_dom [Hz]",
-                                       "KB_F,max [m/s]", "v_eff,F,max [m/s]", "v_rms_z [m/s]",
-                                       // The resolved band (nan where the soil does not say).
-                                       "f_resolved [Hz]", "energy_z above f_resolved [-]",
-                                       "PPV_z resolved [m/s]", "PPV_3c resolved [m/s]"};
-    for (auto line : kDinLines) {
-      header.push_back(name(line) + " [m/s]");
-      header.push_back("PPV / " + name(line) + " [-]");
-    }
-    for (auto line : kBsLines) {
-      header.push_back(name(line) + " [m/s]");
-      header.push_back("PPV / " + name(line) + " [-]");
-    }
-    // Within the resolved band: the other indicators of the low-passed record.
-    header.push_back("KB_F,max resolved [m/s]");
-    header.push_back("f_dom resolved [Hz]");
-    for (auto line : kDinLines) header.push_back("PPV / " + name(line) + " resolved [-]");
-    for (auto line : kBsLines) header.push_back("PPV / " + name(line) + " resolved [-]");
-    CsvOut out(result.directory / "ppv.csv", header);
-    for (const ReceiverResult& rr : results) {
-      const ComponentResult& g = rr.components[rr.governing];
-      out << rr.rx->name << rr.rx->x << rr.rx->distance << rr.rx->depth << rr.ppv_z << rr.t_ppv_z
-          << rr.ppv_3c << g.peak.value << g.component << g.dominant_f << rr.kb_f_max << rr.v_eff_max
-          << rr.vz().v_rms << rr.rx->resolved_f << rr.energy_above_resolved << rr.ppv_z_resolved
-          << rr.ppv_3c_resolved;
-      for (const GuideCheck& c : rr.din) out << c.guide << c.ratio;
-      for (const GuideCheck& c : rr.bs) out << c.guide << c.ratio;
-      out << rr.kb_f_max_resolved << rr.dominant_f_resolved;
-      for (const GuideCheck& c : rr.din_resolved) out << c.ratio;
-      for (const GuideCheck& c : rr.bs_resolved) out << c.ratio;
-      out.end_row();
-    }
-    out.close();
-    result.files.push_back(result.directory / "ppv.csv");
-  }
-  {  // spectra.csv
-    std::vector<std::string> header = {"f [Hz]"};
-    for (const ReceiverResult& rr : results)
-      for (const ComponentResult& c : rr.components)
-        header.push_back(rr.rx->name + " " + c.component + " [m/s]");
-    CsvOut out(result.directory / "spectra.csv", header);
-    const Spectrum& first = results.front().components.front().amplitude;
-    for (std::size_t k = 0; k < first.values.size(); ++k) {
-      if (first.frequency(k) > options.spectrum_f_max) break;
-      out << first.frequency(k);
-      for (const ReceiverResult& rr : results)
-        for (const ComponentResult& c : rr.components) out << c.amplitude.values[k];
-      out.end_row();
-    }
-    out.close();
-    result.files.push_back(result.directory / "spectra.csv");
-  }
-  {  // third_octave.csv
-    std::vector<std::string> header = {"band [Hz]", "f_m [Hz]", "f_lower [Hz]", "f_upper [Hz]"};
-    for (const ReceiverResult& rr : results)
-      for (const ComponentResult& c : rr.components)
-        header.push_back(rr.rx->name + " " + c.component + " L_v [" + ref_label + "]");
-    CsvOut out(result.directory / "third_octave.csv", header);
-    for (std::size_t b = 0; b < bands.size(); ++b) {
-      out << bands[b].nominal << bands[b].centre << bands[b].lower << bands[b].upper;
-      for (const ReceiverResult& rr : results)
-        for (const ComponentResult& c : rr.components) out << c.bands[b].level;
-      out.end_row();
-    }
-    out.close();
-    result.files.push_back(result.directory / "third_octave.csv");
-  }
-  json cwt_json = json::array();
-  if (!cwt_of.empty()) {  // cwt_<name>.csv
-    MorletCwt cwt(n, grid.dt, cwt_options);
-    std::set<std::string> used;
-    for (std::size_t i : cwt_of) {
-      const ReceiverResult& rr = results[i];
-      const Scalogram s = cwt.transform(rr.vz().v);
-      std::string file = file_name_for(rr.rx->name);
-      for (int k = 2; used.count(file); ++k)
-        file = file_name_for(rr.rx->name + "_" + std::to_string(k));
-      used.insert(file);
-      std::vector<std::string> header = {"t [s]", "f_coi [Hz]"};
-      for (double f : s.frequency) header.push_back("|W| " + number_text(f, 9) + " Hz [m/s]");
-      CsvOut out(result.directory / file, header);
-      for (std::size_t j = 0; j < s.time.size(); ++j) {
-        out << s.time[j] << s.coi_frequency[j];
-        for (std::size_t f = 0; f < s.frequency.size(); ++f) out << s.at(f, j);
-        out.end_row();
-      }
-      out.close();
-      result.files.push_back(result.directory / file);
-      double w_max = 0.0;
-      for (double w : s.magnitude) w_max = std::max(w_max, w);
-      cwt_json.push_back({{"receiver", rr.rx->name},
-                          {"component", "vz"},
-                          {"file", file},
-                          {"max_abs_w_m_s", number_or_null(w_max)}});
-    }
-  }
-
-  // --- post.json
-  json& report = result.report;
-  report["results_directory"] = results_dir.string();
-  report["source"] = {{"file", "receivers.csv"}, {"form", run.form}};
-  report["sampling"] = {{"t0_s", grid.t0},
-                        {"dt_s", grid.dt},
-                        {"samples", n},
-                        {"duration_s", static_cast<double>(n) * grid.dt},
-                        {"resampled", grid.resampled}};
-  report["options"] = {{"cwt_receivers", options.cwt_receivers},
-                       {"cwt_distances_m", options.cwt_distances},
-                       {"cwt_f_min_hz", cwt_options.f_min},
-                       {"cwt_f_max_hz", cwt_options.f_max},
-                       {"cwt_n_freq", cwt_options.n_freq},
-                       {"cwt_omega0", cwt_options.omega0},
-                       {"cwt_time_stride", cwt_options.time_stride},
-                       {"velocity_reference_m_s", options.velocity_reference},
-                       {"spectrum_window", "hann"},
-                       {"third_octave_window", "rectangular"},
-                       {"dominant_f_min_hz", options.dominant_f_min},
-                       {"kb_tau_s", kFastTau},
-                       {"kb_corner_hz", kKbCornerHz}};
-  json receivers = json::array();
-  for (const ReceiverResult& rr : results) {
-    json components = json::object();
-    for (const ComponentResult& c : rr.components) {
-      json levels = json::array();
-      for (const BandLevel& b : c.bands)
-        levels.push_back({{"band_hz", b.band.nominal},
-                          {"rms_m_s", b.rms},
-                          {"level_db", number_or_null(b.level)}});
-      components[c.component] = {{"ppv_m_s", number_or_null(c.peak.value)},
-                                 {"t_ppv_s", c.v.time(c.peak.index)},
-                                 {"dominant_frequency_hz", number_or_null(c.dominant_f)},
-                                 {"kb_f_max_m_s", number_or_null(c.kb_f_max)},
-                                 {"t_kb_f_max_s", c.t_kb_f_max},
-                                 {"v_eff_f_max_m_s", number_or_null(c.v_eff_max)},
-                                 {"v_rms_m_s", number_or_null(c.v_rms)},
-                                 {"third_octave", levels}};
-    }
-    const ComponentResult& g = rr.components[rr.governing];
-    json din = json::array(), bs = json::array();
-    for (int l = 0; l < 3; ++l)
-      din.push_back({{"line", l + 1},
-                     {"guide_m_s", number_or_null(rr.din[l].guide)},
-                     {"ratio", number_or_null(rr.din[l].ratio)}});
-    for (int l = 0; l < 2; ++l)
-      bs.push_back({{"line", l + 1},
-                    {"guide_m_s", number_or_null(rr.bs[l].guide)},
-                    {"ratio", number_or_null(rr.bs[l].ratio)}});
-    receivers.push_back(
-        {{"name", rr.rx->name},
-         {"x_m", number_or_null(rr.rx->x)},
-         {"distance_m", rr.rx->distance},
-         {"depth_m", rr.rx->depth},
-         {"ppv_z_m_s", number_or_null(rr.ppv_z)},
-         {"t_ppv_z_s", rr.t_ppv_z},
-         {"ppv_3c_m_s", number_or_null(rr.ppv_3c)},
-         {"t_ppv_3c_s", number_or_null(rr.t_ppv_3c)},
-         {"resolved_band",
-          {{"f_hz", number_or_null(rr.rx->resolved_f)},
-           {"energy_z_above", number_or_null(rr.energy_above_resolved)},
-           {"ppv_z_m_s", number_or_null(rr.ppv_z_resolved)},
-           {"ppv_3c_m_s", number_or_null(rr.ppv_3c_resolved)},
-           {"kb_f_max_m_s", number_or_null(rr.kb_f_max_resolved)},
-           {"dominant_frequency_hz", number_or_null(rr.dominant_f_resolved)},
-           {"din4150_3_ratios",
-            {number_or_null(rr.din_resolved[0].ratio), number_or_null(rr.din_resolved[1].ratio),
-             number_or_null(rr.din_resolved[2].ratio)}},
-           {"bs7385_2_ratios",
-            {number_or_null(rr.bs_resolved[0].ratio), number_or_null(rr.bs_resolved[1].ratio)}},
-           {"low_pass", "zero-phase Butterworth order 4 (-3 dB at f_hz)"},
-           {"warning_share", kUnresolvedShare}}},
-         {"governing_component", g.component},
-         {"ppv_max_component_m_s", number_or_null(g.peak.value)},
-         {"dominant_frequency_hz", number_or_null(g.dominant_f)},
-         {"kb_f_max_m_s", number_or_null(rr.kb_f_max)},
-         {"v_eff_f_max_m_s", number_or_null(rr.v_eff_max)},
-         {"din4150_3", din},
-         {"bs7385_2", bs},
-         {"components", components}});
-  }
-  report["receivers"] = receivers;
-  json bands_json = json::array();
-  for (const ThirdOctaveBand& b : bands)
-    bands_json.push_back({{"band_hz", b.nominal},
-                          {"f_m_hz", b.centre},
-                          {"f_lower_hz", b.lower},
-                          {"f_upper_hz", b.upper}});
-  report["third_octave_bands"] = bands_json;
-  report["cwt"] = cwt_json;
-  report["warnings"] = result.warnings;
-  json files = json::array();
-  for (const fs::path& f : result.files) files.push_back(f.filename().string());
-  files.push_back("post.json");
-  report["files"] = files;
-  {
-    const fs::path path = result.directory / "post.json";
-    write_whole(path, report.dump(2) + "\n");
-    result.files.push_back(path);
-  }
+  write_ppv_csv(results, result);
+  write_spectra_csv(results, options.spectrum_f_max, result);
+  write_third_octave_csv(results, measuring.bands, options.velocity_reference, result);
+  json cwt_json = write_scalograms(results, cwt_of, grid, cwt_options, result);
+  write_post_json(results_dir, options, Findings{run, grid, measuring.bands, results, cwt_options},
+                  std::move(cwt_json), result);
   return result;
 }
 

@@ -9,6 +9,23 @@
 #include "run/crash_record.hpp"
 
 namespace rumble {
+namespace {
+
+/// The coupler's log messages, at their level, in the "coupler" log.
+void log_from_coupler(void*, int32_t level, const char* message) {
+  auto log = logger("coupler");
+  if (level >= RUMBLE_LOG_ERROR) {
+    log->error("{}", message);
+  } else if (level == RUMBLE_LOG_WARN) {
+    log->warn("{}", message);
+  } else if (level == RUMBLE_LOG_DEBUG) {
+    log->debug("{}", message);
+  } else {
+    log->info("{}", message);
+  }
+}
+
+}  // namespace
 
 double StepOutcome::max_relative_residual() const {
   double r = 0.0;
@@ -50,6 +67,11 @@ CosimHostImpl::CosimHostImpl(std::vector<Participant*> participants,
 void CosimHostImpl::fill_table() {
   table_.struct_size = sizeof(rumble_cosim_host);
   table_.ctx = this;
+  fill_table_1_0();
+  fill_table_1_1();
+}
+
+void CosimHostImpl::fill_table_1_0() {
   table_.interface_size = [](void* ctx) -> uint64_t {
     return self(ctx).participants_[RUMBLE_PARTICIPANT_TRACK]->output_size();
   };
@@ -99,19 +121,10 @@ void CosimHostImpl::fill_table() {
       self(ctx).step_done_(s);
     });
   };
-  table_.log = [](void*, int32_t level, const char* message) {
-    auto log = logger("coupler");
-    if (level >= RUMBLE_LOG_ERROR) {
-      log->error("{}", message);
-    } else if (level == RUMBLE_LOG_WARN) {
-      log->warn("{}", message);
-    } else if (level == RUMBLE_LOG_DEBUG) {
-      log->debug("{}", message);
-    } else {
-      log->info("{}", message);
-    }
-  };
-  // ---- ABI 1.1
+  table_.log = &log_from_coupler;
+}
+
+void CosimHostImpl::fill_table_1_1() {
   table_.participant_count = [](void* ctx) -> uint32_t {
     return static_cast<uint32_t>(self(ctx).participants_.size());
   };

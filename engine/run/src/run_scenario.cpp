@@ -182,81 +182,97 @@ int solve_statics(RunComponents& c) {
   return iterations;
 }
 
-}  // namespace
-
-RunOutcome run_scenario(const scenario::RunSpec& spec, const PluginRegistry& registry,
-                        ResultsDirectory& results, const RunOptions& options) {
-  const auto log = logger("engine");
-  const auto run_start = Clock::now();
-  ExitGuard exit_guard;  // from the first plugin call: a constructor may call exit() too
-  RunComponents c = build_components(spec, registry, options.built_soils);
-  TrackParticipant& track = *c.track;
-
-  RunOutcome outcome;
-  outcome.results_dir = results.path();
-  SummaryWriter summary(results, spec, c, options.heartbeat_seconds);
-  exit_guard.watch(summary);
-  const CrashRecord crash_record(summary);  // a plugin's segfault or abort() says so in it
-  // Ctrl-C in a phase that cannot stop between its pieces (a dense LU, a plugin's long call)
-  // ends the process at the deadline (core/interrupt.hpp); summary.json says so first.
-  const LastWordScope last_word([&summary](const char* phase) {
+/// What a Ctrl-C that a phase could not honour in time leaves: summary.json says the process
+/// ended at the deadline (core/interrupt.hpp), and the exit code is an interruption's.
+LastWord deadline_last_word(SummaryWriter& summary) {
+  return [&summary](const char* phase) {
     std::ostringstream m;
     m << "interrupted (" << interrupt_cause() << "): " << phase << " did not stop within "
       << kStopGraceSeconds << " s of the request, so the process ended there";
     summary.stopped_at_deadline(m.str());
     return exit_code(RunStatus::kInterrupted);
-  });
-  give_run_context(c, outcome.results_dir);
+  };
+}
 
-  // Anything failing from here on leaves summary.json saying so, then propagates.
+/// solve_statics as a phase Ctrl-C can stop: a soil that honoured a stop request inside its
+/// static solve (a FEM soil's take tens of seconds at a million DOFs) fails it, which is an
+/// interruption, not a failure.
+int solve_statics_unless_stopped(RunComponents& c, const fs::path& results_dir) {
   try {
-    const bool integrated = integrate_soil_if_asked(c);
-    const auto statics_start = Clock::now();
-    int static_iterations = 0;
-    try {
-      const StopPhase phase("the static state");
-      static_iterations = solve_statics(c);
-    } catch (const std::exception&) {
-      // A soil that honoured a stop request inside its static solve (a FEM soil's take tens of
-      // seconds at a million DOFs) fails it: an interruption, not a failure.
-      if (!interrupt_requested()) throw;
-      throw Interrupted(std::string("interrupted (") + interrupt_cause() +
-                        ") while the static state was solved, before the first step; "
-                        "summary.json in " +
-                        outcome.results_dir.string() + " says so");
-    }
-    const double statics_seconds = seconds_since(statics_start);
-    nlohmann::json wheel_loads = nlohmann::json::array();
-    for (std::size_t w = 0; w < track.vehicles().wheel_count(); ++w)
-      wheel_loads.push_back(track.contact_force(w));
-    log->info("static state: {} wheel(s), loads {} N, {} track/soil iteration(s)",
-              track.vehicles().wheel_count(), wheel_loads.dump(), static_iterations);
-    const double H = spec.macro_step;
-    const double h = H / track.micro_steps(H);
-    log->info("macro step {:.3g} s, track micro-step {:.3g} s ({} per macro step)", H, h,
-              track.micro_steps(H));
+    const StopPhase phase("the static state");
+    return solve_statics(c);
+  } catch (const std::exception&) {
+    if (!interrupt_requested()) throw;
+    throw Interrupted(std::string("interrupted (") + interrupt_cause() +
+                      ") while the static state was solved, before the first step; "
+                      "summary.json in " +
+                      results_dir.string() + " says so");
+  }
+}
 
-    // ---- the participants
-    TrackSide track_side(track);
-    SoilSide soil_side("soil", *c.soil, track.interface_size(), integrated ? &track : nullptr);
-    std::vector<std::unique_ptr<SoilSide>> extra_sides;
-    std::vector<Participant*> participants{&track_side, &soil_side};
-    std::vector<const SoilSide*> extras;
+/// What the static equilibrium gave: its wall time, the wheel loads [N] and the track/soil
+/// iterations.
+struct StaticState {
+  double seconds = 0.0;
+  nlohmann::json wheel_loads = nlohmann::json::array();
+  int iterations = 0;
+};
+
+StaticState static_equilibrium(RunComponents& c, const fs::path& results_dir) {
+  const auto start = Clock::now();
+  StaticState s;
+  s.iterations = solve_statics_unless_stopped(c, results_dir);
+  s.seconds = seconds_since(start);
+  const TrackParticipant& track = *c.track;
+  for (std::size_t w = 0; w < track.vehicles().wheel_count(); ++w)
+    s.wheel_loads.push_back(track.contact_force(w));
+  logger("engine")->info("static state: {} wheel(s), loads {} N, {} track/soil iteration(s)",
+                         track.vehicles().wheel_count(), s.wheel_loads.dump(), s.iterations);
+  return s;
+}
+
+/// The track's micro-step within the macro step H [s], logged with H.
+double announce_micro_step(TrackParticipant& track, double H) {
+  const double h = H / track.micro_steps(H);
+  logger("engine")->info("macro step {:.3g} s, track micro-step {:.3g} s ({} per macro step)", H, h,
+                         track.micro_steps(H));
+  return h;
+}
+
+/// The participants the coupler steps: the track, the scenario's soil (moved by the track when
+/// it is integrated there) and the coupler's extra soils.
+struct Sides {
+  Sides(RunComponents& c, bool integrated)
+      : track(*c.track),
+        soil("soil", *c.soil, c.track->interface_size(), integrated ? c.track.get() : nullptr) {
     for (auto& [name, extra] : c.extras) {
-      extra_sides.push_back(std::make_unique<SoilSide>(name, *extra, track.interface_size()));
+      extra_sides.push_back(std::make_unique<SoilSide>(name, *extra, c.track->interface_size()));
       participants.push_back(extra_sides.back().get());
       extras.push_back(extra_sides.back().get());
     }
+  }
+  Sides(const Sides&) = delete;
+  Sides& operator=(const Sides&) = delete;
 
-    // ---- where the steps go
-    RunRecorder recorder(results, track, soil_side, extras, c.receivers.distances,
-                         c.receivers.surface);
-    // Records of each participant: the initial state, every n-th step, and the last.
-    recorder.reserve(static_cast<std::size_t>(std::ceil(spec.t_end / H)) / spec.outputs.every + 2);
+  TrackSide track;
+  SoilSide soil;
+  std::vector<std::unique_ptr<SoilSide>> extra_sides;
+  std::vector<Participant*> participants{&track, &soil};
+  std::vector<const SoilSide*> extras;
+};
+
+/// Where the steps go: the participants' records (the initial state, every n-th step and the
+/// last), the soil's receivers and its field snapshots, each starting at t = 0.
+struct Recording {
+  Recording(const scenario::RunSpec& spec, const RunOptions& options, RunComponents& c,
+            ResultsDirectory& results, const Sides& sides, bool integrated)
+      : recorder(results, *c.track, sides.soil, sides.extras, c.receivers.distances,
+                 c.receivers.surface) {
+    recorder.reserve(
+        static_cast<std::size_t>(std::ceil(spec.t_end / spec.macro_step)) / spec.outputs.every + 2);
     recorder.record_initial();
-    std::unique_ptr<ProbeRecorder> probes;
     if (integrated && (c.receivers.probes || spec.outputs.field_interval)) {
-      log->warn(
+      logger("engine")->warn(
           "the soil is integrated with the track (monolithic): it records no receivers "
           "and writes no fields; its footprint motion is recorded");
     }
@@ -265,101 +281,166 @@ RunOutcome run_scenario(const scenario::RunSpec& spec, const PluginRegistry& reg
                                                options.size_confirmed);
       probes->take();  // samples at t = 0, if the soil records one there
     }
-    std::unique_ptr<FieldWriter> fields;
     if (spec.outputs.field_interval && c.soil->capabilities().has(RUMBLE_CAP_FIELD_OUTPUT) &&
         !integrated) {
       fields = std::make_unique<FieldWriter>(results, *c.soil, *spec.outputs.field_interval,
                                              spec.t_end, options.size_confirmed);
       fields->at(0.0);
     }
+  }
 
-    // ---- the host and the coupler
-    StepObserver observer(
-        track, soil_side, extras, {recorder, probes.get(), fields.get(), &summary}, spec.t_end,
-        spec.outputs.every, outcome.results_dir, options.progress, spec.divergence);
-    double recording_seconds = 0.0;  // in the step callback: records, checks, heartbeat
-    CosimHostImpl host(participants, c.coupler->type().abi_minor, [&](const StepOutcome& step) {
-      const auto start = Clock::now();
-      observer(step);
-      recording_seconds += seconds_since(start);
-    });
-    std::string coupler_message;
-    const StopPhase stepping("the time stepping");
-    const rumble_status status = c.coupler->run(*host.table(), 0.0, spec.t_end, H, coupler_message);
-    const Ending ending =
-        judge(host, status, coupler_message, *c.coupler, observer, spec.t_end, outcome.results_dir);
-    outcome.status = ending.status;
-    outcome.message = ending.message;
-    outcome.exit_code = exit_code(ending.status);
-    if (ending.status != RunStatus::kFailed) finalize_components(c);  // stopped cleanly: flush
+  RunRecorder recorder;
+  std::unique_ptr<ProbeRecorder> probes;
+  std::unique_ptr<FieldWriter> fields;
+};
 
-    // ---- the summary
-    summary.set("time", {{"end", spec.t_end},
-                         {"reached", observer.t_reached()},
-                         {"macro_step", H},
-                         {"macro_steps", observer.steps()},
-                         {"micro_step", h}});
-    // What is not in one of these is the coupler's own work (bench/coupling/coupler_cost.py).
-    nlohmann::json wall = {{"total", seconds_since(run_start)},
-                           {"statics", statics_seconds},
-                           {"recording", recording_seconds},
-                           {track_side.description(), track_side.wall_seconds},
-                           {soil_side.description(), soil_side.wall_seconds}};
-    for (const auto& side : extra_sides)
-      wall[side->name() + " (" + side->description() + ")"] = side->wall_seconds;
-    summary.set("wall_time_s", wall);
-    summary.set("static", {{"wheel_loads_N", wheel_loads}, {"iterations", static_iterations}});
-    // Per channel group, relative to the group's largest value over the run (run_residuals.hpp):
-    // the velocity of an explicit scheme's held inputs lags the produced one by more than the
-    // displacement does, which a single maximum over the groups would hide.
-    const RunResiduals& residuals = observer.residuals();
-    summary.set("interface", {{"max_relative_residual", residuals.largest_relative()},
-                              {"max_relative_residual_by_group", residuals.relative()},
-                              {"max_absolute_residual_by_group", residuals.absolute()},
-                              {"energy_exchanged_J", recorder.energy_exchanged()},
-                              {"track_energy_J", recorder.track_energy()},
-                              {"energy_residual_J", recorder.energy_residual()}});
-    summary.set("peak_footprint_velocity_m_s", recorder.peak_footprint_velocity());
-    summary.set("footprint_velocity_definition",
-                soil_side.reports_step_mean()
-                    ? "mean over the macro step ending at each time, (u - u at its start) / H: "
-                      "the coupler held the soil's force constant over the step"
-                    : "the soil's velocity at the end of each macro step");
-    summary.set("divergence", observer.divergence().summary());
-    const double mean_iterations =
-        observer.steps() > 0
-            ? static_cast<double>(observer.iterations()) / static_cast<double>(observer.steps())
-            : 0.0;
-    summary.set("coupling",
-                {{"discarded_steps", host.discards()},
-                 {"partial_step_reports", observer.partial_reports()},
-                 {"iterations",
-                  {{"total", observer.iterations()},
-                   {"mean_per_step", mean_iterations},
-                   {"max_per_step", observer.max_iterations()}}},
-                 {"unconverged_steps", observer.unconverged_steps()},
-                 {"macro_step_s",
-                  {{"shortest", observer.shortest_step()}, {"longest", observer.longest_step()}}}});
-    nlohmann::json files = recorder.files();
-    if (probes) {
-      summary.set("ppv", probes->peaks());
-      if (const std::string rule = probes->resolution_rule(); !rule.empty())
-        summary.set("resolved_band_rule", rule);
-      files.push_back(probes->file());
-    }
-    if (c.receivers.surface) {
-      nlohmann::json ppv = nlohmann::json::array();
-      for (std::size_t r = 0; r < c.receivers.distances.size(); ++r)
-        ppv.push_back({{"distance_m", c.receivers.distances[r]},
-                       {"ppv_m_s", recorder.peak_receiver_velocity()[r]}});
-      summary.set("ppv", ppv);
-    }
-    if (fields) {
-      files.push_back(fields->index_file());
-      summary.set("field_snapshots", fields->snapshots());
-    }
-    summary.set("files", files);
-    summary.finish(outcome.status, outcome.message);
+/// Where the wall time went. What is not in one of these is the coupler's own work
+/// (bench/coupling/coupler_cost.py).
+nlohmann::json wall_times(Clock::time_point run_start, double statics_seconds,
+                          double recording_seconds, const Sides& sides) {
+  nlohmann::json wall = {{"total", seconds_since(run_start)},
+                         {"statics", statics_seconds},
+                         {"recording", recording_seconds},
+                         {sides.track.description(), sides.track.wall_seconds},
+                         {sides.soil.description(), sides.soil.wall_seconds}};
+  for (const auto& side : sides.extra_sides)
+    wall[side->name() + " (" + side->description() + ")"] = side->wall_seconds;
+  return wall;
+}
+
+/// summary.json's account of the coupling: the interface's residuals and energies, the footprint
+/// velocities, the divergence watch and the coupler's iterations and steps.
+void summarize_coupling(SummaryWriter& summary, const StepObserver& observer,
+                        const CosimHostImpl& host, const RunRecorder& recorder,
+                        const SoilSide& soil_side) {
+  // Per channel group, relative to the group's largest value over the run (run_residuals.hpp):
+  // the velocity of an explicit scheme's held inputs lags the produced one by more than the
+  // displacement does, which a single maximum over the groups would hide.
+  const RunResiduals& residuals = observer.residuals();
+  summary.set("interface", {{"max_relative_residual", residuals.largest_relative()},
+                            {"max_relative_residual_by_group", residuals.relative()},
+                            {"max_absolute_residual_by_group", residuals.absolute()},
+                            {"energy_exchanged_J", recorder.energy_exchanged()},
+                            {"track_energy_J", recorder.track_energy()},
+                            {"energy_residual_J", recorder.energy_residual()}});
+  summary.set("peak_footprint_velocity_m_s", recorder.peak_footprint_velocity());
+  summary.set("footprint_velocity_definition",
+              soil_side.reports_step_mean()
+                  ? "mean over the macro step ending at each time, (u - u at its start) / H: "
+                    "the coupler held the soil's force constant over the step"
+                  : "the soil's velocity at the end of each macro step");
+  summary.set("divergence", observer.divergence().summary());
+  const double mean_iterations = observer.steps() > 0 ? static_cast<double>(observer.iterations()) /
+                                                            static_cast<double>(observer.steps())
+                                                      : 0.0;
+  summary.set("coupling",
+              {{"discarded_steps", host.discards()},
+               {"partial_step_reports", observer.partial_reports()},
+               {"iterations",
+                {{"total", observer.iterations()},
+                 {"mean_per_step", mean_iterations},
+                 {"max_per_step", observer.max_iterations()}}},
+               {"unconverged_steps", observer.unconverged_steps()},
+               {"macro_step_s",
+                {{"shortest", observer.shortest_step()}, {"longest", observer.longest_step()}}}});
+}
+
+/// summary.json's receivers' peaks, field snapshots and the files the run wrote.
+void summarize_outputs(SummaryWriter& summary, const ReceiverSetup& receivers,
+                       const Recording& rec) {
+  nlohmann::json files = rec.recorder.files();
+  if (rec.probes) {
+    summary.set("ppv", rec.probes->peaks());
+    if (const std::string rule = rec.probes->resolution_rule(); !rule.empty())
+      summary.set("resolved_band_rule", rule);
+    files.push_back(rec.probes->file());
+  }
+  if (receivers.surface) {
+    nlohmann::json ppv = nlohmann::json::array();
+    for (std::size_t r = 0; r < receivers.distances.size(); ++r)
+      ppv.push_back({{"distance_m", receivers.distances[r]},
+                     {"ppv_m_s", rec.recorder.peak_receiver_velocity()[r]}});
+    summary.set("ppv", ppv);
+  }
+  if (rec.fields) {
+    files.push_back(rec.fields->index_file());
+    summary.set("field_snapshots", rec.fields->snapshots());
+  }
+  summary.set("files", files);
+}
+
+/// The run's start and its static equilibrium, for the summary.
+struct RunSoFar {
+  Clock::time_point start;
+  bool integrated = false;
+  const StaticState& statics;
+};
+
+/// The coupled time stepping from t = 0 to time.end in macro steps, every step recorded and
+/// watched; the outcome judged and summary.json completed with what the run measured.
+void co_simulate(const scenario::RunSpec& spec, const RunOptions& options, RunComponents& c,
+                 ResultsDirectory& results, SummaryWriter& summary, const RunSoFar& so_far,
+                 RunOutcome& outcome) {
+  const double H = spec.macro_step;
+  const double h = announce_micro_step(*c.track, H);
+  Sides sides(c, so_far.integrated);
+  Recording rec(spec, options, c, results, sides, so_far.integrated);
+  StepObserver observer(*c.track, sides.soil, sides.extras,
+                        {rec.recorder, rec.probes.get(), rec.fields.get(), &summary}, spec.t_end,
+                        spec.outputs.every, outcome.results_dir, options.progress, spec.divergence);
+  double recording_seconds = 0.0;  // in the step callback: records, checks, heartbeat
+  CosimHostImpl host(sides.participants, c.coupler->type().abi_minor, [&](const StepOutcome& step) {
+    const auto start = Clock::now();
+    observer(step);
+    recording_seconds += seconds_since(start);
+  });
+  std::string coupler_message;
+  const StopPhase stepping("the time stepping");
+  const rumble_status status = c.coupler->run(*host.table(), 0.0, spec.t_end, H, coupler_message);
+  const Ending ending =
+      judge(host, status, coupler_message, *c.coupler, observer, spec.t_end, outcome.results_dir);
+  outcome.status = ending.status;
+  outcome.message = ending.message;
+  outcome.exit_code = exit_code(ending.status);
+  if (ending.status != RunStatus::kFailed) finalize_components(c);  // stopped cleanly: flush
+
+  summary.set("time", {{"end", spec.t_end},
+                       {"reached", observer.t_reached()},
+                       {"macro_step", H},
+                       {"macro_steps", observer.steps()},
+                       {"micro_step", h}});
+  summary.set("wall_time_s",
+              wall_times(so_far.start, so_far.statics.seconds, recording_seconds, sides));
+  summary.set("static", {{"wheel_loads_N", so_far.statics.wheel_loads},
+                         {"iterations", so_far.statics.iterations}});
+  summarize_coupling(summary, observer, host, rec.recorder, sides.soil);
+  summarize_outputs(summary, c.receivers, rec);
+  summary.finish(outcome.status, outcome.message);
+}
+
+}  // namespace
+
+RunOutcome run_scenario(const scenario::RunSpec& spec, const PluginRegistry& registry,
+                        ResultsDirectory& results, const RunOptions& options) {
+  const auto run_start = Clock::now();
+  ExitGuard exit_guard;  // from the first plugin call: a constructor may call exit() too
+  RunComponents c = build_components(spec, registry, options.built_soils);
+
+  RunOutcome outcome;
+  outcome.results_dir = results.path();
+  SummaryWriter summary(results, spec, c, options.heartbeat_seconds);
+  exit_guard.watch(summary);
+  const CrashRecord crash_record(summary);  // a plugin's segfault or abort() says so in it
+  // Ctrl-C in a phase that cannot stop between its pieces (a dense LU, a plugin's long call)
+  // ends the process at the deadline (core/interrupt.hpp); summary.json says so first.
+  const LastWordScope last_word(deadline_last_word(summary));
+  give_run_context(c, outcome.results_dir);
+
+  // Anything failing from here on leaves summary.json saying so, then propagates.
+  try {
+    const bool integrated = integrate_soil_if_asked(c);
+    const StaticState statics = static_equilibrium(c, outcome.results_dir);
+    co_simulate(spec, options, c, results, summary, {run_start, integrated, statics}, outcome);
   } catch (const Interrupted& e) {
     summary.fail(e.what(), RunStatus::kInterrupted);
     throw;

@@ -37,19 +37,8 @@ void check_unique_names(const nlohmann::json& list, const std::string& pointer, 
   }
 }
 
-}  // namespace
-
-std::vector<Diagnostic> check_scenario_relations(const nlohmann::json& sc) {
-  std::vector<Diagnostic> out;
-  const double t_end = sc.at("time").at("end").get<double>();
-  const double H = sc.at("time").at("macro_step").get<double>();
-  if (H > t_end) {
-    out.push_back(finding("/time/macro_step",
-                          "the macro step " + number_text(H) +
-                              " s is longer than time.end = " + number_text(t_end) + " s",
-                          "use a macro step of 1e-4 to 1e-3 s"));
-  }
-  const TrackConfig track = TrackConfig::from_json(sc.at("track"));
+/// The micro-step, when given, within the macro step H [s].
+void check_micro_step(const TrackConfig& track, double H, std::vector<Diagnostic>& out) {
   if (track.micro_step && *track.micro_step > H) {
     out.push_back(finding("/track/integrator/micro_step",
                           "the micro-step " + number_text(*track.micro_step) +
@@ -57,7 +46,11 @@ std::vector<Diagnostic> check_scenario_relations(const nlohmann::json& sc) {
                           "give a micro-step <= time.macro_step, or leave it out to have it "
                           "chosen from the contact stiffness"));
   }
-  const auto& unevenness = sc.at("track").value("unevenness", nlohmann::json::object());
+}
+
+/// A random unevenness's wavelength band: ordered, and where its spectrum is defined (ISO 3095
+/// covers rail roughness only).
+void check_unevenness_band(const nlohmann::json& unevenness, std::vector<Diagnostic>& out) {
   if (unevenness.value("type", "none") == "random" && unevenness.contains("wavelength_min") &&
       unevenness.contains("wavelength_max") &&
       !(unevenness["wavelength_max"].get<double>() > unevenness["wavelength_min"].get<double>())) {
@@ -69,7 +62,6 @@ std::vector<Diagnostic> check_scenario_relations(const nlohmann::json& sc) {
         "e.g. 1 to 30 m for track geometry"));
   } else if (unevenness.value("type", "none") == "random" && unevenness.contains("class") &&
              unevenness.contains("wavelength_min") && unevenness.contains("wavelength_max")) {
-    // The band must lie where the spectrum is defined (ISO 3095 covers rail roughness only).
     const auto spectrum = RoughnessSpectrum::from_name(unevenness["class"].get<std::string>());
     const double lo = unevenness["wavelength_min"].get<double>();
     const double hi = unevenness["wavelength_max"].get<double>();
@@ -91,8 +83,55 @@ std::vector<Diagnostic> check_scenario_relations(const nlohmann::json& sc) {
                             range + ", got " + number_text(hi) + " m", hint));
     }
   }
-  // The vehicle reference must stay on the rail for the whole run (the wheels' offsets are
-  // checked again once the vehicle plugins are loaded).
+}
+
+/// The vehicle reference must stay on the rail for the whole run (the wheels' offsets are
+/// checked again once the vehicle plugins are loaded).
+void check_vehicle_on_rail(const nlohmann::json& vehicle, const std::string& ptr, double t_end,
+                           const TrackConfig& track, std::vector<Diagnostic>& out) {
+  const double start = vehicle.at("start").get<double>();
+  const double speed = vehicle.at("speed").get<double>();
+  const double x_end = start + speed * t_end;
+  if (start < track.rail_start() || start > track.rail_end()) {
+    out.push_back(finding(ptr + "/start",
+                          "the vehicle starts at x = " + number_text(start) + " m, off the rail [" +
+                              number_text(track.rail_start()) + ", " +
+                              number_text(track.rail_end()) + "] m",
+                          "sleeper i lies at x = i * spacing; start within the track"));
+  } else if (x_end > track.rail_end()) {
+    // In double: a long run at speed may need more sleepers than an int counts (the hint
+    // once read "use at least -2147483647 sleepers").
+    const double needed =
+        std::ceil((x_end + 2.0 * track.sleeper_spacing) / track.sleeper_spacing) + 1.0;
+    const std::string more =
+        needed <= kMaxSleepers
+            ? ", or use at least " + number_text(needed, 15) + " sleepers (track.sleepers.count)"
+            : " (the rail would need " + number_text(needed) + " sleepers, more than the " +
+                  number_text(kMaxSleepers) + " allowed)";
+    out.push_back(
+        finding(ptr + "/speed",
+                "at " + number_text(speed) + " m/s the vehicle reaches x = " + number_text(x_end) +
+                    " m at t = " + number_text(t_end) + " s, past the end of the rail at " +
+                    number_text(track.rail_end()) + " m",
+                "lower time.end or the speed" + more));
+  }
+}
+
+}  // namespace
+
+std::vector<Diagnostic> check_scenario_relations(const nlohmann::json& sc) {
+  std::vector<Diagnostic> out;
+  const double t_end = sc.at("time").at("end").get<double>();
+  const double H = sc.at("time").at("macro_step").get<double>();
+  if (H > t_end) {
+    out.push_back(finding("/time/macro_step",
+                          "the macro step " + number_text(H) +
+                              " s is longer than time.end = " + number_text(t_end) + " s",
+                          "use a macro step of 1e-4 to 1e-3 s"));
+  }
+  const TrackConfig track = TrackConfig::from_json(sc.at("track"));
+  check_micro_step(track, H, out);
+  check_unevenness_band(sc.at("track").value("unevenness", nlohmann::json::object()), out);
   const auto& vehicles = sc.at("vehicles");
   check_unique_names(
       vehicles, "/vehicles", "vehicle",
@@ -108,35 +147,8 @@ std::vector<Diagnostic> check_scenario_relations(const nlohmann::json& sc) {
         },
         out);
   }
-  for (std::size_t i = 0; i < vehicles.size(); ++i) {
-    const std::string ptr = "/vehicles/" + std::to_string(i);
-    const double start = vehicles[i].at("start").get<double>();
-    const double speed = vehicles[i].at("speed").get<double>();
-    const double x_end = start + speed * t_end;
-    if (start < track.rail_start() || start > track.rail_end()) {
-      out.push_back(finding(ptr + "/start",
-                            "the vehicle starts at x = " + number_text(start) +
-                                " m, off the rail [" + number_text(track.rail_start()) + ", " +
-                                number_text(track.rail_end()) + "] m",
-                            "sleeper i lies at x = i * spacing; start within the track"));
-    } else if (x_end > track.rail_end()) {
-      // In double: a long run at speed may need more sleepers than an int counts (the hint
-      // once read "use at least -2147483647 sleepers").
-      const double needed =
-          std::ceil((x_end + 2.0 * track.sleeper_spacing) / track.sleeper_spacing) + 1.0;
-      const std::string more =
-          needed <= kMaxSleepers
-              ? ", or use at least " + number_text(needed, 15) + " sleepers (track.sleepers.count)"
-              : " (the rail would need " + number_text(needed) + " sleepers, more than the " +
-                    number_text(kMaxSleepers) + " allowed)";
-      out.push_back(finding(
-          ptr + "/speed",
-          "at " + number_text(speed) + " m/s the vehicle reaches x = " + number_text(x_end) +
-              " m at t = " + number_text(t_end) + " s, past the end of the rail at " +
-              number_text(track.rail_end()) + " m",
-          "lower time.end or the speed" + more));
-    }
-  }
+  for (std::size_t i = 0; i < vehicles.size(); ++i)
+    check_vehicle_on_rail(vehicles[i], "/vehicles/" + std::to_string(i), t_end, track, out);
   return out;
 }
 

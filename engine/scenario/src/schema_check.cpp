@@ -341,121 +341,136 @@ class IssueBuilder {
     refs_ = checker_.resolve(schema_pointer_, root_, path, SchemaChecker::Closure::kAll);
     SchemaIssue issue;
     issue.pointer = to_pointer(path);
+    if (!phrase_value_rule(*value, d, issue) && !phrase_size_rule(*value, d, issue) &&
+        !phrase_form_rule(*value, d, issue))
+      issue.message = d;
+    return issue;
+  }
+
+ private:
+  /// The rules on the value itself: required, type, range, enum, const; false for another.
+  bool phrase_value_rule(const json& value, const std::string& d, SchemaIssue& issue) const {
     if (starts_with(d, "Missing required property '")) {
       const std::string name = between(d, "property '", "'");
       issue.rule = Rule::kRequired;
       issue.message = "required key " + quote_name(name) + " is missing";
       issue.hint = required_hint(name);
     } else if (starts_with(d, "Value type not permitted")) {
-      issue.rule = Rule::kType;
-      issue.show_value = true;
-      std::vector<std::string> expected;
-      for (const auto& ref : refs_) {
-        if (const auto t = ref.node->find("type"); ref.node->is_object() && t != ref.node->end()) {
-          const auto types = type_list(*t);
-          if (std::none_of(types.begin(), types.end(),
-                           [&](const std::string& x) { return satisfies_type(*value, x); })) {
-            expected = types;
-            break;
-          }
-        }
-      }
-      std::vector<std::string> phrases;
-      for (const std::string& t : expected) phrases.push_back(type_phrase(t));
-      issue.message = phrases.empty() ? "has the wrong type" : "must be " + join(phrases, " or ");
-      issue.hint = number_hint(*value, expected);
+      phrase_type(value, issue);
     } else if (starts_with(d, "Expected number")) {
       issue.rule = Rule::kRange;
       issue.show_value = true;
-      issue.message = range_message(*value, d);
+      issue.message = range_message(value, d);
       // Every number's description says why its range is what it is (docs/scenario.md,
       // "Limits"): the hint a user needs to choose a value.
-      issue.hint = range_reason(*value);
+      issue.hint = range_reason(value);
     } else if (starts_with(d, "Failed to match against any enum values")) {
-      issue.rule = Rule::kEnum;
-      issue.show_value = true;
-      issue.message = "is not one of the allowed values";
-      for (const auto& ref : refs_) {
-        const auto e = ref.node->is_object() ? ref.node->find("enum") : ref.node->end();
-        if (!ref.node->is_object() || e == ref.node->end() || !e->is_array()) continue;
-        if (std::find(e->begin(), e->end(), *value) != e->end()) continue;
-        issue.message = "must be one of: " + enum_list(*e);
-        if (value->is_string()) {
-          std::vector<std::string> names;
-          for (const json& x : *e) {
-            if (x.is_string()) names.push_back(x.get<std::string>());
-          }
-          if (const auto m = closest_match(value->get_ref<const std::string&>(), names)) {
-            issue.hint = "did you mean \"" + *m + "\"?";
-          }
-        }
-        break;
-      }
+      phrase_enum(value, issue);
     } else if (starts_with(d, "Failed to match expected value set by 'const'")) {
       issue.rule = Rule::kConst;
       issue.show_value = true;
       issue.message = "has the wrong value";
       if (const json* c = keyword("const"); c != nullptr)
         issue.message = "must be " + short_json(*c);
-    } else if (starts_with(d, "Array should contain no fewer than")) {
+    } else {
+      return false;
+    }
+    return true;
+  }
+
+  void phrase_type(const json& value, SchemaIssue& issue) const {
+    issue.rule = Rule::kType;
+    issue.show_value = true;
+    std::vector<std::string> expected;
+    for (const auto& ref : refs_) {
+      if (const auto t = ref.node->find("type"); ref.node->is_object() && t != ref.node->end()) {
+        const auto types = type_list(*t);
+        if (std::none_of(types.begin(), types.end(),
+                         [&](const std::string& x) { return satisfies_type(value, x); })) {
+          expected = types;
+          break;
+        }
+      }
+    }
+    std::vector<std::string> phrases;
+    for (const std::string& t : expected) phrases.push_back(type_phrase(t));
+    issue.message = phrases.empty() ? "has the wrong type" : "must be " + join(phrases, " or ");
+    issue.hint = number_hint(value, expected);
+  }
+
+  void phrase_enum(const json& value, SchemaIssue& issue) const {
+    issue.rule = Rule::kEnum;
+    issue.show_value = true;
+    issue.message = "is not one of the allowed values";
+    for (const auto& ref : refs_) {
+      const auto e = ref.node->is_object() ? ref.node->find("enum") : ref.node->end();
+      if (!ref.node->is_object() || e == ref.node->end() || !e->is_array()) continue;
+      if (std::find(e->begin(), e->end(), value) != e->end()) continue;
+      issue.message = "must be one of: " + enum_list(*e);
+      if (value.is_string()) {
+        std::vector<std::string> names;
+        for (const json& x : *e) {
+          if (x.is_string()) names.push_back(x.get<std::string>());
+        }
+        if (const auto m = closest_match(value.get_ref<const std::string&>(), names)) {
+          issue.hint = "did you mean \"" + *m + "\"?";
+        }
+      }
+      break;
+    }
+  }
+
+  /// The rules on sizes: items of an array, characters of a string, keys of an object; false
+  /// for another.
+  bool phrase_size_rule(const json& value, const std::string& d, SchemaIssue& issue) const {
+    if (starts_with(d, "Array should contain no fewer than")) {
       issue.message = "must have at least " + plural(count("minItems", d), "item") + ", got " +
-                      std::to_string(value->size());
+                      std::to_string(value.size());
     } else if (starts_with(d, "Array should contain no more than")) {
       issue.message = "must have at most " + plural(count("maxItems", d), "item") + ", got " +
-                      std::to_string(value->size());
+                      std::to_string(value.size());
     } else if (starts_with(d, "String should be no fewer than")) {
       const std::size_t n = count("minLength", d);
-      const std::size_t len = value->is_string() ? utf8_length(value->get<std::string>()) : 0;
+      const std::size_t len = value.is_string() ? utf8_length(value.get<std::string>()) : 0;
       issue.message = (n == 1 && len == 0) ? "must not be empty"
                                            : "must be at least " + plural(n, "character") +
                                                  " long, got " + std::to_string(len);
     } else if (starts_with(d, "String should be no more than")) {
-      const std::size_t len = value->is_string() ? utf8_length(value->get<std::string>()) : 0;
+      const std::size_t len = value.is_string() ? utf8_length(value.get<std::string>()) : 0;
       issue.message = "must be at most " + plural(count("maxLength", d), "character") +
                       " long, got " + std::to_string(len);
     } else if (starts_with(d, "Object should have no fewer than")) {
       issue.message = "must have at least " + plural(count("minProperties", d), "key") + ", got " +
-                      std::to_string(value->size());
+                      std::to_string(value.size());
     } else if (starts_with(d, "Object should have no more than")) {
       issue.message = "must have at most " + plural(count("maxProperties", d), "key") + ", got " +
-                      std::to_string(value->size());
-    } else if (starts_with(d, "Value should be a multiple of")) {
+                      std::to_string(value.size());
+    } else {
+      return false;
+    }
+    return true;
+  }
+
+  /// The rules on a value's form: multiple, pattern, not, unique items, dependencies, formats,
+  /// contains, tuples; false for another.
+  bool phrase_form_rule(const json& value, const std::string& d, SchemaIssue& issue) const {
+    if (starts_with(d, "Value should be a multiple of")) {
       issue.rule = Rule::kRange;
       issue.show_value = true;
       const json* m = keyword("multipleOf");
       issue.message =
           "must be a multiple of " + (m != nullptr ? format_number(*m) : trailing_number(d));
     } else if (starts_with(d, "Failed to match regex specified by 'pattern'")) {
-      issue.show_value = true;
-      const json* p = keyword("pattern");
-      issue.message = "must match the pattern " +
-                      (p != nullptr ? short_json(*p, 60) : std::string("of the schema"));
-      // A regular expression is no fix: the description of the value says the rule in words.
-      for (const auto& ref : refs_)
-        if (ref.node->is_object() && ref.node->contains("pattern")) {
-          issue.hint = description_of(*ref.node);
-          break;
-        }
+      phrase_pattern(issue);
     } else if (starts_with(d, "Target should not validate against schema specified in 'not'")) {
-      issue.show_value = true;
-      issue.message = "is a value that is not allowed here";
-      // A schema explains its own exclusion through the description of the `not` it violates.
-      for (const auto& ref : refs_) {
-        const auto n = ref.node->is_object() ? ref.node->find("not") : ref.node->end();
-        if (n == ref.node->end() || !n->is_object()) continue;
-        const auto why = n->find("description");
-        if (why == n->end() || !why->is_string()) continue;
-        if (!checker_.matches(ref.pointer + "/not", *value)) continue;
-        issue.message = why->get<std::string>();
-        break;
-      }
+      phrase_not(value, issue);
     } else if (starts_with(d, "Elements at indexes #")) {
       issue.message = "items must be unique: " + between(d, "indexes ", " violate") + " are equal";
     } else if (starts_with(d, "Missing dependency '")) {
       const std::string name = between(d, "dependency '", "'");
       issue.rule = Rule::kRequired;
       issue.message =
-          "required key " + quote_name(name) + " is missing" + dependency_of(*value, name);
+          "required key " + quote_name(name) + " is missing" + dependency_of(value, name);
     } else if (starts_with(d, "String should be a valid ")) {
       issue.show_value = true;
       issue.message = "must be a valid " + d.substr(d.rfind(' ') + 1);
@@ -463,14 +478,41 @@ class IssueBuilder {
       issue.message = "must contain at least one item of the required form";
     } else if (starts_with(d, "Array contains more items than allowed") ||
                starts_with(d, "Cannot validate item #")) {
-      issue.message = "has too many items, got " + std::to_string(value->size());
+      issue.message = "has too many items, got " + std::to_string(value.size());
     } else {
-      issue.message = d;
+      return false;
     }
-    return issue;
+    return true;
   }
 
- private:
+  void phrase_pattern(SchemaIssue& issue) const {
+    issue.show_value = true;
+    const json* p = keyword("pattern");
+    issue.message = "must match the pattern " +
+                    (p != nullptr ? short_json(*p, 60) : std::string("of the schema"));
+    // A regular expression is no fix: the description of the value says the rule in words.
+    for (const auto& ref : refs_)
+      if (ref.node->is_object() && ref.node->contains("pattern")) {
+        issue.hint = description_of(*ref.node);
+        break;
+      }
+  }
+
+  void phrase_not(const json& value, SchemaIssue& issue) const {
+    issue.show_value = true;
+    issue.message = "is a value that is not allowed here";
+    // A schema explains its own exclusion through the description of the `not` it violates.
+    for (const auto& ref : refs_) {
+      const auto n = ref.node->is_object() ? ref.node->find("not") : ref.node->end();
+      if (n == ref.node->end() || !n->is_object()) continue;
+      const auto why = n->find("description");
+      if (why == n->end() || !why->is_string()) continue;
+      if (!checker_.matches(ref.pointer + "/not", value)) continue;
+      issue.message = why->get<std::string>();
+      break;
+    }
+  }
+
   static bool matches_pattern(const json& node, const std::string& key) {
     const auto pp = node.find("patternProperties");
     if (pp == node.end() || !pp->is_object()) return false;
@@ -591,6 +633,90 @@ class IssueBuilder {
   const json& root_;
   std::vector<SchemaChecker::Ref> refs_;
 };
+
+namespace {
+
+/// A wrapper with nothing under it is a failure with no inner words (a `false` schema): one
+/// issue for each wrapper no issue lies at or below.
+void add_bare_wrappers(const std::vector<const Entry*>& wrappers,
+                       std::vector<SchemaIssue>& issues) {
+  std::vector<std::string> covered_pointers;
+  for (const SchemaIssue& i : issues) covered_pointers.push_back(i.pointer);
+  std::sort(covered_pointers.begin(), covered_pointers.end());
+  const auto covered = [&](const std::string& p) {
+    if (std::binary_search(covered_pointers.begin(), covered_pointers.end(), p)) return true;
+    const auto below = std::lower_bound(covered_pointers.begin(), covered_pointers.end(), p + "/");
+    return below != covered_pointers.end() && starts_with(*below, p + "/");
+  };
+  for (const Entry* w : wrappers) {
+    const std::string p = to_pointer(w->path);
+    if (!covered(p)) {
+      SchemaIssue issue;
+      issue.pointer = p;
+      issue.show_value = true;
+      issue.message = "is not allowed here";
+      issues.push_back(issue);
+    }
+  }
+}
+
+/// The entries' issues: those explained already, and the rest phrased; valijson's wrappers
+/// ("Failed to validate item #0") only repeat what their inner errors say.
+std::vector<SchemaIssue> phrase_entries(const std::vector<Entry>& entries, IssueBuilder& builder) {
+  std::vector<SchemaIssue> issues;
+  std::set<std::vector<std::string>> closed_objects_done;
+  std::vector<const Entry*> wrappers;
+  for (const Entry& entry : entries) {
+    if (!entry.description) {
+      issues.insert(issues.end(), entry.issues.begin(), entry.issues.end());
+    } else if (is_wrapper(*entry.description)) {
+      wrappers.push_back(&entry);
+    } else if (is_unknown_key(*entry.description)) {
+      if (closed_objects_done.insert(entry.path).second) {
+        builder.unknown_keys(entry.path, *entry.description, issues);
+      }
+    } else if (auto issue = builder.phrase(entry.path, *entry.description)) {
+      issues.push_back(std::move(*issue));
+    }
+  }
+  add_bare_wrappers(wrappers, issues);
+  return issues;
+}
+
+/// One message per problem: a wrong type makes enum/const/range checks of the same value
+/// noise, and two schemas may report the same thing.
+std::vector<SchemaIssue> one_per_problem(std::vector<SchemaIssue>& issues) {
+  std::set<std::string> typed;
+  for (const SchemaIssue& i : issues) {
+    if (i.rule == Rule::kType) typed.insert(i.pointer);
+  }
+  std::vector<SchemaIssue> unique;
+  std::set<std::pair<std::string, std::string>> seen;
+  for (SchemaIssue& i : issues) {
+    const bool shadowed =
+        i.rule != Rule::kType && typed.count(i.pointer) > 0 &&
+        (i.rule == Rule::kEnum || i.rule == Rule::kConst || i.rule == Rule::kRange);
+    if (shadowed || !seen.emplace(i.pointer, i.message).second) continue;
+    unique.push_back(std::move(i));
+  }
+  return unique;
+}
+
+/// How far the value is from a variant, by its issues there: a wrong type or a wrong
+/// discriminator (a const/enum key such as "type") weigh far more than a wrong detail.
+int variant_distance(const std::vector<SchemaIssue>& issues) {
+  int score = 0;
+  for (const SchemaIssue& i : issues) {
+    const auto level = std::count(i.pointer.begin(), i.pointer.end(), '/');
+    const bool kind = i.rule == Rule::kType || i.rule == Rule::kConst || i.rule == Rule::kEnum;
+    score += (level == 0 && kind)                                                ? 1000
+             : (level == 1 && (i.rule == Rule::kConst || i.rule == Rule::kEnum)) ? 100
+                                                                                 : 1;
+  }
+  return score;
+}
+
+}  // namespace
 
 SchemaChecker::SchemaChecker(const std::string& schema_text) {
   try {
@@ -819,62 +945,10 @@ std::vector<SchemaIssue> SchemaChecker::check_at(const std::string& pointer, con
     }
     entries.push_back(std::move(entry));
   }
-
-  // 2. Phrase the rest; valijson's wrappers ("Failed to validate item #0") only repeat what
-  //    their inner errors say.
-  std::vector<SchemaIssue> issues;
+  // 2. Phrase the rest. 3. One message per problem.
   IssueBuilder builder(*this, pointer, value);
-  std::set<std::vector<std::string>> closed_objects_done;
-  std::vector<const Entry*> wrappers;
-  for (const Entry& entry : entries) {
-    if (!entry.description) {
-      issues.insert(issues.end(), entry.issues.begin(), entry.issues.end());
-    } else if (is_wrapper(*entry.description)) {
-      wrappers.push_back(&entry);
-    } else if (is_unknown_key(*entry.description)) {
-      if (closed_objects_done.insert(entry.path).second) {
-        builder.unknown_keys(entry.path, *entry.description, issues);
-      }
-    } else if (auto issue = builder.phrase(entry.path, *entry.description)) {
-      issues.push_back(std::move(*issue));
-    }
-  }
-  // A wrapper with nothing under it is a failure with no inner words (a `false` schema).
-  std::vector<std::string> covered_pointers;
-  for (const SchemaIssue& i : issues) covered_pointers.push_back(i.pointer);
-  std::sort(covered_pointers.begin(), covered_pointers.end());
-  const auto covered = [&](const std::string& p) {
-    if (std::binary_search(covered_pointers.begin(), covered_pointers.end(), p)) return true;
-    const auto below = std::lower_bound(covered_pointers.begin(), covered_pointers.end(), p + "/");
-    return below != covered_pointers.end() && starts_with(*below, p + "/");
-  };
-  for (const Entry* w : wrappers) {
-    const std::string p = to_pointer(w->path);
-    if (!covered(p)) {
-      SchemaIssue issue;
-      issue.pointer = p;
-      issue.show_value = true;
-      issue.message = "is not allowed here";
-      issues.push_back(issue);
-    }
-  }
-
-  // 3. One message per problem: a wrong type makes enum/const/range checks of the same value
-  //    noise, and two schemas may report the same thing.
-  std::set<std::string> typed;
-  for (const SchemaIssue& i : issues) {
-    if (i.rule == Rule::kType) typed.insert(i.pointer);
-  }
-  std::vector<SchemaIssue> unique;
-  std::set<std::pair<std::string, std::string>> seen;
-  for (SchemaIssue& i : issues) {
-    const bool shadowed =
-        i.rule != Rule::kType && typed.count(i.pointer) > 0 &&
-        (i.rule == Rule::kEnum || i.rule == Rule::kConst || i.rule == Rule::kRange);
-    if (shadowed || !seen.emplace(i.pointer, i.message).second) continue;
-    unique.push_back(std::move(i));
-  }
-  return unique;
+  std::vector<SchemaIssue> issues = phrase_entries(entries, builder);
+  return one_per_problem(issues);
 }
 
 std::string SchemaChecker::alternatives_hint(const std::string& pointer, const json& value,
@@ -911,87 +985,89 @@ std::vector<SchemaIssue> SchemaChecker::explain_variants(const std::string& poin
                       [&](const std::string& v) { return matches(v, *sub); })) {
         continue;
       }
-      // The closest variant is the one the user meant: wrong type or a wrong discriminator
-      // (a const/enum key such as "type") weigh far more than a wrong detail.
-      std::vector<SchemaIssue> best;
-      int best_score = -1;
-      bool all_missing_keys = true;
-      // Among alternatives that differ only in their required keys, the closest one the value
-      // has started on (has one of its keys).
-      std::vector<SchemaIssue> started;
-      for (const std::string& v : variants) {
-        auto issues = check_at(v, *sub, depth + 1);
-        all_missing_keys &=
-            !issues.empty() && std::all_of(issues.begin(), issues.end(), [](const SchemaIssue& i) {
-              return i.rule == Rule::kRequired && i.pointer.empty();
-            });
-        int score = 0;
-        for (const SchemaIssue& i : issues) {
-          const auto level = std::count(i.pointer.begin(), i.pointer.end(), '/');
-          const bool kind =
-              i.rule == Rule::kType || i.rule == Rule::kConst || i.rule == Rule::kEnum;
-          score += (level == 0 && kind)                                                ? 1000
-                   : (level == 1 && (i.rule == Rule::kConst || i.rule == Rule::kEnum)) ? 100
-                                                                                       : 1;
-        }
-        if (started_on(node_at(v), *sub) && (started.empty() || issues.size() < started.size())) {
-          started = issues;
-        }
-        if (best_score < 0 || score < best_score) {
-          best_score = score;
-          best = std::move(issues);
-        }
-      }
+      VariantChoice choice = closest_variant(variants, *sub, depth);
       // Alternatives that differ only in which keys are required ({"required": ["k", "c"]} or
       // {"required": ["E", "nu", "rho"]}): the one the value has started on, or else all of
       // them by name rather than a guess.
-      if (all_missing_keys && !started.empty()) {
-        best = std::move(started);
-      } else if (all_missing_keys) {
-        std::vector<std::string> sets;
-        for (const std::string& v : variants) {
-          const json* node = node_at(v);
-          std::vector<std::string> keys;
-          if (node != nullptr && node->contains("required") && node->at("required").is_array()) {
-            for (const json& k : node->at("required")) {
-              if (k.is_string()) keys.push_back(k.get<std::string>());
-            }
-          }
-          sets.push_back(and_list(keys));
-        }
-        SchemaIssue issue = fallback;
-        issue.rule = Rule::kRequired;
-        issue.show_value = false;
-        issue.message = "needs " + join(sets, ", or ");
-        issue.hint = description_of(*ref.node);
-        return {issue};
+      if (choice.all_missing_keys && !choice.started.empty()) {
+        choice.best = std::move(choice.started);
+      } else if (choice.all_missing_keys) {
+        return {required_sets_issue(variants, *ref.node, fallback)};
       }
-      if (best_score >= 1000) {
-        // The value is of none of the allowed kinds: list the kinds.
-        std::vector<std::string> forms;
-        for (const std::string& v : variants) {
-          const json* node = node_at(v);
-          if (const json* c = node ? declared(schema_, node, "const") : nullptr) {
-            forms.push_back(short_json(*c));
-          } else if (const json* e = node ? declared(schema_, node, "enum") : nullptr;
-                     e != nullptr && e->is_array()) {
-            forms.push_back("one of " + enum_list(*e));
-          } else if (const json* t = node ? declared(schema_, node, "type") : nullptr) {
-            std::vector<std::string> phrases;
-            for (const std::string& x : type_list(*t)) phrases.push_back(type_phrase(x));
-            forms.push_back(join(phrases, " or "));
-          }
-        }
-        SchemaIssue issue = fallback;
-        issue.rule = Rule::kType;
-        if (forms.size() == variants.size()) issue.message = "must be " + join(forms, " or ");
-        return {issue};
-      }
-      for (SchemaIssue& i : best) i.pointer = at + i.pointer;
-      return best;
+      // The value is of none of the allowed kinds: list the kinds.
+      if (choice.best_score >= 1000) return {kinds_issue(variants, fallback)};
+      for (SchemaIssue& i : choice.best) i.pointer = at + i.pointer;
+      return choice.best;
     }
   }
   return {fallback};
+}
+
+SchemaChecker::VariantChoice SchemaChecker::closest_variant(
+    const std::vector<std::string>& variants, const json& sub, int depth) const {
+  // The closest variant is the one the user meant (variant_distance).
+  VariantChoice choice;
+  for (const std::string& v : variants) {
+    auto issues = check_at(v, sub, depth + 1);
+    choice.all_missing_keys &=
+        !issues.empty() && std::all_of(issues.begin(), issues.end(), [](const SchemaIssue& i) {
+          return i.rule == Rule::kRequired && i.pointer.empty();
+        });
+    const int score = variant_distance(issues);
+    if (started_on(node_at(v), sub) &&
+        (choice.started.empty() || issues.size() < choice.started.size())) {
+      choice.started = issues;
+    }
+    if (choice.best_score < 0 || score < choice.best_score) {
+      choice.best_score = score;
+      choice.best = std::move(issues);
+    }
+  }
+  return choice;
+}
+
+SchemaIssue SchemaChecker::required_sets_issue(const std::vector<std::string>& variants,
+                                               const json& alternatives,
+                                               const SchemaIssue& fallback) const {
+  std::vector<std::string> sets;
+  for (const std::string& v : variants) {
+    const json* node = node_at(v);
+    std::vector<std::string> keys;
+    if (node != nullptr && node->contains("required") && node->at("required").is_array()) {
+      for (const json& k : node->at("required")) {
+        if (k.is_string()) keys.push_back(k.get<std::string>());
+      }
+    }
+    sets.push_back(and_list(keys));
+  }
+  SchemaIssue issue = fallback;
+  issue.rule = Rule::kRequired;
+  issue.show_value = false;
+  issue.message = "needs " + join(sets, ", or ");
+  issue.hint = description_of(alternatives);
+  return issue;
+}
+
+SchemaIssue SchemaChecker::kinds_issue(const std::vector<std::string>& variants,
+                                       const SchemaIssue& fallback) const {
+  std::vector<std::string> forms;
+  for (const std::string& v : variants) {
+    const json* node = node_at(v);
+    if (const json* c = node ? declared(schema_, node, "const") : nullptr) {
+      forms.push_back(short_json(*c));
+    } else if (const json* e = node ? declared(schema_, node, "enum") : nullptr;
+               e != nullptr && e->is_array()) {
+      forms.push_back("one of " + enum_list(*e));
+    } else if (const json* t = node ? declared(schema_, node, "type") : nullptr) {
+      std::vector<std::string> phrases;
+      for (const std::string& x : type_list(*t)) phrases.push_back(type_phrase(x));
+      forms.push_back(join(phrases, " or "));
+    }
+  }
+  SchemaIssue issue = fallback;
+  issue.rule = Rule::kType;
+  if (forms.size() == variants.size()) issue.message = "must be " + join(forms, " or ");
+  return issue;
 }
 
 void SchemaChecker::fill_defaults(json& value) const {

@@ -217,34 +217,27 @@ Diagnostic unexpected_token(std::string_view text, std::size_t tok, const std::s
   return at(text, tok, "unexpected " + token + (expected.empty() ? "" : "; expected " + expected));
 }
 
-}  // namespace
-
-Diagnostic describe_parse_error(std::string_view text, std::size_t byte, std::string_view what) {
-  std::string context;
-  std::string detail;
-  split_message(what, context, detail);
-  const std::size_t e = byte == 0 ? 0 : std::min(byte - 1, text.size());
-  const std::size_t tok = token_start(text, e);
-
-  if (detail.rfind("unexpected end of input", 0) == 0) {
-    bool has_last = false;
-    const std::size_t last = previous_non_ws(text, text.size(), has_last);
-    const std::size_t end = has_last ? last + 1 : 0;
-    const auto open = open_brackets(text);
-    if (!open.empty()) {
-      const char opener = text[open.back()];
-      const char closer = opener == '{' ? '}' : ']';
-      return at(text, end,
-                std::string("unexpected end of file: the '") + opener + "' at " +
-                    where(text, open.back()) + " is never closed",
-                "the file may be truncated; add the missing '" + std::string(1, closer) + "'");
-    }
-    return at(text, end, "unexpected end of file", "the file may be truncated");
+/// The file ended inside a value: the bracket never closed, when one is open.
+Diagnostic end_of_input(std::string_view text) {
+  bool has_last = false;
+  const std::size_t last = previous_non_ws(text, text.size(), has_last);
+  const std::size_t end = has_last ? last + 1 : 0;
+  const auto open = open_brackets(text);
+  if (!open.empty()) {
+    const char opener = text[open.back()];
+    const char closer = opener == '{' ? '}' : ']';
+    return at(text, end,
+              std::string("unexpected end of file: the '") + opener + "' at " +
+                  where(text, open.back()) + " is never closed",
+              "the file may be truncated; add the missing '" + std::string(1, closer) + "'");
   }
-  if (detail.find("missing closing quote") != std::string::npos) {
-    return at(text, tok, "string is missing its closing quote",
-              "end the string with \" on the same line");
-  }
+  return at(text, end, "unexpected end of file", "the file may be truncated");
+}
+
+/// A character a string may not hold (`e` its byte): control characters and invalid UTF-8;
+/// nullopt for another error.
+std::optional<Diagnostic> bad_string_character(std::string_view text, std::size_t e,
+                                               std::size_t tok, const std::string& detail) {
   if (detail.find("control character U+000A") != std::string::npos ||
       detail.find("control character U+000D") != std::string::npos) {
     return at(text, tok, "line break inside a string",
@@ -265,6 +258,12 @@ Diagnostic describe_parse_error(std::string_view text, std::size_t byte, std::st
     return at(text, e, "invalid UTF-8 byte " + hex_byte(b) + " in a string",
               "save the file as UTF-8");
   }
+  return std::nullopt;
+}
+
+/// A backslash sequence a string may not hold; nullopt for another error.
+std::optional<Diagnostic> bad_escape(std::string_view text, std::size_t e, std::size_t tok,
+                                     const std::string& detail) {
   if (detail.find("forbidden character after backslash") != std::string::npos) {
     const std::size_t bs = e > 0 ? e - 1 : 0;
     const std::string seq(text.substr(bs, 2));
@@ -278,21 +277,42 @@ Diagnostic describe_parse_error(std::string_view text, std::size_t byte, std::st
     return at(text, tok, "invalid \\u escape in a string",
               "\\u takes 4 hex digits; characters above U+FFFF are written as a surrogate pair");
   }
-  if (detail.rfind("invalid number", 0) == 0) {
-    // nlohmann stops at the character that breaks the number; the number starts before it.
-    const auto number_char = [](char c) {
-      return (c >= '0' && c <= '9') || c == '-' || c == '+' || c == '.' || c == 'e' || c == 'E';
-    };
-    std::size_t start = std::min(e, text.size());
-    while (start > 0 && number_char(text[start - 1])) --start;
-    std::size_t end = start;
-    while (end < text.size() && number_char(text[end])) ++end;
-    const std::string reason = before(after(detail, "invalid number; "), "; last read");
-    return at(text, start,
-              "invalid number '" + std::string(text.substr(start, end - start)) + "'" +
-                  (reason.empty() ? "" : ": " + reason),
-              "numbers look like 12, -0.5 or 2.1e11");
+  return std::nullopt;
+}
+
+/// nlohmann stops at the character that breaks the number (`e`); the number starts before it.
+Diagnostic invalid_number(std::string_view text, std::size_t e, const std::string& detail) {
+  const auto number_char = [](char c) {
+    return (c >= '0' && c <= '9') || c == '-' || c == '+' || c == '.' || c == 'e' || c == 'E';
+  };
+  std::size_t start = std::min(e, text.size());
+  while (start > 0 && number_char(text[start - 1])) --start;
+  std::size_t end = start;
+  while (end < text.size() && number_char(text[end])) ++end;
+  const std::string reason = before(after(detail, "invalid number; "), "; last read");
+  return at(text, start,
+            "invalid number '" + std::string(text.substr(start, end - start)) + "'" +
+                (reason.empty() ? "" : ": " + reason),
+            "numbers look like 12, -0.5 or 2.1e11");
+}
+
+}  // namespace
+
+Diagnostic describe_parse_error(std::string_view text, std::size_t byte, std::string_view what) {
+  std::string context;
+  std::string detail;
+  split_message(what, context, detail);
+  const std::size_t e = byte == 0 ? 0 : std::min(byte - 1, text.size());
+  const std::size_t tok = token_start(text, e);
+
+  if (detail.rfind("unexpected end of input", 0) == 0) return end_of_input(text);
+  if (detail.find("missing closing quote") != std::string::npos) {
+    return at(text, tok, "string is missing its closing quote",
+              "end the string with \" on the same line");
   }
+  if (auto d = bad_string_character(text, e, tok, detail)) return std::move(*d);
+  if (auto d = bad_escape(text, e, tok, detail)) return std::move(*d);
+  if (detail.rfind("invalid number", 0) == 0) return invalid_number(text, e, detail);
   if (detail.rfind("invalid literal", 0) == 0) {
     return invalid_literal(text, tok, context, detail);
   }

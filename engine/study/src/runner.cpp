@@ -103,6 +103,159 @@ pid_t start_child(const fs::path& executable, const std::vector<std::string>& co
   return pid;
 }
 
+/// A run's exit code, state and message from how its child ended (`status` from waitpid). A run
+/// that ended without saying how (killed outright) is marked "died" in its summary.
+void settle_ended_run(RunRecord& r, int status) {
+  if (WIFEXITED(status)) {
+    r.exit_code = WEXITSTATUS(status);
+  } else {
+    r.exit_code = 128 + WTERMSIG(status);
+  }
+  if (WIFSIGNALED(status)) settle_dead_run_if_unlocked(r.results);
+  const std::string summary = summary_status(r.results);
+  if (WIFEXITED(status) && WEXITSTATUS(status) == 0) {
+    r.state = RunState::kCompleted;
+    r.message.clear();
+  } else if (summary == "interrupted") {
+    r.state = RunState::kInterrupted;
+    r.message = "interrupted";
+  } else {
+    r.state = RunState::kFailed;
+    r.message = WIFSIGNALED(status)
+                    ? std::string("ended by signal ") + std::to_string(WTERMSIG(status)) + " (" +
+                          strsignal(WTERMSIG(status)) + ")"
+                    : last_error(r.results / "run.log");
+    if (r.message.empty()) r.message = "exit code " + std::to_string(*r.exit_code);
+  }
+}
+
+/// The study's pending runs, started `jobs` at a time, each on its share of the CPUs, and
+/// reaped as they end; Ctrl-C starts no more and stops those running.
+class PendingRuns {
+ public:
+  PendingRuns(std::vector<RunRecord>& records, const RunnerOptions& options,
+              const std::function<void()>& on_change)
+      : records_(records), options_(options), on_change_(on_change) {
+    for (std::size_t i = 0; i < records.size(); ++i)
+      if (records[i].state == RunState::kPending) queue_.push_back(i);
+    total_ = queue_.size();
+  }
+
+  /// Runs them all; false when the study was interrupted.
+  bool run() {
+    while (next_ < queue_.size() || !running_.empty()) {
+      if (!stopping_ && interrupt_requested()) stop();
+      start_runs();
+      int status = 0;
+      const pid_t pid = ::waitpid(-1, &status, WNOHANG);
+      if (pid < 0 && errno == EINTR) continue;
+      const auto it = pid > 0 ? running_.find(pid) : running_.end();
+      if (it == running_.end()) {
+        std::this_thread::sleep_for(std::chrono::duration<double>(options_.poll_seconds));
+        continue;
+      }
+      ended(it, status);
+    }
+    return !stopping_;
+  }
+
+ private:
+  void say(const std::string& line) const {
+    if (options_.progress != nullptr) *options_.progress << "study: " << line << std::endl;
+  }
+
+  std::size_t jobs() const { return static_cast<std::size_t>(std::max(1, options_.jobs)); }
+
+  /// Ctrl-C: the running runs are told to stop, the others marked as never started.
+  void stop() {
+    stopping_ = true;
+    say("interrupted: starting no more runs; stopping " + std::to_string(running_.size()) +
+        " running (Ctrl-C again ends rumble at once)");
+    for (const auto& [pid, child] : running_) ::kill(pid, SIGINT);
+    for (; next_ < queue_.size(); ++next_) {
+      records_[queue_[next_]].state = RunState::kInterrupted;
+      records_[queue_[next_]].message = "not started: the study was interrupted";
+    }
+    on_change_();
+  }
+
+  /// As many runs as there are free jobs.
+  void start_runs() {
+    while (!stopping_ && next_ < queue_.size() && running_.size() < jobs()) {
+      RunRecord& r = records_[queue_[next_]];
+      std::error_code ec;
+      fs::create_directories(r.results, ec);
+      if (ec) {
+        throw RunError("cannot create the results directory " + r.results.string() + ": " +
+                       ec.message() + "; check that the study's output folder is writable");
+      }
+      const auto free_share = std::find(share_busy_.begin(), share_busy_.end(), false);
+      const int share = static_cast<int>(free_share - share_busy_.begin());
+      const pid_t pid = start_child(options_.executable, r.command,
+                                    cpu_share(cpus_, share, shares_), r.results / "run.log");
+      *free_share = true;
+      running_[pid] = {queue_[next_], Clock::now(), share};
+      r.state = RunState::kRunning;
+      ++next_;
+      say("started " + r.run.name + " (" + std::to_string(next_) + " of " + std::to_string(total_) +
+          ")");
+      on_change_();
+    }
+  }
+
+  /// The child `it` ended with `status`: its record settled, its share freed, the progress said.
+  void ended(std::map<pid_t, Child>::iterator it, int status) {
+    RunRecord& r = records_[it->second.record];
+    share_busy_[static_cast<std::size_t>(it->second.share)] = false;
+    const double wall = std::chrono::duration<double>(Clock::now() - it->second.started).count();
+    running_.erase(it);
+    r.wall_time_s = wall;
+    ++done_;
+    settle_ended_run(r, status);
+    if (r.state != RunState::kInterrupted) {
+      finished_wall_ += wall;
+      ++finished_;
+    }
+    say(ended_line(r, wall));
+    on_change_();
+  }
+
+  /// "completed NAME in 3.2 s; 2 of 5 done, ETA 10 s" (a failure with its exit code, message
+  /// and log).
+  std::string ended_line(const RunRecord& r, double wall) const {
+    std::string line = (r.state == RunState::kCompleted ? "completed " : "") +
+                       std::string(r.state == RunState::kFailed ? "FAILED " : "") +
+                       (r.state == RunState::kInterrupted ? "interrupted " : "") + r.run.name +
+                       " in " + duration_text(wall);
+    if (r.state == RunState::kFailed) {
+      line += " (exit code " + std::to_string(*r.exit_code) + "): " + r.message + "; log " +
+              (r.results / "run.log").lexically_normal().string();
+    }
+    line += "; " + std::to_string(done_) + " of " + std::to_string(total_) + " done";
+    const std::size_t left = (stopping_ ? 0 : queue_.size() - next_) + running_.size();
+    if (left > 0 && finished_ > 0 && !stopping_) {
+      const double slots = static_cast<double>(std::min<std::size_t>(left, jobs()));
+      const double eta =
+          finished_wall_ / static_cast<double>(finished_) * static_cast<double>(left) / slots;
+      line += ", ETA " + duration_text(eta);
+    }
+    return line;
+  }
+
+  std::vector<RunRecord>& records_;
+  const RunnerOptions& options_;
+  const std::function<void()>& on_change_;
+  std::vector<std::size_t> queue_;  // indices of the pending records, in order
+  std::size_t total_ = 0, next_ = 0, done_ = 0;
+  double finished_wall_ = 0.0;  // s, sum over runs that ended by themselves
+  std::size_t finished_ = 0;
+  std::map<pid_t, Child> running_;
+  const int shares_ = std::max(1, options_.jobs);
+  const std::vector<int> cpus_ = usable_cpu_list();
+  std::vector<bool> share_busy_ = std::vector<bool>(static_cast<std::size_t>(shares_), false);
+  bool stopping_ = false;
+};
+
 }  // namespace
 
 std::string duration_text(double s) {
@@ -123,116 +276,8 @@ std::string duration_text(double s) {
 
 bool run_pending(std::vector<RunRecord>& records, const RunnerOptions& options,
                  const std::function<void()>& on_change) {
-  std::vector<std::size_t> queue;
-  for (std::size_t i = 0; i < records.size(); ++i)
-    if (records[i].state == RunState::kPending) queue.push_back(i);
-  const std::size_t total = queue.size();
-  std::size_t next = 0, done = 0;
-  double finished_wall = 0.0;  // s, sum over runs that ended by themselves
-  std::size_t finished = 0;
-  std::map<pid_t, Child> running;
-  const int shares = std::max(1, options.jobs);
-  const std::vector<int> cpus = usable_cpu_list();
-  std::vector<bool> share_busy(static_cast<std::size_t>(shares), false);
-  bool stopping = false;
-  const auto say = [&](const std::string& line) {
-    if (options.progress != nullptr) *options.progress << "study: " << line << std::endl;
-  };
-
-  while (next < queue.size() || !running.empty()) {
-    if (!stopping && interrupt_requested()) {
-      stopping = true;
-      say("interrupted: starting no more runs; stopping " + std::to_string(running.size()) +
-          " running (Ctrl-C again ends rumble at once)");
-      for (const auto& [pid, child] : running) ::kill(pid, SIGINT);
-      for (; next < queue.size(); ++next) {
-        records[queue[next]].state = RunState::kInterrupted;
-        records[queue[next]].message = "not started: the study was interrupted";
-      }
-      on_change();
-    }
-    while (!stopping && next < queue.size() &&
-           running.size() < static_cast<std::size_t>(std::max(1, options.jobs))) {
-      RunRecord& r = records[queue[next]];
-      std::error_code ec;
-      fs::create_directories(r.results, ec);
-      if (ec) {
-        throw RunError("cannot create the results directory " + r.results.string() + ": " +
-                       ec.message() + "; check that the study's output folder is writable");
-      }
-      const auto free_share = std::find(share_busy.begin(), share_busy.end(), false);
-      const int share = static_cast<int>(free_share - share_busy.begin());
-      const pid_t pid = start_child(options.executable, r.command, cpu_share(cpus, share, shares),
-                                    r.results / "run.log");
-      *free_share = true;
-      running[pid] = {queue[next], Clock::now(), share};
-      r.state = RunState::kRunning;
-      ++next;
-      say("started " + r.run.name + " (" + std::to_string(next) + " of " + std::to_string(total) +
-          ")");
-      on_change();
-    }
-    int status = 0;
-    const pid_t pid = ::waitpid(-1, &status, WNOHANG);
-    if (pid < 0 && errno == EINTR) continue;
-    const auto it = pid > 0 ? running.find(pid) : running.end();
-    if (it == running.end()) {
-      std::this_thread::sleep_for(std::chrono::duration<double>(options.poll_seconds));
-      continue;
-    }
-    RunRecord& r = records[it->second.record];
-    share_busy[static_cast<std::size_t>(it->second.share)] = false;
-    const double wall = std::chrono::duration<double>(Clock::now() - it->second.started).count();
-    running.erase(it);
-    r.wall_time_s = wall;
-    ++done;
-    if (WIFEXITED(status)) {
-      r.exit_code = WEXITSTATUS(status);
-    } else {
-      r.exit_code = 128 + WTERMSIG(status);
-    }
-    // A run that ended without saying how (killed outright) is marked "died" in its summary.
-    if (WIFSIGNALED(status)) settle_dead_run_if_unlocked(r.results);
-    const std::string summary = summary_status(r.results);
-    if (WIFEXITED(status) && WEXITSTATUS(status) == 0) {
-      r.state = RunState::kCompleted;
-      r.message.clear();
-    } else if (summary == "interrupted") {
-      r.state = RunState::kInterrupted;
-      r.message = "interrupted";
-    } else {
-      r.state = RunState::kFailed;
-      r.message = WIFSIGNALED(status)
-                      ? std::string("ended by signal ") + std::to_string(WTERMSIG(status)) + " (" +
-                            strsignal(WTERMSIG(status)) + ")"
-                      : last_error(r.results / "run.log");
-      if (r.message.empty()) r.message = "exit code " + std::to_string(*r.exit_code);
-    }
-    if (r.state != RunState::kInterrupted) {
-      finished_wall += wall;
-      ++finished;
-    }
-    std::string line = (r.state == RunState::kCompleted ? "completed " : "") +
-                       std::string(r.state == RunState::kFailed ? "FAILED " : "") +
-                       (r.state == RunState::kInterrupted ? "interrupted " : "") + r.run.name +
-                       " in " + duration_text(wall);
-    if (r.state == RunState::kFailed) {
-      line += " (exit code " + std::to_string(*r.exit_code) + "): " + r.message + "; log " +
-              (r.results / "run.log").lexically_normal().string();
-    }
-    line += "; " + std::to_string(done) + " of " + std::to_string(total) + " done";
-    const std::size_t left = (stopping ? 0 : queue.size() - next) + running.size();
-    if (left > 0 && finished > 0 && !stopping) {
-      const double slots = static_cast<double>(
-          std::min<std::size_t>(left, static_cast<std::size_t>(std::max(1, options.jobs))));
-      const double eta =
-          finished_wall / static_cast<double>(finished) * static_cast<double>(left) / slots;
-      line += ", ETA " + duration_text(eta);
-    }
-    say(line);
-    on_change();
-  }
-  return !stopping;
+  PendingRuns pending(records, options, on_change);
+  return pending.run();
 }
 
 }  // namespace rumble::study

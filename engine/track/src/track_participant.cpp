@@ -38,6 +38,115 @@ std::vector<double> wheel_radii(const VehicleSet& vehicles) {
   return r;
 }
 
+/// The vehicles at rest on the rail (statics): Newton on r1 = f(q) - J^T F = 0 (vehicle
+/// equilibrium) and r2 = z(q) - w(F) - r - (F/C)^(2/3) = 0 (Hertz compatibility) for the vehicle
+/// DOFs q and the wheel loads F, the rail under the wheels at w(F) = G F + w0.
+class WheelsAtRest {
+ public:
+  WheelsAtRest(VehicleSet& vehicles, const std::vector<double>& hertz, const Eigen::MatrixXd& G,
+               const Eigen::VectorXd& rough, double weight)
+      : vehicles_(vehicles),
+        hertz_(hertz),
+        G_(G),
+        rough_(rough),
+        weight_(weight),
+        nv_(static_cast<Eigen::Index>(vehicles.dof_count())),
+        nw_(static_cast<Eigen::Index>(vehicles.wheel_count())),
+        zero_(Eigen::VectorXd::Zero(nv_)) {}
+
+  /// From (q, F) to the rest state over the rail's own deflection w0 [m] under the wheels;
+  /// throws RunError when Newton does not converge or a wheel carries no load.
+  void solve(const Eigen::VectorXd& w0, Eigen::VectorXd& q, Eigen::VectorXd& F) const {
+    const Eigen::Index m = nv_ + nw_;
+    Eigen::VectorXd r(m), dy(m);
+    Eigen::MatrixXd jac(m, m);
+    bool converged = false;
+    for (int it = 0; it < kMaxNewtonIterations && !converged; ++it) {
+      residual(q, F, w0, r);
+      jacobian(q, F, w0, jac);
+      dy = jac.fullPivLu().solve(r);
+      q -= dy.head(nv_);
+      F -= dy.tail(nw_);
+      // Displacement scale at least 1 mm (or 1 mrad): preloaded vehicles rest near q = 0.
+      converged =
+          dy.head(nv_).cwiseAbs().maxCoeff() <= kRelativeTolerance * std::max(max_abs(q), 1e-3) &&
+          dy.tail(nw_).cwiseAbs().maxCoeff() <= kRelativeTolerance * weight_;
+    }
+    if (!converged) throw RunError("track statics: Newton on the wheel loads did not converge");
+    for (Eigen::Index w = 0; w < nw_; ++w) {
+      if (F[w] <= 0.0) {
+        throw RunError("track statics: wheel " + std::to_string(w) +
+                       " carries no load at rest (F = " + std::to_string(F[w]) +
+                       " N); check the vehicle's masses and geometry");
+      }
+    }
+  }
+
+ private:
+  void residual(const Eigen::VectorXd& q, const Eigen::VectorXd& F, const Eigen::VectorXd& w0,
+                Eigen::VectorXd& out) const {
+    Eigen::VectorXd f(nv_), z(nw_);
+    Eigen::MatrixXd J(nw_, nv_);
+    vehicles_.forces(0.0, q, zero_, f);
+    vehicles_.wheels(q, z, J);
+    out.head(nv_) = f - J.transpose() * F;
+    const Eigen::VectorXd wr = G_ * F + w0;
+    for (Eigen::Index w = 0; w < nw_; ++w) {
+      const double Fw = std::max(F[w], 1e-12 * weight_);
+      out[nv_ + w] =
+          z[w] - wr[w] - rough_[w] - std::pow(Fw / hertz_[static_cast<std::size_t>(w)], 2.0 / 3.0);
+    }
+  }
+
+  /// d r / d(q, F): d/dq by central differences (statics run once), d/dF exact.
+  void jacobian(const Eigen::VectorXd& q, const Eigen::VectorXd& F, const Eigen::VectorXd& w0,
+                Eigen::MatrixXd& jac) const {
+    const Eigen::Index m = nv_ + nw_;
+    Eigen::VectorXd rp(m), rm(m), z(nw_);
+    Eigen::MatrixXd J(nw_, nv_);
+    for (Eigen::Index j = 0; j < nv_; ++j) {
+      const double eps = 1e-8 * std::max(1.0, std::abs(q[j]));
+      Eigen::VectorXd qp = q, qm = q;
+      qp[j] += eps;
+      qm[j] -= eps;
+      residual(qp, F, w0, rp);
+      residual(qm, F, w0, rm);
+      jac.col(j) = (rp - rm) / (2.0 * eps);
+    }
+    vehicles_.wheels(q, z, J);
+    jac.block(0, nv_, nv_, nw_) = -J.transpose();
+    jac.block(nv_, nv_, nw_, nw_) = -G_;
+    for (Eigen::Index w = 0; w < nw_; ++w) {
+      const double Fw = std::max(F[w], 1e-12 * weight_);
+      const double C = hertz_[static_cast<std::size_t>(w)];
+      jac(nv_ + w, nv_ + w) -= (2.0 / 3.0) * std::pow(C, -2.0 / 3.0) * std::pow(Fw, -1.0 / 3.0);
+    }
+  }
+
+  VehicleSet& vehicles_;
+  const std::vector<double>& hertz_;  // N/m^1.5 per wheel
+  const Eigen::MatrixXd& G_;          // m/N: rail deflection under wheel w per unit load at j
+  const Eigen::VectorXd& rough_;      // m, the unevenness under each wheel
+  const double weight_;               // N, the load scale
+  const Eigen::Index nv_, nw_;
+  const Eigen::VectorXd zero_;  // the vehicles' velocities at rest
+};
+
+/// The wheel loads Newton starts from: least squares J^T F = f(q) at q = 0, each at least 1e-3
+/// of the largest (a wheel with no load has no Hertz compliance). Returns the load scale [N].
+double initial_wheel_loads(VehicleSet& vehicles, Eigen::VectorXd& F) {
+  const auto nv = static_cast<Eigen::Index>(vehicles.dof_count());
+  const auto nw = static_cast<Eigen::Index>(vehicles.wheel_count());
+  const Eigen::VectorXd q = Eigen::VectorXd::Zero(nv), zero = Eigen::VectorXd::Zero(nv);
+  Eigen::VectorXd f(nv), z(nw);
+  Eigen::MatrixXd J(nw, nv);
+  vehicles.forces(0.0, q, zero, f);
+  vehicles.wheels(q, z, J);
+  F = (J * J.transpose()).ldlt().solve(J * f);
+  const double weight = std::max(F.cwiseAbs().maxCoeff(), 1.0);  // N, scale only
+  for (Eigen::Index w = 0; w < nw; ++w) F[w] = std::max(F[w], 1e-3 * weight);
+  return weight;
+}
 }  // namespace
 
 TrackParticipant::TrackParticipant(const TrackConfig& config, VehicleSet vehicles)
@@ -140,53 +249,28 @@ void TrackParticipant::solve_linear(double* y) const {
 int TrackParticipant::solve_static(const SoilStatics& soil) {
   const TrackConfig& c = structure_.config();
   const std::size_t n = structure_.sleeper_count();
-  const std::size_t nw = vehicles_.wheel_count();
   const auto nt = static_cast<Eigen::Index>(structure_.dof_count());
-  const auto nv = static_cast<Eigen::Index>(vehicles_.dof_count());
-  const auto nwi = static_cast<Eigen::Index>(nw);
+  const auto nwi = static_cast<Eigen::Index>(vehicles_.wheel_count());
 
   BandedSymmetric k_static = structure_.stiffness();
   if (!k_static.factorize()) throw RunError("track statics: the track stiffness is singular");
-
-  for (std::size_t w = 0; w < nw; ++w) {
-    const double xw = vehicles_.wheel_x(w, 0.0);
-    if (!structure_.on_rail(xw)) {
-      std::ostringstream m;
-      m << "wheel " << w << " is at x = " << xw << " m at t = 0, off the rail [" << c.rail_start()
-        << ", " << c.rail_end() << "] m";
-      throw ConfigError(m.str());
-    }
-    contact_point_[w] = structure_.rail_point(xw);
-  }
-  // g_w = K^-1 N_w: the track's response to a unit force at each wheel.
-  Eigen::MatrixXd g(nt, nwi);
-  g.setZero();
-  for (std::size_t w = 0; w < nw; ++w) {
-    for (std::size_t k = 0; k < 4; ++k)
-      g(static_cast<Eigen::Index>(contact_point_[w].dof[k]), static_cast<Eigen::Index>(w)) +=
-          contact_point_[w].shape[k];
-    k_static.solve(g.col(static_cast<Eigen::Index>(w)).data());
-  }
+  place_wheels_at_rest();
+  const Eigen::MatrixXd g = unit_wheel_load_responses(k_static);
   Eigen::MatrixXd G(nwi, nwi);
   for (Eigen::Index w = 0; w < nwi; ++w)
     for (Eigen::Index j = 0; j < nwi; ++j)
       G(w, j) = dot_rail(contact_point_[static_cast<std::size_t>(w)], g.col(j));
-
   Eigen::VectorXd rough(nwi);
-  for (std::size_t w = 0; w < nw; ++w)
+  for (std::size_t w = 0; w < vehicles_.wheel_count(); ++w)
     rough[static_cast<Eigen::Index>(w)] = unevenness_.at(w, vehicles_.wheel_x(w, 0.0), 0.0);
 
-  // Unknowns y = (q, F). Start: F from least squares J^T F = f(q = 0).
-  Eigen::VectorXd q = Eigen::VectorXd::Zero(nv), zero = Eigen::VectorXd::Zero(nv);
-  Eigen::VectorXd f(nv), z(nwi), F(nwi);
-  Eigen::MatrixXd J(nwi, nv);
-  vehicles_.forces(0.0, q, zero, f);
-  vehicles_.wheels(q, z, J);
-  F = (J * J.transpose()).ldlt().solve(J * f);
-  const double weight = std::max(F.cwiseAbs().maxCoeff(), 1.0);  // N, scale only
-  for (Eigen::Index w = 0; w < nwi; ++w) F[w] = std::max(F[w], 1e-3 * weight);
+  // Unknowns y = (q, F), starting from q = 0 and the least-squares loads.
+  Eigen::VectorXd q = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(vehicles_.dof_count()));
+  Eigen::VectorXd F(nwi);
+  const double weight = initial_wheel_loads(vehicles_, F);
+  const WheelsAtRest wheels_at_rest(vehicles_, hertz_, G, rough, weight);
 
-  Eigen::VectorXd sol0(nt), x(nt);
+  Eigen::VectorXd sol0(nt), x(nt), w0(nwi);
   // The track's side of the static problem: the footprint forces fb [N] (both rails) for the
   // footprint settlements u [m], with the vehicles in equilibrium on the rail (q, F, x follow
   // the last call).
@@ -195,64 +279,9 @@ int TrackParticipant::solve_static(const SoilStatics& soil) {
     for (std::size_t i = 0; i < n; ++i)
       sol0[static_cast<Eigen::Index>(structure_.sleeper_dof(i))] = c.ballast_k * u[i];
     k_static.solve(sol0.data());
-    Eigen::VectorXd w0(nwi);
-    for (std::size_t w = 0; w < nw; ++w)
+    for (std::size_t w = 0; w < vehicles_.wheel_count(); ++w)
       w0[static_cast<Eigen::Index>(w)] = dot_rail(contact_point_[w], sol0);
-    // Newton on r1 = f(q) - J^T F = 0 (vehicle equilibrium), r2 = z(q) - w(F) - r - (F/C)^(2/3)
-    // = 0 (Hertz compatibility). d/dq by central differences (statics run once).
-    const auto residual = [&](const Eigen::VectorXd& qq, const Eigen::VectorXd& FF,
-                              Eigen::VectorXd& out) {
-      Eigen::VectorXd ff(nv), zz(nwi);
-      Eigen::MatrixXd JJ(nwi, nv);
-      vehicles_.forces(0.0, qq, zero, ff);
-      vehicles_.wheels(qq, zz, JJ);
-      out.head(nv) = ff - JJ.transpose() * FF;
-      const Eigen::VectorXd wr = G * FF + w0;
-      for (Eigen::Index w = 0; w < nwi; ++w) {
-        const double Fw = std::max(FF[w], 1e-12 * weight);
-        out[nv + w] = zz[w] - wr[w] - rough[w] -
-                      std::pow(Fw / hertz_[static_cast<std::size_t>(w)], 2.0 / 3.0);
-      }
-    };
-    const Eigen::Index m = nv + nwi;
-    Eigen::VectorXd r(m), rp(m), rm(m), dy(m);
-    Eigen::MatrixXd jac(m, m);
-    bool converged = false;
-    for (int it = 0; it < kMaxNewtonIterations && !converged; ++it) {
-      residual(q, F, r);
-      for (Eigen::Index j = 0; j < nv; ++j) {
-        const double eps = 1e-8 * std::max(1.0, std::abs(q[j]));
-        Eigen::VectorXd qp = q, qm = q;
-        qp[j] += eps;
-        qm[j] -= eps;
-        residual(qp, F, rp);
-        residual(qm, F, rm);
-        jac.col(j) = (rp - rm) / (2.0 * eps);
-      }
-      vehicles_.wheels(q, z, J);
-      jac.block(0, nv, nv, nwi) = -J.transpose();
-      jac.block(nv, nv, nwi, nwi) = -G;
-      for (Eigen::Index w = 0; w < nwi; ++w) {
-        const double Fw = std::max(F[w], 1e-12 * weight);
-        const double C = hertz_[static_cast<std::size_t>(w)];
-        jac(nv + w, nv + w) -= (2.0 / 3.0) * std::pow(C, -2.0 / 3.0) * std::pow(Fw, -1.0 / 3.0);
-      }
-      dy = jac.fullPivLu().solve(r);
-      q -= dy.head(nv);
-      F -= dy.tail(nwi);
-      // Displacement scale at least 1 mm (or 1 mrad): preloaded vehicles rest near q = 0.
-      converged =
-          dy.head(nv).cwiseAbs().maxCoeff() <= kRelativeTolerance * std::max(max_abs(q), 1e-3) &&
-          dy.tail(nwi).cwiseAbs().maxCoeff() <= kRelativeTolerance * weight;
-    }
-    if (!converged) throw RunError("track statics: Newton on the wheel loads did not converge");
-    for (Eigen::Index w = 0; w < nwi; ++w) {
-      if (F[w] <= 0.0) {
-        throw RunError("track statics: wheel " + std::to_string(w) +
-                       " carries no load at rest (F = " + std::to_string(F[w]) +
-                       " N); check the vehicle's masses and geometry");
-      }
-    }
+    wheels_at_rest.solve(w0, q, F);
     x = sol0 + g * F;
     fb.resize(n);
     for (std::size_t i = 0; i < n; ++i)
@@ -267,7 +296,44 @@ int TrackParticipant::solve_static(const SoilStatics& soil) {
   } else {
     track_forces(u, fb);  // footprints fixed: the track alone
   }
+  start_at_rest(x, q, F, u, fb);
+  if (!c.micro_step) h_max_ = contact_step_limit(q, F);
+  return soil ? soil_solves : 1;
+}
 
+void TrackParticipant::place_wheels_at_rest() {
+  const TrackConfig& c = structure_.config();
+  for (std::size_t w = 0; w < vehicles_.wheel_count(); ++w) {
+    const double xw = vehicles_.wheel_x(w, 0.0);
+    if (!structure_.on_rail(xw)) {
+      std::ostringstream m;
+      m << "wheel " << w << " is at x = " << xw << " m at t = 0, off the rail [" << c.rail_start()
+        << ", " << c.rail_end() << "] m";
+      throw ConfigError(m.str());
+    }
+    contact_point_[w] = structure_.rail_point(xw);
+  }
+}
+
+Eigen::MatrixXd TrackParticipant::unit_wheel_load_responses(const BandedSymmetric& k_static) const {
+  const std::size_t nw = vehicles_.wheel_count();
+  // g_w = K^-1 N_w: the track's response to a unit force at each wheel.
+  Eigen::MatrixXd g(static_cast<Eigen::Index>(structure_.dof_count()),
+                    static_cast<Eigen::Index>(nw));
+  g.setZero();
+  for (std::size_t w = 0; w < nw; ++w) {
+    for (std::size_t k = 0; k < 4; ++k)
+      g(static_cast<Eigen::Index>(contact_point_[w].dof[k]), static_cast<Eigen::Index>(w)) +=
+          contact_point_[w].shape[k];
+    k_static.solve(g.col(static_cast<Eigen::Index>(w)).data());
+  }
+  return g;
+}
+
+void TrackParticipant::start_at_rest(const Eigen::VectorXd& x, const Eigen::VectorXd& q,
+                                     const Eigen::VectorXd& F, const std::vector<double>& u,
+                                     const std::vector<double>& fb) {
+  const std::size_t n = structure_.sleeper_count();
   x_ = x;
   v_.setZero();
   a_.setZero();
@@ -284,35 +350,39 @@ int TrackParticipant::solve_static(const SoilStatics& soil) {
   std::copy(u.begin(), u.end(), input_coeff_.begin());  // hold the static footprint position
   input_.order = 0;
   t_ = 0.0;
-  for (std::size_t w = 0; w < nw; ++w) contact_force_[w] = F[static_cast<Eigen::Index>(w)];
+  for (std::size_t w = 0; w < vehicles_.wheel_count(); ++w)
+    contact_force_[w] = F[static_cast<Eigen::Index>(w)];
+}
 
-  if (!c.micro_step) {
-    // P1-type resonance: linearized Hertz spring between the wheel's effective mass and the
-    // rail mass of one bay.
-    Eigen::MatrixXd M(nv, nv);
-    M.setZero();
-    vehicles_.mass(q, M);
-    vehicles_.wheels(q, z, J);
-    const Eigen::MatrixXd mobility = J * M.ldlt().solve(J.transpose());
-    const double rail_mass = c.rail_mass_per_length * c.sleeper_spacing;
-    double f_max = 0.0;  // Hz
-    for (Eigen::Index w = 0; w < nwi; ++w) {
-      const double k_h = linearized_stiffness(hertz_[static_cast<std::size_t>(w)], F[w]);
-      const double inv_mass = mobility(w, w) + 1.0 / rail_mass;
-      f_max = std::max(f_max, std::sqrt(k_h * inv_mass) / (2.0 * std::numbers::pi));
-    }
-    // A wheel mass of 1e-300 kg (or a contact of no stiffness) gives no finite frequency, and no
-    // micro-step follows from it: say which input, not "advance() before solve_static()".
-    if (!(std::isfinite(f_max) && f_max > 0.0)) {
-      std::ostringstream m;
-      m << "track: no finite wheel/rail contact frequency (" << f_max
-        << " Hz) follows from the vehicles' masses and the Hertz contact: check every vehicle's "
-           "masses (e.g. a wheel mass of 1e-300 kg), or set /track/integrator/micro_step";
-      throw RunError(m.str());
-    }
-    h_max_ = 1.0 / (kStepsPerContactPeriod * f_max);
+double TrackParticipant::contact_step_limit(const Eigen::VectorXd& q, const Eigen::VectorXd& F) {
+  const TrackConfig& c = structure_.config();
+  const auto nv = static_cast<Eigen::Index>(vehicles_.dof_count());
+  const auto nwi = static_cast<Eigen::Index>(vehicles_.wheel_count());
+  // P1-type resonance: linearized Hertz spring between the wheel's effective mass and the
+  // rail mass of one bay.
+  Eigen::MatrixXd M(nv, nv), J(nwi, nv);
+  Eigen::VectorXd z(nwi);
+  M.setZero();
+  vehicles_.mass(q, M);
+  vehicles_.wheels(q, z, J);
+  const Eigen::MatrixXd mobility = J * M.ldlt().solve(J.transpose());
+  const double rail_mass = c.rail_mass_per_length * c.sleeper_spacing;
+  double f_max = 0.0;  // Hz
+  for (Eigen::Index w = 0; w < nwi; ++w) {
+    const double k_h = linearized_stiffness(hertz_[static_cast<std::size_t>(w)], F[w]);
+    const double inv_mass = mobility(w, w) + 1.0 / rail_mass;
+    f_max = std::max(f_max, std::sqrt(k_h * inv_mass) / (2.0 * std::numbers::pi));
   }
-  return soil ? soil_solves : 1;
+  // A wheel mass of 1e-300 kg (or a contact of no stiffness) gives no finite frequency, and no
+  // micro-step follows from it: say which input, not "advance() before solve_static()".
+  if (!(std::isfinite(f_max) && f_max > 0.0)) {
+    std::ostringstream m;
+    m << "track: no finite wheel/rail contact frequency (" << f_max
+      << " Hz) follows from the vehicles' masses and the Hertz contact: check every vehicle's "
+         "masses (e.g. a wheel mass of 1e-300 kg), or set /track/integrator/micro_step";
+    throw RunError(m.str());
+  }
+  return 1.0 / (kStepsPerContactPeriod * f_max);
 }
 
 // --------------------------------------------------------------------------- dynamics
@@ -382,12 +452,44 @@ void TrackParticipant::advance(double t, double H) {
 }
 
 void TrackParticipant::micro_step(double t1, double h, double tau) {
+  // Footprint motion at t1 from the input waveform; an integrated soil's comes from the joint
+  // solve instead.
+  if (!soil_) footprint_motion_at(tau);
+  predict(h);
+  // The contact points depend on t1 only: the track's responses to the wheels are found once.
+  evaluate_contacts(t1, x_, q_);
+  unit_contact_responses();
+  const double ca = newmark_.c_a(h), cv = newmark_.c_v(h);
+  // Force scale [N] for the convergence test: the contact forces, and the inertial and
+  // damping terms of the step, whose round-off bounds how small the residual can get.
+  double force_scale = std::max(1.0, max_abs(rhs_t_));
+  for (double f : contact_force_) force_scale = std::max(force_scale, std::abs(f));
+  bool converged = false;
+  int it = 0;
+  for (; it < kMaxNewtonIterations && !converged; ++it) {
+    newton_residuals(t1, it, ca, cv);
+    // Converged when the residual forces are below 1e-10 of the force scale: the update they
+    // would give is then far below any physical displacement (1e-10 x 1e5 N / 1e8 N/m).
+    if (it > 0 && max_abs(r_t_) <= kRelativeTolerance * force_scale &&
+        (vehicles_.dof_count() == 0 || max_abs(r_v_) <= kRelativeTolerance * force_scale)) {
+      converged = true;
+      break;
+    }
+    newton_update(it, ca, cv);
+  }
+  if (!converged) {
+    std::ostringstream m;
+    m << "track: Newton did not converge at t = " << t1 << " s in " << kMaxNewtonIterations
+      << " iterations (contact loss and re-impact?); set a smaller track.integrator.micro_step";
+    throw RunError(m.str());
+  }
+  last_iterations_ = it;
+  correct(t1, h);
+}
+
+void TrackParticipant::footprint_motion_at(double tau) {
   const std::size_t n = structure_.sleeper_count();
-  const std::size_t nw = vehicles_.wheel_count();
-  const auto nv = static_cast<Eigen::Index>(vehicles_.dof_count());
-  // Footprint motion at t1 from the input waveform (Horner in tau); an integrated soil's comes
-  // from the joint solve instead.
-  for (std::size_t i = 0; i < n && !soil_; ++i) {
+  for (std::size_t i = 0; i < n; ++i) {  // Horner in tau
     double u = 0.0, v = 0.0;
     for (int k = static_cast<int>(input_.order); k >= 0; --k) {
       const std::size_t base = static_cast<std::size_t>(k) * 2 * n;
@@ -397,7 +499,9 @@ void TrackParticipant::micro_step(double t1, double h, double tau) {
     u_now_[i] = u;
     v_now_[i] = v;
   }
-  const double ca = newmark_.c_a(h), cv = newmark_.c_v(h);
+}
+
+void TrackParticipant::predict(double h) {
   newmark_.predictors(h, x_, v_, a_, pa_t_, pv_t_);
   newmark_.predictors(h, q_, qd_, qdd_, pa_v_, pv_v_);
   structure_.mass().multiply(pa_t_.data(), rhs_t_.data());
@@ -411,13 +515,13 @@ void TrackParticipant::micro_step(double t1, double h, double tau) {
   // Start from the constant-acceleration predictor.
   x_ += h * v_ + 0.5 * h * h * a_;
   q_ += h * qd_ + 0.5 * h * h * qdd_;
+}
 
-  // The contact points depend on t1 only: the track's response to a unit force at each one,
-  // A^-1 N_w (the track half of Woodbury's D^-1 B), is computed once per micro-step from the
-  // cached columns of A^-1 of the contact point's four DOFs.
-  evaluate_contacts(t1, x_, q_);
+void TrackParticipant::unit_contact_responses() {
+  // A^-1 N_w (the track half of Woodbury's D^-1 B) from the cached columns of A^-1 of the
+  // contact point's four DOFs.
   const auto nt = x_.size();
-  for (std::size_t w = 0; w < nw; ++w) {
+  for (std::size_t w = 0; w < vehicles_.wheel_count(); ++w) {
     const auto wi = static_cast<Eigen::Index>(w);
     z_t_.col(wi).setZero();
     for (std::size_t k = 0; k < 4; ++k) {
@@ -426,104 +530,91 @@ void TrackParticipant::micro_step(double t1, double h, double tau) {
       z_t_.col(wi) += contact_point_[w].shape[k] * Eigen::Map<const Eigen::VectorXd>(column, nt);
     }
   }
+}
 
-  // Force scale [N] for the convergence test: the contact forces, and the inertial and
-  // damping terms of the step, whose round-off bounds how small the residual can get.
-  double force_scale = std::max(1.0, max_abs(rhs_t_));
-  for (double f : contact_force_) force_scale = std::max(force_scale, std::abs(f));
-  bool converged = false;
-  int it = 0;
-  for (; it < kMaxNewtonIterations && !converged; ++it) {
-    vel_v_ = cv * q_ - pv_v_;
-    acc_v_ = ca * q_ - pa_v_;
-    evaluate_contacts(t1, x_, q_);
-    // Residuals: r_t = A x - rhs - N F ; r_v = M(q) a - f + J^T F.
-    if (it == 0) {
-      a_track_operator_.multiply(x_.data(), r_t_.data());
-      if (soil_) soil_->subtract_coupling(x_.data(), r_t_.data());
-      r_t_ -= rhs_t_;
-      for (std::size_t w = 0; w < nw; ++w)
-        for (std::size_t k = 0; k < 4; ++k)
-          r_t_[static_cast<Eigen::Index>(contact_point_[w].dof[k])] -=
-              contact_point_[w].shape[k] * contact_force_[w];
-    } else {
-      // After a Newton update the linear track's residual lives on the contact DOFs only: the
-      // update solved A y_t = r_t - N (F_lin - F), so r_t' = N (F_lin - F'), F_lin the contact
-      // force the update predicted and F' the force now (exact up to the solve's round-off).
-      r_t_.setZero();
-      for (std::size_t w = 0; w < nw; ++w) {
-        const auto wi = static_cast<Eigen::Index>(w);
-        force_error_[wi] = contact_force_linear_[wi] - contact_force_[w];
-        for (std::size_t k = 0; k < 4; ++k)
-          r_t_[static_cast<Eigen::Index>(contact_point_[w].dof[k])] +=
-              contact_point_[w].shape[k] * force_error_[wi];
-      }
-    }
-    vehicles_.mass(q_, m_v_);
-    vehicles_.forces(t1, q_, vel_v_, f_v_);
-    vehicles_.tangent(t1, q_, vel_v_, k_v_, c_v_);
-    r_v_.noalias() = m_v_ * acc_v_;
-    r_v_ -= f_v_;
+void TrackParticipant::newton_residuals(double t1, int it, double ca, double cv) {
+  const std::size_t nw = vehicles_.wheel_count();
+  vel_v_ = cv * q_ - pv_v_;
+  acc_v_ = ca * q_ - pa_v_;
+  evaluate_contacts(t1, x_, q_);
+  // Residuals: r_t = A x - rhs - N F ; r_v = M(q) a - f + J^T F.
+  if (it == 0) {
+    a_track_operator_.multiply(x_.data(), r_t_.data());
+    if (soil_) soil_->subtract_coupling(x_.data(), r_t_.data());
+    r_t_ -= rhs_t_;
     for (std::size_t w = 0; w < nw; ++w)
-      r_v_.noalias() += j_w_.row(static_cast<Eigen::Index>(w)).transpose() * contact_force_[w];
-    // Converged when the residual forces are below 1e-10 of the force scale: the update they
-    // would give is then far below any physical displacement (1e-10 x 1e5 N / 1e8 N/m).
-    if (it > 0 && max_abs(r_t_) <= kRelativeTolerance * force_scale &&
-        (nv == 0 || max_abs(r_v_) <= kRelativeTolerance * force_scale)) {
-      converged = true;
-      break;
-    }
-    a_vehicle_ = ca * m_v_ + cv * c_v_ + k_v_;
-    lu_vehicle_.compute(a_vehicle_);
-    // Woodbury: y = D^-1 r, Z = D^-1 B, S = I + K B^T Z, dx = y - Z S^-1 K B^T y.
-    if (it == 0) {
-      y_t_ = r_t_;
-      solve_linear(y_t_.data());
-    } else {
-      y_t_.noalias() = z_t_ * force_error_;  // A^-1 N (F_lin - F'), no solve
-    }
-    y_v_ = lu_vehicle_.solve(r_v_);
-    // All wheels at once into the whole of z_v_, then negated in place: a solve() negated, or
-    // assigned to a column block, evaluates into a temporary (an allocation per Newton step).
-    z_v_ = lu_vehicle_.solve(j_w_.transpose());
-    z_v_ *= -1.0;
+      for (std::size_t k = 0; k < 4; ++k)
+        r_t_[static_cast<Eigen::Index>(contact_point_[w].dof[k])] -=
+            contact_point_[w].shape[k] * contact_force_[w];
+  } else {
+    // After a Newton update the linear track's residual lives on the contact DOFs only: the
+    // update solved A y_t = r_t - N (F_lin - F), so r_t' = N (F_lin - F'), F_lin the contact
+    // force the update predicted and F' the force now (exact up to the solve's round-off).
+    r_t_.setZero();
     for (std::size_t w = 0; w < nw; ++w) {
       const auto wi = static_cast<Eigen::Index>(w);
-      const double kw = contact_stiffness_[w];
-      for (std::size_t j = 0; j < nw; ++j) {
-        const auto ji = static_cast<Eigen::Index>(j);
-        const double btz =
-            dot_rail(contact_point_[w], z_t_.col(ji)) - j_w_.row(wi).dot(z_v_.col(ji));
-        s_small_(wi, ji) = (w == j ? 1.0 : 0.0) + kw * btz;
-      }
-      s_rhs_[wi] = kw * (dot_rail(contact_point_[w], y_t_) - j_w_.row(wi).dot(y_v_));
-    }
-    lu_small_.compute(s_small_);
-    s_sol_ = lu_small_.solve(s_rhs_);
-    y_t_.noalias() -= z_t_ * s_sol_;
-    y_v_.noalias() -= z_v_ * s_sol_;
-    x_ -= y_t_;
-    q_ -= y_v_;
-    // The contact forces this update predicts (delta changes by N^T y_t - J y_v).
-    for (std::size_t w = 0; w < nw; ++w) {
-      const auto wi = static_cast<Eigen::Index>(w);
-      contact_force_linear_[wi] =
-          contact_force_[w] +
-          contact_stiffness_[w] * (dot_rail(contact_point_[w], y_t_) - j_w_.row(wi).dot(y_v_));
+      force_error_[wi] = contact_force_linear_[wi] - contact_force_[w];
+      for (std::size_t k = 0; k < 4; ++k)
+        r_t_[static_cast<Eigen::Index>(contact_point_[w].dof[k])] +=
+            contact_point_[w].shape[k] * force_error_[wi];
     }
   }
-  if (!converged) {
-    std::ostringstream m;
-    m << "track: Newton did not converge at t = " << t1 << " s in " << kMaxNewtonIterations
-      << " iterations (contact loss and re-impact?); set a smaller track.integrator.micro_step";
-    throw RunError(m.str());
+  vehicles_.mass(q_, m_v_);
+  vehicles_.forces(t1, q_, vel_v_, f_v_);
+  vehicles_.tangent(t1, q_, vel_v_, k_v_, c_v_);
+  r_v_.noalias() = m_v_ * acc_v_;
+  r_v_ -= f_v_;
+  for (std::size_t w = 0; w < nw; ++w)
+    r_v_.noalias() += j_w_.row(static_cast<Eigen::Index>(w)).transpose() * contact_force_[w];
+}
+
+void TrackParticipant::newton_update(int it, double ca, double cv) {
+  const std::size_t nw = vehicles_.wheel_count();
+  a_vehicle_ = ca * m_v_ + cv * c_v_ + k_v_;
+  lu_vehicle_.compute(a_vehicle_);
+  // Woodbury: y = D^-1 r, Z = D^-1 B, S = I + K B^T Z, dx = y - Z S^-1 K B^T y.
+  if (it == 0) {
+    y_t_ = r_t_;
+    solve_linear(y_t_.data());
+  } else {
+    y_t_.noalias() = z_t_ * force_error_;  // A^-1 N (F_lin - F'), no solve
   }
-  last_iterations_ = it;
+  y_v_ = lu_vehicle_.solve(r_v_);
+  // All wheels at once into the whole of z_v_, then negated in place: a solve() negated, or
+  // assigned to a column block, evaluates into a temporary (an allocation per Newton step).
+  z_v_ = lu_vehicle_.solve(j_w_.transpose());
+  z_v_ *= -1.0;
+  for (std::size_t w = 0; w < nw; ++w) {
+    const auto wi = static_cast<Eigen::Index>(w);
+    const double kw = contact_stiffness_[w];
+    for (std::size_t j = 0; j < nw; ++j) {
+      const auto ji = static_cast<Eigen::Index>(j);
+      const double btz = dot_rail(contact_point_[w], z_t_.col(ji)) - j_w_.row(wi).dot(z_v_.col(ji));
+      s_small_(wi, ji) = (w == j ? 1.0 : 0.0) + kw * btz;
+    }
+    s_rhs_[wi] = kw * (dot_rail(contact_point_[w], y_t_) - j_w_.row(wi).dot(y_v_));
+  }
+  lu_small_.compute(s_small_);
+  s_sol_ = lu_small_.solve(s_rhs_);
+  y_t_.noalias() -= z_t_ * s_sol_;
+  y_v_.noalias() -= z_v_ * s_sol_;
+  x_ -= y_t_;
+  q_ -= y_v_;
+  // The contact forces this update predicts (delta changes by N^T y_t - J y_v).
+  for (std::size_t w = 0; w < nw; ++w) {
+    const auto wi = static_cast<Eigen::Index>(w);
+    contact_force_linear_[wi] =
+        contact_force_[w] +
+        contact_stiffness_[w] * (dot_rail(contact_point_[w], y_t_) - j_w_.row(wi).dot(y_v_));
+  }
+}
+
+void TrackParticipant::correct(double t1, double h) {
   newmark_.correct(h, x_old_, x_, v_, a_);
   newmark_.correct(h, q_old_, q_, qd_, qdd_);
   if (soil_) {
     soil_->correct(newmark_, h, x_);
-    for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t i = 0; i < structure_.sleeper_count(); ++i) {
       u_now_[i] = soil_->soil().footprint_u(i);
       v_now_[i] = soil_->soil().footprint_v(i);
     }

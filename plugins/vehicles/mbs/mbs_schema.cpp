@@ -4,9 +4,9 @@
 #include "mbs_schema.hpp"
 
 namespace rumble::mbs {
+namespace {
 
-const char* mbs_params_schema() {
-  return R"json({
+constexpr const char kMbsParamsSchema[] = R"json({
   "type": "object",
   "additionalProperties": false,
   "description": "multibody vehicle in the vertical plane (one side), defined inline or in a file; see docs/vehicles.md",
@@ -89,6 +89,11 @@ const char* mbs_params_schema() {
     }
   }
 })json";
+
+}  // namespace
+
+const char* mbs_params_schema() {
+  return kMbsParamsSchema;
 }
 
 }  // namespace rumble::mbs

@@ -590,114 +590,233 @@ inline rumble_common_api common_api() {
   return c;
 }
 
+/// The vehicle's functions of ABI 1.0 (rumble_vehicle_api up to lifecycle).
+template <class T>
+void vehicle_functions_1_0(rumble_vehicle_api& a) {
+  a.dof_count = [](rumble_instance* s, std::uint64_t* n) {
+    return guard(s, [&] { *n = object<T>(s).dof_count(); });
+  };
+  a.wheels = [](rumble_instance* s, rumble_wheel* out, std::uint64_t cap, std::uint64_t* n) {
+    return guard(s, [&] {
+      const std::vector<Wheel> w = object<T>(s).wheels();
+      *n = w.size();
+      for (std::size_t i = 0; i < w.size() && i < cap; ++i) out[i] = w[i];
+    });
+  };
+  a.mass_matrix = [](rumble_instance* s, const double* q, double* m) {
+    return guard(s, [&] { object<T>(s).mass_matrix(q, m); });
+  };
+  a.forces = [](rumble_instance* s, double t, const double* q, const double* qd, double* f) {
+    return guard(s, [&] { object<T>(s).forces(t, q, qd, f); });
+  };
+  a.wheel_kinematics = [](rumble_instance* s, const double* q, double* z, double* j) {
+    return guard(s, [&] { object<T>(s).wheel_kinematics(q, z, j); });
+  };
+  a.tangent = [](rumble_instance* s, double t, const double* q, const double* qd, double* k,
+                 double* c) {
+    return guard(s, [&] {
+      if (!object<T>(s).tangent(t, q, qd, k, c))
+        throw std::logic_error("no analytical tangent (not declared: the host asks tangent2)");
+    });
+  };
+  a.output_names = [](rumble_instance* s) -> const char* {
+    Box* b = box(s);
+    std::string joined;
+    if (guard(s, [&] {
+          for (const std::string& n : object<T>(s).output_names())
+            joined += (joined.empty() ? "" : ";") + n;
+        }) != RUMBLE_OK)
+      return "";  // ABI 1.0 has no status here; output_names2 reports it
+    b->message = std::move(joined);
+    return b->message.c_str();
+  };
+  a.outputs = [](rumble_instance* s, double t, const double* q, const double* qd, double* v) {
+    return guard(s, [&] { object<T>(s).outputs(t, q, qd, v); });
+  };
+}
+
+/// The vehicle's functions ABI 1.1 appended: the same calls with the length of every array.
+template <class T>
+void vehicle_functions_1_1(rumble_vehicle_api& a) {
+  a.mass_matrix2 = [](rumble_instance* s, const double* q, std::uint64_t n, double* m,
+                      std::uint64_t n_m) {
+    return guard(s, [&] {
+      const std::size_t dof = box(s)->n_dof;
+      check_length("mass_matrix", "q", n, dof);
+      check_length("mass_matrix", "mass", n_m, dof * dof);
+      object<T>(s).mass_matrix(q, m);
+    });
+  };
+  a.forces2 = [](rumble_instance* s, double t, const double* q, const double* qd, std::uint64_t n,
+                 double* f) {
+    return guard(s, [&] {
+      check_length("forces", "q", n, box(s)->n_dof);
+      object<T>(s).forces(t, q, qd, f);
+    });
+  };
+  a.wheel_kinematics2 = [](rumble_instance* s, const double* q, std::uint64_t n, double* z,
+                           std::uint64_t n_wheels, double* j) {
+    return guard(s, [&] {
+      check_length("wheel_kinematics", "q", n, box(s)->n_dof);
+      check_length("wheel_kinematics", "z", n_wheels, box(s)->n_wheels);
+      object<T>(s).wheel_kinematics(q, z, j);
+    });
+  };
+  a.tangent2 = [](rumble_instance* s, double t, const double* q, const double* qd, std::uint64_t n,
+                  double* k, double* c) {
+    bool known = false;
+    const rumble_status st = guard(s, [&] {
+      check_length("tangent", "q", n, box(s)->n_dof);
+      known = object<T>(s).tangent(t, q, qd, k, c);
+      if (!known) {
+        throw std::logic_error(
+            "tangent() returned false, but overriding it declares an analytic tangent: return "
+            "it at every state, or do not override tangent() (the engine then differentiates "
+            "forces())");
+      }
+    });
+    return st;
+  };
+  a.output_names2 = [](rumble_instance* s, const char** names, std::uint64_t cap,
+                       std::uint64_t* n) {
+    return guard(s, [&] {
+      Box* b = box(s);
+      b->names = object<T>(s).output_names();
+      b->name_ptrs.clear();
+      for (const std::string& name : b->names) b->name_ptrs.push_back(name.c_str());
+      *n = b->names.size();
+      for (std::size_t i = 0; i < b->name_ptrs.size() && i < cap; ++i) names[i] = b->name_ptrs[i];
+    });
+  };
+  a.outputs2 = [](rumble_instance* s, double t, const double* q, const double* qd, std::uint64_t n,
+                  double* v, std::uint64_t n_v) {
+    return guard(s, [&] {
+      check_length("outputs", "q", n, box(s)->n_dof);
+      check_length("outputs", "values", n_v, box(s)->n_outputs);
+      object<T>(s).outputs(t, q, qd, v);
+    });
+  };
+}
+
 template <class T>
 const rumble_vehicle_api* vehicle_api() {
   static const rumble_vehicle_api api = [] {
     rumble_vehicle_api a{};
     a.struct_size = sizeof(rumble_vehicle_api);
     a.common = common_api();
-    a.dof_count = [](rumble_instance* s, std::uint64_t* n) {
-      return guard(s, [&] { *n = object<T>(s).dof_count(); });
-    };
-    a.wheels = [](rumble_instance* s, rumble_wheel* out, std::uint64_t cap, std::uint64_t* n) {
-      return guard(s, [&] {
-        const std::vector<Wheel> w = object<T>(s).wheels();
-        *n = w.size();
-        for (std::size_t i = 0; i < w.size() && i < cap; ++i) out[i] = w[i];
-      });
-    };
-    a.mass_matrix = [](rumble_instance* s, const double* q, double* m) {
-      return guard(s, [&] { object<T>(s).mass_matrix(q, m); });
-    };
-    a.forces = [](rumble_instance* s, double t, const double* q, const double* qd, double* f) {
-      return guard(s, [&] { object<T>(s).forces(t, q, qd, f); });
-    };
-    a.wheel_kinematics = [](rumble_instance* s, const double* q, double* z, double* j) {
-      return guard(s, [&] { object<T>(s).wheel_kinematics(q, z, j); });
-    };
-    a.tangent = [](rumble_instance* s, double t, const double* q, const double* qd, double* k,
-                   double* c) {
-      return guard(s, [&] {
-        if (!object<T>(s).tangent(t, q, qd, k, c))
-          throw std::logic_error("no analytical tangent (not declared: the host asks tangent2)");
-      });
-    };
-    a.output_names = [](rumble_instance* s) -> const char* {
-      Box* b = box(s);
-      std::string joined;
-      if (guard(s, [&] {
-            for (const std::string& n : object<T>(s).output_names())
-              joined += (joined.empty() ? "" : ";") + n;
-          }) != RUMBLE_OK)
-        return "";  // ABI 1.0 has no status here; output_names2 reports it
-      b->message = std::move(joined);
-      return b->message.c_str();
-    };
-    a.outputs = [](rumble_instance* s, double t, const double* q, const double* qd, double* v) {
-      return guard(s, [&] { object<T>(s).outputs(t, q, qd, v); });
-    };
+    vehicle_functions_1_0<T>(a);
     a.lifecycle = lifecycle_api();
-    a.mass_matrix2 = [](rumble_instance* s, const double* q, std::uint64_t n, double* m,
-                        std::uint64_t n_m) {
-      return guard(s, [&] {
-        const std::size_t dof = box(s)->n_dof;
-        check_length("mass_matrix", "q", n, dof);
-        check_length("mass_matrix", "mass", n_m, dof * dof);
-        object<T>(s).mass_matrix(q, m);
-      });
-    };
-    a.forces2 = [](rumble_instance* s, double t, const double* q, const double* qd, std::uint64_t n,
-                   double* f) {
-      return guard(s, [&] {
-        check_length("forces", "q", n, box(s)->n_dof);
-        object<T>(s).forces(t, q, qd, f);
-      });
-    };
-    a.wheel_kinematics2 = [](rumble_instance* s, const double* q, std::uint64_t n, double* z,
-                             std::uint64_t n_wheels, double* j) {
-      return guard(s, [&] {
-        check_length("wheel_kinematics", "q", n, box(s)->n_dof);
-        check_length("wheel_kinematics", "z", n_wheels, box(s)->n_wheels);
-        object<T>(s).wheel_kinematics(q, z, j);
-      });
-    };
-    a.tangent2 = [](rumble_instance* s, double t, const double* q, const double* qd,
-                    std::uint64_t n, double* k, double* c) {
-      bool known = false;
-      const rumble_status st = guard(s, [&] {
-        check_length("tangent", "q", n, box(s)->n_dof);
-        known = object<T>(s).tangent(t, q, qd, k, c);
-        if (!known) {
-          throw std::logic_error(
-              "tangent() returned false, but overriding it declares an analytic tangent: return "
-              "it at every state, or do not override tangent() (the engine then differentiates "
-              "forces())");
-        }
-      });
-      return st;
-    };
-    a.output_names2 = [](rumble_instance* s, const char** names, std::uint64_t cap,
-                         std::uint64_t* n) {
-      return guard(s, [&] {
-        Box* b = box(s);
-        b->names = object<T>(s).output_names();
-        b->name_ptrs.clear();
-        for (const std::string& name : b->names) b->name_ptrs.push_back(name.c_str());
-        *n = b->names.size();
-        for (std::size_t i = 0; i < b->name_ptrs.size() && i < cap; ++i) names[i] = b->name_ptrs[i];
-      });
-    };
-    a.outputs2 = [](rumble_instance* s, double t, const double* q, const double* qd,
-                    std::uint64_t n, double* v, std::uint64_t n_v) {
-      return guard(s, [&] {
-        check_length("outputs", "q", n, box(s)->n_dof);
-        check_length("outputs", "values", n_v, box(s)->n_outputs);
-        object<T>(s).outputs(t, q, qd, v);
-      });
-    };
+    vehicle_functions_1_1<T>(a);
     return a;
   }();
   return &api;
+}
+
+/// The soil's functions of ABI 1.0 (rumble_soil_api up to lifecycle).
+template <class T>
+void soil_functions_1_0(rumble_soil_api& a) {
+  a.accept_layout = [](rumble_instance* s, const rumble_footprint* fp, std::uint64_t n) {
+    return guard(s, [&] {
+      object<T>(s).accept_layout(std::vector<Footprint>(fp, fp + n));
+      box(s)->n_footprints = static_cast<std::size_t>(n);
+    });
+  };
+  a.initialize = [](rumble_instance* s, double t0, const double* f, double* u, std::uint64_t n) {
+    return guard(s, [&] {
+      check_length("initialize", "static_force", n, box(s)->n_footprints);
+      object<T>(s).initialize(t0, f, u);
+    });
+  };
+  a.advance = [](rumble_instance* s, double t, double H, const rumble_waveform* w) {
+    return guard(s, [&] {
+      check_length("advance", "force waveform", w->n, box(s)->n_footprints);
+      object<T>(s).advance(t, H, Waveform(*w));
+    });
+  };
+  a.motion = [](rumble_instance* s, double* u, double* v, std::uint64_t n) {
+    return guard(s, [&] {
+      check_length("motion", "u", n, box(s)->n_footprints);
+      object<T>(s).motion(u, v);
+    });
+  };
+  a.frequency_response = [](rumble_instance* s, double f, double* re, double* im, std::uint64_t n) {
+    return guard(s, [&] {
+      std::vector<std::complex<double>> h(static_cast<std::size_t>(n * n));
+      if (!object<T>(s).frequency_response(f, h.data()))
+        throw std::logic_error("frequency response not offered");
+      for (std::size_t k = 0; k < h.size(); ++k) {
+        re[k] = h[k].real();
+        im[k] = h[k].imag();
+      }
+    });
+  };
+  a.set_receivers = [](rumble_instance* s, const rumble_receiver* r, std::uint64_t n) {
+    return guard(s, [&] {
+      if (!object<T>(s).set_receivers(std::vector<Receiver>(r, r + n)))
+        throw std::logic_error("receivers not offered");
+    });
+  };
+  a.receiver_velocity = [](rumble_instance* s, double* v, std::uint64_t) {
+    return guard(s, [&] { object<T>(s).receiver_velocity(v); });
+  };
+}
+
+/// The soil's functions ABI 1.1 and later appended: probes, fields, wave speeds, linear
+/// matrices and (1.3) the probes' resolved band.
+template <class T>
+void soil_functions_1_1(rumble_soil_api& a) {
+  a.set_probes = [](rumble_instance* s, const rumble_probe* p, std::uint64_t n, double dt) {
+    return guard(s, [&] {
+      std::vector<Probe> probes;
+      for (std::uint64_t i = 0; i < n; ++i)
+        probes.push_back({p[i].name != nullptr ? p[i].name : "", p[i].x, p[i].y, p[i].depth});
+      object<T>(s).samples().reset(probes.size());
+      object<T>(s).set_probes(probes, dt);
+    });
+  };
+  a.probe_samples = [](rumble_instance* s, double* times, double* values, std::uint64_t cap,
+                       std::uint64_t* n) {
+    return guard(s, [&] {
+      ProbeSamples& samples = object<T>(s).samples();
+      *n =
+          cap == 0 ? samples.pending() : samples.take(times, values, static_cast<std::size_t>(cap));
+    });
+  };
+  a.write_fields = [](rumble_instance* s, double t, const char* path) {
+    return guard(s, [&] { object<T>(s).write_fields(t, path != nullptr ? path : ""); });
+  };
+  a.wave_speeds = [](rumble_instance* s, double* c_s, double* c_r) {
+    return guard(s, [&] { object<T>(s).wave_speeds(*c_s, *c_r); });
+  };
+  a.linear_matrix = [](rumble_instance* s, std::int32_t which, rumble_csc* out) {
+    return guard(s, [&] {
+      Box* b = box(s);
+      if (out->values == nullptr || b->matrix_which != which) {  // size query (or stale)
+        b->matrix = CscMatrix{};
+        object<T>(s).linear_matrix(static_cast<rumble_matrix>(which), b->matrix);
+        b->matrix_which = which;
+      }
+      const CscMatrix& m = b->matrix;
+      out->rows = m.rows;
+      out->cols = m.cols;
+      out->nnz = m.values.size();
+      if (out->values == nullptr) return;
+      std::copy(m.col_ptr.begin(), m.col_ptr.end(), out->col_ptr);
+      std::copy(m.row_index.begin(), m.row_index.end(), out->row_index);
+      std::copy(m.values.begin(), m.values.end(), out->values);
+      b->matrix = CscMatrix{};  // filled: release it
+      b->matrix_which = -1;
+    });
+  };
+  a.probe_resolution = [](rumble_instance* s, double* f_hz, std::uint64_t n, const char** rule) {
+    return guard(s, [&] {
+      Box* b = box(s);
+      const std::vector<double> f = object<T>(s).probe_resolution(b->resolution_rule);
+      if (!f.empty()) check_length("probe_resolution", "f_hz", n, f.size());
+      for (std::uint64_t i = 0; i < n; ++i) f_hz[i] = f.empty() ? 0.0 : f[i];
+      if (rule != nullptr) *rule = f.empty() ? nullptr : b->resolution_rule.c_str();
+    });
+  };
 }
 
 template <class T>
@@ -706,104 +825,9 @@ const rumble_soil_api* soil_api() {
     rumble_soil_api a{};
     a.struct_size = sizeof(rumble_soil_api);
     a.common = common_api();
-    a.accept_layout = [](rumble_instance* s, const rumble_footprint* fp, std::uint64_t n) {
-      return guard(s, [&] {
-        object<T>(s).accept_layout(std::vector<Footprint>(fp, fp + n));
-        box(s)->n_footprints = static_cast<std::size_t>(n);
-      });
-    };
-    a.initialize = [](rumble_instance* s, double t0, const double* f, double* u, std::uint64_t n) {
-      return guard(s, [&] {
-        check_length("initialize", "static_force", n, box(s)->n_footprints);
-        object<T>(s).initialize(t0, f, u);
-      });
-    };
-    a.advance = [](rumble_instance* s, double t, double H, const rumble_waveform* w) {
-      return guard(s, [&] {
-        check_length("advance", "force waveform", w->n, box(s)->n_footprints);
-        object<T>(s).advance(t, H, Waveform(*w));
-      });
-    };
-    a.motion = [](rumble_instance* s, double* u, double* v, std::uint64_t n) {
-      return guard(s, [&] {
-        check_length("motion", "u", n, box(s)->n_footprints);
-        object<T>(s).motion(u, v);
-      });
-    };
-    a.frequency_response = [](rumble_instance* s, double f, double* re, double* im,
-                              std::uint64_t n) {
-      return guard(s, [&] {
-        std::vector<std::complex<double>> h(static_cast<std::size_t>(n * n));
-        if (!object<T>(s).frequency_response(f, h.data()))
-          throw std::logic_error("frequency response not offered");
-        for (std::size_t k = 0; k < h.size(); ++k) {
-          re[k] = h[k].real();
-          im[k] = h[k].imag();
-        }
-      });
-    };
-    a.set_receivers = [](rumble_instance* s, const rumble_receiver* r, std::uint64_t n) {
-      return guard(s, [&] {
-        if (!object<T>(s).set_receivers(std::vector<Receiver>(r, r + n)))
-          throw std::logic_error("receivers not offered");
-      });
-    };
-    a.receiver_velocity = [](rumble_instance* s, double* v, std::uint64_t) {
-      return guard(s, [&] { object<T>(s).receiver_velocity(v); });
-    };
+    soil_functions_1_0<T>(a);
     a.lifecycle = lifecycle_api();
-    a.set_probes = [](rumble_instance* s, const rumble_probe* p, std::uint64_t n, double dt) {
-      return guard(s, [&] {
-        std::vector<Probe> probes;
-        for (std::uint64_t i = 0; i < n; ++i)
-          probes.push_back({p[i].name != nullptr ? p[i].name : "", p[i].x, p[i].y, p[i].depth});
-        object<T>(s).samples().reset(probes.size());
-        object<T>(s).set_probes(probes, dt);
-      });
-    };
-    a.probe_samples = [](rumble_instance* s, double* times, double* values, std::uint64_t cap,
-                         std::uint64_t* n) {
-      return guard(s, [&] {
-        ProbeSamples& samples = object<T>(s).samples();
-        *n = cap == 0 ? samples.pending()
-                      : samples.take(times, values, static_cast<std::size_t>(cap));
-      });
-    };
-    a.write_fields = [](rumble_instance* s, double t, const char* path) {
-      return guard(s, [&] { object<T>(s).write_fields(t, path != nullptr ? path : ""); });
-    };
-    a.wave_speeds = [](rumble_instance* s, double* c_s, double* c_r) {
-      return guard(s, [&] { object<T>(s).wave_speeds(*c_s, *c_r); });
-    };
-    a.linear_matrix = [](rumble_instance* s, std::int32_t which, rumble_csc* out) {
-      return guard(s, [&] {
-        Box* b = box(s);
-        if (out->values == nullptr || b->matrix_which != which) {  // size query (or stale)
-          b->matrix = CscMatrix{};
-          object<T>(s).linear_matrix(static_cast<rumble_matrix>(which), b->matrix);
-          b->matrix_which = which;
-        }
-        const CscMatrix& m = b->matrix;
-        out->rows = m.rows;
-        out->cols = m.cols;
-        out->nnz = m.values.size();
-        if (out->values == nullptr) return;
-        std::copy(m.col_ptr.begin(), m.col_ptr.end(), out->col_ptr);
-        std::copy(m.row_index.begin(), m.row_index.end(), out->row_index);
-        std::copy(m.values.begin(), m.values.end(), out->values);
-        b->matrix = CscMatrix{};  // filled: release it
-        b->matrix_which = -1;
-      });
-    };
-    a.probe_resolution = [](rumble_instance* s, double* f_hz, std::uint64_t n, const char** rule) {
-      return guard(s, [&] {
-        Box* b = box(s);
-        const std::vector<double> f = object<T>(s).probe_resolution(b->resolution_rule);
-        if (!f.empty()) check_length("probe_resolution", "f_hz", n, f.size());
-        for (std::uint64_t i = 0; i < n; ++i) f_hz[i] = f.empty() ? 0.0 : f[i];
-        if (rule != nullptr) *rule = f.empty() ? nullptr : b->resolution_rule.c_str();
-      });
-    };
+    soil_functions_1_1<T>(a);
     return a;
   }();
   return &api;

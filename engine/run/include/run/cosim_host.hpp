@@ -58,6 +58,8 @@ class CosimHostImpl {
   static CosimHostImpl& self(void* ctx) { return *static_cast<CosimHostImpl*>(ctx); }
   Participant* checked(std::uint32_t index) const;
   void fill_table();
+  void fill_table_1_0();  // the functions of ABI 1.0
+  void fill_table_1_1();  // those ABI 1.1 added
 
   std::vector<Participant*> participants_;
   std::uint32_t coupler_abi_minor_;

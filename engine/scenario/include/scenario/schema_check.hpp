@@ -84,6 +84,21 @@ class SchemaChecker {
                                 const std::vector<std::string>& path) const;
   std::vector<SchemaIssue> explain_variants(const std::string& pointer, const nlohmann::json& value,
                                             const std::vector<std::string>& path, int depth) const;
+  // The steps of explain_variants: the variant closest to the value (its issues, and those of
+  // the closest one the value has started on), the required key sets of variants that differ
+  // only in them, and the kinds of variants the value is of none of.
+  struct VariantChoice {
+    std::vector<SchemaIssue> best, started;
+    int best_score = -1;
+    bool all_missing_keys = true;
+  };
+  VariantChoice closest_variant(const std::vector<std::string>& variants, const nlohmann::json& sub,
+                                int depth) const;
+  SchemaIssue required_sets_issue(const std::vector<std::string>& variants,
+                                  const nlohmann::json& alternatives,
+                                  const SchemaIssue& fallback) const;
+  SchemaIssue kinds_issue(const std::vector<std::string>& variants,
+                          const SchemaIssue& fallback) const;
   void fill_at(const std::vector<Ref>& refs, nlohmann::json& value, int depth) const;
 
   /// The pointer of the first string or key too long for a regex, when the schema has any.

@@ -97,6 +97,22 @@ class TrackParticipant {
  private:
   void factorize_dynamic(double h);
   void micro_step(double t1, double h, double tau);
+  // The steps of micro_step: the footprint motion at tau of the input waveform, the Newmark
+  // predictors (the step's start), the track's responses to unit contact forces, a Newton
+  // iteration's residuals and its update (Woodbury), and the Newmark correctors.
+  void footprint_motion_at(double tau);
+  void predict(double h);
+  void unit_contact_responses();
+  void newton_residuals(double t1, int it, double ca, double cv);
+  void newton_update(int it, double ca, double cv);
+  void correct(double t1, double h);
+  // The steps of solve_static: the wheels on the rail at t = 0, the track's responses K^-1 N_w
+  // to unit wheel loads, the state at rest, and the micro-step the contact frequency allows.
+  void place_wheels_at_rest();
+  Eigen::MatrixXd unit_wheel_load_responses(const BandedSymmetric& k_static) const;
+  void start_at_rest(const Eigen::VectorXd& x, const Eigen::VectorXd& q, const Eigen::VectorXd& F,
+                     const std::vector<double>& u, const std::vector<double>& fb);
+  double contact_step_limit(const Eigen::VectorXd& q, const Eigen::VectorXd& F);
   /// Contact forces and stiffnesses for the rail state x and wheel positions z.
   void evaluate_contacts(double t, const Eigen::VectorXd& x, const Eigen::VectorXd& q);
   void ballast_load(double* f) const;  // k_b u + c_b v on the sleeper DOFs

@@ -26,6 +26,7 @@
 #include <cstddef>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "track/unevenness_random.hpp"
@@ -63,6 +64,11 @@ class Unevenness {
 
  private:
   enum class Kind { kNone, kShape, kWheelFlat, kRandom };
+
+  // The constructor's reading of each type: a dip or a bump, a wheel flat, a random profile.
+  void read_shape(const nlohmann::json& spec, const std::string& type);
+  void read_wheel_flat(const nlohmann::json& spec, const std::vector<double>& wheel_radii);
+  void read_random(const nlohmann::json& spec, double x_min, double x_max);
 
   /// (1 + cos(2 pi s / L)) / 2 for |s| < L/2, else 0: 1 at the centre s = 0.
   double raised_cosine(double s) const noexcept {
