@@ -4,7 +4,9 @@ forbids. Copies the source tree (what git tracks) to a scratch directory, breaks
 three ways, and expects one message per breach and exit status 1:
   - the post room includes a header of the run room (an arrow the target graph lacks);
   - the core room links FFTW (a package it does not use);
-  - the Winkler soil plugin links the engine's core room (plugins use the SDK only).
+  - the Winkler soil plugin links the engine's core room (plugins use the SDK only);
+and that the function-length check (tools/check_function_length.py) fails on a function of 90
+lines that tools/long_functions.txt does not list.
 
     violations_test.py SOURCE_DIR SCRATCH_DIR
 """
@@ -37,6 +39,17 @@ edit("engine/CMakeLists.txt", "PUBLIC spdlog::spdlog Threads::Threads",
      "PUBLIC spdlog::spdlog Threads::Threads PkgConfig::FFTW3")
 with open(tree / "plugins/soils/winkler/CMakeLists.txt", "a") as f:
     f.write("target_link_libraries(winkler PRIVATE rumble_core)\n")
+
+with open(tree / "engine/post/src/ppv.cpp", "a") as f:
+    f.write("namespace rumble {\nint too_long_for_a_reader() {\n  int x = 0;\n" +
+            "  ++x;\n" * 86 + "  return x;\n}\n}  // namespace rumble\n")
+length = subprocess.run([sys.executable, str(tree / "tools/check_function_length.py")],
+                        capture_output=True, text=True)
+print(length.stdout, length.stderr)
+if length.returncode != 1 or "too_long_for_a_reader is 90 lines" not in length.stdout:
+    print(f"function-length check: exit status {length.returncode} (1 expected), the 90-line "
+          "function not reported")
+    sys.exit(1)
 
 check = subprocess.run([sys.executable, str(tree / "tools/check_architecture.py"),
                         "--scratch", str(scratch / "check")], capture_output=True, text=True)
