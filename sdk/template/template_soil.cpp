@@ -61,10 +61,10 @@ class TemplateSoil final : public rumble::Soil {
 })";
   }
 
-  // The host has validated params against the schema and filled the defaults, so get() (which
-  // throws when a key is missing) cannot fail in a run; it still guards direct use in tests.
+  // Each default is declared once, in the schema: the host fills them, and Params given the
+  // schema falls back to them when the host did not (a unit test).
   TemplateSoil(const std::string& params_json, const rumble::Host& host) : host_(host) {
-    const rumble::Params p(params_json);
+    const rumble::Params p(params_json, params_schema());
     stiffness_ = p.get<double>("stiffness");
     damping_ = p.get<double>("damping");
     if (!(stiffness_ > 0.0)) {

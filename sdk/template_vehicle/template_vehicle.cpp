@@ -36,13 +36,15 @@ class TemplateVehicle final : public rumble::Vehicle {
 })";
   }
 
-  // The host has validated params against the schema and filled the defaults; the checks here
-  // guard direct use (tests) and say what, the value and the fix.
+  // Each default is declared once, in the schema: the host fills them, and Params given the
+  // schema falls back to them when the host did not (a unit test). The host also enforces the
+  // ranges; the checks here only guard the divisions below against direct use, and say what,
+  // the value and the fix.
   TemplateVehicle(const std::string& params_json, const rumble::Host& /*host*/) {
-    const rumble::Params p(params_json);
-    mass_ = p.get_or<double>("mass", 1000.0);
-    preload_ = p.get_or<double>("preload", 0.0);
-    radius_ = p.get_or<double>("wheel_radius", 0.46);
+    const rumble::Params p(params_json, params_schema());
+    mass_ = p.get<double>("mass");
+    preload_ = p.get<double>("preload");
+    radius_ = p.get<double>("wheel_radius");
     if (!(mass_ > 0.0)) {
       throw std::invalid_argument("params/mass: " + std::to_string(mass_) +
                                   " kg; must be > 0 (the wheel needs inertia)");

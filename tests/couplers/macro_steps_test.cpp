@@ -24,11 +24,11 @@ using rumble::coupling::CutEnergy;
 using rumble::coupling::MacroSteps;
 using ::testing::HasSubstr;
 
+/// The adaptive step with its schema's defaults and these bounds [s].
 AdaptiveStep adaptive(double min_step, double max_step) {
-  AdaptiveStep a;
-  a.min_step = min_step;
-  a.max_step = max_step;
-  return a;
+  const std::string params = R"({"adaptive": {"min_step": )" + std::to_string(min_step) +
+                             R"(, "max_step": )" + std::to_string(max_step) + "}}";
+  return rumble::coupling::read_adaptive_step(rumble::Params(params));
 }
 
 /// True when h is a whole number of q (to round-off).
@@ -102,6 +102,20 @@ TEST(MacroSteps, InvertedBoundsAreRefusedWithBothValues) {
                                     "0.0001 s; give min_step <= max_step"));
   }
   EXPECT_FALSE(rumble::coupling::read_adaptive_step(rumble::Params("{}")).enabled());
+}
+
+TEST(MacroSteps, DefaultsComeFromTheSchemaAlone) {
+  // Declared once: the values read without a host to fill them are the schema's defaults.
+  const nlohmann::json schema = nlohmann::json::parse(rumble::coupling::kAdaptiveStepObjectSchema);
+  const AdaptiveStep a = adaptive(1e-4, 1e-3);
+  const nlohmann::json& p = schema.at("properties");
+  EXPECT_EQ(a.tolerance, p.at("tolerance").at("default").get<double>());
+  EXPECT_EQ(a.power_floor, p.at("power_floor").at("default").get<double>());
+  EXPECT_EQ(a.safety, p.at("safety").at("default").get<double>());
+  EXPECT_EQ(a.proportional_gain, p.at("proportional_gain").at("default").get<double>());
+  EXPECT_EQ(a.integral_gain, p.at("integral_gain").at("default").get<double>());
+  EXPECT_EQ(a.retake, p.at("retake").at("default").get<bool>());
+  EXPECT_DOUBLE_EQ(a.min_step, 1e-4);
 }
 
 // A host with two footprints: participant 0 (track) outputs "footprint_force" [N] and takes

@@ -37,30 +37,38 @@ class GaussSeidel final : public rumble::Coupler {
       "sequential explicit coupling: one participant advances first, the other follows with its "
       "new outputs";
   static const char* params_schema() {
-    static const std::string schema = std::string(R"schema({
+    static const std::string schema =
+        std::string(R"schema({
   "type": "object",
   "additionalProperties": false,
   "properties": {
     "order": {"enum": ["track_first", "soil_first"], "default": "track_first",
               "description": "which participant advances first in each macro step"},
-    "extrapolation": {"type": "integer", "minimum": 0, "maximum": 2, "default": 0,
-                      "description": "polynomial order of the first participant's input over the step, extrapolated from past macro steps (0 = held constant); [0, 2]: the orders implemented"},
-    "interpolation": {"type": "integer", "minimum": 0, "maximum": 1, "default": 0,
-                      "description": "polynomial order of the second participant's input over the step (0 = the first participant's new end-of-step value held; 1 = linear from its previous to its new value); [0, 1]: the orders implemented"},
-    )schema") + rumble::coupling::kMaxStepHalvingsSchema +
-                                      ",\n    " + rumble::coupling::kAdaptiveStepSchema +
-                                      R"schema(
+    )schema") +
+        rumble::coupling::extrapolation_schema(
+            0,
+            "polynomial order of the first participant's input over the step, extrapolated from "
+            "past macro steps") +
+        ",\n    " +
+        rumble::coupling::interpolation_schema(
+            0,
+            "polynomial order of the second participant's input over the step (0 = the first "
+            "participant's new end-of-step value held; 1 = linear from its previous to its new "
+            "value)") +
+        ",\n    " + rumble::coupling::kMaxStepHalvingsSchema + ",\n    " +
+        rumble::coupling::kAdaptiveStepSchema +
+        R"schema(
   }
 })schema";
     return schema.c_str();
   }
 
   GaussSeidel(const std::string& params_json, const rumble::Host& /*host*/) {
-    const rumble::Params p(params_json);
-    track_first_ = p.get_or<std::string>("order", "track_first") == "track_first";
-    extrapolation_ = p.get_or<std::uint32_t>("extrapolation", 0);
-    interpolation_ = p.get_or<std::uint32_t>("interpolation", 0);
-    max_halvings_ = p.get_or<int>("max_step_halvings", 10);
+    const rumble::Params p(params_json, params_schema());
+    track_first_ = p.get<std::string>("order") == "track_first";
+    extrapolation_ = p.get<std::uint32_t>("extrapolation");
+    interpolation_ = p.get<std::uint32_t>("interpolation");
+    max_halvings_ = p.get<int>("max_step_halvings");
     adaptive_ = rumble::coupling::read_adaptive_step(p);
   }
 

@@ -74,7 +74,8 @@ class Implicit final : public rumble::Coupler {
       "converges, with constant, Aitken or IQN-ILS acceleration";
   static constexpr std::uint64_t kSoilNeeds = rumble::kCapSaveRestore;
   static const char* params_schema() {
-    static const std::string schema = std::string(R"schema({
+    static const std::string schema =
+        std::string(R"schema({
   "type": "object",
   "additionalProperties": false,
   "properties": {
@@ -102,46 +103,48 @@ class Implicit final : public rumble::Coupler {
     },
     "on_no_convergence": {"enum": ["warn", "stop"], "default": "warn",
                           "description": "a macro step not converged after max_iterations: warn (log the time and residuals, accept the step, count it in summary.json) or stop the run"},
-    "extrapolation": {"type": "integer", "minimum": 0, "maximum": 2, "default": 1,
-                      "description": "polynomial order of the first guess of each macro step, extrapolated from past steps (0 = the last value held); it changes the iterations, not the converged result; [0, 2]: the orders implemented"},
-    "interpolation": {"type": "integer", "minimum": 0, "maximum": 1, "default": 1,
-                      "description": "inputs over the macro step: 1 = linear from the value at the step's start to the iterate at its end; 0 = the end value held over the step; [0, 1]: the orders implemented"},
+    )schema") +
+        rumble::coupling::extrapolation_schema(
+            1,
+            "polynomial order of the first guess of each macro step, extrapolated from past steps; "
+            "it changes the iterations, not the converged result") +
+        ",\n    " +
+        rumble::coupling::interpolation_schema(
+            1,
+            "inputs over the macro step: 1 = linear from the value at the step's start to the "
+            "iterate at its end; 0 = the end value held over the step") +
+        R"schema(,
     "reused_steps": {"type": "integer", "minimum": 0, "maximum": 100, "default": 8,
                      "description": "iqn_ils: accepted macro steps whose columns are reused in later steps (0 = none); [0, 100]: the interface changes over a train's passage; older steps say little of the next"},
     "max_columns": {"type": "integer", "minimum": 1, "maximum": 1000, "default": 100,
                     "description": "iqn_ils: columns kept at most, oldest dropped first; [1, 1000]: each costs a QR column of the interface's size"},
     "filter_epsilon": {"type": "number", "exclusiveMinimum": 0, "exclusiveMaximum": 1, "default": 1e-2,
                        "description": "iqn_ils QR filter [-]: a column whose part independent of the newer columns is below this fraction of its norm is left out; (0, 1): a fraction"},
-    )schema") + rumble::coupling::kMaxStepHalvingsSchema +
-                                      R"schema(
+    )schema" +
+        rumble::coupling::kMaxStepHalvingsSchema +
+        R"schema(
   }
 })schema";
     return schema.c_str();
   }
 
   Implicit(const std::string& params_json, const rumble::Host& /*host*/) {
-    const rumble::Params p(params_json);
-    track_first_ = p.get_or<std::string>("order", "track_first") == "track_first";
-    acceleration_.method =
-        rumble_implicit::method_from_name(p.get_or<std::string>("acceleration", "iqn_ils"));
-    acceleration_.omega = p.get_or<double>("omega", 0.5);
-    acceleration_.reused_steps = p.get_or<std::size_t>("reused_steps", 8);
-    acceleration_.max_columns = p.get_or<std::size_t>("max_columns", 100);
-    acceleration_.filter_epsilon = p.get_or<double>("filter_epsilon", 1e-2);
-    max_iterations_ = p.get_or<int>("max_iterations", 50);
-    if (max_iterations_ < 1) {
-      throw std::invalid_argument("params/max_iterations: " + std::to_string(max_iterations_) +
-                                  "; must be >= 1 (1 = one soil solve per step, not iterated)");
-    }
-    relative_tolerance_ = p.get_or<double>("relative_tolerance", 1e-5);
-    if (p.has("absolute_tolerance")) {
-      for (const auto& [group, value] : p.json().at("absolute_tolerance").items())
-        absolute_tolerance_[group] = value.get<double>();
-    }
-    stop_unconverged_ = p.get_or<std::string>("on_no_convergence", "warn") == "stop";
-    extrapolation_ = p.get_or<std::uint32_t>("extrapolation", 1);
-    interpolation_ = p.get_or<std::uint32_t>("interpolation", 1);
-    max_halvings_ = p.get_or<int>("max_step_halvings", 10);
+    const rumble::Params p(params_json, params_schema());
+    track_first_ = p.get<std::string>("order") == "track_first";
+    acceleration_.method = rumble_implicit::method_from_name(p.get<std::string>("acceleration"));
+    acceleration_.omega = p.get<double>("omega");
+    acceleration_.reused_steps = p.get<std::size_t>("reused_steps");
+    acceleration_.max_columns = p.get<std::size_t>("max_columns");
+    acceleration_.filter_epsilon = p.get<double>("filter_epsilon");
+    max_iterations_ = p.get<int>("max_iterations");
+    relative_tolerance_ = p.get<double>("relative_tolerance");
+    const rumble::Params absolute = p.object("absolute_tolerance");
+    for (const char* group : {"footprint_force", "footprint_displacement", "footprint_velocity"})
+      absolute_tolerance_[group] = absolute.get<double>(group);
+    stop_unconverged_ = p.get<std::string>("on_no_convergence") == "stop";
+    extrapolation_ = p.get<std::uint32_t>("extrapolation");
+    interpolation_ = p.get<std::uint32_t>("interpolation");
+    max_halvings_ = p.get<int>("max_step_halvings");
   }
 
   void run(const CosimHost& host, double t0, double t_end, double H) override {

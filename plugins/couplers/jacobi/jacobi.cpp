@@ -41,11 +41,15 @@ class Jacobi final : public rumble::Coupler {
   "type": "object",
   "additionalProperties": false,
   "properties": {
-    "extrapolation": {"type": "integer", "minimum": 0, "maximum": 2, "default": 0,
-                      "description": "polynomial order of each participant's input over the step, extrapolated from past macro steps (0 = held constant); [0, 2]: the orders implemented"},
+    )schema") +
+                                      rumble::coupling::extrapolation_schema(
+                                          0,
+                                          "polynomial order of each participant's input over the "
+                                          "step, extrapolated from past macro steps") +
+                                      R"schema(,
     "threads": {"type": "integer", "minimum": 1, "maximum": 2, "default": 2,
                 "description": "2: the two participants advance on two threads; 1: one after the other (same results); [1, 2]: one thread per participant"},
-    )schema") + rumble::coupling::kMaxStepHalvingsSchema +
+    )schema" + rumble::coupling::kMaxStepHalvingsSchema +
                                       ",\n    " + rumble::coupling::kAdaptiveStepSchema +
                                       R"schema(
   }
@@ -54,10 +58,10 @@ class Jacobi final : public rumble::Coupler {
   }
 
   Jacobi(const std::string& params_json, const rumble::Host& /*host*/) {
-    const rumble::Params p(params_json);
-    extrapolation_ = p.get_or<std::uint32_t>("extrapolation", 0);
-    threads_ = p.get_or<int>("threads", 2);
-    max_halvings_ = p.get_or<int>("max_step_halvings", 10);
+    const rumble::Params p(params_json, params_schema());
+    extrapolation_ = p.get<std::uint32_t>("extrapolation");
+    threads_ = p.get<int>("threads");
+    max_halvings_ = p.get<int>("max_step_halvings");
     adaptive_ = rumble::coupling::read_adaptive_step(p);
   }
 

@@ -71,16 +71,25 @@ class TwoStep final : public rumble::Coupler {
       "the classic two-step model: the vehicle/track on a reduced soil first, then the soil "
       "driven by the recorded footprint forces";
   static const char* params_schema() {
-    return R"schema({
+    static const std::string schema =
+        std::string(R"schema({
   "type": "object",
   "additionalProperties": false,
   "properties": {
-    "extrapolation": {"type": "integer", "minimum": 0, "maximum": 2, "default": 0,
-                      "description": "step 1: polynomial order of the track's input (the reduced soil's motion) over a macro step, extrapolated from past steps (0 = held constant); [0, 2]: the orders implemented"},
-    "interpolation": {"type": "integer", "minimum": 0, "maximum": 1, "default": 1,
-                      "description": "both steps: how a soil receives the footprint forces over a macro step (0 = the step-end force held; 1 = linear from the step-start to the step-end force); [0, 1]: the orders implemented"}
+    )schema") +
+        rumble::coupling::extrapolation_schema(
+            0,
+            "step 1: polynomial order of the track's input (the reduced soil's motion) over a "
+            "macro step, extrapolated from past steps") +
+        ",\n    " +
+        rumble::coupling::interpolation_schema(
+            1,
+            "both steps: how a soil receives the footprint forces over a macro step (0 = the "
+            "step-end force held; 1 = linear from the step-start to the step-end force)") +
+        R"schema(
   }
 })schema";
+    return schema.c_str();
   }
   static const char* participants_json() {
     return R"json({"reduced_soil": {"kind": "soil", "required": true, "track_statics": true,
@@ -88,9 +97,9 @@ class TwoStep final : public rumble::Coupler {
   }
 
   TwoStep(const std::string& params_json, const rumble::Host& /*host*/) {
-    const rumble::Params p(params_json);
-    extrapolation_ = p.get_or<std::uint32_t>("extrapolation", 0);
-    interpolation_ = p.get_or<std::uint32_t>("interpolation", 1);
+    const rumble::Params p(params_json, params_schema());
+    extrapolation_ = p.get<std::uint32_t>("extrapolation");
+    interpolation_ = p.get<std::uint32_t>("interpolation");
   }
 
   void run(const CosimHost& host, double t0, double t_end, double H) override {

@@ -34,10 +34,10 @@ class SingleWheel final : public rumble::Vehicle {
   }
 
   SingleWheel(const std::string& params_json, const rumble::Host& /*host*/) {
-    const rumble::Params p(params_json);
+    const rumble::Params p(params_json, params_schema());
     mass_ = p.get<double>("mass");
     load_ = p.get<double>("static_load");
-    radius_ = p.get_or<double>("wheel_radius", 0.46);
+    radius_ = p.get<double>("wheel_radius");
   }
 
   std::size_t dof_count() const override { return 1; }

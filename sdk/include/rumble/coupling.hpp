@@ -57,10 +57,33 @@ inline double macro_step_length(double t0, double t_end, double H, std::size_t k
 
 // ------------------------------------------------------------------ history and waveforms
 
+/// Highest polynomial orders OutputHistory implements: extrapolate() and interpolate().
+inline constexpr std::uint32_t kMaxExtrapolationOrder = 2;
+inline constexpr std::uint32_t kMaxInterpolationOrder = 1;
+
+/// JSON schema of a coupler's "extrapolation" property (an order in [0, kMaxExtrapolationOrder],
+/// default `order`); `role` says what is extrapolated in this coupler, as the description's
+/// first words. Declared here once, so that the range follows what OutputHistory implements.
+inline std::string extrapolation_schema(std::uint32_t order, const std::string& role) {
+  return R"("extrapolation": {"type": "integer", "minimum": 0, "maximum": )" +
+         std::to_string(kMaxExtrapolationOrder) + R"(, "default": )" + std::to_string(order) +
+         R"(, "description": ")" + role + R"( (0 = held constant); [0, )" +
+         std::to_string(kMaxExtrapolationOrder) + R"(]: the orders implemented"})";
+}
+
+/// JSON schema of a coupler's "interpolation" property (an order in
+/// [0, kMaxInterpolationOrder], default `order`), as extrapolation_schema().
+inline std::string interpolation_schema(std::uint32_t order, const std::string& role) {
+  return R"("interpolation": {"type": "integer", "minimum": 0, "maximum": )" +
+         std::to_string(kMaxInterpolationOrder) + R"(, "default": )" + std::to_string(order) +
+         R"(, "description": ")" + role + R"(; [0, )" + std::to_string(kMaxInterpolationOrder) +
+         R"(]: the orders implemented"})";
+}
+
 /// The last three final outputs of one participant, with their times.
 class OutputHistory {
  public:
-  static constexpr std::size_t kDepth = 3;  // enough for order-2 extrapolation
+  static constexpr std::size_t kDepth = kMaxExtrapolationOrder + 1;
 
   OutputHistory(const CosimHost& host, std::uint32_t participant)
       : host_(host), participant_(participant), scratch_(host.output_size(participant)) {

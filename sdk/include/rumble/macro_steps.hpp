@@ -37,15 +37,16 @@
 
 namespace rumble::coupling {
 
-/// The "adaptive" params object of a coupler (kAdaptiveStepSchema); max_step 0: fixed steps.
+/// The "adaptive" params object of a coupler, read by read_adaptive_step() (its defaults are
+/// declared once, in kAdaptiveStepObjectSchema); max_step 0: fixed steps.
 struct AdaptiveStep {
   double min_step = 0.0, max_step = 0.0;  // s
-  double tolerance = 0.05;                // energy residual / work through the cut [-]
-  double power_floor = 1e-3;              // W
-  double safety = 0.9;                    // -
-  double proportional_gain = 0.2, integral_gain = 0.15;  // libcosim's ECCO defaults
-  double min_change = 0.2, max_change = 1.5;             // per step [-]
-  bool retake = true;  // take a step above the tolerance again when the scheme can restore
+  double tolerance = 0.0;                 // energy residual / work through the cut [-]
+  double power_floor = 0.0;               // W
+  double safety = 0.0;                    // -
+  double proportional_gain = 0.0, integral_gain = 0.0;  // -
+  double min_change = 0.2, max_change = 1.5;            // per step [-]; not params
+  bool retake = false;  // take a step above the tolerance again when the scheme can restore
   bool enabled() const { return max_step > 0.0; }
 };
 
@@ -64,42 +65,46 @@ inline void require_halving_left(const CosimHost& host, double t, double h, std:
   }
 }
 
+/// JSON schema of the "adaptive" object (the one declaration of its parameters).
+inline constexpr const char* kAdaptiveStepObjectSchema = R"schema({
+  "type": "object", "additionalProperties": false, "required": ["min_step", "max_step"],
+  "description": "adaptive macro step controlled by the energy residual at the cut (docs/couplers.md); time.macro_step is the first step. Absent: fixed steps of time.macro_step",
+  "properties": {
+    "min_step": {"type": "number", "minimum": 1e-7, "maximum": 1, "description": "shortest macro step [s]; every step is a whole number of it; [1e-7, 1] s: as time.macro_step's (usually 1e-4 to 1e-3 s; a step beyond 1 s couples none of a train's vibration)"},
+    "max_step": {"type": "number", "minimum": 1e-7, "maximum": 1, "description": "longest macro step [s], >= min_step; [1e-7, 1] s: as time.macro_step's (usually 1e-4 to 1e-3 s; a step beyond 1 s couples none of a train's vibration)"},
+    "tolerance": {"type": "number", "exclusiveMinimum": 0, "maximum": 1, "default": 0.05, "description": "the energy residual a step may create, relative to the energy the run's strongest step passed through the cut in the same time [-]; (0, 1]: a residual as large as the energy itself is no control"},
+    "power_floor": {"type": "number", "exclusiveMinimum": 0, "maximum": 1e6, "default": 0.001, "description": "residual power always tolerated [W] (before anything moves); (0, 1e6] W: a whole run passes joules through the cut (docs/couplers.md), so a megawatt tolerates any residual"},
+    "safety": {"type": "number", "exclusiveMinimum": 0, "maximum": 1, "default": 0.9, "description": "the controller aims at this fraction of the tolerance [-]; (0, 1]: a fraction"},
+    "proportional_gain": {"type": "number", "minimum": 0, "maximum": 1, "default": 0.2, "description": "PI controller's gain on the change of the error [-]; [0, 1]: ECCO's 0.2; above 1 the step oscillates"},
+    "integral_gain": {"type": "number", "exclusiveMinimum": 0, "maximum": 1, "default": 0.15, "description": "PI controller's gain on the error [-]; (0, 1]: ECCO's 0.15; above 1 the step oscillates"},
+    "retake": {"type": "boolean", "default": true, "description": "take a step whose energy residual is above the tolerance again, shorter, when both participants can save and restore their state (false: never, as ECCO)"}
+  }
+})schema";
+
 /// JSON schema of the "adaptive" property, for a coupler's params_schema.
-inline constexpr const char* kAdaptiveStepSchema = R"schema("adaptive": {
-      "type": "object", "additionalProperties": false, "required": ["min_step", "max_step"],
-      "description": "adaptive macro step controlled by the energy residual at the cut (docs/couplers.md); time.macro_step is the first step. Absent: fixed steps of time.macro_step",
-      "properties": {
-        "min_step": {"type": "number", "minimum": 1e-7, "maximum": 1, "description": "shortest macro step [s]; every step is a whole number of it; [1e-7, 1] s: as time.macro_step's (usually 1e-4 to 1e-3 s; a step beyond 1 s couples none of a train's vibration)"},
-        "max_step": {"type": "number", "minimum": 1e-7, "maximum": 1, "description": "longest macro step [s], >= min_step; [1e-7, 1] s: as time.macro_step's (usually 1e-4 to 1e-3 s; a step beyond 1 s couples none of a train's vibration)"},
-        "tolerance": {"type": "number", "exclusiveMinimum": 0, "maximum": 1, "default": 0.05, "description": "the energy residual a step may create, relative to the energy the run's strongest step passed through the cut in the same time [-]; (0, 1]: a residual as large as the energy itself is no control"},
-        "power_floor": {"type": "number", "exclusiveMinimum": 0, "maximum": 1e6, "default": 0.001, "description": "residual power always tolerated [W] (before anything moves); (0, 1e6] W: a whole run passes joules through the cut (docs/couplers.md), so a megawatt tolerates any residual"},
-        "safety": {"type": "number", "exclusiveMinimum": 0, "maximum": 1, "default": 0.9, "description": "the controller aims at this fraction of the tolerance [-]; (0, 1]: a fraction"},
-        "proportional_gain": {"type": "number", "minimum": 0, "maximum": 1, "default": 0.2, "description": "PI controller's gain on the change of the error [-]; [0, 1]: ECCO's 0.2; above 1 the step oscillates"},
-        "integral_gain": {"type": "number", "exclusiveMinimum": 0, "maximum": 1, "default": 0.15, "description": "PI controller's gain on the error [-]; (0, 1]: ECCO's 0.15; above 1 the step oscillates"},
-        "retake": {"type": "boolean", "default": true, "description": "take a step whose energy residual is above the tolerance again, shorter, when both participants can save and restore their state (false: never, as ECCO)"}
-      }
-    })schema";
+inline const std::string kAdaptiveStepSchema =
+    std::string(R"("adaptive": )") + kAdaptiveStepObjectSchema;
 
 /// Reads params["adaptive"] (already validated against kAdaptiveStepSchema); throws
 /// std::invalid_argument when the bounds are inverted.
 inline AdaptiveStep read_adaptive_step(const Params& params) {
   AdaptiveStep a;
   if (!params.has("adaptive")) return a;
-  const nlohmann::json& j = params.json().at("adaptive");
-  a.min_step = j.at("min_step").get<double>();
-  a.max_step = j.at("max_step").get<double>();
-  a.tolerance = j.value("tolerance", a.tolerance);
-  a.power_floor = j.value("power_floor", a.power_floor);
-  a.safety = j.value("safety", a.safety);
-  a.proportional_gain = j.value("proportional_gain", a.proportional_gain);
-  a.integral_gain = j.value("integral_gain", a.integral_gain);
-  a.retake = j.value("retake", a.retake);
+  const Params j(params.json().at("adaptive").dump(), kAdaptiveStepObjectSchema);
+  a.min_step = j.get<double>("min_step");
+  a.max_step = j.get<double>("max_step");
   if (!(a.min_step <= a.max_step)) {
     std::ostringstream m;
     m << "params/adaptive: min_step " << a.min_step << " s is longer than max_step " << a.max_step
       << " s; give min_step <= max_step (e.g. swap them)";
     throw std::invalid_argument(m.str());
   }
+  a.tolerance = j.get<double>("tolerance");
+  a.power_floor = j.get<double>("power_floor");
+  a.safety = j.get<double>("safety");
+  a.proportional_gain = j.get<double>("proportional_gain");
+  a.integral_gain = j.get<double>("integral_gain");
+  a.retake = j.get<bool>("retake");
   return a;
 }
 

@@ -1,11 +1,17 @@
 // SPDX-License-Identifier: MIT
 // rumble/params.hpp: reading a component's params (JSON text) in a plugin. Optional header: it
 // needs nlohmann-json (find_package(nlohmann_json) is done by the Rumble package config).
-// The host has already validated params against the component's schema and filled every
-// declared default, so a missing required key here is a plugin bug, reported as such.
+//
+// A parameter is declared once, in the component's params schema: its name, type, unit, range
+// and default. The host validates params against that schema and fills every declared default
+// before the plugin sees them; Params given the same schema also falls back to the schema's
+// default itself, so that a component created without the host (a unit test, another tool)
+// reads the same values and no default is ever written a second time in C++
+// (docs/plugin-authors.md, "Params").
 #ifndef RUMBLE_PARAMS_HPP
 #define RUMBLE_PARAMS_HPP
 
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
@@ -14,26 +20,99 @@ namespace rumble {
 
 class Params {
  public:
-  explicit Params(const std::string& json_text) : j_(nlohmann::json::parse(json_text)) {}
+  /// `schema_json`: the component's params schema (its params_schema()); optional, but without
+  /// it a key that is absent has no default here.
+  explicit Params(const std::string& json_text, const char* schema_json = nullptr)
+      : j_(nlohmann::json::parse(json_text)),
+        schema_(std::make_shared<const nlohmann::json>(
+            schema_json != nullptr ? nlohmann::json::parse(schema_json) : nlohmann::json())),
+        node_(schema_.get()) {}
+
+  /// True when params give `key` (a default does not count: this tells what the user set).
   bool has(const char* key) const { return j_.contains(key) && !j_.at(key).is_null(); }
-  /// Required value; throws with the JSON pointer when absent or of the wrong type.
+
+  /// The value of `key`, else the schema's default for it; throws with the JSON pointer when
+  /// neither exists (a plugin bug: a key it reads as required has no default) or when the value
+  /// is of the wrong type.
   template <class T>
   T get(const char* key) const {
-    if (!has(key)) throw std::invalid_argument(std::string("params/") + key + ": missing");
+    const nlohmann::json* value = has(key) ? &j_.at(key) : schema_default(key);
+    if (value == nullptr)
+      throw std::invalid_argument(where_ + key + ": missing, and the schema gives no default");
     try {
-      return j_.at(key).get<T>();
+      return value->get<T>();
     } catch (const nlohmann::json::exception& e) {
-      throw std::invalid_argument(std::string("params/") + key + ": " + e.what());
+      throw std::invalid_argument(where_ + key + ": " + e.what());
     }
   }
+
+  /// For a default the schema cannot state because it derives from other values (e.g. a step
+  /// from a frequency); a constant default belongs in the schema, read with get().
   template <class T>
   T get_or(const char* key, T fallback) const {
     return has(key) ? get<T>(key) : fallback;
   }
+
+  /// The object `key` (given, else the schema's default, else empty), read against its own
+  /// schema: its get() falls back to the defaults declared inside it.
+  Params object(const char* key) const {
+    Params sub(*this);
+    const nlohmann::json* given = has(key) ? &j_.at(key) : schema_default(key);
+    sub.j_ = given != nullptr ? *given : nlohmann::json::object();
+    if (!sub.j_.is_object())
+      throw std::invalid_argument(where_ + key + ": must be an object, got " + sub.j_.dump());
+    sub.node_ = property(key);
+    sub.where_ = where_ + key + "/";
+    return sub;
+  }
+
   const nlohmann::json& json() const { return j_; }
 
  private:
+  static constexpr int kMaxDepth = 32;  // $ref and allOf nesting followed (a cycle stops here)
+
+  // The declaration of `key` in the schema node this reads against (following local $refs and
+  // allOf), or nullptr.
+  const nlohmann::json* property(const char* key) const {
+    return node_ != nullptr ? property_in(*node_, key, 0) : nullptr;
+  }
+
+  const nlohmann::json* property_in(const nlohmann::json& node, const char* key, int depth) const {
+    const nlohmann::json* n = resolved(node, depth);
+    if (n == nullptr || !n->is_object() || depth > kMaxDepth) return nullptr;
+    if (const auto props = n->find("properties"); props != n->end() && props->contains(key))
+      return resolved(props->at(key), depth + 1);
+    if (const auto all = n->find("allOf"); all != n->end() && all->is_array())
+      for (const nlohmann::json& part : *all)
+        if (const nlohmann::json* p = property_in(part, key, depth + 1)) return p;
+    return nullptr;
+  }
+
+  // `node` with its local "$ref" ("#/definitions/x") followed; nullptr for a broken one.
+  const nlohmann::json* resolved(const nlohmann::json& node, int depth) const {
+    const auto ref = node.is_object() ? node.find("$ref") : node.end();
+    if (depth > kMaxDepth || ref == node.end() || !ref->is_string()) return &node;
+    const std::string target = ref->get<std::string>();
+    if (target.empty() || target[0] != '#') return nullptr;
+    try {
+      const nlohmann::json::json_pointer at(target.substr(1));
+      return schema_->contains(at) ? resolved(schema_->at(at), depth + 1) : nullptr;
+    } catch (const nlohmann::json::exception&) {
+      return nullptr;  // not a JSON pointer
+    }
+  }
+
+  const nlohmann::json* schema_default(const char* key) const {
+    const nlohmann::json* p = property(key);
+    if (p == nullptr || !p->is_object()) return nullptr;
+    const auto d = p->find("default");
+    return d != p->end() ? &*d : nullptr;
+  }
+
   nlohmann::json j_;
+  std::shared_ptr<const nlohmann::json> schema_;  // the whole document, for local $refs
+  const nlohmann::json* node_ = nullptr;          // the schema of j_, inside *schema_
+  std::string where_ = "params/";
 };
 
 }  // namespace rumble
