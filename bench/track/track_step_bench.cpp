@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "plugin/registry.hpp"
+#include "scenario/scenario_schema.hpp"
 #include "track/track_participant.hpp"
 
 namespace {
@@ -35,8 +36,9 @@ std::unique_ptr<rumble::TrackParticipant> make_track(int elements_per_bay) {
                    *registry.find(RUMBLE_KIND_VEHICLE, "single_wheel"), "/vehicles/0",
                    nlohmann::json{{"mass", 750.0}, {"static_load", 1e5 - 750.0 * 9.81}}, "."),
                "wheel", 30.0, 10.0);
-  auto t = std::make_unique<rumble::TrackParticipant>(rumble::TrackConfig::from_json(track),
-                                                      std::move(vehicles));
+  auto t = std::make_unique<rumble::TrackParticipant>(
+      rumble::TrackConfig::from_json(rumble::scenario::track_with_defaults(track)),
+      std::move(vehicles));
   t->solve_static({});
   return t;
 }

@@ -12,6 +12,7 @@
 #include "fem_settings.hpp"
 #include "mesh/gmsh_model.hpp"
 #include "mesh/mesh_generator.hpp"
+#include "scenario/scenario_schema.hpp"
 #include "track_spec/footprint_layout.hpp"
 #include "track_spec/track_config.hpp"
 
@@ -27,7 +28,8 @@ int main(int argc, char** argv) {
     nlohmann::json params = scenario.at("soil").at("params");
     if (params.contains("mesh")) params["mesh"].erase("file");
     const std::vector<rumble_footprint> footprints =
-        rumble::footprint_layout(rumble::TrackConfig::from_json(scenario.at("track")));
+        rumble::footprint_layout(rumble::TrackConfig::from_json(
+            rumble::scenario::track_with_defaults(scenario.at("track"))));
     const rumble::fem::FemSettings s = rumble::fem::read_settings(params.dump());
     const rumble::fem::TetMesh mesh =
         rumble::fem::generate_mesh(s, footprints, rumble::fem::plan_mesh(s, footprints));

@@ -1,5 +1,7 @@
 #include "track_fixture.hpp"
 
+#include "scenario/scenario_schema.hpp"
+
 namespace rumble::testing {
 
 nlohmann::json ref_a_track(int sleepers, int elements_per_bay) {
@@ -40,7 +42,8 @@ std::unique_ptr<TrackParticipant> make_track(const nlohmann::json& track,
             "vehicle" + std::to_string(i), v.at("speed").get<double>(),
             v.at("start").get<double>());
   }
-  return std::make_unique<TrackParticipant>(TrackConfig::from_json(track), std::move(set));
+  return std::make_unique<TrackParticipant>(
+      TrackConfig::from_json(scenario::track_with_defaults(track)), std::move(set));
 }
 
 nlohmann::json single_wheel(double mass, double load, double speed, double start) {

@@ -8,6 +8,7 @@
 #include <complex>
 #include <functional>
 
+#include "scenario/scenario_schema.hpp"
 #include "track/track_structure.hpp"
 #include "track_fixture.hpp"
 
@@ -69,7 +70,8 @@ double extremum(const std::function<double(double)>& g, double lo, double hi, bo
 }
 
 TEST(TrackReceptance, MatchesReferenceAboveSleeperAndAtMidSpan) {
-  const TrackStructure s(TrackConfig::from_json(testing::ref_a_track(81, 8)));
+  const TrackStructure s(
+      TrackConfig::from_json(scenario::track_with_defaults(testing::ref_a_track(81, 8))));
   const Receptance r(s);
   const double above = 40 * 0.6, mid = 40.5 * 0.6;  // the middle support, the next mid-span
   const auto at_sleeper = [&](double f) { return r.at(f, above); };

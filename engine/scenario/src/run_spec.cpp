@@ -133,6 +133,8 @@ std::optional<Diagnostic> results_outside_scenario_folder(const json& document,
                         path, document.at("outputs").at("directory").get<std::string>());
 }
 
+// `document` is validated, its defaults filled: every value the schema defaults is read with at(),
+// never with a fallback that would declare it a second time.
 RunSpec make_run_spec(const json& document, const fs::path& path) {
   RunSpec s;
   s.path = path;
@@ -150,20 +152,20 @@ RunSpec make_run_spec(const json& document, const fs::path& path) {
   s.soil = component(document.at("soil"), "/soil");
   const json& coupling = document.at("coupling");
   s.coupling = component(coupling, "/coupling");
-  const json divergence = coupling.value("divergence", json::object());
-  s.divergence.displacement_factor = divergence.value("displacement_factor", 20.0);
-  s.divergence.stop = divergence.value("action", std::string("stop")) == "stop";
+  const json& divergence = coupling.at("divergence");
+  s.divergence.displacement_factor = divergence.at("displacement_factor").get<double>();
+  s.divergence.stop = divergence.at("action").get<std::string>() == "stop";
   const json participants = coupling.value("participants", json::object());
   for (const auto& [name, c] : participants.items())
     s.participants.emplace_back(name, component(c, "/coupling/participants/" + name));
   const json& out = document.at("outputs");
   s.outputs.directory = results_directory(document, path);
   s.outputs.receivers = receivers(out.value("receivers", json::array()), s.track_middle());
-  s.outputs.receiver_interval = out.value("receiver_interval", 0.0);
+  s.outputs.receiver_interval = out.at("receiver_interval").get<double>();
   if (out.contains("fields"))
     s.outputs.field_interval = out.at("fields").at("interval").get<double>();
-  s.outputs.every = out.value("every", std::size_t{1});
-  s.outputs.plots = out.value("plots", true);
+  s.outputs.every = out.at("every").get<std::size_t>();
+  s.outputs.plots = out.at("plots").get<bool>();
   return s;
 }
 

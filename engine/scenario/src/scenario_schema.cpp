@@ -1,5 +1,9 @@
 #include "scenario/scenario_schema.hpp"
 
+#include <string>
+
+#include "scenario/schema_check.hpp"
+
 namespace rumble::scenario {
 namespace {
 
@@ -313,6 +317,16 @@ constexpr std::string_view kSchema = R"json({
 
 std::string_view scenario_schema_text() {
   return kSchema;
+}
+
+const SchemaChecker& engine_checker() {
+  static const SchemaChecker checker{std::string(kSchema)};
+  return checker;
+}
+
+nlohmann::json track_with_defaults(nlohmann::json track) {
+  engine_checker().fill_defaults(track, "/properties/track");
+  return track;
 }
 
 }  // namespace rumble::scenario

@@ -1070,10 +1070,10 @@ SchemaIssue SchemaChecker::kinds_issue(const std::vector<std::string>& variants,
   return issue;
 }
 
-void SchemaChecker::fill_defaults(json& value) const {
+void SchemaChecker::fill_defaults(json& value, const std::string& schema_pointer) const {
   if (too_long_for_regex(value)) return;  // invalid anyway, and unsafe to match
   std::vector<Ref> refs;
-  closure("", value, Closure::kMatching, 0, refs);
+  closure(schema_pointer, value, Closure::kMatching, 0, refs);
   fill_at(refs, value, 0);
 }
 

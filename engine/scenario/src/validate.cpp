@@ -21,11 +21,6 @@ namespace {
 using nlohmann::json;
 namespace fs = std::filesystem;
 
-const SchemaChecker& engine_checker() {
-  static const SchemaChecker checker{std::string(scenario_schema_text())};
-  return checker;
-}
-
 /// Compiled plugin schemas, by schema text: a process validates the same few types many times.
 std::shared_ptr<const SchemaChecker> plugin_checker(const std::string& schema_text) {
   static std::mutex mutex;

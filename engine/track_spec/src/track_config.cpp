@@ -14,28 +14,23 @@ TrackConfig TrackConfig::from_json(const nlohmann::json& track) {
   c.rail_E = rail.at("E").get<double>();
   c.rail_I = rail.at("I").get<double>();
   c.rail_mass_per_length = rail.at("mass_per_length").get<double>();
-  c.elements_per_bay = rail.value("elements_per_bay", 4);
-  c.overhang_bays = rail.value("overhang_bays", 1);
+  c.elements_per_bay = rail.at("elements_per_bay").get<int>();
+  c.overhang_bays = rail.at("overhang_bays").get<int>();
   c.pad_k = track.at("railpad").at("k").get<double>();
   c.pad_c = track.at("railpad").at("c").get<double>();
   c.ballast_k = track.at("ballast").at("k").get<double>();
   c.ballast_c = track.at("ballast").at("c").get<double>();
-  if (track.contains("damping")) {
-    c.rayleigh_alpha = track["damping"].value("rayleigh_alpha", 0.0);
-    c.rayleigh_beta = track["damping"].value("rayleigh_beta", 0.0);
-  }
-  if (track.contains("contact")) {
-    const auto& ct = track["contact"];
-    if (ct.contains("hertz_constant")) c.hertz_constant = ct["hertz_constant"].get<double>();
-    c.rail_radius = ct.value("rail_radius", 0.3);
-    c.contact_E = ct.value("E", 2.1e11);
-    c.contact_nu = ct.value("nu", 0.3);
-  }
-  if (track.contains("integrator")) {
-    const auto& in = track["integrator"];
-    if (in.contains("micro_step")) c.micro_step = in["micro_step"].get<double>();
-    c.newmark_gamma = in.value("gamma", 0.5);
-  }
+  const auto& damping = track.at("damping");
+  c.rayleigh_alpha = damping.at("rayleigh_alpha").get<double>();
+  c.rayleigh_beta = damping.at("rayleigh_beta").get<double>();
+  const auto& ct = track.at("contact");
+  if (ct.contains("hertz_constant")) c.hertz_constant = ct.at("hertz_constant").get<double>();
+  c.rail_radius = ct.at("rail_radius").get<double>();
+  c.contact_E = ct.at("E").get<double>();
+  c.contact_nu = ct.at("nu").get<double>();
+  const auto& in = track.at("integrator");
+  if (in.contains("micro_step")) c.micro_step = in.at("micro_step").get<double>();
+  c.newmark_gamma = in.at("gamma").get<double>();
   if (track.contains("unevenness")) c.unevenness = track["unevenness"];
   return c;
 }

@@ -7,7 +7,7 @@
 // before the plugin sees them; Params given the same schema also falls back to the schema's
 // default itself, so that a component created without the host (a unit test, another tool)
 // reads the same values and no default is ever written a second time in C++
-// (docs/plugin-authors.md, "Params").
+// (docs/plugin-guide.md, "Each parameter is declared once").
 #ifndef RUMBLE_PARAMS_HPP
 #define RUMBLE_PARAMS_HPP
 

@@ -3,11 +3,22 @@
 // variants. Component params are left open here; each plugin's schema checks its own.
 #pragma once
 
+#include <nlohmann/json.hpp>
 #include <string_view>
 
 namespace rumble::scenario {
 
+class SchemaChecker;
+
 /// The schema text; `rumble schema` may print it and editors may use it for completion.
 std::string_view scenario_schema_text();
+
+/// The schema, compiled once per process.
+const SchemaChecker& engine_checker();
+
+/// `track` (a scenario's /track object) with every default the schema declares filled in, as
+/// validation fills a scenario's: how a track written by hand (a test, a benchmark) gets the
+/// values that the schema alone declares.
+nlohmann::json track_with_defaults(nlohmann::json track);
 
 }  // namespace rumble::scenario

@@ -57,8 +57,9 @@ class SchemaChecker {
 
   /// Inserts every declared "default" for keys absent from objects, recursively (defaults that
   /// are objects are filled in turn). Variants (oneOf, anyOf, if/then) count only where the
-  /// value matches them.
-  void fill_defaults(nlohmann::json& value) const;
+  /// value matches them. `schema_pointer`: the part of the schema `value` is an instance of
+  /// ("" = the whole schema; "/properties/track" for a scenario's track).
+  void fill_defaults(nlohmann::json& value, const std::string& schema_pointer = "") const;
 
   const nlohmann::json& schema() const { return schema_; }
 

@@ -17,8 +17,8 @@ struct TrackConfig {
   double rail_E = 0.0;                // Pa
   double rail_I = 0.0;                // m^4
   double rail_mass_per_length = 0.0;  // kg/m
-  int elements_per_bay = 4;
-  int overhang_bays = 1;
+  int elements_per_bay = 0;
+  int overhang_bays = 0;
   double rayleigh_alpha = 0.0;  // 1/s, rail only
   double rayleigh_beta = 0.0;   // s, rail only
   // Railpad (rail node -> sleeper) and ballast (sleeper -> footprint), per rail seat.
@@ -28,16 +28,17 @@ struct TrackConfig {
   double ballast_c = 0.0;  // N s/m
   // Wheel/rail contact.
   std::optional<double> hertz_constant;  // N/m^1.5
-  double rail_radius = 0.3;              // m
-  double contact_E = 2.1e11;             // Pa
-  double contact_nu = 0.3;
+  double rail_radius = 0.0;              // m
+  double contact_E = 0.0;                // Pa
+  double contact_nu = 0.0;
   // Integrator.
   std::optional<double> micro_step;  // s
-  double newmark_gamma = 0.5;
+  double newmark_gamma = 0.0;
   nlohmann::json unevenness = {{"type", "none"}};
 
-  /// From the validated scenario's /track object (defaults already filled by validation; the
-  /// same defaults are repeated here so that tests can build a TrackConfig by hand).
+  /// From a scenario's /track object with its defaults filled: by validation, or for a track
+  /// written by hand by scenario::track_with_defaults(). The defaults are declared once, in the
+  /// scenario schema; a key missing here is a bug, reported by nlohmann's out_of_range.
   static TrackConfig from_json(const nlohmann::json& track);
 
   double bay_length() const { return sleeper_spacing; }
