@@ -4,228 +4,6 @@
 #include <cstdint>
 
 namespace rumble::scenario {
-namespace {
-
-constexpr std::string_view kUtf8Bom = "\xEF\xBB\xBF";
-
-void append_utf8(std::string& out, std::uint32_t cp) {
-  if (cp < 0x80) {
-    out += static_cast<char>(cp);
-  } else if (cp < 0x800) {
-    out += static_cast<char>(0xC0 | (cp >> 6));
-    out += static_cast<char>(0x80 | (cp & 0x3F));
-  } else if (cp < 0x10000) {
-    out += static_cast<char>(0xE0 | (cp >> 12));
-    out += static_cast<char>(0x80 | ((cp >> 6) & 0x3F));
-    out += static_cast<char>(0x80 | (cp & 0x3F));
-  } else {
-    out += static_cast<char>(0xF0 | (cp >> 18));
-    out += static_cast<char>(0x80 | ((cp >> 12) & 0x3F));
-    out += static_cast<char>(0x80 | ((cp >> 6) & 0x3F));
-    out += static_cast<char>(0x80 | (cp & 0x3F));
-  }
-}
-
-/// A cursor over the text. Every method stops at the end of the text and reports failure
-/// instead of reading past it, so truncated or garbled text is handled like any other.
-class Scanner {
- public:
-  explicit Scanner(std::string_view text) : text_(text) {
-    if (text_.substr(0, kUtf8Bom.size()) == kUtf8Bom) pos_ = kUtf8Bom.size();
-  }
-
-  std::size_t pos() const { return pos_; }
-  void set_pos(std::size_t p) { pos_ = p; }
-  bool at_end() const { return pos_ >= text_.size(); }
-  char peek() const { return at_end() ? '\0' : text_[pos_]; }
-  void advance() { ++pos_; }
-
-  void skip_ws() {
-    while (!at_end() && is_json_whitespace(text_[pos_])) ++pos_;
-  }
-
-  /// Reads the string starting at the current '"', decoding escapes into *out when given.
-  bool read_string(std::string* out) {
-    if (peek() != '"') return false;
-    ++pos_;
-    while (!at_end()) {
-      const char c = text_[pos_++];
-      if (c == '"') return true;
-      if (c != '\\') {
-        if (out != nullptr) *out += c;
-        continue;
-      }
-      if (at_end()) return false;
-      const char e = text_[pos_++];
-      switch (e) {
-        case '"':
-        case '\\':
-        case '/':
-          if (out != nullptr) *out += e;
-          break;
-        case 'b':
-          if (out != nullptr) *out += '\b';
-          break;
-        case 'f':
-          if (out != nullptr) *out += '\f';
-          break;
-        case 'n':
-          if (out != nullptr) *out += '\n';
-          break;
-        case 'r':
-          if (out != nullptr) *out += '\r';
-          break;
-        case 't':
-          if (out != nullptr) *out += '\t';
-          break;
-        case 'u': {
-          std::uint32_t cp = 0;
-          if (!read_hex4(cp)) return false;
-          if (cp >= 0xD800 && cp <= 0xDBFF && text_.substr(pos_, 2) == "\\u") {
-            pos_ += 2;
-            std::uint32_t low = 0;
-            if (!read_hex4(low)) return false;
-            cp = 0x10000 + ((cp - 0xD800) << 10) + (low - 0xDC00);
-          }
-          if (out != nullptr) append_utf8(*out, cp);
-          break;
-        }
-        default:
-          return false;
-      }
-    }
-    return false;
-  }
-
-  /// Skips one value of any kind. Containers are skipped by counting brackets, never by
-  /// recursion, so nesting depth costs nothing.
-  bool skip_value() {
-    skip_ws();
-    if (at_end()) return false;
-    const char c = peek();
-    if (c == '"') return read_string(nullptr);
-    if (c == '{' || c == '[') {
-      std::size_t depth = 0;
-      while (!at_end()) {
-        const char d = peek();
-        if (d == '"') {
-          if (!read_string(nullptr)) return false;
-          continue;
-        }
-        ++pos_;
-        if (d == '{' || d == '[') ++depth;
-        if (d == '}' || d == ']') {
-          if (--depth == 0) return true;
-        }
-      }
-      return false;
-    }
-    const std::size_t start = pos_;
-    while (!at_end() && !is_json_whitespace(peek()) && !is_json_structural(peek())) ++pos_;
-    return pos_ > start;
-  }
-
- private:
-  bool read_hex4(std::uint32_t& cp) {
-    if (pos_ + 4 > text_.size()) return false;
-    cp = 0;
-    for (int i = 0; i < 4; ++i) {
-      const char h = text_[pos_++];
-      cp <<= 4;
-      if (h >= '0' && h <= '9') {
-        cp |= static_cast<std::uint32_t>(h - '0');
-      } else if (h >= 'a' && h <= 'f') {
-        cp |= static_cast<std::uint32_t>(h - 'a' + 10);
-      } else if (h >= 'A' && h <= 'F') {
-        cp |= static_cast<std::uint32_t>(h - 'A' + 10);
-      } else {
-        return false;
-      }
-    }
-    return true;
-  }
-
-  std::string_view text_;
-  std::size_t pos_ = 0;
-};
-
-std::optional<std::size_t> parse_index(const std::string& token) {
-  if (token.empty() || token.size() > 18) return std::nullopt;
-  if (token.size() > 1 && token[0] == '0') return std::nullopt;
-  std::size_t v = 0;
-  for (const char c : token) {
-    if (c < '0' || c > '9') return std::nullopt;
-    v = v * 10 + static_cast<std::size_t>(c - '0');
-  }
-  return v;
-}
-
-struct Found {
-  TextSpan key;  // empty (begin == end == 0) for the document root and array elements
-  TextSpan value;
-};
-
-/// Walks down to the pointer's target; nullopt when it is not in the text.
-std::optional<Found> walk(std::string_view text, const std::vector<std::string>& tokens) {
-  Scanner s(text);
-  s.skip_ws();
-  TextSpan key{};
-  for (const std::string& token : tokens) {
-    s.skip_ws();
-    const char c = s.peek();
-    if (c == '{') {
-      s.advance();
-      std::optional<std::size_t> value_begin;
-      // Scan the whole object: with a duplicated key the last occurrence is the one parsed.
-      while (true) {
-        s.skip_ws();
-        if (s.peek() == '}') break;
-        const std::size_t key_begin = s.pos();
-        std::string name;
-        if (!s.read_string(&name)) break;
-        const std::size_t key_end = s.pos();
-        s.skip_ws();
-        if (s.peek() != ':') break;
-        s.advance();
-        s.skip_ws();
-        if (name == token) {
-          value_begin = s.pos();
-          key = TextSpan{key_begin, key_end};
-        }
-        if (!s.skip_value()) break;
-        s.skip_ws();
-        if (s.peek() != ',') break;
-        s.advance();
-      }
-      if (!value_begin) return std::nullopt;
-      s.set_pos(*value_begin);
-    } else if (c == '[') {
-      const auto index = parse_index(token);
-      if (!index) return std::nullopt;
-      s.advance();
-      for (std::size_t i = 0; i < *index; ++i) {
-        s.skip_ws();
-        if (s.peek() == ']' || !s.skip_value()) return std::nullopt;
-        s.skip_ws();
-        if (s.peek() != ',') return std::nullopt;
-        s.advance();
-      }
-      s.skip_ws();
-      if (s.at_end() || s.peek() == ']') return std::nullopt;
-      key = TextSpan{};
-    } else {
-      return std::nullopt;
-    }
-  }
-  s.skip_ws();
-  if (s.at_end()) return std::nullopt;
-  const std::size_t begin = s.pos();
-  const std::size_t end = s.skip_value() ? s.pos() : text.size();
-  return Found{key, TextSpan{begin, end}};
-}
-
-}  // namespace
-
 std::optional<std::vector<std::string>> split_pointer(std::string_view pointer) {
   std::vector<std::string> tokens;
   if (pointer.empty()) return tokens;
@@ -269,35 +47,6 @@ std::string escape_pointer_token(std::string_view token) {
   return out;
 }
 
-std::optional<TextSpan> find_value(std::string_view text, std::string_view pointer) {
-  const auto tokens = split_pointer(pointer);
-  if (!tokens) return std::nullopt;
-  const auto found = walk(text, *tokens);
-  if (!found) return std::nullopt;
-  return found->value;
-}
-
-std::optional<TextSpan> find_key(std::string_view text, std::string_view pointer) {
-  const auto tokens = split_pointer(pointer);
-  if (!tokens || tokens->empty()) return std::nullopt;
-  const auto found = walk(text, *tokens);
-  if (!found || found->key.end == 0) return std::nullopt;
-  return found->key;
-}
-
-std::optional<TextSpan> find_nearest(std::string_view text, std::string_view pointer, bool key) {
-  auto tokens = split_pointer(pointer);
-  if (!tokens) return std::nullopt;
-  if (key) {
-    if (const auto found = walk(text, *tokens); found && found->key.end != 0) return found->key;
-  }
-  while (true) {
-    if (const auto found = walk(text, *tokens)) return found->value;
-    if (tokens->empty()) return std::nullopt;
-    tokens->pop_back();
-  }
-}
-
 namespace {
 
 constexpr std::size_t kCheckpointBytes = 4096;
@@ -317,67 +66,64 @@ template <class Visit>
 void walk_values(std::string_view text, Visit& visit) {
   struct Frame {
     std::string pointer;
-    bool object;
+    char closer;  // '}' for an object, ']' for an array
     std::size_t next_index;
   };
   std::vector<Frame> stack;
-  Scanner s(text);
+  JsonLexer lex(text);
+  JsonToken t = lex.next();
   std::string pointer;
   TextSpan key{};
-  // Reads the next member's key (objects) or index (arrays) into `pointer`; false when the
-  // container ends here or the text is malformed.
+  const auto closes = [&](const Frame& f) {
+    return t.kind == TokenKind::kClose && text[t.span.begin] == f.closer;
+  };
+  // Reads the next member's key (objects) or index (arrays) into `pointer`, leaving `t` at its
+  // value's first token; false when the text is malformed here.
   const auto next_member = [&](Frame& frame) {
-    s.skip_ws();
-    if (frame.object) {
-      const std::size_t key_begin = s.pos();
-      std::string name;
-      if (!s.read_string(&name)) return false;
-      key = TextSpan{key_begin, s.pos()};
-      s.skip_ws();
-      if (s.peek() != ':') return false;
-      s.advance();
-      pointer = frame.pointer + "/" + escape_pointer_token(name);
-      visit.member(frame.pointer, std::move(name), key, pointer);
-    } else {
+    if (frame.closer == ']') {
       key = TextSpan{};
       pointer = frame.pointer + "/" + std::to_string(frame.next_index++);
+      return true;
     }
+    std::optional<std::string> name = decode_string(text, t);
+    if (!name) return false;
+    key = t.span;
+    if (lex.next().kind != TokenKind::kColon) return false;
+    pointer = frame.pointer + "/" + escape_pointer_token(*name);
+    visit.member(frame.pointer, std::move(*name), key, pointer);
+    t = lex.next();
     return true;
   };
   while (true) {
-    // Read one value at `pointer`.
-    s.skip_ws();
-    if (s.at_end()) return;
-    const std::size_t begin = s.pos();
-    const char c = s.peek();
-    if (c == '{' || c == '[') {
-      visit.value(pointer, key, TextSpan{begin, text.size()});
-      s.advance();
-      stack.push_back(Frame{pointer, c == '{', 0});
-      s.skip_ws();
-      if (s.peek() != (c == '{' ? '}' : ']')) {
+    // `t` starts a value at `pointer`.
+    if (t.kind == TokenKind::kOpen) {
+      visit.value(pointer, key, TextSpan{t.span.begin, text.size()});
+      stack.push_back(Frame{pointer, text[t.span.begin] == '{' ? '}' : ']', 0});
+      t = lex.next();
+      if (!closes(stack.back())) {
         if (!next_member(stack.back())) return;
         continue;
       }
+    } else if (t.kind == TokenKind::kWord || (t.kind == TokenKind::kString && t.closed)) {
+      visit.value(pointer, key, t.span);
+      t = lex.next();
     } else {
-      if (!s.skip_value()) return;
-      visit.value(pointer, key, TextSpan{begin, s.pos()});
+      return;
     }
-    // After a value: close finished containers, then move to the next member.
+    // After a value (or at an empty container's closer): close what ends, then the next member.
     bool more = false;
-    while (!stack.empty()) {
-      s.skip_ws();
-      const char d = s.peek();
-      if (d == ',') {
-        s.advance();
+    while (!stack.empty() && !more) {
+      if (t.kind == TokenKind::kComma) {
+        t = lex.next();
         if (!next_member(stack.back())) return;
         more = true;
-        break;
+      } else if (closes(stack.back())) {
+        visit.closed(stack.back().pointer, t.span.end);
+        stack.pop_back();
+        t = lex.next();
+      } else {
+        return;
       }
-      if (d != (stack.back().object ? '}' : ']')) return;
-      s.advance();
-      visit.closed(stack.back().pointer, s.pos());
-      stack.pop_back();
     }
     if (!more) return;
   }
@@ -418,6 +164,7 @@ std::optional<TextSpan> PositionIndex::key(const std::string& pointer) const {
 }
 
 std::optional<TextSpan> PositionIndex::nearest(const std::string& pointer, bool at_key) const {
+  if (!pointer.empty() && pointer[0] != '/') return std::nullopt;  // not a JSON pointer
   if (at_key) {
     if (const auto k = key(pointer)) return k;
   }
@@ -447,6 +194,131 @@ LineColumn PositionIndex::line_column(std::size_t offset) const {
   }
   return LineColumn{static_cast<std::size_t>(next - line_starts_.begin()),
                     chars_before(offset) - chars_before(line_start) + 1};
+}
+
+namespace {
+
+std::optional<std::size_t> parse_index(const std::string& token) {
+  if (token.empty() || token.size() > 18) return std::nullopt;
+  if (token.size() > 1 && token[0] == '0') return std::nullopt;
+  std::size_t v = 0;
+  for (const char c : token) {
+    if (c < '0' || c > '9') return std::nullopt;
+    v = v * 10 + static_cast<std::size_t>(c - '0');
+  }
+  return v;
+}
+
+/// Skips the value that `t` starts, leaving `t` at the token after it; containers by counting
+/// brackets, so nesting depth costs nothing. The value's end, or nullopt when the text ends
+/// first or `t` starts no value.
+std::optional<std::size_t> skip_value(JsonLexer& lex, JsonToken& t) {
+  if (t.kind == TokenKind::kWord || (t.kind == TokenKind::kString && t.closed)) {
+    const std::size_t end = t.span.end;
+    t = lex.next();
+    return end;
+  }
+  if (t.kind != TokenKind::kOpen) return std::nullopt;
+  for (std::size_t depth = 0; t.kind != TokenKind::kEnd; t = lex.next()) {
+    if (t.kind == TokenKind::kOpen) ++depth;
+    if (t.kind == TokenKind::kClose && --depth == 0) {
+      const std::size_t end = t.span.end;
+      t = lex.next();
+      return end;
+    }
+  }
+  return std::nullopt;
+}
+
+struct Found {
+  TextSpan key;  // empty (begin == end == 0) for the document root and array elements
+  TextSpan value;
+};
+
+/// Moves `t` from an object's '{' to the value of its last member named `name` (nlohmann keeps
+/// the last of a duplicated key), setting `key`; false when it has none.
+bool enter_member(JsonLexer& lex, JsonToken& t, const std::string& name, TextSpan& key) {
+  std::optional<JsonLexer> at_value;
+  std::optional<JsonToken> value_token;
+  for (t = lex.next(); t.kind == TokenKind::kString;) {
+    const std::optional<std::string> member = decode_string(lex.text(), t);
+    const TextSpan member_key = t.span;
+    if (!member || lex.next().kind != TokenKind::kColon) break;
+    t = lex.next();
+    if (*member == name) {
+      at_value = lex;  // the lexer is a cursor: a copy resumes here
+      value_token = t;
+      key = member_key;
+    }
+    if (!skip_value(lex, t) || t.kind != TokenKind::kComma) break;
+    t = lex.next();
+  }
+  if (!at_value) return false;
+  lex = *at_value;
+  t = *value_token;
+  return true;
+}
+
+/// Moves `t` from an array's '[' to its element `index`; false when it has none.
+bool enter_element(JsonLexer& lex, JsonToken& t, std::size_t index) {
+  t = lex.next();
+  for (std::size_t i = 0; i < index; ++i) {
+    if (!skip_value(lex, t) || t.kind != TokenKind::kComma) return false;
+    t = lex.next();
+  }
+  return t.kind != TokenKind::kEnd && t.kind != TokenKind::kClose;
+}
+
+/// Walks down to the pointer's target without indexing what it passes; nullopt when it is not
+/// in the text.
+std::optional<Found> walk(std::string_view text, const std::vector<std::string>& tokens) {
+  JsonLexer lex(text);
+  JsonToken t = lex.next();
+  TextSpan key{};
+  for (const std::string& token : tokens) {
+    if (t.kind != TokenKind::kOpen) return std::nullopt;
+    if (text[t.span.begin] == '{') {
+      if (!enter_member(lex, t, token, key)) return std::nullopt;
+    } else {
+      const auto index = parse_index(token);
+      if (!index || !enter_element(lex, t, *index)) return std::nullopt;
+      key = TextSpan{};
+    }
+  }
+  if (t.kind == TokenKind::kEnd) return std::nullopt;
+  const std::size_t begin = t.span.begin;
+  return Found{key, TextSpan{begin, skip_value(lex, t).value_or(text.size())}};
+}
+
+}  // namespace
+
+std::optional<TextSpan> find_value(std::string_view text, std::string_view pointer) {
+  const auto tokens = split_pointer(pointer);
+  if (!tokens) return std::nullopt;
+  const auto found = walk(text, *tokens);
+  if (!found) return std::nullopt;
+  return found->value;
+}
+
+std::optional<TextSpan> find_key(std::string_view text, std::string_view pointer) {
+  const auto tokens = split_pointer(pointer);
+  if (!tokens || tokens->empty()) return std::nullopt;
+  const auto found = walk(text, *tokens);
+  if (!found || found->key.end == 0) return std::nullopt;
+  return found->key;
+}
+
+std::optional<TextSpan> find_nearest(std::string_view text, std::string_view pointer, bool key) {
+  auto tokens = split_pointer(pointer);
+  if (!tokens) return std::nullopt;
+  if (key) {
+    if (const auto found = walk(text, *tokens); found && found->key.end != 0) return found->key;
+  }
+  while (true) {
+    if (const auto found = walk(text, *tokens)) return found->value;
+    if (tokens->empty()) return std::nullopt;
+    tokens->pop_back();
+  }
 }
 
 LineColumn line_column(std::string_view text, std::size_t offset) {
@@ -492,39 +364,11 @@ std::vector<DuplicateKey> find_duplicate_keys(std::string_view text) {
 }
 
 std::size_t token_start(std::string_view text, std::size_t offset) {
-  std::size_t pos = text.substr(0, kUtf8Bom.size()) == kUtf8Bom ? kUtf8Bom.size() : 0;
-  while (pos < text.size()) {
-    while (pos < text.size() && is_json_whitespace(text[pos])) ++pos;
-    if (pos >= text.size() || pos > offset) break;
-    const std::size_t start = pos;
-    const char c = text[pos];
-    if (c == '"') {
-      // A string ends at its closing quote, or where the parser gave up on it: at a raw control
-      // character (a line break inside a string) or at the end of the text.
-      ++pos;
-      bool closed = false;
-      while (pos < text.size()) {
-        const char d = text[pos];
-        if (d == '\\') {
-          pos += 2;
-          continue;
-        }
-        if (static_cast<unsigned char>(d) < 0x20) break;
-        ++pos;
-        if (d == '"') {
-          closed = true;
-          break;
-        }
-      }
-      if (offset < pos || (!closed && offset == pos)) return start;
-    } else if (is_json_structural(c)) {
-      ++pos;
-      if (offset < pos) return start;
-    } else {
-      while (pos < text.size() && !is_json_whitespace(text[pos]) && !is_json_structural(text[pos]))
-        ++pos;
-      if (offset < pos) return start;
-    }
+  JsonLexer lex(text);
+  for (JsonToken t = lex.next(); t.kind != TokenKind::kEnd && t.span.begin <= offset;
+       t = lex.next()) {
+    // An unclosed string also owns the character the parser stopped at, just past its end.
+    if (offset < t.span.end || (!t.closed && offset == t.span.end)) return t.span.begin;
   }
   return offset;
 }

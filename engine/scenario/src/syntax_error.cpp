@@ -66,22 +66,11 @@ std::size_t previous_non_ws(std::string_view text, std::size_t offset, bool& fou
 /// Brackets still open at the end of the text, innermost last (offsets of '{' or '[').
 std::vector<std::size_t> open_brackets(std::string_view text) {
   std::vector<std::size_t> stack;
-  bool in_string = false;
-  for (std::size_t i = 0; i < text.size(); ++i) {
-    const char c = text[i];
-    if (in_string) {
-      if (c == '\\') {
-        ++i;
-      } else if (c == '"') {
-        in_string = false;
-      }
-      continue;
-    }
-    if (c == '"') {
-      in_string = true;
-    } else if (c == '{' || c == '[') {
-      stack.push_back(i);
-    } else if ((c == '}' || c == ']') && !stack.empty()) {
+  JsonLexer lex(text);
+  for (JsonToken t = lex.next(); t.kind != TokenKind::kEnd; t = lex.next()) {
+    if (t.kind == TokenKind::kOpen) {
+      stack.push_back(t.span.begin);
+    } else if (t.kind == TokenKind::kClose && !stack.empty()) {
       stack.pop_back();
     }
   }
@@ -325,34 +314,14 @@ Diagnostic describe_parse_error(std::string_view text, std::size_t byte, std::st
 Diagnostic describe_number_overflow(std::string_view text, std::string_view what) {
   const std::string number = before(after(what, "parsing '"), "'");
   // Find the first number token that does not fit a double: that is the one nlohmann refused.
-  std::size_t pos = 0;
   std::optional<std::size_t> found;
-  bool in_string = false;
-  while (pos < text.size() && !found) {
-    const char c = text[pos];
-    if (in_string) {
-      if (c == '\\') {
-        ++pos;
-      } else if (c == '"') {
-        in_string = false;
-      }
-      ++pos;
-      continue;
-    }
-    if (c == '"') {
-      in_string = true;
-      ++pos;
-      continue;
-    }
-    if (c == '-' || (c >= '0' && c <= '9')) {
-      const std::size_t start = pos;
-      while (pos < text.size() && !is_json_whitespace(text[pos]) && !is_json_structural(text[pos]))
-        ++pos;
-      const std::string token(text.substr(start, pos - start));
-      if (token == number || !std::isfinite(std::strtod(token.c_str(), nullptr))) found = start;
-      continue;
-    }
-    ++pos;
+  JsonLexer lex(text);
+  for (JsonToken t = lex.next(); t.kind != TokenKind::kEnd && !found; t = lex.next()) {
+    const char c = text[t.span.begin];
+    if (t.kind != TokenKind::kWord || !(c == '-' || (c >= '0' && c <= '9'))) continue;
+    const std::string token(text.substr(t.span.begin, t.span.end - t.span.begin));
+    if (token == number || !std::isfinite(std::strtod(token.c_str(), nullptr)))
+      found = t.span.begin;
   }
   Diagnostic d = at(text, found.value_or(0),
                     "number " + (number.empty() ? std::string("") : number + " ") +
@@ -365,22 +334,11 @@ Diagnostic describe_number_overflow(std::string_view text, std::string_view what
 
 std::optional<std::size_t> find_excess_nesting(std::string_view text, std::size_t max_depth) {
   std::size_t depth = 0;
-  bool in_string = false;
-  for (std::size_t i = 0; i < text.size(); ++i) {
-    const char c = text[i];
-    if (in_string) {
-      if (c == '\\') {
-        ++i;
-      } else if (c == '"') {
-        in_string = false;
-      }
-      continue;
-    }
-    if (c == '"') {
-      in_string = true;
-    } else if (c == '{' || c == '[') {
-      if (++depth > max_depth) return i;
-    } else if ((c == '}' || c == ']') && depth > 0) {
+  JsonLexer lex(text);
+  for (JsonToken t = lex.next(); t.kind != TokenKind::kEnd; t = lex.next()) {
+    if (t.kind == TokenKind::kOpen) {
+      if (++depth > max_depth) return t.span.begin;
+    } else if (t.kind == TokenKind::kClose && depth > 0) {
       --depth;
     }
   }

@@ -1,8 +1,8 @@
 // Where a JSON pointer's key or value starts in the source text of a JSON document.
 //
-// nlohmann 3.11 keeps no source positions, so diagnostics find them by scanning the text again:
-// a small tokenizer walks objects and arrays down to the pointer's last token. It never recurses
-// (skipping a value counts brackets), so it is safe on any input, valid JSON or not.
+// nlohmann 3.11 keeps no source positions, so diagnostics find them by lexing the text again
+// (json_lexer.hpp): one walk over the tokens records every value's span under its pointer. It
+// never recurses (a stack of open containers), so it is safe on any input, valid JSON or not.
 #pragma once
 
 #include <cstddef>
@@ -12,12 +12,9 @@
 #include <unordered_map>
 #include <vector>
 
-namespace rumble::scenario {
+#include "scenario/json_lexer.hpp"
 
-struct TextSpan {
-  std::size_t begin = 0;  // byte offset of the first character
-  std::size_t end = 0;    // one past the last character
-};
+namespace rumble::scenario {
 
 struct LineColumn {
   std::size_t line = 0;    // 1-based
@@ -30,7 +27,8 @@ std::optional<std::vector<std::string>> split_pointer(std::string_view pointer);
 std::string escape_pointer_token(std::string_view token);
 
 /// The span of the value at `pointer` ("" = the whole document). For an object member that
-/// occurs twice, the last one (which nlohmann keeps) is found.
+/// occurs twice, the last one (which nlohmann keeps) is found. Each call lexes the whole text:
+/// for many lookups, build one PositionIndex.
 std::optional<TextSpan> find_value(std::string_view text, std::string_view pointer);
 /// The span of the key (with its quotes) of the object member at `pointer`.
 std::optional<TextSpan> find_key(std::string_view text, std::string_view pointer);
@@ -75,15 +73,6 @@ struct DuplicateKey {
 /// Every key that repeats within one object, in text order (three times: two findings). One
 /// pass without recursion, like PositionIndex; stops quietly where the text is malformed.
 std::vector<DuplicateKey> find_duplicate_keys(std::string_view text);
-
-/// JSON's insignificant whitespace (RFC 8259): space, tab, line feed, carriage return.
-inline bool is_json_whitespace(char c) {
-  return c == ' ' || c == '\t' || c == '\n' || c == '\r';
-}
-/// A character that ends a bare JSON word or number: punctuation or a string's opening quote.
-inline bool is_json_structural(char c) {
-  return c == '{' || c == '}' || c == '[' || c == ']' || c == ',' || c == ':' || c == '"';
-}
 
 /// The start of the JSON token containing `offset` (strings, numbers, words, punctuation),
 /// found by lexing from the start; used to point parse errors at a token's first character.
