@@ -35,11 +35,9 @@ ScenarioSoil soil_on_footprints(const scenario::Document& doc, const PluginRegis
   const std::string type = soil.at("type").get<std::string>();
   const nlohmann::json params = soil.value("params", nlohmann::json::object());
   s.type = registry.find(RUMBLE_KIND_SOIL, type);
-  if (built != nullptr) s.soil = built->take("/soil", type, params, s.layout);
-  if (!s.soil) {
-    s.soil = std::make_unique<SoilInstance>(*s.type, "/soil", params, doc.path.parent_path());
-    s.soil->accept_layout(s.layout);
-  }
+  const std::filesystem::path dir = doc.path.parent_path();
+  s.soil = built != nullptr ? built->take_or_lay(*s.type, "/soil", params, dir, s.layout)
+                            : lay_soil(*s.type, "/soil", params, dir, s.layout);
   // The soil runs alone in these commands (its receptance, its impulse responses, its stable
   // step): the machine's cores are its.
   s.soil->grant_threads(static_cast<unsigned>(usable_cpus()));

@@ -14,6 +14,28 @@ bool same_layout(const std::vector<rumble_footprint>& a, const std::vector<rumbl
 
 }  // namespace
 
+std::unique_ptr<SoilInstance> lay_soil(const ComponentType& type, const std::string& pointer,
+                                       const nlohmann::json& params,
+                                       const std::filesystem::path& dir,
+                                       const std::vector<rumble_footprint>& layout) {
+  auto soil = std::make_unique<SoilInstance>(type, pointer, params, dir);
+  try {
+    soil->accept_layout(layout);
+  } catch (const ConfigError& e) {
+    throw LayoutRefused(e.what());
+  }
+  return soil;
+}
+
+std::unique_ptr<SoilInstance> BuiltSoils::take_or_lay(const ComponentType& type,
+                                                      const std::string& pointer,
+                                                      const nlohmann::json& params,
+                                                      const std::filesystem::path& dir,
+                                                      const std::vector<rumble_footprint>& layout) {
+  if (auto kept = take(pointer, type.type_name, params, layout)) return kept;
+  return lay_soil(type, pointer, params, dir, layout);
+}
+
 void BuiltSoils::keep(const std::string& pointer, const std::string& type,
                       const nlohmann::json& params, const std::vector<rumble_footprint>& layout,
                       std::unique_ptr<SoilInstance> soil) {

@@ -25,13 +25,9 @@ std::unique_ptr<SoilInstance> make_soil(const scenario::ComponentSpec& c,
                                         const std::filesystem::path& dir,
                                         const std::vector<rumble_footprint>& layout,
                                         BuiltSoils* built) {
-  if (built != nullptr) {
-    if (auto soil = built->take(c.pointer, c.type, c.params, layout)) return soil;
-  }
-  auto soil = std::make_unique<SoilInstance>(resolve(registry, RUMBLE_KIND_SOIL, c), c.pointer,
-                                             c.params, dir);
-  soil->accept_layout(layout);
-  return soil;
+  const ComponentType& type = resolve(registry, RUMBLE_KIND_SOIL, c);
+  if (built != nullptr) return built->take_or_lay(type, c.pointer, c.params, dir, layout);
+  return lay_soil(type, c.pointer, c.params, dir, layout);
 }
 
 ReceiverSetup attach_receivers(SoilInstance& soil, const scenario::RunSpec& spec) {

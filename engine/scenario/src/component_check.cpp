@@ -119,17 +119,17 @@ double check_soil(const json& scenario, const json& component, const std::string
   double c_r = 0.0;
   build(component, pointer, RUMBLE_KIND_SOIL, registry, out,
         [&](const ComponentType& type, const json& params) {
-          auto soil = std::make_unique<SoilInstance>(type, pointer, params, dir);
-          double c_s = 0.0;
-          if (!soil->wave_speeds(c_s, c_r)) c_r = 0.0;
-          try {
-            soil->accept_layout(layout);
-          } catch (const std::exception& e) {
+          std::unique_ptr<SoilInstance> soil;
+          try {  // as the run lays it (plugin/built_soils.hpp)
+            soil = lay_soil(type, pointer, params, dir, layout);
+          } catch (const LayoutRefused& e) {
             // The layout is the track's (/track/sleepers) unless the soil names its own key.
             out.push_back(
                 finding(refused_pointer(pointer, params, e.what(), "/track/sleepers"), e.what()));
             return;
           }
+          double c_s = 0.0;
+          if (!soil->wave_speeds(c_s, c_r)) c_r = 0.0;
           if (pointer == "/soil") {  // the receivers are the scenario's soil's
             const std::size_t findings = out.size();
             check_receivers(*soil, scenario, out);
