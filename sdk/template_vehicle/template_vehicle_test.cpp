@@ -62,9 +62,9 @@ const rumble_factory* load_factory(const char* path, int kind, const char* type)
 double acceleration(const rumble_vehicle_api& api, rumble_instance* self, double t, double q,
                     double qd, double contact_force) {
   double m = 0.0, f = 0.0, z = 0.0, j = 0.0;
-  check(api.mass_matrix(self, &q, &m) == RUMBLE_OK, "mass_matrix");
-  check(api.forces(self, t, &q, &qd, &f) == RUMBLE_OK, "forces");
-  check(api.wheel_kinematics(self, &q, &z, &j) == RUMBLE_OK, "wheel_kinematics");
+  check(api.mass_matrix2(self, &q, 1, &m, 1) == RUMBLE_OK, "mass_matrix");
+  check(api.forces2(self, t, &q, &qd, 1, &f) == RUMBLE_OK, "forces");
+  check(api.wheel_kinematics2(self, &q, 1, &z, 1, &j) == RUMBLE_OK, "wheel_kinematics");
   check(z == q && j == 1.0, "the wheel moves with the mass: z = q, J = 1");
   return (f - j * contact_force) / m;
 }
@@ -104,9 +104,9 @@ void equations(const rumble_factory& f) {
   // The analytical tangent agrees with central differences of forces() (both zero here).
   double k = 1.0, c = 1.0, f_plus = 0.0, f_minus = 0.0;
   const double q = 1e-3, qd = 0.0, dq = 1e-6, q_plus = q + dq, q_minus = q - dq;
-  check(api.tangent(self, 0.0, &q, &qd, &k, &c) == RUMBLE_OK, "tangent offered");
-  check(api.forces(self, 0.0, &q_plus, &qd, &f_plus) == RUMBLE_OK, "forces(q + dq)");
-  check(api.forces(self, 0.0, &q_minus, &qd, &f_minus) == RUMBLE_OK, "forces(q - dq)");
+  check(api.tangent2(self, 0.0, &q, &qd, 1, &k, &c) == RUMBLE_OK, "tangent offered");
+  check(api.forces2(self, 0.0, &q_plus, &qd, 1, &f_plus) == RUMBLE_OK, "forces(q + dq)");
+  check(api.forces2(self, 0.0, &q_minus, &qd, 1, &f_minus) == RUMBLE_OK, "forces(q - dq)");
   check(std::abs(k + (f_plus - f_minus) / (2 * dq)) <= 1e-6, "K = -df/dq");
   check(c == 0.0, "C = 0");
   api.common.destroy(self);

@@ -22,7 +22,7 @@ TEST(Checkpoints, PluginHeldSlotsRestoreExactlyAndCanBeFreed) {
                      {"stall_at", 1e30},
                      {"csc_defect", "none"}},
                     ".");
-  ASSERT_TRUE(soil.owns_checkpoints());
+  ASSERT_TRUE(soil.keeps_checkpoints());
   soil.accept_layout({{0.0, 0.0, 2.6, 0.26}, {0.6, 0.0, 2.6, 0.26}});
   std::vector<double> u;
   soil.initialize(0.0, {1e4, 2e4}, u);

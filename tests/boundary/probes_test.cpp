@@ -110,11 +110,11 @@ TEST(Probes, ARestoreDropsTheSamplesOfTheStepTakenAgain) {
   std::vector<double> u;
   soil.initialize(0.0, {1e4, 2e4}, u);
   ASSERT_TRUE(soil.set_probes({{"p", 0.6, 0.0, 0.0}}, 0.0));
-  std::vector<double> saved, coeff{3e4, 3e4}, times, values;
-  soil.save_state(saved);
+  std::vector<double> coeff{3e4, 3e4}, times, values;
+  soil.checkpoint_save(0);
   const rumble_waveform force{0, 2, coeff.data()};
   soil.advance(0.0, 1e-3, force);
-  soil.restore_state(saved);
+  soil.checkpoint_restore(0);
   soil.take_probe_samples(times, values);
   EXPECT_TRUE(times.empty()) << times.size() << " samples of an undone step survived";
   soil.advance(0.0, 1e-3, force);

@@ -92,42 +92,51 @@ void TestVehicle::check(rumble_status status, const char* call) const {
   }
 }
 
+// The calls a host makes: the ABI's forms with array lengths.
 MatrixXd TestVehicle::mass(const VectorXd& q) {
   MatrixXd m(n_, n_);
-  check(api_->mass_matrix(self_, q.data(), m.data()), "mass_matrix");
+  const auto n = static_cast<std::uint64_t>(n_);
+  check(api_->mass_matrix2(self_, q.data(), n, m.data(), n * n), "mass_matrix");
   return m;
 }
 
 VectorXd TestVehicle::forces(const VectorXd& q, const VectorXd& qd) {
   VectorXd f(n_);
-  check(api_->forces(self_, 0.0, q.data(), qd.data(), f.data()), "forces");
+  check(api_->forces2(self_, 0.0, q.data(), qd.data(), static_cast<std::uint64_t>(n_), f.data()),
+        "forces");
   return f;
 }
 
 void TestVehicle::wheel_kinematics(const VectorXd& q, VectorXd& z, MatrixXd& jacobian) {
   z.resize(wheel_count());
   jacobian.resize(wheel_count(), n_);
-  check(api_->wheel_kinematics(self_, q.data(), z.data(), jacobian.data()), "wheel_kinematics");
+  check(api_->wheel_kinematics2(self_, q.data(), static_cast<std::uint64_t>(n_), z.data(),
+                                static_cast<std::uint64_t>(wheel_count()), jacobian.data()),
+        "wheel_kinematics");
 }
 
 void TestVehicle::tangent(const VectorXd& q, const VectorXd& qd, MatrixXd& k, MatrixXd& c) {
   k.resize(n_, n_);
   c.resize(n_, n_);
-  if (api_->tangent == nullptr) throw std::runtime_error("no tangent");
-  check(api_->tangent(self_, 0.0, q.data(), qd.data(), k.data(), c.data()), "tangent");
+  if (api_->tangent2 == nullptr) throw std::runtime_error("no tangent");
+  check(api_->tangent2(self_, 0.0, q.data(), qd.data(), static_cast<std::uint64_t>(n_), k.data(),
+                       c.data()),
+        "tangent");
 }
 
 std::vector<std::string> TestVehicle::output_names() {
-  std::vector<std::string> names;
-  std::stringstream s(api_->output_names(self_));
-  std::string item;
-  while (std::getline(s, item, ';')) names.push_back(item);
-  return names;
+  std::uint64_t n = 0;
+  check(api_->output_names2(self_, nullptr, 0, &n), "output_names");
+  std::vector<const char*> raw(static_cast<std::size_t>(n), nullptr);
+  check(api_->output_names2(self_, raw.data(), n, &n), "output_names");
+  return std::vector<std::string>(raw.begin(), raw.end());
 }
 
 VectorXd TestVehicle::outputs(const VectorXd& q, const VectorXd& qd) {
   VectorXd v(static_cast<Eigen::Index>(output_names().size()));
-  check(api_->outputs(self_, 0.0, q.data(), qd.data(), v.data()), "outputs");
+  check(api_->outputs2(self_, 0.0, q.data(), qd.data(), static_cast<std::uint64_t>(n_), v.data(),
+                       static_cast<std::uint64_t>(v.size())),
+        "outputs");
   return v;
 }
 

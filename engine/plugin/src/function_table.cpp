@@ -3,8 +3,11 @@
 #include <cstddef>
 #include <cstdint>
 #include <initializer_list>
+#include <nlohmann/json.hpp>
 #include <utility>
 #include <vector>
+
+#include "plugin/abi_adapter.hpp"
 
 namespace rumble {
 namespace {
@@ -49,17 +52,50 @@ std::string lifecycle_defect(const rumble_lifecycle_api* l) {
   return "";
 }
 
+/// "" when a factory's declared capabilities are well formed, else what is wrong.
+std::string capabilities_defect(const rumble_factory* f) {
+  if (!RUMBLE_HAS_FIELD(f, rumble_factory, capabilities) || f->capabilities == nullptr) return "";
+  const rumble_capabilities& c = *f->capabilities;
+  constexpr std::size_t kCapabilitiesV1_1 = RUMBLE_END_OF(rumble_capabilities, participants_json);
+  if (c.struct_size < kCapabilitiesV1_1) {
+    return "capabilities struct_size " + std::to_string(c.struct_size) + " bytes, ABI 1.1 needs " +
+           std::to_string(kCapabilitiesV1_1);
+  }
+  if (!(c.max_macro_step >= 0.0)) return "capabilities max_macro_step is negative or NaN";
+  if ((c.offers & RUMBLE_CAP_MONOLITHIC) != 0) {
+    if (f->kind != RUMBLE_KIND_COUPLER) return "capability MONOLITHIC is for couplers only";
+    if ((c.soil_needs & RUMBLE_CAP_LINEAR_MATRICES) == 0)
+      return "a MONOLITHIC coupler must need LINEAR_MATRICES of its soil (soil_needs)";
+  }
+  if (c.participants_json != nullptr) {
+    const auto j = nlohmann::json::parse(c.participants_json, nullptr, false);
+    if (!j.is_object()) return "capabilities participants_json is not a JSON object";
+  }
+  return "";
+}
+
 }  // namespace
+
+std::string factory_capabilities_defect(const rumble_factory& f, std::uint32_t abi_minor) {
+  constexpr std::size_t kFactoryV1_1 = RUMBLE_END_OF(rumble_factory, capabilities);
+  if (abi_minor >= 1 && f.struct_size < kFactoryV1_1)
+    return "struct_size " + std::to_string(f.struct_size) + " bytes, ABI 1.1 needs " +
+           std::to_string(kFactoryV1_1);
+  std::string defect = capabilities_defect(&f);
+  if (defect.empty() && abi_minor >= 1 && f.capabilities != nullptr &&
+      (f.kind == RUMBLE_KIND_VEHICLE || f.kind == RUMBLE_KIND_SOIL ||
+       f.kind == RUMBLE_KIND_COUPLER))
+    defect =
+        declared_functions_defect(static_cast<rumble_kind>(f.kind), f.api, f.capabilities->offers);
+  return defect;
+}
 
 std::string function_table_defect(rumble_kind kind, const void* api, std::uint32_t abi_minor) {
   const bool v1_1 = abi_minor >= 1;
   switch (kind) {
     case RUMBLE_KIND_VEHICLE: {
       const auto& t = *static_cast<const rumble_vehicle_api*>(api);
-      std::string d = size_defect(t.struct_size,
-                                  v1_1 ? RUMBLE_END_OF(rumble_vehicle_api, outputs2)
-                                       : RUMBLE_END_OF(rumble_vehicle_api, outputs),
-                                  abi_minor);
+      std::string d = size_defect(t.struct_size, abi::table_size(kind, abi_minor), abi_minor);
       if (d.empty()) d = common_missing(t.common);
       if (d.empty()) {
         d = first_missing({{"dof_count", t.dof_count != nullptr},
@@ -82,11 +118,7 @@ std::string function_table_defect(rumble_kind kind, const void* api, std::uint32
     }
     case RUMBLE_KIND_SOIL: {
       const auto& t = *static_cast<const rumble_soil_api*>(api);
-      std::string d = size_defect(t.struct_size,
-                                  abi_minor >= 3 ? RUMBLE_END_OF(rumble_soil_api, probe_resolution)
-                                  : v1_1         ? RUMBLE_END_OF(rumble_soil_api, linear_matrix)
-                                         : RUMBLE_END_OF(rumble_soil_api, receiver_velocity),
-                                  abi_minor);
+      std::string d = size_defect(t.struct_size, abi::table_size(kind, abi_minor), abi_minor);
       if (d.empty()) d = common_missing(t.common);
       if (d.empty()) {
         d = first_missing({{"accept_layout", t.accept_layout != nullptr},
@@ -103,10 +135,7 @@ std::string function_table_defect(rumble_kind kind, const void* api, std::uint32
     }
     case RUMBLE_KIND_COUPLER: {
       const auto& t = *static_cast<const rumble_coupler_api*>(api);
-      std::string d = size_defect(t.struct_size,
-                                  v1_1 ? RUMBLE_END_OF(rumble_coupler_api, lifecycle)
-                                       : RUMBLE_END_OF(rumble_coupler_api, run),
-                                  abi_minor);
+      std::string d = size_defect(t.struct_size, abi::table_size(kind, abi_minor), abi_minor);
       if (d.empty()) d = common_missing(t.common);
       if (d.empty()) d = first_missing({{"run", t.run != nullptr}});
       if (d.empty() && v1_1) d = lifecycle_defect(t.lifecycle);

@@ -25,18 +25,12 @@ const rumble_common_api* common_table(const ComponentType& type) {
   throw PluginLoadError("unknown component kind " + std::to_string(type.kind));
 }
 
-/// The 1.1 lifecycle table of a factory's function table, or null (1.0 plugin, none offered).
-const rumble_lifecycle_api* lifecycle_table(const ComponentType& type) {
-  if (type.abi_minor < 1) return nullptr;
-  switch (type.kind) {
-    case RUMBLE_KIND_VEHICLE:
-      return static_cast<const rumble_vehicle_api*>(type.factory->api)->lifecycle;
-    case RUMBLE_KIND_SOIL:
-      return static_cast<const rumble_soil_api*>(type.factory->api)->lifecycle;
-    case RUMBLE_KIND_COUPLER:
-      return static_cast<const rumble_coupler_api*>(type.factory->api)->lifecycle;
+/// Throws for a checkpoint slot that does not exist.
+void check_checkpoint_slot(std::uint32_t slot) {
+  if (slot >= RUMBLE_CHECKPOINT_SLOTS) {
+    throw RunError("checkpoint slot " + std::to_string(slot) + " does not exist (slots 0.." +
+                   std::to_string(RUMBLE_CHECKPOINT_SLOTS - 1) + ")");
   }
-  return nullptr;
 }
 
 /// The index of the first value that is not finite (NaN, +-inf), if any (none in no array).
@@ -59,7 +53,10 @@ Instance::Instance(const ComponentType& type, std::string label, const nlohmann:
       label_(std::move(label)),
       // "x.json" has the directory "": the current one, which plugins should read as ".".
       scenario_dir_(scenario_dir.empty() ? std::string(".") : scenario_dir.string()),
-      logger_(logger(std::string(kind_name(type.kind)) + "/" + type.type_name)) {
+      logger_(logger(std::string(kind_name(type.kind)) + "/" + type.type_name)),
+      common_(common_table(type)),
+      lifecycle_(abi::lifecycle_of(type)),
+      checkpoints_(*common_, lifecycle_, type.capabilities) {
   host_.struct_size = sizeof(rumble_host);
   host_.abi_minor = RUMBLE_ABI_MINOR;
   host_.host_data = this;
@@ -68,8 +65,6 @@ Instance::Instance(const ComponentType& type, std::string label, const nlohmann:
   host_.results_dir = results_dir_.c_str();
   host_.threads = 1;
   host_.progress = &Instance::progress_callback;
-  common_ = common_table(type);
-  lifecycle_ = lifecycle_table(type);
   const std::string text = params.dump();
   const char* error = nullptr;
   rumble_status s = RUMBLE_ERROR;
@@ -131,19 +126,29 @@ void Instance::finalize() {
     call("finalize", [&] { return lifecycle_->finalize(handle_); });
 }
 
-bool Instance::owns_checkpoints() const {
-  return lifecycle_ != nullptr && lifecycle_->checkpoint_save != nullptr &&
-         type_.capabilities.has(RUMBLE_CAP_OWN_CHECKPOINTS);
+bool Instance::can_checkpoint() const {
+  if (checkpoints_.plugin_held()) return true;
+  std::uint64_t n = 0;
+  call("state_size", [&] { return checkpoints_.state_size(handle_, &n); });
+  return n > 0;
 }
 void Instance::checkpoint_save(std::uint32_t slot) {
-  call("checkpoint_save", [&] { return lifecycle_->checkpoint_save(handle_, slot); });
+  check_checkpoint_slot(slot);
+  if (!can_checkpoint()) {
+    throw RunError(std::string(kind_name(type_.kind)) + " '" + type_.type_name +
+                   "' does not support save/restore, which this coupling scheme needs");
+  }
+  call("checkpoint_save", [&] { return checkpoints_.save(handle_, slot); });
 }
 void Instance::checkpoint_restore(std::uint32_t slot) {
-  call("checkpoint_restore", [&] { return lifecycle_->checkpoint_restore(handle_, slot); });
+  check_checkpoint_slot(slot);
+  if (!checkpoints_.restorable(slot))
+    throw RunError("restore from checkpoint slot " + std::to_string(slot) + " never saved");
+  call("checkpoint_restore", [&] { return checkpoints_.restore(handle_, slot); });
 }
 void Instance::checkpoint_free(std::uint32_t slot) {
-  if (lifecycle_->checkpoint_free != nullptr)
-    call("checkpoint_free", [&] { return lifecycle_->checkpoint_free(handle_, slot); });
+  check_checkpoint_slot(slot);
+  call("checkpoint_free", [&] { return checkpoints_.release(handle_, slot); });
 }
 
 std::string Instance::who() const {
@@ -197,40 +202,19 @@ rumble_status Instance::check(rumble_status status, const char* call) const {
   }
 }
 
-std::size_t Instance::state_size() const {
-  std::uint64_t n = 0;
-  call("state_size", [&] { return common_->state_size(handle_, &n); });
-  return static_cast<std::size_t>(n);
-}
-
-void Instance::save_state(std::vector<double>& buffer) const {
-  if (buffer.empty()) buffer.resize(state_size());
-  if (buffer.empty()) {
-    throw RunError(std::string(kind_name(type_.kind)) + " '" + type_.type_name +
-                   "' does not support save/restore, which this coupling scheme needs");
-  }
-  call("save_state", [&] { return common_->save_state(handle_, buffer.data(), buffer.size()); });
-}
-
-void Instance::restore_state(const std::vector<double>& buffer) {
-  call("restore_state",
-       [&] { return common_->restore_state(handle_, buffer.data(), buffer.size()); });
-}
-
 // ---------------------------------------------------------------- vehicle
 
 VehicleInstance::VehicleInstance(const ComponentType& type, std::string label,
                                  const nlohmann::json& params,
                                  const std::filesystem::path& scenario_dir)
-    : Instance(type, std::move(label), params, scenario_dir),
-      api_(static_cast<const rumble_vehicle_api*>(type.factory->api)) {
+    : Instance(type, std::move(label), params, scenario_dir), calls_(type) {
   std::uint64_t n = 0;
-  call("dof_count", [&] { return api_->dof_count(handle(), &n); });
+  call("dof_count", [&] { return calls_.dof_count(handle(), &n); });
   n_dof_ = static_cast<std::size_t>(n);
   std::uint64_t n_wheels = 0;
-  call("wheels", [&] { return api_->wheels(handle(), nullptr, 0, &n_wheels); });
+  call("wheels", [&] { return calls_.wheels(handle(), nullptr, 0, &n_wheels); });
   wheels_.resize(static_cast<std::size_t>(n_wheels));
-  call("wheels", [&] { return api_->wheels(handle(), wheels_.data(), n_wheels, &n_wheels); });
+  call("wheels", [&] { return calls_.wheels(handle(), wheels_.data(), n_wheels, &n_wheels); });
   for (std::size_t w = 0; w < wheels_.size(); ++w) {
     if (!std::isfinite(wheels_[w].offset))
       throw_not_finite("wheels", "wheel offset", w, wheels_[w].offset);
@@ -245,37 +229,21 @@ VehicleInstance::VehicleInstance(const ComponentType& type, std::string label,
   n_outputs_ = output_names().size();
 }
 
-bool VehicleInstance::has_lengths() const {
-  return this->type().abi_minor >= 1;  // the loader checked the 1.1 table is complete
-}
-
 void VehicleInstance::mass_matrix(const double* q, double* mass) const {
-  if (has_lengths()) {
-    call("mass_matrix",
-         [&] { return api_->mass_matrix2(handle(), q, n_dof_, mass, n_dof_ * n_dof_); });
-  } else {
-    call("mass_matrix", [&] { return api_->mass_matrix(handle(), q, mass); });
-  }
+  call("mass_matrix",
+       [&] { return calls_.mass_matrix2(handle(), q, n_dof_, mass, n_dof_ * n_dof_); });
   if (const auto bad = first_not_finite(mass, n_dof_ * n_dof_))
     throw_not_finite("mass_matrix", "mass matrix entry", *bad, mass[*bad], all_finite(q, n_dof_));
 }
 void VehicleInstance::forces(double t, const double* q, const double* qd, double* f) const {
-  if (has_lengths()) {
-    call("forces", [&] { return api_->forces2(handle(), t, q, qd, n_dof_, f); });
-  } else {
-    call("forces", [&] { return api_->forces(handle(), t, q, qd, f); });
-  }
+  call("forces", [&] { return calls_.forces2(handle(), t, q, qd, n_dof_, f); });
   if (const auto bad = first_not_finite(f, n_dof_))
     throw_not_finite("forces", "generalized force", *bad, f[*bad],
                      all_finite(q, n_dof_) && all_finite(qd, n_dof_));
 }
 void VehicleInstance::wheel_kinematics(const double* q, double* z, double* jacobian) const {
-  if (has_lengths()) {
-    call("wheel_kinematics",
-         [&] { return api_->wheel_kinematics2(handle(), q, n_dof_, z, wheels_.size(), jacobian); });
-  } else {
-    call("wheel_kinematics", [&] { return api_->wheel_kinematics(handle(), q, z, jacobian); });
-  }
+  call("wheel_kinematics",
+       [&] { return calls_.wheel_kinematics2(handle(), q, n_dof_, z, wheels_.size(), jacobian); });
   if (const auto bad = first_not_finite(z, wheels_.size()))
     throw_not_finite("wheel_kinematics", "wheel position", *bad, z[*bad], all_finite(q, n_dof_));
   if (jacobian == nullptr) return;
@@ -285,14 +253,9 @@ void VehicleInstance::wheel_kinematics(const double* q, double* z, double* jacob
 }
 bool VehicleInstance::tangent(double t, const double* q, const double* qd, double* k,
                               double* c) const {
-  if (has_lengths()) {
-    if (!capabilities().has(RUMBLE_CAP_TANGENT) || api_->tangent2 == nullptr) return false;
-    call("tangent", [&] { return api_->tangent2(handle(), t, q, qd, n_dof_, k, c); });
-    return true;
-  }
-  if (api_->tangent == nullptr) return false;
-  try {
-    call("tangent", [&] { return api_->tangent(handle(), t, q, qd, k, c); });
+  if (!calls_.offers_tangent()) return false;
+  try {  // DISCARD: "not offered", as a 1.0 vehicle answered (abi.h, rumble_status)
+    call("tangent", [&] { return calls_.tangent2(handle(), t, q, qd, n_dof_, k, c); });
   } catch (const Discarded&) {
     return false;
   }
@@ -300,45 +263,23 @@ bool VehicleInstance::tangent(double t, const double* q, const double* qd, doubl
 }
 std::vector<std::string> VehicleInstance::output_names() const {
   std::vector<std::string> names;
-  if (has_lengths() && api_->output_names2 != nullptr) {
-    std::uint64_t n = 0;
-    call("output_names", [&] { return api_->output_names2(handle(), nullptr, 0, &n); });
-    std::vector<const char*> raw(static_cast<std::size_t>(n), nullptr);
-    call("output_names", [&] { return api_->output_names2(handle(), raw.data(), n, &n); });
-    for (const char* name : raw) names.emplace_back(name != nullptr ? name : "");
-    return names;
-  }
-  if (api_->output_names == nullptr) return names;
-  const char* listed = api_->output_names(handle());
-  const std::string all = listed != nullptr ? listed : "";
-  std::size_t start = 0;
-  while (start < all.size()) {
-    const std::size_t end = all.find(';', start);
-    names.push_back(all.substr(start, end == std::string::npos ? std::string::npos : end - start));
-    if (end == std::string::npos) break;
-    start = end + 1;
-  }
+  call("output_names", [&] { return calls_.output_names2(handle(), names); });
   return names;
 }
 void VehicleInstance::outputs(double t, const double* q, const double* qd, double* values) const {
-  if (has_lengths() && api_->outputs2 != nullptr) {
-    call("outputs", [&] { return api_->outputs2(handle(), t, q, qd, n_dof_, values, n_outputs_); });
-  } else if (api_->outputs != nullptr) {
-    call("outputs", [&] { return api_->outputs(handle(), t, q, qd, values); });
-  }
+  call("outputs", [&] { return calls_.outputs2(handle(), t, q, qd, n_dof_, values, n_outputs_); });
 }
 
 // ---------------------------------------------------------------- soil
 
 SoilInstance::SoilInstance(const ComponentType& type, std::string label,
                            const nlohmann::json& params, const std::filesystem::path& scenario_dir)
-    : Instance(type, std::move(label), params, scenario_dir),
-      api_(static_cast<const rumble_soil_api*>(type.factory->api)) {}
+    : Instance(type, std::move(label), params, scenario_dir), api_(abi::current_soil_table(type)) {}
 
 void SoilInstance::accept_layout(const std::vector<rumble_footprint>& footprints) {
   try {
     call("accept_layout",
-         [&] { return api_->accept_layout(handle(), footprints.data(), footprints.size()); });
+         [&] { return api_.accept_layout(handle(), footprints.data(), footprints.size()); });
   } catch (const std::exception& e) {
     throw ConfigError(std::string(e.what()) +
                       "; the layout comes from /track/sleepers (count, spacing, footprint)");
@@ -348,7 +289,7 @@ void SoilInstance::initialize(double t0, const std::vector<double>& static_force
                               std::vector<double>& u) {
   u.resize(static_force.size());
   call("initialize",
-       [&] { return api_->initialize(handle(), t0, static_force.data(), u.data(), u.size()); });
+       [&] { return api_.initialize(handle(), t0, static_force.data(), u.data(), u.size()); });
   if (const auto bad = first_not_finite(u.data(), u.size()))
     throw_not_finite("initialize", "static displacement", *bad, u[*bad],
                      all_finite(static_force.data(), static_force.size()));
@@ -364,10 +305,10 @@ void SoilInstance::advance(double t, double H, const rumble_waveform& force) {
                    "); reduce time.macro_step or track.integrator.micro_step, or use the "
                    "implicit coupler");
   }
-  call("advance", [&] { return api_->advance(handle(), t, H, &force); });
+  call("advance", [&] { return api_.advance(handle(), t, H, &force); });
 }
 void SoilInstance::motion(double* u, double* v, std::size_t n) const {
-  call("motion", [&] { return api_->motion(handle(), u, v, n); });
+  call("motion", [&] { return api_.motion(handle(), u, v, n); });
   // Every input (the forces) was checked finite by advance, so a value that is not finite is
   // the plugin's own (the divergence monitor would otherwise blame the coupling for it).
   if (const auto bad = first_not_finite(u, n))
@@ -377,13 +318,13 @@ void SoilInstance::motion(double* u, double* v, std::size_t n) const {
 }
 bool SoilInstance::frequency_response(double f_hz, std::size_t n,
                                       std::vector<std::complex<double>>& receptance) {
-  if (api_->frequency_response == nullptr) return false;
-  if (type().abi_minor >= 1 && !capabilities().has(RUMBLE_CAP_FREQUENCY_RESPONSE)) return false;
+  if (api_.frequency_response == nullptr || !capabilities().has(RUMBLE_CAP_FREQUENCY_RESPONSE))
+    return false;
   re_.resize(n * n);
   im_.resize(n * n);
   try {
     call("frequency_response",
-         [&] { return api_->frequency_response(handle(), f_hz, re_.data(), im_.data(), n); });
+         [&] { return api_.frequency_response(handle(), f_hz, re_.data(), im_.data(), n); });
   } catch (const Discarded&) {
     return false;
   }
@@ -396,53 +337,50 @@ bool SoilInstance::frequency_response(double f_hz, std::size_t n,
   return true;
 }
 bool SoilInstance::set_receivers(const std::vector<rumble_receiver>& receivers) {
-  if (api_->set_receivers == nullptr) return false;
-  if (type().abi_minor >= 1 && !capabilities().has(RUMBLE_CAP_SURFACE_RECEIVERS)) return false;
+  if (api_.set_receivers == nullptr || !capabilities().has(RUMBLE_CAP_SURFACE_RECEIVERS))
+    return false;
   try {
     call("set_receivers",
-         [&] { return api_->set_receivers(handle(), receivers.data(), receivers.size()); });
+         [&] { return api_.set_receivers(handle(), receivers.data(), receivers.size()); });
   } catch (const Discarded&) {
     return false;
   }
   return true;
 }
 void SoilInstance::receiver_velocity(double* v, std::size_t n) const {
-  call("receiver_velocity", [&] { return api_->receiver_velocity(handle(), v, n); });
+  call("receiver_velocity", [&] { return api_.receiver_velocity(handle(), v, n); });
   if (const auto bad = first_not_finite(v, n))
     throw_not_finite("receiver_velocity", "receiver velocity", *bad, v[*bad]);
 }
 bool SoilInstance::set_probes(const std::vector<rumble_probe>& probes, double sample_interval) {
-  if (type().abi_minor < 1 || !capabilities().has(RUMBLE_CAP_RECEIVERS)) return false;
+  if (api_.set_probes == nullptr || !capabilities().has(RUMBLE_CAP_RECEIVERS)) return false;
   call("set_probes",
-       [&] { return api_->set_probes(handle(), probes.data(), probes.size(), sample_interval); });
+       [&] { return api_.set_probes(handle(), probes.data(), probes.size(), sample_interval); });
   n_probes_ = probes.size();
   return true;
 }
 void SoilInstance::take_probe_samples(std::vector<double>& times, std::vector<double>& values) {
   if (n_probes_ == 0) return;
   std::uint64_t n = 0;
-  call("probe_samples", [&] { return api_->probe_samples(handle(), nullptr, nullptr, 0, &n); });
+  call("probe_samples", [&] { return api_.probe_samples(handle(), nullptr, nullptr, 0, &n); });
   if (n == 0) return;
   const std::size_t t0 = times.size(), v0 = values.size();
   times.resize(t0 + n);
   values.resize(v0 + n * n_probes_ * RUMBLE_PROBE_VALUES);
   std::uint64_t written = 0;
   call("probe_samples", [&] {
-    return api_->probe_samples(handle(), times.data() + t0, values.data() + v0, n, &written);
+    return api_.probe_samples(handle(), times.data() + t0, values.data() + v0, n, &written);
   });
   times.resize(t0 + written);
   values.resize(v0 + written * n_probes_ * RUMBLE_PROBE_VALUES);
 }
 std::optional<SoilInstance::ProbeResolution> SoilInstance::probe_resolution() const {
-  if (n_probes_ == 0 || type().abi_minor < 3 ||
-      !RUMBLE_HAS_FIELD(api_, rumble_soil_api, probe_resolution) ||
-      api_->probe_resolution == nullptr)
-    return std::nullopt;
+  if (n_probes_ == 0 || api_.probe_resolution == nullptr) return std::nullopt;
   ProbeResolution r;
   r.f_hz.assign(n_probes_, 0.0);
   const char* rule = nullptr;
   call("probe_resolution",
-       [&] { return api_->probe_resolution(handle(), r.f_hz.data(), n_probes_, &rule); });
+       [&] { return api_.probe_resolution(handle(), r.f_hz.data(), n_probes_, &rule); });
   for (std::size_t p = 0; p < n_probes_; ++p) {
     if (!std::isfinite(r.f_hz[p]))
       throw_not_finite("probe_resolution", "resolved frequency", p, r.f_hz[p]);
@@ -457,25 +395,26 @@ std::optional<SoilInstance::ProbeResolution> SoilInstance::probe_resolution() co
   return r;
 }
 bool SoilInstance::offers_fields() const {
-  return type().abi_minor >= 1 && capabilities().has(RUMBLE_CAP_FIELD_OUTPUT);
+  return api_.write_fields != nullptr && capabilities().has(RUMBLE_CAP_FIELD_OUTPUT);
 }
 
 bool SoilInstance::write_fields(double t, const std::filesystem::path& path) {
   if (!offers_fields()) return false;
-  call("write_fields", [&] { return api_->write_fields(handle(), t, path.c_str()); });
+  call("write_fields", [&] { return api_.write_fields(handle(), t, path.c_str()); });
   return true;
 }
 bool SoilInstance::linear_matrix(rumble_matrix which, Eigen::SparseMatrix<double>& out) {
-  if (type().abi_minor < 1 || !capabilities().has(RUMBLE_CAP_LINEAR_MATRICES)) return false;
+  if (api_.linear_matrix == nullptr || !capabilities().has(RUMBLE_CAP_LINEAR_MATRICES))
+    return false;
   rumble_csc csc{};
-  call("linear_matrix", [&] { return api_->linear_matrix(handle(), which, &csc); });
+  call("linear_matrix", [&] { return api_.linear_matrix(handle(), which, &csc); });
   const std::uint64_t rows = csc.rows, cols = csc.cols, nnz = csc.nnz;
   std::vector<std::int64_t> col_ptr(cols + 1), row_index(nnz);
   std::vector<double> values(nnz);
   csc.col_ptr = col_ptr.data();
   csc.row_index = row_index.data();
   csc.values = values.data();
-  call("linear_matrix", [&] { return api_->linear_matrix(handle(), which, &csc); });
+  call("linear_matrix", [&] { return api_.linear_matrix(handle(), which, &csc); });
   const auto defect = [&](const std::string& what) {
     return RunError("soil '" + type_name() + "' (" + label() + "): linear_matrix " +
                     std::to_string(static_cast<int>(which)) +
@@ -508,8 +447,8 @@ bool SoilInstance::linear_matrix(rumble_matrix which, Eigen::SparseMatrix<double
 }
 
 bool SoilInstance::wave_speeds(double& c_s_min, double& c_r_min) const {
-  if (type().abi_minor < 1 || !capabilities().has(RUMBLE_CAP_WAVE_SPEEDS)) return false;
-  call("wave_speeds", [&] { return api_->wave_speeds(handle(), &c_s_min, &c_r_min); });
+  if (api_.wave_speeds == nullptr || !capabilities().has(RUMBLE_CAP_WAVE_SPEEDS)) return false;
+  call("wave_speeds", [&] { return api_.wave_speeds(handle(), &c_s_min, &c_r_min); });
   if (!std::isfinite(c_s_min)) throw_not_finite("wave_speeds", "shear wave speed", 0, c_s_min);
   if (!std::isfinite(c_r_min)) throw_not_finite("wave_speeds", "Rayleigh wave speed", 0, c_r_min);
   return true;
@@ -521,13 +460,13 @@ CouplerInstance::CouplerInstance(const ComponentType& type, std::string label,
                                  const nlohmann::json& params,
                                  const std::filesystem::path& scenario_dir)
     : Instance(type, std::move(label), params, scenario_dir),
-      api_(static_cast<const rumble_coupler_api*>(type.factory->api)) {}
+      api_(abi::current_coupler_table(type)) {}
 
 rumble_status CouplerInstance::run(const rumble_cosim_host& host, double t0, double t_end, double H,
                                    std::string& message) {
   rumble_status s = RUMBLE_ERROR;
   try {
-    s = api_->run(handle(), &host, t0, t_end, H);
+    s = api_.run(handle(), &host, t0, t_end, H);
   } catch (const std::exception& e) {
     throw_escaped("run", e.what());
   } catch (...) {

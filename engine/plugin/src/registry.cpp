@@ -11,6 +11,7 @@
 #include "core/errors.hpp"
 #include "core/input_file.hpp"
 #include "core/logging.hpp"
+#include "plugin/abi_adapter.hpp"
 #include "plugin/function_table.hpp"
 
 namespace rumble {
@@ -47,55 +48,6 @@ std::string clean_load_error(std::string what) {
   const auto close = inner.rfind(')');
   if (close != std::string::npos) inner.resize(close);
   return inner;
-}
-
-/// The factory's capabilities: as declared (ABI 1.1), or derived from a 1.0 factory's optional
-/// functions (save/restore assumed: the 1.0 table always has it; state_size says at run time).
-Capabilities declared_capabilities(rumble_kind kind, const rumble_factory* f) {
-  Capabilities c;
-  const rumble_capabilities* declared =
-      RUMBLE_HAS_FIELD(f, rumble_factory, capabilities) ? f->capabilities : nullptr;
-  if (declared != nullptr) {
-    c.declared = true;
-    c.offers = declared->offers;
-    c.soil_needs = declared->soil_needs;
-    c.max_macro_step = declared->max_macro_step;
-    if (declared->participants_json != nullptr) c.participants_json = declared->participants_json;
-    return c;
-  }
-  c.offers = RUMBLE_CAP_SAVE_RESTORE;
-  if (kind == RUMBLE_KIND_SOIL) {
-    const auto* soil = static_cast<const rumble_soil_api*>(f->api);
-    if (soil->frequency_response != nullptr) c.offers |= RUMBLE_CAP_FREQUENCY_RESPONSE;
-    if (soil->set_receivers != nullptr) c.offers |= RUMBLE_CAP_SURFACE_RECEIVERS;
-  } else if (kind == RUMBLE_KIND_VEHICLE) {
-    const auto* vehicle = static_cast<const rumble_vehicle_api*>(f->api);
-    if (vehicle->tangent != nullptr) c.offers |= RUMBLE_CAP_TANGENT;
-  }
-  return c;
-}
-
-/// "" when a factory's declared capabilities are well formed, else what is wrong.
-std::string capabilities_defect(const rumble_factory* f) {
-  if (!RUMBLE_HAS_FIELD(f, rumble_factory, capabilities) || f->capabilities == nullptr) return "";
-  const rumble_capabilities& c = *f->capabilities;
-  constexpr std::size_t kCapabilitiesV1_1 =
-      offsetof(rumble_capabilities, participants_json) + sizeof(c.participants_json);
-  if (c.struct_size < kCapabilitiesV1_1) {
-    return "capabilities struct_size " + std::to_string(c.struct_size) + " bytes, ABI 1.1 needs " +
-           std::to_string(kCapabilitiesV1_1);
-  }
-  if (!(c.max_macro_step >= 0.0)) return "capabilities max_macro_step is negative or NaN";
-  if ((c.offers & RUMBLE_CAP_MONOLITHIC) != 0) {
-    if (f->kind != RUMBLE_KIND_COUPLER) return "capability MONOLITHIC is for couplers only";
-    if ((c.soil_needs & RUMBLE_CAP_LINEAR_MATRICES) == 0)
-      return "a MONOLITHIC coupler must need LINEAR_MATRICES of its soil (soil_needs)";
-  }
-  if (c.participants_json != nullptr) {
-    const auto j = nlohmann::json::parse(c.participants_json, nullptr, false);
-    if (!j.is_object()) return "capabilities participants_json is not a JSON object";
-  }
-  return "";
 }
 
 /// The canonical path of the plugin file `requested`, which must exist and be a regular file:
@@ -179,8 +131,6 @@ const rumble_plugin_descriptor* plugin_descriptor(const dll::shared_library& lib
 
 constexpr std::size_t kFactoryV1_0 =
     offsetof(rumble_factory, api) + sizeof(static_cast<rumble_factory*>(nullptr)->api);
-constexpr std::size_t kFactoryV1_1 =
-    offsetof(rumble_factory, capabilities) + sizeof(rumble_factory::capabilities);
 
 /// The factories lie the plugin's sizeof(rumble_factory) apart, which a later 1.x may make
 /// larger than this host's: step by the size the plugin states (the first factory's), read only
@@ -223,12 +173,7 @@ std::string factory_defect(const rumble_factory& f, const rumble_plugin_descript
   } else {
     defect = function_table_defect(kind_of(f), f.api, d.abi_minor);
   }
-  if (defect.empty() && d.abi_minor >= 1 && f.struct_size < kFactoryV1_1)
-    defect = "struct_size " + std::to_string(f.struct_size) + " bytes, ABI 1.1 needs " +
-             std::to_string(kFactoryV1_1);
-  if (defect.empty()) defect = capabilities_defect(&f);
-  if (defect.empty() && d.abi_minor >= 1 && f.capabilities != nullptr)
-    defect = declared_functions_defect(kind_of(f), f.api, f.capabilities->offers);
+  if (defect.empty()) defect = factory_capabilities_defect(f, d.abi_minor);
   return defect;
 }
 
@@ -271,7 +216,7 @@ ComponentType component_type(const rumble_factory& f, std::uint32_t abi_minor,
   t.factory = &f;
   t.library = library;
   t.abi_minor = abi_minor;
-  t.capabilities = declared_capabilities(t.kind, &f);
+  t.capabilities = abi::capabilities_of(t.kind, f);
   return t;
 }
 

@@ -5,6 +5,7 @@
 
 #include "core/errors.hpp"
 #include "core/logging.hpp"
+#include "plugin/abi_adapter.hpp"
 #include "plugin/instance.hpp"
 #include "run/crash_record.hpp"
 
@@ -40,7 +41,7 @@ rumble_status CosimHostImpl::guard(F&& f, bool allow_discard) {
     f();
     return RUMBLE_OK;
   } catch (const Discarded& e) {
-    if (allow_discard && coupler_abi_minor_ >= 1) {
+    if (allow_discard && coupler_takes_discard_) {
       ++discards_;
       logger("coupler")->debug("{}", e.what());
       return RUMBLE_DISCARD;
@@ -56,10 +57,10 @@ rumble_status CosimHostImpl::guard(F&& f, bool allow_discard) {
 }
 
 CosimHostImpl::CosimHostImpl(std::vector<Participant*> participants,
-                             std::uint32_t coupler_abi_minor, StepDone step_done)
+                             std::uint32_t coupler_abi_minor, OnStep on_step)
     : participants_(std::move(participants)),
-      coupler_abi_minor_(coupler_abi_minor),
-      step_done_(std::move(step_done)) {
+      coupler_takes_discard_(abi::coupler_takes_discard(coupler_abi_minor)),
+      on_step_(std::move(on_step)) {
   if (participants_.size() < 2) throw RunError("a co-simulation needs a track and a soil");
   fill_table();
 }
@@ -67,11 +68,28 @@ CosimHostImpl::CosimHostImpl(std::vector<Participant*> participants,
 void CosimHostImpl::fill_table() {
   table_.struct_size = sizeof(rumble_cosim_host);
   table_.ctx = this;
-  fill_table_1_0();
-  fill_table_1_1();
+  fill_participant_calls();
+  fill_named_calls();
+  table_.step_report = &CosimHostImpl::report_step;
+  abi::fill_cosim_host_1_0<&CosimHostImpl::report_step>(table_);  // what a 1.0 coupler calls
 }
 
-void CosimHostImpl::fill_table_1_0() {
+rumble_status CosimHostImpl::report_step(void* ctx, const rumble_step_report* r) {
+  return self(ctx).guard([&] {
+    if (const std::string defect = abi::step_report_defect(r); !defect.empty())
+      throw RunError(defect);
+    StepOutcome& s = self(ctx).outcome_;  // reused: no allocation per step
+    s.t = r->t;
+    s.H = r->H;
+    s.iterations = r->iterations;
+    s.converged = r->converged != 0;
+    s.participants = r->participants;
+    s.residuals.assign(r->residuals, r->residuals + r->n_residuals);
+    self(ctx).on_step_(s);
+  });
+}
+
+void CosimHostImpl::fill_participant_calls() {
   table_.interface_size = [](void* ctx) -> uint64_t {
     return self(ctx).participants_[RUMBLE_PARTICIPANT_TRACK]->output_size();
   };
@@ -109,22 +127,10 @@ void CosimHostImpl::fill_table_1_0() {
   table_.restore = [](void* ctx, uint32_t p, uint32_t slot) {
     return self(ctx).guard([&] { self(ctx).checked(p)->rollback(slot); });
   };
-  table_.step_done = [](void* ctx, double t, double H, double residual) {
-    return self(ctx).guard([&] {
-      StepOutcome& s = self(ctx).outcome_;  // reused: no allocation per step
-      s.t = t;
-      s.H = H;
-      s.iterations = 1;
-      s.converged = true;
-      s.participants = 0;
-      s.residuals.assign(1, {"interface", residual, residual});
-      self(ctx).step_done_(s);
-    });
-  };
   table_.log = &log_from_coupler;
 }
 
-void CosimHostImpl::fill_table_1_1() {
+void CosimHostImpl::fill_named_calls() {
   table_.participant_count = [](void* ctx) -> uint32_t {
     return static_cast<uint32_t>(self(ctx).participants_.size());
   };
@@ -143,22 +149,6 @@ void CosimHostImpl::fill_table_1_1() {
           side == RUMBLE_SIDE_OUTPUT ? part->output_groups() : part->input_groups();
       *n = groups.size();
       for (std::size_t i = 0; i < groups.size() && i < capacity; ++i) out[i] = groups[i];
-    });
-  };
-  table_.step_report = [](void* ctx, const rumble_step_report* r) {
-    return self(ctx).guard([&] {
-      if (!RUMBLE_HAS_FIELD(r, rumble_step_report, participants))
-        throw RunError("coupler's step report is shorter than ABI 1.1's");
-      StepOutcome& s = self(ctx).outcome_;  // reused: no allocation per step
-      s.t = r->t;
-      s.H = r->H;
-      s.iterations = r->iterations;
-      s.converged = r->converged != 0;
-      s.participants = r->participants;
-      if (r->n_residuals > 0 && r->residuals == nullptr)
-        throw RunError("coupler's step report has residuals but no array");
-      s.residuals.assign(r->residuals, r->residuals + r->n_residuals);
-      self(ctx).step_done_(s);
     });
   };
   table_.free_checkpoint = [](void* ctx, uint32_t p, uint32_t slot) {

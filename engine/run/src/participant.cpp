@@ -142,31 +142,19 @@ void SoilSide::advance(double t, double H) {
 }
 bool SoilSide::can_checkpoint() const {
   if (integrated_in_ != nullptr) return false;  // its state is the track's
-  return soil_.owns_checkpoints() || state_size() > 0;
+  return soil_.can_checkpoint();
 }
 void SoilSide::checkpoint(std::uint32_t slot) {
-  if (!soil_.owns_checkpoints()) return Participant::checkpoint(slot);
   check_slot(slot);
   soil_.checkpoint_save(slot);
 }
 void SoilSide::rollback(std::uint32_t slot) {
-  if (!soil_.owns_checkpoints()) return Participant::rollback(slot);
   check_slot(slot);
   soil_.checkpoint_restore(slot);
 }
 void SoilSide::free_checkpoint(std::uint32_t slot) {
-  if (!soil_.owns_checkpoints()) return Participant::free_checkpoint(slot);
   check_slot(slot);
   soil_.checkpoint_free(slot);
-}
-std::size_t SoilSide::state_size() const {
-  return soil_.state_size();
-}
-void SoilSide::save_state(std::vector<double>& b) const {
-  soil_.save_state(b);
-}
-void SoilSide::restore_state(const std::vector<double>& b) {
-  soil_.restore_state(b);
 }
 
 }  // namespace rumble

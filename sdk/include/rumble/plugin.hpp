@@ -18,12 +18,16 @@
 // params against the schema (and fills declared defaults) before the constructor runs.
 //
 // Capabilities (ABI 1.1) are declared on the factory, derived at compile time: overriding
-// state_size() declares save/restore, frequency_response() the receptance, set_probes()
+// state_size() or checkpoint_save() declares checkpoints (RUMBLE_CAP_SAVE_RESTORE and
+// RUMBLE_CAP_OWN_CHECKPOINTS, see Component), frequency_response() the receptance, set_probes()
 // receivers, write_fields() field output, wave_speeds() and linear_matrix() likewise,
 // Vehicle::tangent() an analytic tangent. What overriding cannot say goes in optional static
 // members: kCapabilities (e.g. rumble::kCapThreads | rumble::kCapOncePerProcess),
 // kMaxMacroStep [s], and for couplers kSoilNeeds and participants_json(). C++17, standard
 // library only.
+//
+// One way to do each thing: the C++ layer fills the current ABI's entries (the calls with array
+// lengths, the lifecycle table), and of ABI 1.0's only those abi.h requires to be non-null.
 #ifndef RUMBLE_PLUGIN_HPP
 #define RUMBLE_PLUGIN_HPP
 
@@ -103,23 +107,41 @@ class Host {
   const rumble_host* host_;
 };
 
-/// What every component may offer: full-state save/restore as a flat vector of doubles.
+/// What every component may offer. Checkpoints: the full state in slot 0 ..
+/// RUMBLE_CHECKPOINT_SLOTS - 1, which an iterating or retrying coupler saves and restores. One
+/// interface, checkpoint_save/restore/free, which the component keeps itself (the host never
+/// copies a state: declared as RUMBLE_CAP_OWN_CHECKPOINTS, with RUMBLE_CAP_SAVE_RESTORE), made in
+/// one of two ways (docs/plugin-guide.md):
+///   - a large state (a FEM soil): override the three and keep each slot's state your own way;
+///   - a small state: override state_size/save_state/restore_state (a flat vector of doubles),
+///     and the default checkpoint_* keep each slot as such a vector here.
 class Component {
  public:
   virtual ~Component() = default;
-  /// Number of doubles of the full state; 0 means save/restore is not supported.
+  /// Number of doubles of the full state; 0 (the default): checkpoints are not offered.
   virtual std::size_t state_size() const { return 0; }
   virtual void save_state(double* /*buffer*/) const {}
   virtual void restore_state(const double* /*buffer*/) {}
-  /// Plugin-held checkpoints (declare rumble::kCapOwnCheckpoints by overriding all three):
-  /// keep the state of slot 0 .. RUMBLE_CHECKPOINT_SLOTS - 1 without copying it to the host.
-  virtual void checkpoint_save(std::uint32_t /*slot*/) {
-    throw std::logic_error("checkpoint_save not offered");
+  /// Keeps the full state in `slot` (again and again: sized once, no allocation after).
+  virtual void checkpoint_save(std::uint32_t slot) {
+    const std::size_t n = state_size();
+    if (n == 0) throw std::logic_error("checkpoints not offered (state_size() is 0)");
+    std::vector<double>& kept = slots_.at(slot);
+    kept.resize(n);
+    save_state(kept.data());
+    saved_.at(slot) = true;
   }
-  virtual void checkpoint_restore(std::uint32_t /*slot*/) {
-    throw std::logic_error("checkpoint_restore not offered");
+  /// Returns to the state kept in `slot`, which stays kept.
+  virtual void checkpoint_restore(std::uint32_t slot) {
+    if (!saved_.at(slot))
+      throw std::logic_error("checkpoint slot " + std::to_string(slot) + " is empty");
+    restore_state(slots_[slot].data());
   }
-  virtual void checkpoint_free(std::uint32_t /*slot*/) {}
+  /// Releases the memory of `slot`.
+  virtual void checkpoint_free(std::uint32_t slot) {
+    std::vector<double>().swap(slots_.at(slot));
+    saved_.at(slot) = false;
+  }
   /// Called once after the last step of a run (flush files, report), before destruction.
   virtual void finalize() {}
 
@@ -130,6 +152,8 @@ class Component {
 
  private:
   std::string pending_warning_;
+  std::array<std::vector<double>, RUMBLE_CHECKPOINT_SLOTS> slots_;  // default checkpoints only
+  std::array<bool, RUMBLE_CHECKPOINT_SLOTS> saved_{};
 };
 
 /// A wheel of a vehicle, in the vehicle frame.
@@ -333,16 +357,23 @@ class CosimHost {
   rumble_status advance(std::uint32_t p, double t, double H) const {
     return check(h_->advance(h_->ctx, p, t, H), "advance");
   }
-  /// Checkpoint slot 0 .. kSlots - 1 of a participant's full state.
+  /// Checkpoint slot 0 .. kSlots - 1 of a participant's full state (where it is kept is the
+  /// host's and the participant's business; ask can_checkpoint() first).
   void save(std::uint32_t p, std::uint32_t slot) const {
     check(h_->save(h_->ctx, p, slot), "save");
   }
   void restore(std::uint32_t p, std::uint32_t slot) const {
     check(h_->restore(h_->ctx, p, slot), "restore");
   }
-  /// ABI 1.0 report of a final step (one residual); prefer step_report.
+  /// A final step with one residual, as ABI 1.0 couplers reported it: step_report() of one group,
+  /// "interface", final for every participant. Kept so that their source still builds; new code
+  /// calls step_report().
   void step_done(double t, double H, double residual) const {
-    check(h_->step_done(h_->ctx, t, H, residual), "step_done");
+    StepReport r;
+    r.t = t;
+    r.H = H;
+    r.residuals = {{"interface", residual, residual}};
+    step_report(r);
   }
   void log(rumble_log_level level, const std::string& m) const {
     h_->log(h_->ctx, level, m.c_str());
@@ -517,8 +548,8 @@ const rumble_capabilities* capabilities() {
     rumble_capabilities c{};
     c.struct_size = sizeof(rumble_capabilities);
     std::uint64_t offers = ExtraCapabilities<T>::value;
-    if (RUMBLE_DETAIL_OVERRIDES(T, Component, state_size)) offers |= RUMBLE_CAP_SAVE_RESTORE;
-    if (RUMBLE_DETAIL_OVERRIDES(T, Component, checkpoint_save))
+    if (RUMBLE_DETAIL_OVERRIDES(T, Component, state_size) ||
+        RUMBLE_DETAIL_OVERRIDES(T, Component, checkpoint_save))  // Component: kept either way
       offers |= RUMBLE_CAP_OWN_CHECKPOINTS | RUMBLE_CAP_SAVE_RESTORE;
     if constexpr (std::is_base_of_v<Vehicle, T>) {
       if (RUMBLE_DETAIL_OVERRIDES(T, Vehicle, tangent)) offers |= RUMBLE_CAP_TANGENT;
@@ -590,7 +621,8 @@ inline rumble_common_api common_api() {
   return c;
 }
 
-/// The vehicle's functions of ABI 1.0 (rumble_vehicle_api up to lifecycle).
+/// The vehicle's functions of ABI 1.0 that abi.h requires to be non-null; its optional ones
+/// (tangent, output_names, outputs) stay null: a host calls their forms with lengths.
 template <class T>
 void vehicle_functions_1_0(rumble_vehicle_api& a) {
   a.dof_count = [](rumble_instance* s, std::uint64_t* n) {
@@ -611,27 +643,6 @@ void vehicle_functions_1_0(rumble_vehicle_api& a) {
   };
   a.wheel_kinematics = [](rumble_instance* s, const double* q, double* z, double* j) {
     return guard(s, [&] { object<T>(s).wheel_kinematics(q, z, j); });
-  };
-  a.tangent = [](rumble_instance* s, double t, const double* q, const double* qd, double* k,
-                 double* c) {
-    return guard(s, [&] {
-      if (!object<T>(s).tangent(t, q, qd, k, c))
-        throw std::logic_error("no analytical tangent (not declared: the host asks tangent2)");
-    });
-  };
-  a.output_names = [](rumble_instance* s) -> const char* {
-    Box* b = box(s);
-    std::string joined;
-    if (guard(s, [&] {
-          for (const std::string& n : object<T>(s).output_names())
-            joined += (joined.empty() ? "" : ";") + n;
-        }) != RUMBLE_OK)
-      return "";  // ABI 1.0 has no status here; output_names2 reports it
-    b->message = std::move(joined);
-    return b->message.c_str();
-  };
-  a.outputs = [](rumble_instance* s, double t, const double* q, const double* qd, double* v) {
-    return guard(s, [&] { object<T>(s).outputs(t, q, qd, v); });
   };
 }
 

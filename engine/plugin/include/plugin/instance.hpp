@@ -1,6 +1,8 @@
 // Owning wrappers around plugin instances. Each keeps its library alive (shared_ptr), gives the
 // plugin a host (logging to its own spdlog logger), and turns every status into engine behaviour:
-// OK passes, WARNING is logged, DISCARD and ERROR/FATAL throw with the plugin's message.
+// OK passes, WARNING is logged, DISCARD and ERROR/FATAL throw with the plugin's message. They call
+// the plugin's table in the current ABI's shape only, whatever minor it was built for: the
+// translation is abi_adapter.hpp's (docs/decisions/0011-abi-wall.md).
 #pragma once
 
 #include <rumble/abi.h>
@@ -16,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "plugin/abi_adapter.hpp"
 #include "plugin/registry.hpp"
 
 namespace spdlog {
@@ -46,11 +49,12 @@ class Instance {
 
   const Capabilities& capabilities() const { return type_.capabilities; }
 
-  std::size_t state_size() const;
-  void save_state(std::vector<double>& buffer) const;  // resized once; no allocation after
-  void restore_state(const std::vector<double>& buffer);
-  /// True when the plugin keeps checkpoints itself (ABI 1.1 lifecycle, declared capability).
-  bool owns_checkpoints() const;
+  /// Checkpoint slots 0 .. RUMBLE_CHECKPOINT_SLOTS - 1, one path whether the plugin keeps them
+  /// (own checkpoints) or the engine copies its state (abi::Checkpoints). RunError for a slot
+  /// that does not exist, a restore of a slot never saved, or a plugin that cannot save.
+  bool can_checkpoint() const;
+  /// True when the plugin keeps its checkpoints itself (no state copied across the boundary).
+  bool keeps_checkpoints() const { return checkpoints_.plugin_held(); }
   void checkpoint_save(std::uint32_t slot);
   void checkpoint_restore(std::uint32_t slot);
   void checkpoint_free(std::uint32_t slot);
@@ -98,8 +102,6 @@ class Instance {
   /// The plugin's last_message, "no message" when it gives none (NULL or empty).
   std::string last_message() const;
   rumble_instance* handle() const { return handle_; }
-  const rumble_common_api& common() const { return *common_; }
-  const rumble_lifecycle_api* lifecycle() const { return lifecycle_; }
 
  private:
   static void log_callback(void* host_data, int32_t level, const char* message);
@@ -113,6 +115,7 @@ class Instance {
   rumble_host host_{};
   const rumble_common_api* common_ = nullptr;
   const rumble_lifecycle_api* lifecycle_ = nullptr;  // null: a 1.0 plugin, or none offered
+  abi::Checkpoints checkpoints_;
   rumble_instance* handle_ = nullptr;
 };
 
@@ -131,9 +134,7 @@ class VehicleInstance final : public Instance {
   void outputs(double t, const double* q, const double* qd, double* values) const;
 
  private:
-  /// True when the plugin's table has the ABI 1.1 calls with array lengths.
-  bool has_lengths() const;
-  const rumble_vehicle_api* api_;
+  abi::VehicleCalls calls_;
   std::size_t n_outputs_ = 0;
   std::size_t n_dof_ = 0;
   std::vector<rumble_wheel> wheels_;
@@ -178,7 +179,7 @@ class SoilInstance final : public Instance {
   bool linear_matrix(rumble_matrix which, Eigen::SparseMatrix<double>& out);
 
  private:
-  const rumble_soil_api* api_;
+  rumble_soil_api api_;          // in the current shape
   std::vector<double> re_, im_;  // scratch for frequency_response
   std::size_t n_probes_ = 0;
 };
@@ -193,7 +194,7 @@ class CouplerInstance final : public Instance {
                     std::string& message);
 
  private:
-  const rumble_coupler_api* api_;
+  rumble_coupler_api api_;  // in the current shape
 };
 
 }  // namespace rumble

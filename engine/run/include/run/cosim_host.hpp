@@ -1,8 +1,10 @@
 // The participant interface handed to a coupler plugin (rumble_cosim_host). Every call is
 // checked and timed; an exception inside a participant never crosses into the plugin: it is kept
 // here, the call returns RUMBLE_ERROR, and the engine rethrows it when the coupler returns. A
-// participant that refuses a step (DISCARD, state unchanged) is reported to an ABI 1.1 coupler
-// as DISCARD so that it can retry smaller; for a 1.0 coupler it stops the run as before.
+// participant that refuses a step (DISCARD, state unchanged) is reported to the coupler as
+// DISCARD so that it can retry smaller, when its ABI has DISCARD for couplers. What a coupler
+// built for an older ABI calls is filled by the adapter (plugin/abi_adapter.hpp): the host itself
+// has the current entries only.
 #pragma once
 
 #include <rumble/abi.h>
@@ -19,7 +21,7 @@
 
 namespace rumble {
 
-/// A final macro step as a coupler reported it (rumble_step_report, or a 1.0 step_done).
+/// A final macro step as a coupler reported it (rumble_step_report).
 struct StepOutcome {
   double t = 0.0, H = 0.0;  // [s]
   std::uint32_t iterations = 1;
@@ -37,14 +39,14 @@ class CosimHostImpl {
  public:
   /// Called after each final macro step; throw to stop the run (the exception is kept and
   /// rethrown).
-  using StepDone = std::function<void(const StepOutcome&)>;
+  using OnStep = std::function<void(const StepOutcome&)>;
 
   /// participants[0] is the track, [1] the soil, then the coupler's extras. coupler_abi_minor:
-  /// the ABI minor the coupler was built for (DISCARD reaches it from 1.1 on).
+  /// the ABI minor the coupler was built for (abi::coupler_takes_discard).
   CosimHostImpl(std::vector<Participant*> participants, std::uint32_t coupler_abi_minor,
-                StepDone step_done);
+                OnStep on_step);
   const rumble_cosim_host* table() const { return &table_; }
-  /// Rethrows the first exception a participant or step_done raised, if any.
+  /// Rethrows the first exception a participant or on_step raised, if any.
   void rethrow_if_failed() const;
   bool failed() const;
   Participant& participant(std::uint32_t index) const { return *participants_.at(index); }
@@ -52,18 +54,20 @@ class CosimHostImpl {
 
  private:
   /// Runs f; any exception is kept (the first one wins) and becomes RUMBLE_ERROR. A refused step
-  /// becomes RUMBLE_DISCARD when allow_discard (ABI 1.1 coupler, advance).
+  /// becomes RUMBLE_DISCARD when allow_discard (advance) and the coupler takes DISCARD.
   template <class F>
   rumble_status guard(F&& f, bool allow_discard = false);
   static CosimHostImpl& self(void* ctx) { return *static_cast<CosimHostImpl*>(ctx); }
+  /// rumble_cosim_host::step_report: records the step through on_step.
+  static rumble_status report_step(void* ctx, const rumble_step_report* report);
   Participant* checked(std::uint32_t index) const;
   void fill_table();
-  void fill_table_1_0();  // the functions of ABI 1.0
-  void fill_table_1_1();  // those ABI 1.1 added
+  void fill_participant_calls();  // outputs, inputs, advance, checkpoints
+  void fill_named_calls();        // participant names, channel groups, reports, checkpoint care
 
   std::vector<Participant*> participants_;
-  std::uint32_t coupler_abi_minor_;
-  StepDone step_done_;
+  bool coupler_takes_discard_;
+  OnStep on_step_;
   rumble_cosim_host table_{};
   mutable std::mutex error_mutex_;
   std::exception_ptr error_;

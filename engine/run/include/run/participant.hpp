@@ -38,7 +38,8 @@ class Participant {
   const std::vector<rumble_channel_group>& input_groups() const { return inputs_; }
 
   /// Checkpoints, slot < RUMBLE_CHECKPOINT_SLOTS. By default the state is copied into a buffer
-  /// held here (allocated once per slot); a participant whose plugin keeps its own overrides.
+  /// held here (allocated once per slot: the track's); a soil goes through its instance's one
+  /// checkpoint path instead (SoilInstance::checkpoint_save).
   virtual bool can_checkpoint() const { return state_size() > 0; }
   virtual void checkpoint(std::uint32_t slot);
   virtual void rollback(std::uint32_t slot);
@@ -50,9 +51,11 @@ class Participant {
   mutable std::string label_;  // description(), made at the first label()
 
  protected:
-  virtual std::size_t state_size() const = 0;
-  virtual void save_state(std::vector<double>& buffer) const = 0;
-  virtual void restore_state(const std::vector<double>& buffer) = 0;
+  /// The state the default checkpoints copy (0: none); a participant that overrides them needs
+  /// none of the three.
+  virtual std::size_t state_size() const { return 0; }
+  virtual void save_state(std::vector<double>& /*buffer*/) const {}
+  virtual void restore_state(const std::vector<double>& /*buffer*/) {}
   void set_groups(std::vector<rumble_channel_group> outputs,
                   std::vector<rumble_channel_group> inputs) {
     outputs_ = std::move(outputs);
@@ -118,9 +121,6 @@ class SoilSide final : public Participant {
   bool applied_force(double* f) const;
 
  private:
-  std::size_t state_size() const override;
-  void save_state(std::vector<double>& buffer) const override;
-  void restore_state(const std::vector<double>& buffer) override;
   SoilInstance& soil_;
   std::size_t n_;
   const TrackParticipant* integrated_in_;
