@@ -37,29 +37,18 @@ class GaussSeidel final : public rumble::Coupler {
       "sequential explicit coupling: one participant advances first, the other follows with its "
       "new outputs";
   static const char* params_schema() {
-    static const std::string schema =
-        std::string(R"schema({
-  "type": "object",
-  "additionalProperties": false,
-  "properties": {
-    "order": {"enum": ["track_first", "soil_first"], "default": "track_first",
-              "description": "which participant advances first in each macro step"},
-    )schema") +
-        rumble::coupling::extrapolation_schema(
-            0,
-            "polynomial order of the first participant's input over the step, extrapolated from "
-            "past macro steps") +
-        ",\n    " +
-        rumble::coupling::interpolation_schema(
-            0,
-            "polynomial order of the second participant's input over the step (0 = the first "
-            "participant's new end-of-step value held; 1 = linear from its previous to its new "
-            "value)") +
-        ",\n    " + rumble::coupling::kMaxStepHalvingsSchema + ",\n    " +
-        rumble::coupling::kAdaptiveStepSchema +
-        R"schema(
-  }
-})schema";
+    static const std::string schema = rumble::object_schema(
+        {rumble::coupling::order_schema("which participant advances first in each macro step"),
+         rumble::coupling::extrapolation_schema(
+             0,
+             "polynomial order of the first participant's input over the step, extrapolated "
+             "from past macro steps"),
+         rumble::coupling::interpolation_schema(
+             0,
+             "polynomial order of the second participant's input over the step (0 = the first "
+             "participant's new end-of-step value held; 1 = linear from its previous to its new "
+             "value)"),
+         rumble::coupling::kMaxStepHalvingsSchema, rumble::coupling::kAdaptiveStepSchema});
     return schema.c_str();
   }
 

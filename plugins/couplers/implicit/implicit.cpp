@@ -74,14 +74,12 @@ class Implicit final : public rumble::Coupler {
       "converges, with constant, Aitken or IQN-ILS acceleration";
   static constexpr std::uint64_t kSoilNeeds = rumble::kCapSaveRestore;
   static const char* params_schema() {
-    static const std::string schema =
-        std::string(R"schema({
-  "type": "object",
-  "additionalProperties": false,
-  "properties": {
-    "order": {"enum": ["track_first", "soil_first"], "default": "track_first",
-              "description": "Gauss-Seidel order inside each macro step: track_first starts with the track under the soil's extrapolated motion; soil_first starts with the soil under the track's extrapolated forces"},
-    "acceleration": {"enum": ["constant", "aitken", "iqn_ils"], "default": "iqn_ils",
+    static const std::string schema = rumble::object_schema(
+        {rumble::coupling::order_schema(
+             "Gauss-Seidel order inside each macro step: track_first starts with the track under "
+             "the soil's extrapolated motion; soil_first starts with the soil under the track's "
+             "extrapolated forces"),
+         R"schema("acceleration": {"enum": ["constant", "aitken", "iqn_ils"], "default": "iqn_ils",
                      "description": "how the footprint forces given to the soil are updated between iterations: constant relaxation by omega, Aitken dynamic relaxation, or interface quasi-Newton with an inverse least-squares Jacobian (IQN-ILS)"},
     "omega": {"type": "number", "exclusiveMinimum": 0, "maximum": 1, "default": 0.5,
               "description": "relaxation factor [-]: constant's factor; the first factor of aitken in each macro step (at most the last step's); iqn_ils's factor while it has no columns; (0, 1]: under-relaxation, 1 is none"},
@@ -102,29 +100,23 @@ class Implicit final : public rumble::Coupler {
       }
     },
     "on_no_convergence": {"enum": ["warn", "stop"], "default": "warn",
-                          "description": "a macro step not converged after max_iterations: warn (log the time and residuals, accept the step, count it in summary.json) or stop the run"},
-    )schema") +
-        rumble::coupling::extrapolation_schema(
-            1,
-            "polynomial order of the first guess of each macro step, extrapolated from past steps; "
-            "it changes the iterations, not the converged result") +
-        ",\n    " +
-        rumble::coupling::interpolation_schema(
-            1,
-            "inputs over the macro step: 1 = linear from the value at the step's start to the "
-            "iterate at its end; 0 = the end value held over the step") +
-        R"schema(,
-    "reused_steps": {"type": "integer", "minimum": 0, "maximum": 100, "default": 8,
+                          "description": "a macro step not converged after max_iterations: warn (log the time and residuals, accept the step, count it in summary.json) or stop the run"})schema",
+         rumble::coupling::extrapolation_schema(
+             1,
+             "polynomial order of the first guess of each macro step, extrapolated from past "
+             "steps; "
+             "it changes the iterations, not the converged result"),
+         rumble::coupling::interpolation_schema(
+             1,
+             "inputs over the macro step: 1 = linear from the value at the step's start to the "
+             "iterate at its end; 0 = the end value held over the step"),
+         R"schema("reused_steps": {"type": "integer", "minimum": 0, "maximum": 100, "default": 8,
                      "description": "iqn_ils: accepted macro steps whose columns are reused in later steps (0 = none); [0, 100]: the interface changes over a train's passage; older steps say little of the next"},
     "max_columns": {"type": "integer", "minimum": 1, "maximum": 1000, "default": 100,
                     "description": "iqn_ils: columns kept at most, oldest dropped first; [1, 1000]: each costs a QR column of the interface's size"},
     "filter_epsilon": {"type": "number", "exclusiveMinimum": 0, "exclusiveMaximum": 1, "default": 1e-2,
-                       "description": "iqn_ils QR filter [-]: a column whose part independent of the newer columns is below this fraction of its norm is left out; (0, 1): a fraction"},
-    )schema" +
-        rumble::coupling::kMaxStepHalvingsSchema +
-        R"schema(
-  }
-})schema";
+                       "description": "iqn_ils QR filter [-]: a column whose part independent of the newer columns is below this fraction of its norm is left out; (0, 1): a fraction"})schema",
+         rumble::coupling::kMaxStepHalvingsSchema});
     return schema.c_str();
   }
 

@@ -37,23 +37,14 @@ class Jacobi final : public rumble::Coupler {
   /// Runs two participants at once: the host gives the soil one thread less.
   static constexpr std::uint64_t kCapabilities = rumble::kCapThreads;
   static const char* params_schema() {
-    static const std::string schema = std::string(R"schema({
-  "type": "object",
-  "additionalProperties": false,
-  "properties": {
-    )schema") +
-                                      rumble::coupling::extrapolation_schema(
-                                          0,
-                                          "polynomial order of each participant's input over the "
-                                          "step, extrapolated from past macro steps") +
-                                      R"schema(,
-    "threads": {"type": "integer", "minimum": 1, "maximum": 2, "default": 2,
-                "description": "2: the two participants advance on two threads; 1: one after the other (same results); [1, 2]: one thread per participant"},
-    )schema" + rumble::coupling::kMaxStepHalvingsSchema +
-                                      ",\n    " + rumble::coupling::kAdaptiveStepSchema +
-                                      R"schema(
-  }
-})schema";
+    static const std::string schema = rumble::object_schema(
+        {rumble::coupling::extrapolation_schema(
+             0,
+             "polynomial order of each participant's input over the step, extrapolated from past "
+             "macro steps"),
+         R"("threads": {"type": "integer", "minimum": 1, "maximum": 2, "default": 2,
+                "description": "2: the two participants advance on two threads; 1: one after the other (same results); [1, 2]: one thread per participant"})",
+         rumble::coupling::kMaxStepHalvingsSchema, rumble::coupling::kAdaptiveStepSchema});
     return schema.c_str();
   }
 

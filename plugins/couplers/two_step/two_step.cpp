@@ -71,24 +71,15 @@ class TwoStep final : public rumble::Coupler {
       "the classic two-step model: the vehicle/track on a reduced soil first, then the soil "
       "driven by the recorded footprint forces";
   static const char* params_schema() {
-    static const std::string schema =
-        std::string(R"schema({
-  "type": "object",
-  "additionalProperties": false,
-  "properties": {
-    )schema") +
-        rumble::coupling::extrapolation_schema(
-            0,
-            "step 1: polynomial order of the track's input (the reduced soil's motion) over a "
-            "macro step, extrapolated from past steps") +
-        ",\n    " +
-        rumble::coupling::interpolation_schema(
-            1,
-            "both steps: how a soil receives the footprint forces over a macro step (0 = the "
-            "step-end force held; 1 = linear from the step-start to the step-end force)") +
-        R"schema(
-  }
-})schema";
+    static const std::string schema = rumble::object_schema(
+        {rumble::coupling::extrapolation_schema(
+             0,
+             "step 1: polynomial order of the track's input (the reduced soil's motion) over a "
+             "macro step, extrapolated from past steps"),
+         rumble::coupling::interpolation_schema(
+             1,
+             "both steps: how a soil receives the footprint forces over a macro step (0 = the "
+             "step-end force held; 1 = linear from the step-start to the step-end force)")});
     return schema.c_str();
   }
   static const char* participants_json() {

@@ -71,6 +71,14 @@ inline std::string extrapolation_schema(std::uint32_t order, const std::string& 
          std::to_string(kMaxExtrapolationOrder) + R"(]: the orders implemented"})";
 }
 
+/// JSON schema of a coupler's "order" property: which participant advances first in a macro
+/// step ("track_first", the seed paper's, or "soil_first"); `role` is its description.
+inline std::string order_schema(const std::string& role) {
+  return R"("order": {"enum": ["track_first", "soil_first"], "default": "track_first", )"
+         R"("description": ")" +
+         role + R"("})";
+}
+
 /// JSON schema of a coupler's "interpolation" property (an order in
 /// [0, kMaxInterpolationOrder], default `order`), as extrapolation_schema().
 inline std::string interpolation_schema(std::uint32_t order, const std::string& role) {

@@ -11,12 +11,26 @@
 #ifndef RUMBLE_PARAMS_HPP
 #define RUMBLE_PARAMS_HPP
 
+#include <initializer_list>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
 
 namespace rumble {
+
+/// A params schema of these properties (each a `"name": {...}` fragment), closed to any other
+/// key: for a component whose properties are assembled from shared fragments.
+inline std::string object_schema(std::initializer_list<std::string> properties) {
+  std::string s =
+      "{\n  \"type\": \"object\",\n  \"additionalProperties\": false,\n  \"properties\": {";
+  const char* separator = "\n    ";
+  for (const std::string& p : properties) {
+    s += separator + p;
+    separator = ",\n    ";
+  }
+  return s + "\n  }\n}";
+}
 
 class Params {
  public:
