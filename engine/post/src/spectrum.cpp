@@ -20,7 +20,8 @@ SpectrumAnalyzer::SpectrumAnalyzer(std::size_t n, Window window) : fft_(n), wind
   }
 }
 
-void SpectrumAnalyzer::transform(std::span<const double> x, double dt) {
+Spectrum SpectrumAnalyzer::one_sided(std::span<const double> x, double dt, int power,
+                                     double divisor) {
   if (x.size() != fft_.size())
     throw std::invalid_argument("SpectrumAnalyzer: a record of " + std::to_string(x.size()) +
                                 " samples given to an analyzer made for " +
@@ -31,24 +32,6 @@ void SpectrumAnalyzer::transform(std::span<const double> x, double dt) {
   std::span<double> in = fft_.input();
   for (std::size_t i = 0; i < x.size(); ++i) in[i] = window_[i] * x[i];
   fft_.execute();
-}
-
-Spectrum SpectrumAnalyzer::amplitude(std::span<const double> x, double dt) {
-  transform(x, dt);
-  const std::size_t n = fft_.size();
-  Spectrum s;
-  s.df = 1.0 / (static_cast<double>(n) * dt);
-  const auto out = fft_.output();
-  s.values.resize(out.size());
-  for (std::size_t k = 0; k < out.size(); ++k) {
-    const bool single = k == 0 || 2 * k == n;  // DC and Nyquist have no mirror bin
-    s.values[k] = (single ? 1.0 : 2.0) * std::abs(out[k]) / sum_w_;
-  }
-  return s;
-}
-
-Spectrum SpectrumAnalyzer::power(std::span<const double> x, double dt) {
-  transform(x, dt);
   const std::size_t n = fft_.size();
   Spectrum s;
   s.df = 1.0 / (static_cast<double>(n) * dt);
@@ -56,9 +39,18 @@ Spectrum SpectrumAnalyzer::power(std::span<const double> x, double dt) {
   s.values.resize(out.size());
   for (std::size_t k = 0; k < out.size(); ++k) {
     const bool single = k == 0 || 2 * k == n;
-    s.values[k] = (single ? 1.0 : 2.0) * std::norm(out[k]) / (static_cast<double>(n) * sum_w2_);
+    const double magnitude = power == 1 ? std::abs(out[k]) : std::norm(out[k]);
+    s.values[k] = (single ? 1.0 : 2.0) * magnitude / divisor;
   }
   return s;
+}
+
+Spectrum SpectrumAnalyzer::amplitude(std::span<const double> x, double dt) {
+  return one_sided(x, dt, 1, sum_w_);
+}
+
+Spectrum SpectrumAnalyzer::power(std::span<const double> x, double dt) {
+  return one_sided(x, dt, 2, static_cast<double>(fft_.size()) * sum_w2_);
 }
 
 double dominant_frequency(const Spectrum& amplitude, double f_min) {

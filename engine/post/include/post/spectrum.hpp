@@ -48,7 +48,9 @@ class SpectrumAnalyzer {
   Spectrum power(std::span<const double> x, double dt);
 
  private:
-  void transform(std::span<const double> x, double dt);
+  /// The one-sided spectrum of x: |X_k|^power / divisor, doubled but for DC and Nyquist (which have
+  /// no mirror bin).
+  Spectrum one_sided(std::span<const double> x, double dt, int power, double divisor);
   RealFft fft_;
   std::vector<double> window_;
   double sum_w_ = 0.0, sum_w2_ = 0.0;
