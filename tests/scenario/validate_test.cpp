@@ -87,6 +87,37 @@ TEST(ScenarioValidate, AbsentUnevennessDefaultsToNoneAndVariantDefaultsAreFilled
   EXPECT_EQ(flat.json["track"]["unevenness"]["wheel"], 0);
 }
 
+TEST(ScenarioValidate, TheSchemaAloneRefusesBadUnevennessValues) {
+  // The track reads /track/unevenness as validated (track_spec/unevenness_spec.hpp) and checks
+  // only the relations the schema cannot state; every value's type and range is the schema's.
+  const auto& registry = test::golden_registry();
+  if (const auto missing = test::missing_plugins(registry, test::minimal_needs());
+      !missing.empty()) {
+    GTEST_SKIP() << missing;
+  }
+  const std::vector<std::pair<const char*, const char*>> cases = {
+      {R"({"type": "dip", "position": 1, "length": 0.3})", "/track/unevenness"},
+      {R"({"type": "bump", "position": 1, "length": 0, "height": 1e-3})",
+       "/track/unevenness/length"},
+      {R"({"type": "dip", "position": "a", "length": 1, "depth": 1e-3})",
+       "/track/unevenness/position"},
+      {R"({"type": "wheel_flat", "length": 0.05, "depth": -1e-4})", "/track/unevenness/depth"},
+      {R"({"type": "random", "class": "FRA7", "seed": 1, "wavelength_min": 1,
+           "wavelength_max": 30})",
+       "/track/unevenness/class"},
+      {R"({"type": "random", "class": "FRA1", "seed": -1, "wavelength_min": 1,
+           "wavelength_max": 30})",
+       "/track/unevenness/seed"}};
+  for (const auto& [unevenness, pointer] : cases) {
+    json j = minimal_document().json;
+    j["track"]["unevenness"] = json::parse(unevenness);
+    Document doc = from_json(j);
+    const auto diags = validate(doc, registry);
+    ASSERT_FALSE(diags.empty()) << unevenness << " passed";
+    EXPECT_EQ(diags.front().pointer, pointer) << unevenness << ": " << text_of(doc, diags);
+  }
+}
+
 TEST(ScenarioValidate, ErrorsAreCollectedFromEverySourceAndSortedByPosition) {
   // No plugins at all: the three component types are unknown, and the engine's rules still run.
   const PluginRegistry empty;

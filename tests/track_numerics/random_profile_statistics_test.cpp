@@ -7,7 +7,6 @@
 
 #include <cmath>
 #include <complex>
-#include <nlohmann/json.hpp>
 #include <numbers>
 #include <vector>
 
@@ -18,12 +17,14 @@
 namespace rumble {
 namespace {
 
-nlohmann::json spec(const char* cls, unsigned seed, double lmin, double lmax) {
-  return {{"type", "random"},
-          {"class", cls},
-          {"seed", seed},
-          {"wavelength_min", lmin},
-          {"wavelength_max", lmax}};
+UnevennessSpec spec(const char* cls, unsigned seed, double lmin, double lmax) {
+  UnevennessSpec s;
+  s.kind = UnevennessSpec::Kind::kRandom;
+  s.spectrum = cls;
+  s.seed = seed;
+  s.wavelength_min = lmin;
+  s.wavelength_max = lmax;
+  return s;
 }
 
 TEST(RandomProfileStatistics, VarianceAlongTheTrackAveragedOverSeedsIsThePsdIntegral) {

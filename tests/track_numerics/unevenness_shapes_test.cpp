@@ -7,6 +7,7 @@
 #include <numbers>
 #include <vector>
 
+#include "scenario/scenario_schema.hpp"
 #include "track/unevenness.hpp"
 
 namespace rumble {
@@ -16,7 +17,8 @@ using nlohmann::json;
 const std::vector<double> kRadii = {0.46, 0.42};  // two wheels
 
 Unevenness make(const json& spec) {
-  return Unevenness(spec, kRadii, -0.6, 60.0);
+  return Unevenness(UnevennessSpec::from_json(scenario::unevenness_with_defaults(spec)), kRadii,
+                    -0.6, 60.0);
 }
 
 TEST(UnevennessShapes, NoneAndAbsentTypeAreSmooth) {

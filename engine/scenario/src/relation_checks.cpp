@@ -8,7 +8,6 @@
 #include "core/number_text.hpp"
 #include "scenario/run_spec.hpp"
 #include "track_spec/track_config.hpp"
-#include "track_spec/unevenness_psd.hpp"
 
 namespace rumble {
 namespace {
@@ -48,41 +47,10 @@ void check_micro_step(const TrackConfig& track, double H, std::vector<Diagnostic
   }
 }
 
-/// A random unevenness's wavelength band: ordered, and where its spectrum is defined (ISO 3095
-/// covers rail roughness only).
-void check_unevenness_band(const nlohmann::json& unevenness, std::vector<Diagnostic>& out) {
-  if (unevenness.value("type", "none") == "random" && unevenness.contains("wavelength_min") &&
-      unevenness.contains("wavelength_max") &&
-      !(unevenness["wavelength_max"].get<double>() > unevenness["wavelength_min"].get<double>())) {
-    out.push_back(finding(
-        "/track/unevenness/wavelength_max",
-        "must be > wavelength_min = " + number_text(unevenness["wavelength_min"].get<double>()) +
-            " m, got " + number_text(unevenness["wavelength_max"].get<double>()) + " m",
-        "the profile covers wavelengths from wavelength_min to wavelength_max, "
-        "e.g. 1 to 30 m for track geometry"));
-  } else if (unevenness.value("type", "none") == "random" && unevenness.contains("class") &&
-             unevenness.contains("wavelength_min") && unevenness.contains("wavelength_max")) {
-    const auto spectrum = RoughnessSpectrum::from_name(unevenness["class"].get<std::string>());
-    const double lo = unevenness["wavelength_min"].get<double>();
-    const double hi = unevenness["wavelength_max"].get<double>();
-    const std::string range = "the " + spectrum.name() +
-                              " spectrum is defined for wavelengths "
-                              "from " +
-                              number_text(spectrum.min_wavelength()) + " m to " +
-                              number_text(spectrum.max_wavelength()) + " m";
-    const std::string hint = spectrum.name() == "ISO3095"
-                                 ? "ISO 3095 is rail roughness (short waves); for track "
-                                   "geometry (1 to 30 m) use an FRA class"
-                                 : "choose a band inside the spectrum's range";
-    if (!spectrum.above_min(lo)) {
-      out.push_back(finding("/track/unevenness/wavelength_min",
-                            range + ", got " + number_text(lo) + " m", hint));
-    }
-    if (!spectrum.below_max(hi)) {
-      out.push_back(finding("/track/unevenness/wavelength_max",
-                            range + ", got " + number_text(hi) + " m", hint));
-    }
-  }
+/// A random unevenness's wavelength band (track_spec/unevenness_spec.hpp).
+void check_unevenness_band(const UnevennessSpec& unevenness, std::vector<Diagnostic>& out) {
+  for (const UnevennessFinding& f : band_findings(unevenness))
+    out.push_back(finding("/track/unevenness/" + f.key, f.message, f.hint));
 }
 
 /// The vehicle reference must stay on the rail for the whole run (the wheels' offsets are
@@ -131,7 +99,7 @@ std::vector<Diagnostic> check_scenario_relations(const nlohmann::json& sc) {
   }
   const TrackConfig track = TrackConfig::from_json(sc.at("track"));
   check_micro_step(track, H, out);
-  check_unevenness_band(sc.at("track").value("unevenness", nlohmann::json::object()), out);
+  check_unevenness_band(track.unevenness, out);
   const auto& vehicles = sc.at("vehicles");
   check_unique_names(
       vehicles, "/vehicles", "vehicle",

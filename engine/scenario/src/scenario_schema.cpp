@@ -329,4 +329,9 @@ nlohmann::json track_with_defaults(nlohmann::json track) {
   return track;
 }
 
+nlohmann::json unevenness_with_defaults(nlohmann::json unevenness) {
+  engine_checker().fill_defaults(unevenness, "/definitions/unevenness");
+  return unevenness;
+}
+
 }  // namespace rumble::scenario

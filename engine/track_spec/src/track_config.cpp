@@ -31,7 +31,7 @@ TrackConfig TrackConfig::from_json(const nlohmann::json& track) {
   const auto& in = track.at("integrator");
   if (in.contains("micro_step")) c.micro_step = in.at("micro_step").get<double>();
   c.newmark_gamma = in.at("gamma").get<double>();
-  if (track.contains("unevenness")) c.unevenness = track["unevenness"];
+  c.unevenness = UnevennessSpec::from_json(track.at("unevenness"));
   return c;
 }
 

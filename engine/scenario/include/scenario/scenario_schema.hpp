@@ -20,5 +20,7 @@ const SchemaChecker& engine_checker();
 /// validation fills a scenario's: how a track written by hand (a test, a benchmark) gets the
 /// values that the schema alone declares.
 nlohmann::json track_with_defaults(nlohmann::json track);
+/// The same for a /track/unevenness object.
+nlohmann::json unevenness_with_defaults(nlohmann::json unevenness);
 
 }  // namespace rumble::scenario

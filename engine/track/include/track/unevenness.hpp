@@ -24,22 +24,23 @@
 
 #include <cmath>
 #include <cstddef>
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "track/unevenness_random.hpp"
+#include "track_spec/unevenness_spec.hpp"
 
 namespace rumble {
 
 class Unevenness {
  public:
-  /// spec: /track/unevenness (keys as above; optional keys may be absent). wheel_radii [m] of
+  /// spec: /track/unevenness as validated (track_spec/unevenness_spec.hpp). wheel_radii [m] of
   /// all wheels, in the order the track numbers them. The random profile covers
   /// [x_min, x_max] [m] without repeating. Throws std::invalid_argument with the key's JSON
-  /// pointer on missing or inconsistent input.
-  Unevenness(const nlohmann::json& spec, const std::vector<double>& wheel_radii, double x_min,
+  /// pointer when a relation the schema cannot check fails: a flat wheel that does not exist or
+  /// a flat that does not fit on it, a band outside its spectrum, a span too long to synthesize.
+  Unevenness(const UnevennessSpec& spec, const std::vector<double>& wheel_radii, double x_min,
              double x_max);
 
   /// Profile [m, down +] under wheel `wheel` at contact position x [m] after the wheel has
@@ -66,9 +67,9 @@ class Unevenness {
   enum class Kind { kNone, kShape, kWheelFlat, kRandom };
 
   // The constructor's reading of each type: a dip or a bump, a wheel flat, a random profile.
-  void read_shape(const nlohmann::json& spec, const std::string& type);
-  void read_wheel_flat(const nlohmann::json& spec, const std::vector<double>& wheel_radii);
-  void read_random(const nlohmann::json& spec, double x_min, double x_max);
+  void read_shape(const UnevennessSpec& spec);
+  void read_wheel_flat(const UnevennessSpec& spec, const std::vector<double>& wheel_radii);
+  void read_random(const UnevennessSpec& spec, double x_min, double x_max);
 
   /// (1 + cos(2 pi s / L)) / 2 for |s| < L/2, else 0: 1 at the centre s = 0.
   double raised_cosine(double s) const noexcept {

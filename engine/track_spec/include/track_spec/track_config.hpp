@@ -4,6 +4,8 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 
+#include "track_spec/unevenness_spec.hpp"
+
 namespace rumble {
 
 struct TrackConfig {
@@ -34,7 +36,7 @@ struct TrackConfig {
   // Integrator.
   std::optional<double> micro_step;  // s
   double newmark_gamma = 0.0;
-  nlohmann::json unevenness = {{"type", "none"}};
+  UnevennessSpec unevenness;
 
   /// From a scenario's /track object with its defaults filled: by validation, or for a track
   /// written by hand by scenario::track_with_defaults(). The defaults are declared once, in the
