@@ -12,6 +12,7 @@
 #include "fem_settings.hpp"
 #include "mesh/gmsh_model.hpp"
 #include "mesh/mesh_generator.hpp"
+#include "settings_from_params.hpp"
 #include "track_spec/footprint_layout.hpp"
 #include "track_spec/track_config.hpp"
 
@@ -28,7 +29,7 @@ int main(int argc, char** argv) {
     if (params.contains("mesh")) params["mesh"].erase("file");
     const std::vector<rumble_footprint> footprints =
         rumble::footprint_layout(rumble::TrackConfig::from_json(scenario.at("track")));
-    const rumble::fem::FemSettings s = rumble::fem::read_settings(params.dump());
+    const rumble::fem::FemSettings s = rumble::test::settings_from(params);
     const rumble::fem::TetMesh mesh =
         rumble::fem::generate_mesh(s, footprints, rumble::fem::plan_mesh(s, footprints));
     const std::filesystem::path out(argv[2]);
