@@ -82,6 +82,18 @@ double ExplicitSolver::largest_eigenvalue(
   // iteration's was) converges to it in far fewer products (lost orthogonality only repeats
   // converged eigenvalues). Three vectors; T_j's eigenvalues by Eigen's tridiagonal QR, O(j^2) per
   // iteration.
+  // Ours rather than Spectra's (issue #31 item 7, docs/fem-soil.md section 4; measured on
+  // 2026-12-05 on the step benchmark's Kuhn box of the medium soil, one thread, best of 3 on a
+  // loaded 2-core machine): Spectra 1.0's
+  // SymEigsSolver on M^-1/2 K M^-1/2 over the free DOFs (the largest eigenvalue only, a basis of
+  // 20 vectors, tolerance 1e-7, which keeps the single- and double-precision steps within 1e-6 of
+  // each other as this loop does) took 2.8 times this loop's time at 1.1e5 DOFs (0.43 s against
+  // 0.15 s; 91 products against 82) and 3.9 times at 3.5e5 DOFs (2.50 s against 0.64 s; 101
+  // against 87), for the same eigenvalue to 2.5e-11: its restarted Lanczos reorthogonalizes each
+  // vector against its whole basis, which costs more than the product itself here, and keeps that
+  // basis (0.5 GB at 3e6 DOFs) against our three vectors. A basis of 10 took 2.1 and 3.3 times;
+  // at tolerance 1e-3 (still far inside the 2 % margin) 0.96 and 1.19 times, its eigenvalue then
+  // 2.6e-4 and 5.4e-4 low.
   const std::int64_t n = op_->nodes();
   const unsigned threads = op_->threads();
   Eigen::VectorXd q(3 * n), q_prev = Eigen::VectorXd::Zero(3 * n), w;
