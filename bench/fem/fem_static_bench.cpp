@@ -19,6 +19,7 @@
 #include "boundary/absorbing_boundary.hpp"
 #include "mesh/mesh_generator.hpp"
 #include "operator/elasticity.hpp"
+#include "settings_from_params.hpp"
 #include "statics/static_solver.hpp"
 #include "time/explicit_solver.hpp"
 
@@ -32,8 +33,8 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 }
 
 FemSettings stiff_example(double f_max) {
-  FemSettings s;
-  s.half_space = {750e6, 0.3, 1800.0};  // docs/physics.md §1.4: stiff soil
+  FemSettings s =
+      rumble::test::soil_settings(750e6, 0.3, 1800.0);  // docs/physics.md §1.4: stiff soil
   s.mesh.radius = 15.0;
   s.mesh.f_max = f_max;
   s.mesh.near_distance = 5.0;

@@ -17,6 +17,7 @@
 #include "boundary/pml.hpp"
 #include "mesh/kuhn_box.hpp"
 #include "operator/elasticity.hpp"
+#include "settings_from_params.hpp"
 #include "time/explicit_solver.hpp"
 
 namespace {
@@ -60,10 +61,9 @@ void BM_ExplicitStep(benchmark::State& state) {
   const int threads = static_cast<int>(state.range(1));
   const bool single = state.range(2) != 0;
   const int mechanisms = static_cast<int>(state.range(3));
-  rumble::fem::FemSettings s;
-  s.half_space = {155e6, 0.3, 1800.0};
-  s.damping.maxwell = mechanisms > 0;
-  s.damping.mechanisms = std::max(mechanisms, 1);
+  const nlohmann::json maxwell = {{"damping", {{"model", "maxwell"}, {"mechanisms", mechanisms}}}};
+  const rumble::fem::FemSettings s = rumble::test::soil_settings(
+      155e6, 0.3, 1800.0, mechanisms > 0 ? maxwell : nlohmann::json::object());
   const rumble::fem::TetMesh mesh = rumble::fem::kuhn_box(n, 0.164);
   const rumble::fem::TrackRegion centre{0.082 * n, 0.082 * n, 0.082 * n, 0.082 * n};
   ExplicitSolver op(
@@ -124,8 +124,7 @@ BENCHMARK(BM_ExplicitStep)
 void BM_ExplicitStepWithLayer(benchmark::State& state) {
   const int half = static_cast<int>(state.range(0)), layer = static_cast<int>(state.range(1));
   const int threads = static_cast<int>(state.range(2));
-  rumble::fem::FemSettings s;
-  s.half_space = {750e6, 0.3, 1800.0};
+  rumble::fem::FemSettings s = rumble::test::soil_settings(750e6, 0.3, 1800.0);
   const double h = 0.5;
   const rumble::fem::TetMesh mesh =
       rumble::fem::kuhn_box(2 * half, 2 * half, half, h, -half * h, -half * h);
@@ -180,8 +179,7 @@ void BM_ExplicitStepLocal(benchmark::State& state) {
   const int substeps = static_cast<int>(state.range(1));
   const int threads = static_cast<int>(state.range(2));
   constexpr double h = 0.164;
-  rumble::fem::FemSettings s;
-  s.half_space = {155e6, 0.3, 1800.0};
+  rumble::fem::FemSettings s = rumble::test::soil_settings(155e6, 0.3, 1800.0);
   s.layers = {{1.0, rumble::soils::SoilProperties{387.5e6, 0.3, 1800.0}}};  // the inclusion
   rumble::fem::TetMesh mesh = rumble::fem::kuhn_box(n, h);
   for (std::size_t e = 0; e < mesh.tets.size(); ++e) {

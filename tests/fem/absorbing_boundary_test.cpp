@@ -16,6 +16,7 @@
 #include "mesh/mesh_generator.hpp"
 #include "operator/elasticity.hpp"
 #include "operator/footprint_loads.hpp"
+#include "settings_from_params.hpp"
 #include "time/explicit_solver.hpp"
 
 namespace rumble::fem {
@@ -25,8 +26,7 @@ namespace {
 /// (all the work put in, less what left during the pulse): a Hann pulse (10 kN, 20 ms) on a
 /// 0.5 x 0.5 m footprint; stiff soil, R = 8 m.
 double energy_left(BoundaryKind kind, double t_end) {
-  FemSettings s;
-  s.half_space = {750e6, 0.3, 1800.0};  // c_p 749, c_s 400, c_R 371 m/s
+  FemSettings s = rumble::test::soil_settings(750e6, 0.3, 1800.0);  // c_p 749, c_s 400, c_R 371 m/s
   s.mesh.radius = 8.0;
   s.mesh.h_near = 0.5;
   s.mesh.near_distance = 2.0;

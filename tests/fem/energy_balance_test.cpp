@@ -38,6 +38,7 @@
 #include "mesh/mesh_generator.hpp"
 #include "operator/elasticity.hpp"
 #include "operator/footprint_loads.hpp"
+#include "settings_from_params.hpp"
 #include "time/explicit_solver.hpp"
 #include "time/implicit_solver.hpp"
 
@@ -58,13 +59,11 @@ struct EnergySoil {
 EnergySoil make_energy_soil(double damping_ratio, BoundaryKind kind, bool maxwell = false) {
   EnergySoil soil;
   FemSettings& s = soil.settings;
-  s.half_space = {750e6, 0.3, 1800.0};
-  s.mesh.radius = 8.0;
-  s.mesh.h_near = 0.5;
-  s.mesh.near_distance = 2.0;
-  s.boundary.kind = kind;
-  s.damping.ratio = damping_ratio;
-  s.damping.maxwell = maxwell;
+  s = rumble::test::soil_settings(
+      750e6, 0.3, 1800.0,
+      {{"mesh", {{"radius", 8.0}, {"h_near", 0.5}, {"near_distance", 2.0}}},
+       {"damping", {{"ratio", damping_ratio}, {"model", maxwell ? "maxwell" : "rayleigh"}}}});
+  s.boundary.kind = kind;  // (viscous_spring, dashpot or fixed: none has keys of its own)
   const std::vector<Footprint> fp = {{-0.3, 0.0, 1.0, 0.3}, {0.3, 0.0, 1.0, 0.3}};
   const MeshPlan plan = plan_mesh(s, fp);
   const TetMesh mesh = generate_mesh(s, fp, plan);

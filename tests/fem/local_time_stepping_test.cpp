@@ -18,6 +18,7 @@
 #include "mesh/kuhn_box.hpp"
 #include "operator/elasticity.hpp"
 #include "random_state.hpp"
+#include "settings_from_params.hpp"
 #include "time/explicit_solver.hpp"
 
 namespace rumble::fem {
@@ -39,8 +40,8 @@ TetMesh box_with_inclusion() {
 }
 
 FemSettings inclusion_soil() {
-  FemSettings s;
-  s.half_space = {155e6, 0.3, 1800.0};  // docs/physics.md §1.4: medium soil
+  FemSettings s =
+      rumble::test::soil_settings(155e6, 0.3, 1800.0);  // docs/physics.md §1.4: medium soil
   s.layers = {{1.0, soils::SoilProperties{930e6, 0.3, 1800.0}}};  // the inclusion (layer 0)
   return s;
 }

@@ -16,6 +16,7 @@
 #include "mesh/kuhn_box.hpp"
 #include "operator/elasticity.hpp"
 #include "random_state.hpp"
+#include "settings_from_params.hpp"
 #include "time/explicit_solver.hpp"
 
 namespace rumble::fem {
@@ -59,8 +60,9 @@ TEST(MaxwellDamping, TheRatioIsFlatOverTheBandAndFallsOutside) {
 TEST(MaxwellDamping, EIsTheModulusAtTheBandsCentre) {
   // relaxed_modulus_factor scales K so that at sqrt(f_low f_high) the soil is E (1 + 2 i xi'):
   // the real part exactly E, xi' the fit's ratio there.
-  DampingRequest r;
-  r.maxwell = true;
+  DampingRequest r =
+      rumble::test::soil_settings(155e6, 0.3, 1800.0, {{"damping", {{"model", "maxwell"}}}})
+          .damping;
   const double factor = r.relaxed_modulus_factor();
   const std::complex<double> at_centre =
       factor * r.maxwell_mechanisms().modulus(omega(std::sqrt(r.f_low * r.f_high)));
@@ -75,9 +77,8 @@ TEST(MaxwellDamping, EIsTheModulusAtTheBandsCentre) {
 /// The medium soil (docs/physics.md §1.4) on a Kuhn box of `n` cubes of h [m], free, with the
 /// default 2 % over 5-100 Hz by the mechanisms or by Rayleigh's terms.
 ExplicitSolver box_solver(int n, double h, bool maxwell) {
-  FemSettings s;
-  s.half_space = {155e6, 0.3, 1800.0};
-  s.damping.maxwell = maxwell;
+  const FemSettings s = rumble::test::soil_settings(
+      155e6, 0.3, 1800.0, {{"damping", {{"model", maxwell ? "maxwell" : "rayleigh"}}}});
   const TetMesh m = kuhn_box(n, h);
   ExplicitSolver op(assemble_stiffness(m, s), lumped_mass(m, s), {}, false,
                     std::vector<char>(m.node_count(), 0), s.damping.mass_coefficient(),
@@ -131,10 +132,9 @@ TEST(FemMaxwell, LocalStepsTakeALongerStepStably) {
     for (const std::int32_t node : m.tets[e]) centre += m.node(node) / 4.0;
     m.layer[e] = (centre.array() < 1.0).all() ? 0 : 1;
   }
-  FemSettings s;
-  s.half_space = {155e6, 0.3, 1800.0};
+  FemSettings s =
+      rumble::test::soil_settings(155e6, 0.3, 1800.0, {{"damping", {{"model", "maxwell"}}}});
   s.layers = {{1.0, soils::SoilProperties{930e6, 0.3, 1800.0}}};
-  s.damping.maxwell = true;
   const auto solver = [&] {
     ExplicitSolver op(assemble_stiffness(m, s), lumped_mass(m, s), {}, false,
                       std::vector<char>(m.node_count(), 0), 0.0, 0.0, 1);

@@ -9,6 +9,7 @@
 #include <fstream>
 
 #include "mesh/kuhn_box.hpp"
+#include "settings_from_params.hpp"
 
 namespace rumble::fem {
 namespace {
@@ -51,8 +52,7 @@ TEST(FemMeshCache, DamagedOrForeignFilesAreRefused) {
 }
 
 TEST(FemMeshCache, NameChangesWithWhatMakesTheMesh) {
-  FemSettings s;
-  s.half_space = {155e6, 0.3, 1800.0};
+  FemSettings s = rumble::test::soil_settings(155e6, 0.3, 1800.0);
   const std::vector<Footprint> fp = {{0.0, 0.0, 2.6, 0.26}, {0.6, 0.0, 2.6, 0.26}};
   const MeshPlan p = plan_mesh(s, fp);
   const std::string name = mesh_cache_name(s, fp, p);

@@ -11,6 +11,7 @@
 #include "expect_message.hpp"
 #include "mesh/gmsh_model.hpp"
 #include "operator/footprint_loads.hpp"
+#include "settings_from_params.hpp"
 
 namespace rumble::fem {
 namespace {
@@ -51,8 +52,7 @@ std::string write_box(const std::string& name, bool with_groups) {
 }
 
 FemSettings medium_soil() {
-  FemSettings s;
-  s.half_space = {155e6, 0.3, 1800.0};
+  FemSettings s = rumble::test::soil_settings(155e6, 0.3, 1800.0);
   return s;
 }
 

@@ -14,13 +14,14 @@
 #include "expect_message.hpp"
 #include "mesh/mesh_generator.hpp"
 #include "operator/footprint_loads.hpp"
+#include "settings_from_params.hpp"
 
 namespace rumble::fem {
 namespace {
 
 FemSettings stiff_soil(double radius, double f_max) {
-  FemSettings s;
-  s.half_space = {750e6, 0.3, 1800.0};  // docs/physics.md §2, stiff soil: c_R 371 m/s
+  FemSettings s = rumble::test::soil_settings(
+      750e6, 0.3, 1800.0);  // docs/physics.md §2, stiff soil: c_R 371 m/s
   s.mesh.radius = radius;
   s.mesh.f_max = f_max;
   s.mesh.near_distance = 2.0;
@@ -83,9 +84,11 @@ TEST(FemMesh, PlanRefusesAMeshTheMachinesMemoryCannotHold) {
 }
 
 FemSettings box_with_layer(double thickness) {
-  FemSettings s = stiff_soil(4.0, 40.0);
-  s.mesh.shape = MeshShape::kBox;
-  s.boundary.kind = BoundaryKind::kPml;
+  FemSettings s = rumble::test::soil_settings(
+      750e6, 0.3, 1800.0,
+      {{"mesh", {{"radius", 4.0}, {"f_max", 40.0}, {"near_distance", 2.0}, {"shape", "box"}}},
+       {"boundary", {{"type", "pml"}}}});
+  // Set after reading: below the schema's 0.5 m, where the plan's own refusal is tested.
   s.boundary.pml_thickness = thickness;  // m
   return s;
 }

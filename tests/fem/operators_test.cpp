@@ -19,6 +19,7 @@
 #include "operator/csr_operator.hpp"
 #include "operator/elasticity.hpp"
 #include "random_state.hpp"
+#include "settings_from_params.hpp"
 #include "time/explicit_solver.hpp"
 #include "wave_speeds.hpp"
 
@@ -26,8 +27,8 @@ namespace rumble::fem {
 namespace {
 
 FemSettings medium_soil() {
-  FemSettings s;
-  s.half_space = {155e6, 0.3, 1800.0};  // docs/physics.md §1.4: medium soil
+  FemSettings s =
+      rumble::test::soil_settings(155e6, 0.3, 1800.0);  // docs/physics.md §1.4: medium soil
   return s;
 }
 

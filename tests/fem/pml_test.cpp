@@ -16,6 +16,7 @@
 #include "mesh/kuhn_box.hpp"
 #include "operator/elasticity.hpp"
 #include "operator/footprint_loads.hpp"
+#include "settings_from_params.hpp"
 #include "time/explicit_solver.hpp"
 
 namespace rumble::fem {
@@ -40,8 +41,7 @@ BoxSoil box_soil(int half, Truncation truncation, int layer = 0, double R = 1e-2
   BoxSoil b;
   b.half = half;
   b.mesh = kuhn_box(2 * half, 2 * half, half, kCell, -half * kCell, -half * kCell);
-  FemSettings s;
-  s.half_space = {750e6, 0.3, 1800.0};
+  FemSettings s = rumble::test::soil_settings(750e6, 0.3, 1800.0);
   b.weights = footprint_weights(b.mesh, {{0.0, 0.0, 1.0, 1.0}});
   std::vector<BoundaryNode> boundary =
       absorbing_boundary(b.mesh, s, TrackRegion{-0.5, 0.5, -0.5, 0.5});

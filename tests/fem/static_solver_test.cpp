@@ -17,6 +17,7 @@
 #include "mesh/kuhn_box.hpp"
 #include "operator/effective_matrix.hpp"
 #include "operator/elasticity.hpp"
+#include "settings_from_params.hpp"
 #include "time/explicit_solver.hpp"
 
 namespace rumble::fem {
@@ -24,8 +25,8 @@ namespace {
 
 TEST(FemStatics, ConjugateGradientsAgreeWithTheFactorAndStartFromTheLastSolution) {
   const TetMesh m = kuhn_box(4, 0.5);
-  FemSettings s;
-  s.half_space = {155e6, 0.3, 1800.0};  // docs/physics.md §1.4: medium soil
+  FemSettings s =
+      rumble::test::soil_settings(155e6, 0.3, 1800.0);  // docs/physics.md §1.4: medium soil
   const TrackRegion centre{1.0, 1.0, 1.0, 1.0};
   const ExplicitSolver op(assemble_stiffness(m, s), lumped_mass(m, s),
                           absorbing_boundary(m, s, centre), true,
@@ -57,8 +58,7 @@ TEST(FemStatics, ConjugateGradientsAgreeWithTheFactorAndStartFromTheLastSolution
 /// precision: how its explicit step, and so multigrid's smoother on the mesh, reads K.
 struct Box {
   Box(int n, bool fixed_bottom, StepPrecision precision = StepPrecision::kDouble)
-      : mesh(kuhn_box(n, 0.25)) {
-    settings.half_space = {155e6, 0.3, 1800.0};
+      : mesh(kuhn_box(n, 0.25)), settings(rumble::test::soil_settings(155e6, 0.3, 1800.0)) {
     std::vector<char> fixed(mesh.node_count(), 0);
     for (Eigen::Index i = 0; i < mesh.node_count(); ++i)
       fixed[i] = fixed_bottom && mesh.nodes(2, i) > 0.25 * n - 1e-9;
@@ -155,8 +155,7 @@ TEST(FemStatics, TheWholeCombinationIsTheLowerTriangleMirrored) {
 TEST(FemStatics, TheStopCheckEndsALongSolveAndTheLocalStepsChoice) {
   struct StopRequested {};
   const TetMesh m = kuhn_box(4, 0.5);
-  FemSettings s;
-  s.half_space = {155e6, 0.3, 1800.0};
+  FemSettings s = rumble::test::soil_settings(155e6, 0.3, 1800.0);
   const TrackRegion centre{1.0, 1.0, 1.0, 1.0};
   ExplicitSolver op(assemble_stiffness(m, s), lumped_mass(m, s), absorbing_boundary(m, s, centre),
                     true, std::vector<char>(m.node_count(), 0), 0.0, 0.0, 1);

@@ -13,6 +13,7 @@
 
 #include "mesh/kuhn_box.hpp"
 #include "operator/elasticity.hpp"
+#include "settings_from_params.hpp"
 
 namespace rumble::fem {
 namespace {
@@ -38,8 +39,7 @@ Eigen::VectorXd blocks_times(const SymmetricBlocks<Value>& blocks, const Eigen::
 // at most 2^-24 (6e-8) of itself.
 TEST(SymmetricBlocks, ProductIsTheFullRowsProductForAnyPartsAndTeam) {
   const TetMesh m = kuhn_box(4, 0.5);
-  FemSettings s;
-  s.half_space = {155e6, 0.3, 1800.0};
+  FemSettings s = rumble::test::soil_settings(155e6, 0.3, 1800.0);
   const CsrMatrix K = assemble_stiffness(m, s);
   const Eigen::VectorXd x = Eigen::VectorXd::Random(K.rows());
   Eigen::VectorXd expected(K.rows()), magnitude = Eigen::VectorXd::Zero(K.rows());
@@ -69,8 +69,7 @@ TEST(SymmetricBlocks, ProductIsTheFullRowsProductForAnyPartsAndTeam) {
 // Half of K's off-diagonal blocks, all of its diagonal ones: the bytes the step streams.
 TEST(SymmetricBlocks, HoldsTheUpperHalfOfTheBlocks) {
   const TetMesh m = kuhn_box(4, 0.5);
-  FemSettings s;
-  s.half_space = {155e6, 0.3, 1800.0};
+  FemSettings s = rumble::test::soil_settings(155e6, 0.3, 1800.0);
   const CsrMatrix K = assemble_stiffness(m, s);
   const SymmetricBlocks<float> blocks(K, 2);
   const std::int64_t nodes = m.node_count(), blocks_of_K = K.nonzeros() / 9;

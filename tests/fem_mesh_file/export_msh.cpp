@@ -13,6 +13,7 @@
 #include "mesh/gmsh_model.hpp"
 #include "mesh/mesh_generator.hpp"
 #include "scenario/scenario_schema.hpp"
+#include "settings_from_params.hpp"
 #include "track_spec/footprint_layout.hpp"
 #include "track_spec/track_config.hpp"
 
@@ -30,7 +31,7 @@ int main(int argc, char** argv) {
     const std::vector<rumble_footprint> footprints =
         rumble::footprint_layout(rumble::TrackConfig::from_json(
             rumble::scenario::track_with_defaults(scenario.at("track"))));
-    const rumble::fem::FemSettings s = rumble::fem::read_settings(params.dump());
+    const rumble::fem::FemSettings s = rumble::test::settings_from(params);
     const rumble::fem::TetMesh mesh =
         rumble::fem::generate_mesh(s, footprints, rumble::fem::plan_mesh(s, footprints));
     const std::filesystem::path out(argv[2]);

@@ -19,6 +19,7 @@
 #include "fem_settings.hpp"
 #include "mesh/gmsh_model.hpp"
 #include "mesh/mesh_generator.hpp"
+#include "settings_from_params.hpp"
 #include "soil_harness.hpp"
 
 namespace rumble::test {
@@ -51,7 +52,7 @@ nlohmann::json small_layered_soil() {
 fem::TetMesh write_generated(const nlohmann::json& params,
                              const std::vector<rumble_footprint>& footprints,
                              const fs::path& path) {
-  const fem::FemSettings s = fem::read_settings(params.dump());
+  const fem::FemSettings s = rumble::test::settings_from(params);
   const fem::TetMesh mesh = fem::generate_mesh(s, footprints, fem::plan_mesh(s, footprints));
   fem::write_mesh_file(mesh, s, footprints, path.string());
   return mesh;
@@ -100,7 +101,7 @@ TEST(FemMshImport, TheSoilsOwnMeshReadsBackAsTheSameMesh) {
   const fs::path path = scratch() / "soil.msh";
   const auto footprints = sleeper_row(3);
   const fem::TetMesh m = write_generated(small_layered_soil(), footprints, path);
-  const fem::FemSettings s = fem::read_settings(small_layered_soil().dump());
+  const fem::FemSettings s = rumble::test::settings_from(small_layered_soil());
   const fem::MeshFile f = fem::load_mesh_file(s, path.string());
   EXPECT_GT(m.tets.size(), 500u);
   EXPECT_LT(fs::file_size(path), 1u << 20);
@@ -432,7 +433,7 @@ std::string one_tetrahedron(const std::string& x4, bool stray = false) {
 // NaN key, undefined: the asan preset's UBSan sees it).
 TEST(FemMshImport, WhatTheMshFuzzTargetsFoundIsRefusedNamingTheFileOrRead) {
   const fs::path dir = scratch();
-  const fem::FemSettings s;
+  const fem::FemSettings s = rumble::test::soil_settings(750e6, 0.3, 1800.0);
   const std::string where = "fem: params/mesh/file: '" + (dir / "t.msh").string() + "'";
   std::ofstream(dir / "t.msh") << one_tetrahedron("0");
   EXPECT_EQ(fem::load_mesh_file(s, (dir / "t.msh").string()).mesh.tets.size(), 1u);

@@ -6,6 +6,7 @@
 #include <exception>
 #include <filesystem>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -147,6 +148,18 @@ std::string check_mesh(const fem::MeshFile& file, const fem::FemSettings& settin
   return "";
 }
 
+}  // namespace
+
+fem::FemSettings msh_default_settings() {
+  fem::FemSettings s;
+  s.mesh.max_dofs = nlohmann::json::parse(fem::settings_schema())
+                        .at("/properties/mesh/properties/max_dofs/default"_json_pointer)
+                        .get<double>();
+  return s;
+}
+
+namespace {
+
 std::string check_msh(std::string_view file_text) {
   const fs::path path = scratch_dir("msh") / "soil.msh";
   write_file(path, file_text);
@@ -154,7 +167,7 @@ std::string check_msh(std::string_view file_text) {
   // A mesh that does not fit the track blames the track and names the file.
   const std::string mismatch =
       "fem: the track's footprints do not fit the mesh of params/mesh/file '" + path.string() + "'";
-  const fem::FemSettings settings;  // a half-space, no layers; the default limits
+  const fem::FemSettings settings = msh_default_settings();
   const std::vector<Footprint> track = {{0.0, 0.0, 2.6, 0.26}};
   try {
     const fem::MeshFile file = fem::load_mesh_file(settings, path.string());

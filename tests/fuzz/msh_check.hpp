@@ -6,7 +6,13 @@
 #include <string>
 #include <string_view>
 
+#include "fem_settings.hpp"
+
 namespace rumble::fuzz {
+
+/// The settings a .msh is read with: a half-space, no layers, and the schema's default limits
+/// (mesh.max_dofs read from the FEM soil's schema, fem_schema.cpp, not repeated).
+fem::FemSettings msh_default_settings();
 
 /// Reads the sections $PhysicalNames, $Nodes and $Elements of `text` leniently, as MSH 2.2
 /// writes them, and writes what they describe back as a well-formed MSH 2.2 file (names of

@@ -102,7 +102,7 @@ TEST(MshFuzzReplay, RawRegressions) {
 // The seeds reach the end of the import: the box is a mesh of the track's one sleeper.
 TEST(MshFuzzReplay, TheBoxSeedIsAMeshOfTheTrack) {
   const std::string path = (kFuzz / "corpus" / "msh" / "box_one_footprint").string();
-  const fem::MeshFile file = fem::load_mesh_file(fem::FemSettings{}, path);
+  const fem::MeshFile file = fem::load_mesh_file(msh_default_settings(), path);
   EXPECT_EQ(file.mesh.tets.size(), 54u);
   EXPECT_EQ(file.footprints.size(), 1u);
   EXPECT_NO_THROW(fem::check_mesh_footprints(file, {{0.0, 0.0, 2.6, 0.26}}));

@@ -3,7 +3,11 @@
 #include <dlfcn.h>
 
 #include <map>
+#include <memory>
+#include <nlohmann/json.hpp>
 #include <stdexcept>
+
+#include "scenario/schema_check.hpp"
 
 namespace rumble::test {
 namespace {
@@ -29,6 +33,19 @@ rumble_host make_host() {
   return h;
 }
 
+// The params as the host hands them to the plugin: with every default of the type's schema filled
+// in (the engine's own SchemaChecker). Not validated: the tests of the plugins' own refusals hand
+// them what the schema would refuse; the schema's refusals are tested against the schema.
+std::string with_defaults(const rumble_factory& f, const std::string& params_json) {
+  nlohmann::json params = nlohmann::json::parse(params_json, nullptr, false);
+  if (!params.is_object() || f.params_schema == nullptr) return params_json;
+  static std::map<std::string, std::unique_ptr<scenario::SchemaChecker>> checkers;
+  auto& checker = checkers[f.type_name];
+  if (!checker) checker = std::make_unique<scenario::SchemaChecker>(f.params_schema);
+  checker->fill_defaults(params);
+  return params.dump();
+}
+
 }  // namespace
 
 const rumble_factory& soil_factory(const std::string& type) {
@@ -45,7 +62,8 @@ std::string creation_error(const std::string& type, const std::string& params_js
   const rumble_host host = make_host();
   rumble_instance* instance = nullptr;
   const char* error = nullptr;
-  if (f.create(params_json.c_str(), &host, &instance, &error) == RUMBLE_OK) {
+  const std::string params = with_defaults(f, params_json);
+  if (f.create(params.c_str(), &host, &instance, &error) == RUMBLE_OK) {
     static_cast<const rumble_soil_api*>(f.api)->common.destroy(instance);
     return "";
   }
@@ -68,7 +86,8 @@ TestSoil::TestSoil(const std::string& type, const std::string& params_json) : ho
   const rumble_factory& f = soil_factory(type);
   api_ = static_cast<const rumble_soil_api*>(f.api);
   const char* error = nullptr;
-  if (f.create(params_json.c_str(), &host_, &self_, &error) != RUMBLE_OK)
+  const std::string params = with_defaults(f, params_json);
+  if (f.create(params.c_str(), &host_, &self_, &error) != RUMBLE_OK)
     throw std::runtime_error(std::string("create failed: ") + (error ? error : ""));
 }
 

@@ -1,12 +1,16 @@
-// The FEM soil's settings as typed values, read once from its params (the host has validated
-// them against fem_schema.hpp and filled the defaults): the soil profile, the mesh request, the
-// absorbing boundary, material damping and the explicit step's safety factor. SI units.
+// The FEM soil's settings as typed values, read once from its params by read_settings. The params
+// schema (fem_schema.cpp, soil_params.hpp) declares each parameter's name, type, unit, range and
+// default once; the host validates the params against it and fills every declared default before
+// the plugin sees them, so nothing here repeats a default: a member is what the params say, or a
+// default derived from other settings where the comment says so. A default-constructed struct is
+// all zeros, not a usable setting: the tests build theirs from params too. SI units.
 #pragma once
 
 #include <algorithm>
 #include <string>
 #include <vector>
 
+#include "fem_schema.hpp"
 #include "half_space.hpp"
 #include "layered_soil.hpp"
 #include "maxwell_damping.hpp"
@@ -25,18 +29,19 @@ enum class BoundaryKind { kViscousSpring, kDashpot, kFixed, kPml };
 enum class SpringModel { kHalfSpace, kLiu };
 
 struct MeshRequest {
-  MeshShape shape = MeshShape::kHemisphere;
-  double radius = 20.0;                 // m: hemisphere radius, or the box's margin
-  double f_max = 80.0;                  // Hz resolved near the track
-  double elements_per_wavelength = 10;  // linear tetrahedra per Rayleigh wavelength at f_max
-  double near_distance = 5.0;           // m: full resolution within this distance of the track
-  double h_near = 0.0;                  // m: 0 = from f_max and the slowest Rayleigh speed
-  double h_max = 0.0;                   // m: cap of the element size far away; 0 = radius / 4
-  double max_dofs = 3e6;                // refused before meshing beyond this estimate
-  bool fast_algorithm = false;          // gmsh HXT (fast, not reproducible) instead of Delaunay
-  /// gmsh optimizes the tetrahedra whose quality (gamma) is below this [-]: gmsh's own 0.3 by
-  /// default; 0.6 lengthened the stable step 20 % on the stiff example (docs/fem-soil.md §2).
-  double quality_threshold = 0.3;
+  MeshShape shape{};
+  double radius{};                   // m: hemisphere radius, or the box's margin
+  double f_max{};                    // Hz resolved near the track
+  double elements_per_wavelength{};  // linear tetrahedra per Rayleigh wavelength at f_max
+  double near_distance{};            // m: full resolution within this distance of the track
+  double h_near{};                   // m; derived when not given (0): plan_mesh, from f_max and
+                                     // the slowest Rayleigh speed
+  double h_max{};                    // m: cap of the element size far away; derived when not
+                                     // given (0): plan_mesh, radius / 4
+  double max_dofs{};                 // refused before meshing beyond this estimate
+  bool fast_algorithm{};             // gmsh HXT (fast, not reproducible) instead of Delaunay
+  /// gmsh optimizes the tetrahedra whose quality (gamma) is below this [-] (docs/fem-soil.md §2).
+  double quality_threshold{};
   std::string file;         // a user's .msh instead (as given: relative to the scenario)
   std::string export_file;  // where to write the generated mesh as .msh, inside the run's
                             // results directory ("" none; as given: relative, no "..")
@@ -46,20 +51,22 @@ struct MeshRequest {
 };
 
 struct BoundaryRequest {
-  BoundaryKind kind = BoundaryKind::kViscousSpring;
-  SpringModel spring_model = SpringModel::kHalfSpace;
+  BoundaryKind kind{};
+  SpringModel spring_model{};
   /// kHalfSpace: the far field's traction follows the footprint forces in the motion (lagged,
   /// docs/fem-soil.md §3.2); false ("static"): held at the statics', as the linear matrices are.
-  bool far_field_follows = true;
-  double alpha_normal = 4.0 / 3.0;      // kLiu: spring K_N = alpha_N G / r per unit area [-]
-  double alpha_tangential = 2.0 / 3.0;  // spring K_T = alpha_T G / r per unit area [-], kLiu's
-                                        // tangents and kHalfSpace's directions across the field
-  // kPml: the layer beyond the box's sides and bottom.
-  double pml_thickness = 0.0;        // m; 0 = mesh.radius / 2
-  double pml_reflection = 1e-2;      // [-] continuum reflection of a normally incident P wave
-  double pml_elements = 8;           // tetrahedra across the layer, at least (sizes its mesh)
-  double pml_shift_frequency = 5.0;  // Hz: alpha = 2 pi f, the stretching's frequency shift
-  double pml_shift() const;          // alpha [1/s]
+  bool far_field_follows{};
+  double alpha_normal{};      // kLiu: spring K_N = alpha_N G / r per unit area [-]; 0 otherwise
+  double alpha_tangential{};  // spring K_T = alpha_T G / r per unit area [-], kLiu's tangents
+                              // and kHalfSpace's directions across the field
+  // kPml: the layer beyond the box's sides and bottom (zeros under the other kinds).
+  double pml_thickness{};   // m; derived when not given: mesh.radius / 2 (read_settings)
+  double pml_reflection{};  // [-] continuum reflection of a normally incident P wave
+  double pml_elements{};    // tetrahedra across the layer, at least (sizes its mesh)
+  /// Hz: alpha = 2 pi f, the stretching's frequency shift. Not a parameter: fixed by the
+  /// layer's design (docs/fem-soil.md section 3.1).
+  double pml_shift_frequency = 5.0;
+  double pml_shift() const;  // alpha [1/s]
   /// Whether the truncation surface has the viscous-spring blocks (springs included).
   bool springs() const { return kind == BoundaryKind::kViscousSpring; }
 };
@@ -68,10 +75,10 @@ struct BoundaryRequest {
 /// (docs/physics.md §3), or generalized Maxwell mechanisms flat over the band between them
 /// (maxwell_damping.hpp), with E the modulus at the band's centre sqrt(f_low f_high).
 struct DampingRequest {
-  double ratio = 0.02;                   // [-]; 0: no material damping
-  double f_low = 5.0, f_high = 100.0;    // Hz
-  bool maxwell = false;                  // the mechanisms instead of Rayleigh's terms
-  int mechanisms = 3;                    // maxwell: how many
+  double ratio{};                        // [-]; 0: no material damping
+  double f_low{}, f_high{};              // Hz
+  bool maxwell{};                        // the mechanisms instead of Rayleigh's terms
+  int mechanisms{};                      // maxwell: how many (0 under Rayleigh)
   double mass_coefficient() const;       // a0 [1/s] (0 with the mechanisms)
   double stiffness_coefficient() const;  // a1 [s] (0 with the mechanisms)
   /// The mechanisms (maxwell), none otherwise.
@@ -84,8 +91,8 @@ struct DampingRequest {
 /// How the footprint receptance is computed: one complex LU per frequency (exact for the mesh),
 /// or one explicit run per footprint (impulse_receptance.hpp: all frequencies at once).
 struct ReceptanceRequest {
-  bool impulse = false;
-  double duration = 2.0;  // s: the impulse responses' record
+  bool impulse{};
+  double duration{};  // s: the impulse responses' record
 };
 
 struct FemSettings {
@@ -96,21 +103,22 @@ struct FemSettings {
   BoundaryRequest boundary;
   DampingRequest damping;
   ReceptanceRequest receptance;
-  double courant = 0.9;        // explicit step = courant x the stable step from the mesh
-  bool implicit = false;       // Newmark average acceleration instead of central differences
-  double implicit_step = 0.0;  // s, longest implicit sub-step; 0 = 1 / (20 f_max)
-  int local_steps = 1;         // explicit: sub-steps of the stiffest nodes per step; 1 = one rate
-  bool single_precision_step = true;  // explicit: the step reads K's values as float
-  unsigned mesh_threads = 1;
+  double courant{};              // explicit step = courant x the stable step from the mesh
+  bool implicit{};               // Newmark average acceleration instead of central differences
+  double implicit_step{};        // s, longest implicit sub-step; derived when not given:
+                                 // 1 / (20 mesh.f_max) (read_settings)
+  int local_steps{};             // explicit: sub-steps of the stiffest nodes per step; 1 = one rate
+  bool single_precision_step{};  // explicit: the step reads K's values as float
+  unsigned mesh_threads{};
 
   /// The properties at depth z [m] (>= 0).
   const soils::SoilProperties& properties_at(double depth) const;
 };
 
-/// Reads and checks params (JSON text); messages start "fem: params/<key>: ...".
+/// Reads params (JSON text) validated against settings_schema() with its defaults filled, and
+/// checks what the schema cannot say (relations between keys); messages start
+/// "fem: params/<key>: ...". A key the schema gives a default is required here: its absence is
+/// a caller's bug (the host fills them; the tests fill them through the engine's checker).
 FemSettings read_settings(const std::string& params_json);
-
-/// JSON Schema (draft 7) of the params.
-const char* settings_schema();
 
 }  // namespace rumble::fem

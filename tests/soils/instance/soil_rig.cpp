@@ -3,6 +3,8 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "scenario/schema_check.hpp"
+
 namespace rumble::soiltest {
 
 const PluginRegistry& registry() {
@@ -32,7 +34,11 @@ std::vector<rumble_footprint> sleeper_row(std::size_t n, double spacing, double 
 
 std::unique_ptr<SoilInstance> make_soil(const std::string& type, const nlohmann::json& params,
                                         const std::vector<rumble_footprint>& layout) {
-  auto soil = std::make_unique<SoilInstance>(soil_type(type), "/soil", params, ".");
+  // The params as the host hands them over: with the type's schema defaults filled in (as
+  // scenario validation does; the FEM soil reads every defaulted key as given).
+  nlohmann::json filled = params;
+  scenario::SchemaChecker(soil_type(type).params_schema).fill_defaults(filled);
+  auto soil = std::make_unique<SoilInstance>(soil_type(type), "/soil", filled, ".");
   soil->accept_layout(layout);
   return soil;
 }

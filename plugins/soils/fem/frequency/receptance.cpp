@@ -63,8 +63,7 @@ Receptance::Receptance(const ExplicitSolver& op, const FootprintWeights& weights
 
 Receptance::~Receptance() = default;
 
-void Receptance::at(double f_hz, std::complex<double>* H) {
-  const double w = 2.0 * std::numbers::pi * f_hz;
+void Receptance::assemble_soil(double w) {
   const std::complex<double> i_w(0.0, w);
   const CsrMatrix& K = op_.stiffness();
   const auto& fixed = op_.fixed();
@@ -87,6 +86,11 @@ void Receptance::at(double f_hz, std::complex<double>* H) {
       if (r == c) value[k] += op_.mass()[c / 3] * (i_w * a0_ - w * w);
     }
   }
+}
+
+void Receptance::add_layer(double w) {
+  const auto& fixed = op_.fixed();
+  ComplexSparse& A = lu_->A;
   // The matched layer's stretched-minus-elastic stiffness and its mass side (pml.hpp), in the
   // pattern of K (the layer's tetrahedra are the mesh's).
   if (const PmlLayer* layer = op_.pml())
@@ -101,6 +105,12 @@ void Receptance::at(double f_hz, std::complex<double>* H) {
           if (fixed[node]) return;
           for (int c = 0; c < 3; ++c) A.coeffRef(3 * node + c, 3 * node + c) += value;
         });
+}
+
+void Receptance::add_boundary(double w) {
+  const std::complex<double> i_w(0.0, w);
+  const auto& fixed = op_.fixed();
+  ComplexSparse& A = lu_->A;
   const bool springs = op_.springs_act();
   for (const BoundaryNode& b : op_.boundary()) {
     if (fixed[b.node]) continue;
@@ -113,6 +123,10 @@ void Receptance::at(double f_hz, std::complex<double>* H) {
         A.coeffRef(3 * b.node + c, 3 * b.node + d) += spring[c] + i_w * dashpot[c];
     }
   }
+}
+
+void Receptance::factorize(double f_hz) {
+  ComplexSparse& A = lu_->A;
   if (!lu_->analysed) {
     // The matrix is complex symmetric with a symmetric pattern: UMFPACK's symmetric strategy
     // (diagonal pivots preferred) with a METIS ordering fills far less than the default.
@@ -130,6 +144,14 @@ void Receptance::at(double f_hz, std::complex<double>* H) {
         "fem: the receptance's LU failed at " + std::to_string(f_hz) +
         " Hz (UMFPACK: " + umfpack_status(lu_->lu.umfpackFactorizeReturncode()) + ", " +
         std::to_string(op_.stiffness().rows()) + " DOFs)");
+}
+
+void Receptance::at(double f_hz, std::complex<double>* H) {
+  const double w = 2.0 * std::numbers::pi * f_hz;
+  assemble_soil(w);
+  add_layer(w);
+  add_boundary(w);
+  factorize(f_hz);
   Eigen::MatrixXcd x;
   if (far_ != nullptr && lag_ != nullptr) {
     Eigen::MatrixXcd rhs = lu_->rhs;
@@ -138,6 +160,7 @@ void Receptance::at(double f_hz, std::complex<double>* H) {
   } else {
     x = lu_->lu.solve(lu_->rhs);
   }
+  // H: the footprints' weighted vertical displacement under each footprint's unit load.
   const Eigen::Index m = lu_->rhs.cols();
   for (Eigen::Index j = 0; j < m; ++j)
     for (Eigen::Index i = 0; i < m; ++i) {

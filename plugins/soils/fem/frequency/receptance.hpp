@@ -35,6 +35,12 @@ class Receptance {
 
  private:
   struct Lu;
+  // at()'s steps at the circular frequency w [rad/s]: the soil's terms into the LU's matrix (its
+  // pattern K's), the matched layer's, the boundary's springs and dashpots; then its LU.
+  void assemble_soil(double w);
+  void add_layer(double w);
+  void add_boundary(double w);
+  void factorize(double f_hz);
   const StaticFarField* far_ = nullptr;
   const FarFieldLag* lag_ = nullptr;
   const ExplicitSolver& op_;

@@ -390,25 +390,26 @@ TetMesh read_model(const FemSettings& s) {
   return mesh;
 }
 
-MeshFile load_mesh_file(const FemSettings& s, const std::string& path) {
-  const std::string where = where_file(path);
+namespace {
+
+// Only gmsh's mesh format: gmsh::open would take anything else for a .geo script and run it.
+void check_is_msh(const std::string& path, const std::string& where) {
   if (!std::filesystem::is_regular_file(path))
     throw std::invalid_argument(where +
                                 " is not a file; give the path of a gmsh .msh, relative "
                                 "to the scenario's folder");
-  // Only gmsh's mesh format: gmsh::open would take anything else for a .geo script and run it.
-  {
-    std::ifstream in(path, std::ios::binary);
-    std::string first;
-    std::getline(in, first);
-    if (!first.empty() && first.back() == '\r') first.pop_back();
-    if (first != "$MeshFormat")
-      throw std::invalid_argument(
-          where +
-          " is not a gmsh mesh file: it does not start with $MeshFormat; give a .msh written by "
-          "gmsh (File > Export, or gmsh -3 model.geo -o soil.msh; formats 2.2 and 4.1)");
-  }
-  GmshSession session(1);
+  std::ifstream in(path, std::ios::binary);
+  std::string first;
+  std::getline(in, first);
+  if (!first.empty() && first.back() == '\r') first.pop_back();
+  if (first != "$MeshFormat")
+    throw std::invalid_argument(
+        where +
+        " is not a gmsh mesh file: it does not start with $MeshFormat; give a .msh written by "
+        "gmsh (File > Export, or gmsh -3 model.geo -o soil.msh; formats 2.2 and 4.1)");
+}
+
+void open_msh(const std::string& path, const std::string& where) {
   try {
     gmsh::open(path);
   } catch (const std::string& message) {
@@ -417,25 +418,31 @@ MeshFile load_mesh_file(const FemSettings& s, const std::string& path) {
                                        // partition tag (found by the msh fuzz target)
     throw std::invalid_argument(where + ": gmsh cannot read it: " + e.what());
   }
-  MeshFile file;
-  file.path = path;
+}
+
+// The open model's volumes hold linear tetrahedra and nothing else.
+void check_linear_tetrahedra(const std::string& where) {
   std::vector<int> types;
   gmsh_call("read the element types", [&] {
     gmsh::model::mesh::getElementTypes(types, 3);
     return 0;
   });
   const bool linear_tets = std::find(types.begin(), types.end(), 4) != types.end();
-  if (!linear_tets || types.size() > 1) {
-    const std::string found =
-        gmsh_call("name the element types", [&] { return volume_element_types(types); });
-    throw std::invalid_argument(
-        where +
-        (linear_tets ? " holds other volume elements besides linear tetrahedra"
-                     : " holds no linear tetrahedra (gmsh element type 4)") +
-        ": it has " + found +
-        "; mesh every volume with linear tetrahedra (gmsh: Mesh.ElementOrder = 1, no "
-        "recombination into hexahedra or prisms)");
-  }
+  if (linear_tets && types.size() == 1) return;
+  const std::string found =
+      gmsh_call("name the element types", [&] { return volume_element_types(types); });
+  throw std::invalid_argument(
+      where +
+      (linear_tets ? " holds other volume elements besides linear tetrahedra"
+                   : " holds no linear tetrahedra (gmsh element type 4)") +
+      ": it has " + found +
+      "; mesh every volume with linear tetrahedra (gmsh: Mesh.ElementOrder = 1, no "
+      "recombination into hexahedra or prisms)");
+}
+
+// The open model's physical surfaces into file.surfaces: "ground" and "absorbing" needed,
+// "footprints" noted.
+void read_surface_groups(const std::string& where, MeshFile& file) {
   const auto surfaces = gmsh_call("read the physical groups", [] { return physical_groups(2); });
   for (const auto& [name, tag] : surfaces) file.surfaces.push_back(name);
   std::string missing;
@@ -448,20 +455,22 @@ MeshFile load_mesh_file(const FemSettings& s, const std::string& path) {
                                 "); name the free surface at z = 0 \"ground\" (the footprints lie "
                                 "in it) and the truncation surface \"absorbing\"");
   file.has_footprints = surfaces.count("footprints") > 0;
-  std::vector<Triangle> footprint_faces;
-  file.mesh = read_grouped(s, where, &footprint_faces);
-  // gmsh reads "nan" and "inf" as coordinates; no operator (nor the node order) takes them
-  // (found by the msh fuzz target).
-  for (Eigen::Index i = 0; i < file.mesh.nodes.cols(); ++i)
-    if (!file.mesh.nodes.col(i).allFinite()) {
+}
+
+// gmsh reads "nan" and "inf" as coordinates; no operator (nor the node order) takes them (found
+// by the msh fuzz target).
+void check_finite_nodes(const TetMesh& mesh, const std::string& where) {
+  for (Eigen::Index i = 0; i < mesh.nodes.cols(); ++i)
+    if (!mesh.nodes.col(i).allFinite()) {
       std::ostringstream m;
-      m << where << ": a node of its tetrahedra is at x = " << file.mesh.nodes(0, i)
-        << ", y = " << file.mesh.nodes(1, i) << ", z = " << -file.mesh.nodes(2, i)
+      m << where << ": a node of its tetrahedra is at x = " << mesh.nodes(0, i)
+        << ", y = " << mesh.nodes(1, i) << ", z = " << -mesh.nodes(2, i)
         << " m; every coordinate must be a finite number";
       throw std::invalid_argument(m.str());
     }
-  order_nodes_spatially(file.mesh, &footprint_faces);  // as generated meshes: node_order.hpp
-  const TetMesh& mesh = file.mesh;
+}
+
+void check_ground_plane(const TetMesh& mesh, const std::string& where) {
   for (const Triangle& f : mesh.ground)
     for (std::int32_t v : f)
       if (std::abs(mesh.nodes(2, v)) > 1e-6) {
@@ -470,6 +479,10 @@ MeshFile load_mesh_file(const FemSettings& s, const std::string& path) {
           << " m; the ground must be the plane z = 0 (z up, soil below)";
         throw std::invalid_argument(m.str());
       }
+}
+
+// Within mesh.max_dofs and the memory available now.
+void check_mesh_size(const FemSettings& s, const TetMesh& mesh, const std::string& where) {
   if (static_cast<double>(mesh.dof_count()) > s.mesh.max_dofs) {
     std::ostringstream m;
     m << where << " has " << mesh.dof_count()
@@ -479,7 +492,26 @@ MeshFile load_mesh_file(const FemSettings& s, const std::string& path) {
     throw std::invalid_argument(m.str());
   }
   check_memory_for(static_cast<double>(mesh.dof_count()), where, "give a coarser mesh");
-  file.footprints = patches(mesh, footprint_faces);
+}
+
+}  // namespace
+
+MeshFile load_mesh_file(const FemSettings& s, const std::string& path) {
+  const std::string where = where_file(path);
+  check_is_msh(path, where);
+  GmshSession session(1);
+  open_msh(path, where);
+  MeshFile file;
+  file.path = path;
+  check_linear_tetrahedra(where);
+  read_surface_groups(where, file);
+  std::vector<Triangle> footprint_faces;
+  file.mesh = read_grouped(s, where, &footprint_faces);
+  check_finite_nodes(file.mesh, where);
+  order_nodes_spatially(file.mesh, &footprint_faces);  // as generated meshes: node_order.hpp
+  check_ground_plane(file.mesh, where);
+  check_mesh_size(s, file.mesh, where);
+  file.footprints = patches(file.mesh, footprint_faces);
   return file;
 }
 

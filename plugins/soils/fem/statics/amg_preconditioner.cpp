@@ -131,6 +131,46 @@ RowSparse smoothed_prolongator(const RowSparse& A, const RowSparse& P0, const Ei
   return P;
 }
 
+// The tentative prolongator of one level: the DOFs of each aggregate, and on each a QR of the
+// modes B restricted to them, whose Q is the prolongator's block and whose R the coarse modes.
+struct Tentative {
+  std::vector<Triplet> p0;
+  std::vector<Eigen::Index> coarse_start{0};  // each aggregate's first coarse DOF, then the count
+  std::vector<Eigen::MatrixXd> coarse_modes;  // per aggregate
+};
+
+Tentative tentative_prolongator(const Eigen::MatrixXd& B, const std::vector<Eigen::Index>& start,
+                                const std::vector<std::int32_t>& agg, std::int32_t count) {
+  std::vector<std::vector<Eigen::Index>> dofs(static_cast<std::size_t>(count));
+  for (std::size_t i = 0; i + 1 < start.size(); ++i)
+    for (Eigen::Index r = start[i]; r < start[i + 1]; ++r)
+      dofs[static_cast<std::size_t>(agg[i])].push_back(r);
+  Tentative t;
+  for (const std::vector<Eigen::Index>& d : dofs) {
+    const auto m = static_cast<Eigen::Index>(d.size());
+    Eigen::MatrixXd local(m, B.cols());
+    for (Eigen::Index k = 0; k < m; ++k) local.row(k) = B.row(d[static_cast<std::size_t>(k)]);
+    Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(local);
+    qr.setThreshold(1e-10);
+    const Eigen::Index rank = qr.rank();
+    if (rank == 0) {  // held nodes only: no coarse DOFs, the smoother alone (identity rows)
+      t.coarse_modes.emplace_back(0, B.cols());
+      t.coarse_start.push_back(t.coarse_start.back());
+      continue;
+    }
+    const Eigen::MatrixXd q = qr.householderQ() * Eigen::MatrixXd::Identity(m, rank);
+    const Eigen::MatrixXd upper = qr.matrixR().topRows(rank).triangularView<Eigen::Upper>();
+    t.coarse_modes.push_back(upper * qr.colsPermutation().transpose());
+    const Eigen::Index offset = t.coarse_start.back();
+    for (Eigen::Index k = 0; k < m; ++k)
+      for (Eigen::Index c = 0; c < rank; ++c)
+        t.p0.emplace_back(static_cast<int>(d[static_cast<std::size_t>(k)]),
+                          static_cast<int>(offset + c), q(k, c));
+    t.coarse_start.push_back(offset + rank);
+  }
+  return t;
+}
+
 }  // namespace
 
 struct AmgPreconditioner::Coarse {
@@ -162,67 +202,49 @@ AmgPreconditioner::AmgPreconditioner(RowSparse a, const Eigen::Matrix3Xd& nodes,
     L.b.resize(n);
     L.r.resize(n);
     if (n <= kCoarsestDofs || levels_.size() == kMaxLevels) break;
-
-    const auto [agg, count] = aggregate(L.A, start);
-    // The DOFs of each aggregate, then the tentative prolongator: a QR of the modes on each.
-    std::vector<std::vector<Eigen::Index>> dofs(static_cast<std::size_t>(count));
-    for (std::size_t i = 0; i + 1 < start.size(); ++i)
-      for (Eigen::Index r = start[i]; r < start[i + 1]; ++r)
-        dofs[static_cast<std::size_t>(agg[i])].push_back(r);
-    std::vector<Triplet> p0;
-    std::vector<Eigen::Index> coarse_start{0};
-    std::vector<Eigen::MatrixXd> coarse_modes;
-    for (const std::vector<Eigen::Index>& d : dofs) {
-      const auto m = static_cast<Eigen::Index>(d.size());
-      Eigen::MatrixXd local(m, B.cols());
-      for (Eigen::Index k = 0; k < m; ++k) local.row(k) = B.row(d[static_cast<std::size_t>(k)]);
-      Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(local);
-      qr.setThreshold(1e-10);
-      const Eigen::Index rank = qr.rank();
-      if (rank == 0) {  // held nodes only: no coarse DOFs, the smoother alone (identity rows)
-        coarse_modes.emplace_back(0, B.cols());
-        coarse_start.push_back(coarse_start.back());
-        continue;
-      }
-      const Eigen::MatrixXd q = qr.householderQ() * Eigen::MatrixXd::Identity(m, rank);
-      const Eigen::MatrixXd upper = qr.matrixR().topRows(rank).triangularView<Eigen::Upper>();
-      coarse_modes.push_back(upper * qr.colsPermutation().transpose());
-      const Eigen::Index offset = coarse_start.back();
-      for (Eigen::Index k = 0; k < m; ++k)
-        for (Eigen::Index c = 0; c < rank; ++c)
-          p0.emplace_back(static_cast<int>(d[static_cast<std::size_t>(k)]),
-                          static_cast<int>(offset + c), q(k, c));
-      coarse_start.push_back(offset + rank);
-    }
-    const Eigen::Index nc = coarse_start.back();
-    if (nc == 0 || nc > n * 7 / 10) break;  // no coarsening left: factor this level
-
-    Eigen::VectorXd inverse_diagonal = L.A.diagonal().cwiseInverse();
-    // (On the mesh's level by the fine product where there is one: the same operator as the
-    // smoother's, threaded.)
-    const double lambda = largest_eigenvalue(
-        [&](const Eigen::VectorXd& x, Eigen::VectorXd& y) {
-          if (levels_.size() == 1 && fine_product_)
-            fine_product_(x, y);
-          else
-            multiply(L.A, x, y, threads_);
-        },
-        inverse_diagonal);
-    L.scaled_inverse_diagonal = (4.0 / 3.0 / lambda) * inverse_diagonal;
-    RowSparse P0(n, nc);
-    P0.setFromTriplets(p0.begin(), p0.end());
-    const RowSparse P = smoothed_prolongator(L.A, P0, L.scaled_inverse_diagonal, threads);
-    const RowSparse R = P.transpose();
-    RowSparse coarse = sparse_product(R, sparse_product(L.A, P, threads), threads);
-    A.swap(coarse);
-    L.P = P.cast<float>();
-    L.R = R.cast<float>();
-
-    B.resize(nc, B.cols());
-    for (std::size_t g = 0; g < coarse_modes.size(); ++g)
-      B.middleRows(coarse_start[g], coarse_start[g + 1] - coarse_start[g]) = coarse_modes[g];
-    start = std::move(coarse_start);
+    if (!coarsen(L, A, B, start, threads)) break;  // no coarsening left: factor this level
   }
+  factor_coarsest();
+  keep_cycle_matrices();
+}
+
+bool AmgPreconditioner::coarsen(Level& L, RowSparse& A, Eigen::MatrixXd& B,
+                                std::vector<Eigen::Index>& start, unsigned threads) {
+  const Eigen::Index n = L.A.rows();
+  const auto [agg, count] = aggregate(L.A, start);
+  Tentative t = tentative_prolongator(B, start, agg, count);
+  const Eigen::Index nc = t.coarse_start.back();
+  if (nc == 0 || nc > n * 7 / 10) return false;
+
+  Eigen::VectorXd inverse_diagonal = L.A.diagonal().cwiseInverse();
+  // (On the mesh's level by the fine product where there is one: the same operator as the
+  // smoother's, threaded.)
+  const double lambda = largest_eigenvalue(
+      [&](const Eigen::VectorXd& x, Eigen::VectorXd& y) {
+        if (levels_.size() == 1 && fine_product_)
+          fine_product_(x, y);
+        else
+          multiply(L.A, x, y, threads_);
+      },
+      inverse_diagonal);
+  L.scaled_inverse_diagonal = (4.0 / 3.0 / lambda) * inverse_diagonal;
+  RowSparse P0(n, nc);
+  P0.setFromTriplets(t.p0.begin(), t.p0.end());
+  const RowSparse P = smoothed_prolongator(L.A, P0, L.scaled_inverse_diagonal, threads);
+  const RowSparse R = P.transpose();
+  RowSparse coarse = sparse_product(R, sparse_product(L.A, P, threads), threads);
+  A.swap(coarse);
+  L.P = P.cast<float>();
+  L.R = R.cast<float>();
+
+  B.resize(nc, B.cols());
+  for (std::size_t g = 0; g < t.coarse_modes.size(); ++g)
+    B.middleRows(t.coarse_start[g], t.coarse_start[g + 1] - t.coarse_start[g]) = t.coarse_modes[g];
+  start = std::move(t.coarse_start);
+  return true;
+}
+
+void AmgPreconditioner::factor_coarsest() {
   Level& last = levels_.back();
   const Eigen::SparseMatrix<double> lower = last.A.triangularView<Eigen::Lower>();
   coarse_->llt.compute(lower);
@@ -230,6 +252,9 @@ AmgPreconditioner::AmgPreconditioner(RowSparse a, const Eigen::Matrix3Xd& nodes,
     throw std::runtime_error(
         "fem: the static stiffness is not positive definite (multigrid's coarsest level); the "
         "mesh floats: give the boundary springs or a fixed boundary");
+}
+
+void AmgPreconditioner::keep_cycle_matrices() {
   // The V-cycle's matrices in float; the set-up's in double freed (assigning an empty matrix
   // would keep their storage). The mesh's level's is the fine product's when there is one, and
   // the coarsest level's is the factor's.

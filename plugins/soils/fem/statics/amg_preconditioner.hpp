@@ -69,6 +69,12 @@ class AmgPreconditioner {
   };
   struct Coarse;
   void cycle(std::size_t l) const;
+  /// The next level below L: its matrix into A, its modes into B, its nodes' DOFs into start;
+  /// false (nothing changed) when aggregation no longer coarsens enough.
+  bool coarsen(Level& L, RowSparse& A, Eigen::MatrixXd& B, std::vector<Eigen::Index>& start,
+               unsigned threads);
+  void factor_coarsest();      // the coarsest level's Cholesky factor (throws when indefinite)
+  void keep_cycle_matrices();  // the V-cycle's float matrices; the set-up's freed
 
   std::vector<Level> levels_;
   std::unique_ptr<Coarse> coarse_;

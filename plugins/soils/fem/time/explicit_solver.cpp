@@ -82,6 +82,18 @@ double ExplicitSolver::largest_eigenvalue(
   // iteration's was) converges to it in far fewer products (lost orthogonality only repeats
   // converged eigenvalues). Three vectors; T_j's eigenvalues by Eigen's tridiagonal QR, O(j^2) per
   // iteration.
+  // Ours rather than Spectra's (issue #31 item 7, docs/fem-soil.md section 4; measured on
+  // 2026-12-05 on the step benchmark's Kuhn box of the medium soil, one thread, best of 3 on a
+  // loaded 2-core machine): Spectra 1.0's
+  // SymEigsSolver on M^-1/2 K M^-1/2 over the free DOFs (the largest eigenvalue only, a basis of
+  // 20 vectors, tolerance 1e-7, which keeps the single- and double-precision steps within 1e-6 of
+  // each other as this loop does) took 2.8 times this loop's time at 1.1e5 DOFs (0.43 s against
+  // 0.15 s; 91 products against 82) and 3.9 times at 3.5e5 DOFs (2.50 s against 0.64 s; 101
+  // against 87), for the same eigenvalue to 2.5e-11: its restarted Lanczos reorthogonalizes each
+  // vector against its whole basis, which costs more than the product itself here, and keeps that
+  // basis (0.5 GB at 3e6 DOFs) against our three vectors. A basis of 10 took 2.1 and 3.3 times;
+  // at tolerance 1e-3 (still far inside the 2 % margin) 0.96 and 1.19 times, its eigenvalue then
+  // 2.6e-4 and 5.4e-4 low.
   const std::int64_t n = op_->nodes();
   const unsigned threads = op_->threads();
   Eigen::VectorXd q(3 * n), q_prev = Eigen::VectorXd::Zero(3 * n), w;
@@ -186,153 +198,6 @@ void ExplicitSolver::prepare_local_steps(double dt) const {
                            " s on this mesh (its verified step is " + std::to_string(local_step_) +
                            " s)");
   lts_->set_step(dt, tau);
-}
-
-bool ExplicitSolver::enable_local_steps(int substeps, double macro_step, double courant) {
-  lts_.reset();
-  halo_of_.clear();
-  local_step_ = 0.0;
-  last_step_local_ = false;
-  // Steps up to courant x one rate's stable step are taken on one rate, within the caller's
-  // margin; longer ones with the local steps, within the same margin of the verified step.
-  one_rate_limit_ = courant * single_rate_step_;
-  // From there up, the damping's lag must leave room for a stabilization (tau_for > 0), so that
-  // every step between it and the verified one can be taken.
-  // A matched layer whose own limit is below 1.1 times one rate's leaves nothing to gain.
-  if (substeps < 2 || LocalTimeStepping::tau_for(one_rate_limit_, a1_) == 0.0 ||
-      pml_step_ < 1.1 * single_rate_step_)
-    return false;
-  // Each node's Gershgorin bound of M^-1 K, scaled so that the largest is the mesh's largest
-  // eigenvalue: a node whose scaled bound exceeds the coarse step's limit is fine.
-  const std::int64_t n = op_->nodes();
-  const CsrMatrix& K = op_->stiffness();
-  std::vector<double> bound(n, 0.0);
-  const std::vector<std::int64_t>& start = K.row_start();
-  const std::vector<double>& value = K.value();
-  for (std::int64_t i = 0; i < n; ++i) {
-    if (fixed_[i]) continue;
-    for (std::int64_t r = 3 * i; r < 3 * i + 3; ++r) {
-      double sum = 0.0;
-      for (std::int64_t k = start[r]; k < start[r + 1]; ++k) sum += std::abs(value[k]);
-      bound[i] = std::max(bound[i], sum / mass_[i]);
-    }
-  }
-  const double lambda_max = omega_max_ * omega_max_;
-  double largest_bound = 0.0;
-  for (const double b : bound) largest_bound = std::max(largest_bound, b);
-  const double scale = lambda_max / largest_bound;
-  // Never fine: fixed nodes, the truncation surface's (its springs and dashpots stay outside the
-  // recurrence, which keeps K_p symmetric), and the matched layer's and their neighbours (the
-  // layer's forces stay outside too).
-  std::vector<char> may_be_fine(n, 1);
-  for (std::int64_t i = 0; i < n; ++i) {
-    const auto node = static_cast<std::int32_t>(i);
-    if (fixed_[i] || boundary_of_[i] >= 0) may_be_fine[i] = 0;
-    if (!pml_) continue;
-    const std::int32_t* nb = K.neighbours(node);
-    for (std::int64_t q = 0; q < K.degree(node); ++q)
-      if (pml_->layer_node(nb[q]) >= 0) may_be_fine[i] = 0;
-  }
-  constexpr double kSafety = 0.7;  // a node is fine above this share of the coarse limit
-  const auto fine_at = [&](double dt, double safety) {
-    // The coarse nodes' limit: c = dt^2 l / 4 <= 0.9 / (1 + 2 a1 / dt) (tau_for's margin).
-    const double coarse_limit = 4.0 / (dt * dt) * 0.9 / (1.0 + 2.0 * a1_ / dt);
-    std::vector<char> fine(n, 0);
-    for (std::int64_t i = 0; i < n; ++i)
-      fine[i] = may_be_fine[i] && scale * bound[i] > safety * coarse_limit;
-    return fine;
-  };
-  // The work of one extra sub-step relative to a pass over K: its product reads K's blocks at
-  // the halo's rows (the fine nodes and their neighbours) and the fine nodes' columns, and its
-  // vector updates cost about a quarter of a pass over the halo's rows (measured on the 1e6-DOF
-  // medium mesh: 7.5 % per step for a halo of 18.6 % of the nodes, 3.5 % fine, p = 2).
-  const auto extra_work = [&](const std::vector<char>& fine) {
-    std::int64_t blocks = 0, halo_blocks = 0;
-    for (std::int64_t i = 0; i < n; ++i) {
-      const auto node = static_cast<std::int32_t>(i);
-      const std::int32_t* nb = K.neighbours(node);
-      std::int64_t fine_columns = 0;
-      for (std::int64_t q = 0; q < K.degree(node); ++q) fine_columns += fine[nb[q]];
-      blocks += K.degree(node);
-      if (fine_columns > 0 && !fixed_[i]) halo_blocks += fine_columns + K.degree(node) / 4;
-    }
-    return static_cast<double>(halo_blocks) / static_cast<double>(blocks);
-  };
-  // A step the local steps can take: its stabilization exists, the fine nodes' spectrum fits
-  // the recurrence, and the matched layer allows it.
-  const auto feasible = [&](double dt) {
-    const double tau = LocalTimeStepping::tau_for(dt, a1_);
-    return tau > 0.0 && lambda_max <= 0.9 * LocalTimeStepping::fine_range(dt, tau, substeps) &&
-           dt <= pml_step_;
-  };
-  struct Candidate {
-    double work, step, safety;
-  };
-  std::vector<Candidate> candidates;
-  if (macro_step > 0.0) {
-    // Work per macro step: n sub-steps, each a pass over K plus the extra sub-steps' share,
-    // against one rate's count. Each n is tried with the usual guess of the fine nodes and with
-    // a wider one (nodes above half their limit), which a step just above what the usual guess
-    // verifies may need.
-    const auto single_count = std::ceil(macro_step / (courant * single_rate_step_) - 1e-9);
-    for (double count = single_count - 1.0; count >= 1.0; count -= 1.0) {
-      const double dt = macro_step / (count * courant);  // (grows as count falls)
-      if (dt < 1.1 * single_rate_step_) continue;
-      if (!feasible(dt)) break;
-      for (const double safety : {kSafety, 0.5}) {
-        const double work = count * (1.0 + (substeps - 1) * extra_work(fine_at(dt, safety)));
-        if (work < 0.95 * single_count) candidates.push_back({work, dt, safety});
-      }
-    }
-  } else {  // work per simulated second, for steps from 1.1 to p times one rate's
-    for (double ratio = 1.1; ratio <= substeps + 1e-9; ratio += 0.05) {
-      const double dt = ratio * single_rate_step_;
-      if (!feasible(dt)) break;
-      const double work = (1.0 + (substeps - 1) * extra_work(fine_at(dt, kSafety))) / dt;
-      if (work < 0.95 / single_rate_step_) candidates.push_back({work, dt, kSafety});
-    }
-  }
-  std::sort(candidates.begin(), candidates.end(),
-            [](const Candidate& a, const Candidate& b) { return a.work < b.work; });
-  // Verify by the largest eigenvalue of M^-1 (K_p + S): the bound only guesses which nodes are
-  // stiff. When a step fails by a little (a coarse node a little too stiff for it), the same fine
-  // nodes are verified again at 97 % of the step the iteration allows (not for a macro step's
-  // candidates, whose steps are exact: the next one is tried); else the next candidate.
-  const int tries = macro_step > 0.0 ? 4 : 3;
-  std::size_t next = 0;
-  double dt = 0.0;
-  std::vector<char> fine;
-  // The recurrence integrates the fine nodes' fastest modes, which with the Maxwell mechanisms
-  // see the unrelaxed stiffness: its polynomial is built on (1 + sum c_l) M^-1 K, by a mass
-  // scaled down by that factor (M R(A P) M^-1 is unchanged otherwise).
-  const Eigen::VectorXd recurrence_mass = op_->mass() / maxwell_.unrelaxed();
-  for (int t = 0; t < tries; ++t) {
-    if (dt == 0.0) {
-      if (next == candidates.size()) break;
-      dt = candidates[next].step;
-      fine = fine_at(dt, candidates[next].safety);
-      ++next;
-    }
-    lts_.emplace(K, recurrence_mass, fine, op_->fixed(), substeps,
-                 precision() == StepPrecision::kSingle);
-    halo_of_.assign(n, -1);
-    for (std::size_t h = 0; h < lts_->halo().size(); ++h)
-      halo_of_[lts_->halo()[h]] = static_cast<std::int32_t>(h);
-    halo_forces_.assign(3 * lts_->halo().size(), 0.0);
-    local_step_ = dt;  // (prepare_local_steps' message)
-    int iterations = 0;
-    const double mu = largest_eigenvalue(
-        [&](const Eigen::VectorXd& x, Eigen::VectorXd& y) { effective_stiffness_times(x, y, dt); },
-        iterations);
-    eigen_iterations_ += iterations;
-    const double allowed = step_limit(mu);
-    if (dt <= allowed) return true;
-    dt = macro_step == 0.0 && 0.97 * allowed > 1.05 * single_rate_step_ ? 0.97 * allowed : 0.0;
-  }
-  lts_.reset();
-  halo_of_.clear();
-  local_step_ = 0.0;
-  return false;
 }
 
 namespace {

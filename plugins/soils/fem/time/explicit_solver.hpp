@@ -155,6 +155,21 @@ class ExplicitSolver {
   /// pseudo-random start.
   double largest_eigenvalue(const std::function<void(const Eigen::VectorXd&, Eigen::VectorXd&)>& op,
                             int& iterations) const;
+  // enable_local_steps' parts (local_steps_choice.cpp).
+  struct FineGuess;  // which nodes a step makes fine, and what their sub-steps cost
+  struct LocalStepCandidate {
+    double work, step, safety;  // work relative to one rate's, step [s], the guess's share
+  };
+  FineGuess guess_fine_nodes() const;
+  /// Whether the local steps can take a step of dt [s] at all.
+  bool local_step_feasible(double dt, int substeps) const;
+  /// The steps worth trying, least work first.
+  std::vector<LocalStepCandidate> local_step_candidates(const FineGuess& guess, int substeps,
+                                                        double macro_step, double courant) const;
+  /// Sets up the local steps at the first candidate whose largest eigenvalue allows its step.
+  bool verify_local_steps(const FineGuess& guess, const std::vector<LocalStepCandidate>& candidates,
+                          int substeps, double macro_step);
+  void drop_local_steps();
   /// The local steps' coefficients for a step of dt [s] (once per distinct dt).
   void prepare_local_steps(double dt) const;
   /// Filters forces [N] (size dofs()) at the halo (local_time_stepping.hpp) on the step's
