@@ -5,8 +5,9 @@ three ways, and expects one message per breach and exit status 1:
   - the post room includes a header of the run room (an arrow the target graph lacks);
   - the core room links FFTW (a package it does not use);
   - the Winkler soil plugin links the engine's core room (plugins use the SDK only);
-and that the function-length check (tools/check_function_length.py) fails on a function of 90
-lines that tools/long_functions.txt does not list.
+that the function-length check (tools/check_function_length.py) fails on a function of 90
+lines that tools/long_functions.txt does not list, and that the declared-once check
+(tools/check_declared_once.py) fails on a default written again in C++.
 
     violations_test.py SOURCE_DIR SCRATCH_DIR
 """
@@ -49,6 +50,16 @@ print(length.stdout, length.stderr)
 if length.returncode != 1 or "too_long_for_a_reader is 90 lines" not in length.stdout:
     print(f"function-length check: exit status {length.returncode} (1 expected), the 90-line "
           "function not reported")
+    sys.exit(1)
+
+edit("plugins/vehicles/single_wheel/single_wheel.cpp", 'p.get<double>("wheel_radius")',
+     'p.get_or<double>("wheel_radius", 0.46)')
+once = subprocess.run([sys.executable, str(tree / "tools/check_declared_once.py")],
+                      capture_output=True, text=True)
+print(once.stdout, once.stderr)
+if once.returncode != 1 or 'writes the default of "wheel_radius" again' not in once.stdout:
+    print(f"declared-once check: exit status {once.returncode} (1 expected), the repeated "
+          "default not reported")
     sys.exit(1)
 
 check = subprocess.run([sys.executable, str(tree / "tools/check_architecture.py"),

@@ -85,11 +85,12 @@ int stability_command(const std::vector<std::string>& args) {
   // The scenario's explicit scheme feeds its inputs so; the options override.
   const nlohmann::json& coupling = doc->json.at("coupling");
   const std::string type = coupling.at("type").get<std::string>();
-  const nlohmann::json params = coupling.value("params", nlohmann::json::object());
+  const nlohmann::json& params = coupling.at("params");  // validated, the coupler's defaults in
   StabilityInputs inputs;
   if (type == "gauss_seidel" || type == "jacobi")
-    inputs.extrapolation = params.value("extrapolation", 0u);
-  if (type == "gauss_seidel") inputs.interpolation = params.value("interpolation", 0u);
+    inputs.extrapolation = params.at("extrapolation").get<std::uint32_t>();
+  if (type == "gauss_seidel")
+    inputs.interpolation = params.at("interpolation").get<std::uint32_t>();
   inputs.extrapolation = static_cast<std::uint32_t>(
       a.integer("extrapolation", static_cast<long long>(inputs.extrapolation), 0, 2));
   inputs.interpolation = static_cast<std::uint32_t>(

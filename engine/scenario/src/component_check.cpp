@@ -84,7 +84,7 @@ void check_receivers(SoilInstance& soil, const json& scenario, std::vector<Diagn
   };
   std::vector<rumble_probe> all;
   for (const ReceiverSpec& r : receivers) all.push_back(probe(r));
-  const double interval = outputs.value("receiver_interval", 0.0);
+  const double interval = outputs.at("receiver_interval").get<double>();
   std::string refusal;
   try {
     soil.set_probes(all, interval);

@@ -44,7 +44,7 @@ RunSize estimate_run_size(const json& sc) {
   if (const auto it = track.find("integrator"); it != track.end() && it->contains("micro_step"))
     r.micro_steps = std::ceil(t_end / it->at("micro_step").get<double>());
   const json& outputs = sc.at("outputs");
-  const double every = std::max(1.0, outputs.value("every", 1.0));
+  const double every = outputs.at("every").get<double>();
   r.records = std::floor(r.macro_steps / every) + 1.0;
 
   const double footprints = track.at("sleepers").at("count").get<double>();
@@ -59,7 +59,7 @@ RunSize estimate_run_size(const json& sc) {
   // receivers.csv: a row per sample with 6 values per receiver (rumble/abi.h probes), sampled
   // every receiver_interval, else inside every soil step: at least once a macro step (the run
   // checks the soil's own rate at its first step: run/probe_recorder.hpp).
-  const double interval = outputs.value("receiver_interval", 0.0);
+  const double interval = outputs.at("receiver_interval").get<double>();
   r.receiver_rows =
       receivers == 0.0 ? 0.0 : (interval > 0.0 ? std::floor(t_end / interval) + 1.0 : r.records);
   r.bytes_written = (r.records * r.values_per_record +
@@ -69,7 +69,7 @@ RunSize estimate_run_size(const json& sc) {
   // The recorder keeps one energy per record; two_step keeps the track's footprint forces and
   // the reduced soil's motion over the whole run: 3 n (steps + 1) doubles (plugins/couplers).
   r.memory_bytes = r.records * 8.0;
-  if (coupling.value("type", "") == "two_step")
+  if (coupling.at("type") == "two_step")
     r.memory_bytes += 3.0 * footprints * (r.macro_steps + 1.0) * 8.0;
 
   r.statics_bytes = kStaticsBytesPerPair * footprints * footprints;
@@ -112,7 +112,7 @@ std::vector<Diagnostic> check_run_size(const json& sc) {
                               kConfirm));
   }
   if (r.memory_bytes > kMaxMemoryBytes) {
-    const bool two_step = sc.at("coupling").value("type", "") == "two_step";
+    const bool two_step = sc.at("coupling").at("type") == "two_step";
     out.push_back(finding(two_step ? "/coupling/type" : "/time/end",
                           "the run would reserve about " + bytes_text(r.memory_bytes) +
                               " of memory for its histories" +
@@ -156,7 +156,7 @@ std::vector<Diagnostic> check_machine_room(const json& sc, const MachineRoom& ro
   const double memory = r.statics_bytes + r.memory_bytes;
   if (memory > room.memory_bytes) {
     const bool statics = r.statics_bytes >= r.memory_bytes;
-    const bool two_step = sc.at("coupling").value("type", "") == "two_step";
+    const bool two_step = sc.at("coupling").at("type") == "two_step";
     const double sleepers = sc.at("track").at("sleepers").at("count").get<double>();
     const char* pointer =
         statics ? "/track/sleepers/count" : (two_step ? "/coupling/type" : "/time/end");

@@ -27,7 +27,7 @@ std::vector<ReceiverSpec> receivers(const json& list, double x_mid) {
       p.name = r.at("name").get<std::string>();
       p.y = r.at("y").get<double>();
       p.x = r.value("x", x_mid);
-      p.depth = r.value("depth", 0.0);
+      p.depth = r.at("depth").get<double>();
     }
     out.push_back(std::move(p));
   }

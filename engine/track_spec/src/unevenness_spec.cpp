@@ -7,7 +7,7 @@ namespace rumble {
 
 UnevennessSpec UnevennessSpec::from_json(const nlohmann::json& u) {
   UnevennessSpec s;
-  const std::string type = u.is_object() ? u.value("type", "none") : "none";
+  const std::string type = u.at("type").get<std::string>();
   if (type == "dip" || type == "bump") {
     s.kind = type == "dip" ? Kind::kDip : Kind::kBump;
     s.position = u.at("position").get<double>();

@@ -26,7 +26,7 @@ struct UnevennessSpec {
   std::uint64_t seed = 0;
   double wavelength_min = 0.0, wavelength_max = 0.0;  // m
 
-  /// From a validated /track/unevenness with its defaults filled (absent: none).
+  /// From a validated /track/unevenness with its defaults filled.
   static UnevennessSpec from_json(const nlohmann::json& unevenness);
 };
 
