@@ -62,7 +62,8 @@ MatrixXcd receptance(SoilInstance& soil, double f_hz, Eigen::Index n);
 /// One soil, a SoilInstance labelled "/soil" in the scenario directory ".", with the plugin's
 /// statuses and messages in view: the try_ calls return the status the engine turned into an
 /// exception and the plugin's own message (the engine's exception quotes it), and the others
-/// throw the engine's exception (std::runtime_error) unless the plugin returns RUMBLE_OK.
+/// throw the engine's exception (std::runtime_error) unless the plugin returns RUMBLE_OK (or
+/// RUMBLE_WARNING, which the engine logs).
 class TestSoil {
  public:
   TestSoil(const std::string& type, const std::string& params_json);
