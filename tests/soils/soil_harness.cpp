@@ -1,73 +1,128 @@
 #include "soil_harness.hpp"
 
-#include <dlfcn.h>
+#include <spdlog/sinks/base_sink.h>
 
+#include <complex>
+#include <filesystem>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include "core/errors.hpp"
+#include "core/logging.hpp"
 #include "scenario/schema_check.hpp"
 
 namespace rumble::test {
 namespace {
 
-const rumble_plugin_descriptor& descriptor(const std::string& type) {
-  static std::map<std::string, const rumble_plugin_descriptor*> loaded;
-  if (auto it = loaded.find(type); it != loaded.end()) return *it->second;
-  const std::string path = std::string(RUMBLE_TEST_PLUGIN_DIR) + "/" + type + ".so";
-  void* library = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);  // never closed
-  if (library == nullptr) throw std::runtime_error("cannot load " + path + ": " + dlerror());
-  void* entry = dlsym(library, RUMBLE_PLUGIN_ENTRY_SYMBOL);
-  if (entry == nullptr) throw std::runtime_error(path + " exports no entry point");
-  const auto* d = reinterpret_cast<rumble_plugin_entry_fn>(entry)();
-  loaded[type] = d;
-  return *d;
+/// The engine keeps an instance's handle to itself (Instance::handle() is protected and
+/// SoilInstance final), and TestSoil::api()/self() need it: the soil is created through a copy
+/// of its type whose factory's create() is the plugin's, called with the engine's host and
+/// arguments, noting what it returns on its way to the SoilInstance.
+struct Noted {
+  const rumble_factory* factory = nullptr;  // the plugin's
+  rumble_instance* self = nullptr;
+  std::string error;  // create()'s message, copied (static or thread-local text in the plugin)
+};
+thread_local Noted* noted = nullptr;
+
+rumble_status create_noting(const char* params, const rumble_host* host, rumble_instance** out,
+                            const char** error) {
+  const rumble_status s = noted->factory->create(params, host, out, error);
+  noted->self = *out;
+  noted->error = *error != nullptr ? *error : "";
+  return s;
 }
 
-rumble_host make_host() {
-  rumble_host h{};
-  h.struct_size = sizeof(rumble_host);
-  h.abi_minor = RUMBLE_ABI_MINOR;
-  h.scenario_dir = ".";
-  return h;
+struct NotingType {
+  rumble_factory factory{};
+  ComponentType type;
+};
+
+const ComponentType& noting_type(const std::string& name) {
+  static std::map<std::string, NotingType> types;  // nodes stay put: type.factory points in
+  auto [it, added] = types.try_emplace(name);
+  if (added) {
+    it->second.type = soil_type(name);
+    it->second.factory = *it->second.type.factory;
+    it->second.factory.create = &create_noting;
+    it->second.type.factory = &it->second.factory;
+  }
+  return it->second.type;
 }
 
-// The params as the host hands them to the plugin: with every default of the type's schema filled
-// in (the engine's own SchemaChecker). Not validated: the tests of the plugins' own refusals hand
-// them what the schema would refuse; the schema's refusals are tested against the schema.
-std::string with_defaults(const rumble_factory& f, const std::string& params_json) {
-  nlohmann::json params = nlohmann::json::parse(params_json, nullptr, false);
-  if (!params.is_object() || f.params_schema == nullptr) return params_json;
+/// The params as the host hands them to the plugin: with every default of the type's schema
+/// filled in (the engine's own SchemaChecker). Not validated: the tests of the plugins' own
+/// refusals hand them what the schema would refuse; the schema's refusals are tested against the
+/// schema.
+nlohmann::json with_defaults(const ComponentType& type, const std::string& params_json) {
+  nlohmann::json params = nlohmann::json::parse(params_json);
+  if (!params.is_object() || type.params_schema.empty()) return params;
   static std::map<std::string, std::unique_ptr<scenario::SchemaChecker>> checkers;
-  auto& checker = checkers[f.type_name];
-  if (!checker) checker = std::make_unique<scenario::SchemaChecker>(f.params_schema);
+  auto& checker = checkers[type.type_name];
+  if (!checker) checker = std::make_unique<scenario::SchemaChecker>(type.params_schema);
   checker->fill_defaults(params);
-  return params.dump();
+  return params;
+}
+
+/// A SoilInstance of `type` from `params_json`, and the plugin's handle (*self) and creation
+/// message (*error) as create() returned them; throws the engine's ConfigError when refused.
+std::unique_ptr<SoilInstance> create(const std::string& type, const std::string& params_json,
+                                     rumble_instance** self, std::string* error) {
+  const ComponentType& noting = noting_type(type);
+  const nlohmann::json params = with_defaults(soil_type(type), params_json);
+  Noted note{soil_type(type).factory, nullptr, {}};
+  noted = &note;
+  struct Forget {
+    ~Forget() { noted = nullptr; }
+  } forget;
+  try {
+    auto soil = std::make_unique<SoilInstance>(noting, "/soil", params, ".");
+    *self = note.self;
+    return soil;
+  } catch (const ConfigError&) {
+    *error = note.error;
+    throw;
+  }
+}
+
+/// The plugin's message `plugin` when the engine's exception `e` quotes it (the plugin refused),
+/// else the engine's own message (the engine refused before the plugin was called).
+std::string plugin_message(const std::exception& e, const std::string& plugin) {
+  const std::string what = e.what();
+  return !plugin.empty() && what.find(plugin) != std::string::npos ? plugin : what;
 }
 
 }  // namespace
 
+const ComponentType& soil_type(const std::string& type) {
+  static PluginRegistry registry;
+  // Copies: the registry's list of types moves as libraries are added.
+  static std::map<std::string, ComponentType> found;
+  if (auto it = found.find(type); it != found.end()) return it->second;
+  const std::filesystem::path file = std::filesystem::path(RUMBLE_TEST_PLUGIN_DIR) / (type + ".so");
+  registry.load_library(file);
+  const ComponentType* loaded = registry.find(RUMBLE_KIND_SOIL, type);
+  if (loaded == nullptr)
+    throw std::runtime_error("no soil type '" + type + "' in " + file.string());
+  return found.emplace(type, *loaded).first->second;
+}
+
 const rumble_factory& soil_factory(const std::string& type) {
-  const rumble_plugin_descriptor& d = descriptor(type);
-  for (std::uint64_t i = 0; i < d.n_factories; ++i) {
-    const rumble_factory& f = d.factories[i];
-    if (f.kind == RUMBLE_KIND_SOIL && type == f.type_name) return f;
-  }
-  throw std::runtime_error("no soil type " + type + " in its plugin");
+  return *soil_type(type).factory;
 }
 
 std::string creation_error(const std::string& type, const std::string& params_json) {
-  const rumble_factory& f = soil_factory(type);
-  const rumble_host host = make_host();
-  rumble_instance* instance = nullptr;
-  const char* error = nullptr;
-  const std::string params = with_defaults(f, params_json);
-  if (f.create(params.c_str(), &host, &instance, &error) == RUMBLE_OK) {
-    static_cast<const rumble_soil_api*>(f.api)->common.destroy(instance);
-    return "";
+  rumble_instance* self = nullptr;
+  std::string error;
+  try {
+    create(type, params_json, &self, &error);
+  } catch (const ConfigError& e) {
+    return plugin_message(e, error.empty() ? "no message" : error);
   }
-  return error != nullptr ? error : "(no message)";
+  return "";
 }
 
 std::vector<rumble_footprint> sleeper_row(std::size_t n, double spacing, double length,
@@ -78,82 +133,138 @@ std::vector<rumble_footprint> sleeper_row(std::size_t n, double spacing, double 
   return row;
 }
 
-TestSoil::TestSoil(const std::string& type, const std::string& params_json) : host_(make_host()) {
-  host_.host_data = &logs_;
-  host_.log = [](void* data, int32_t /*level*/, const char* message) {
-    static_cast<std::vector<std::string>*>(data)->emplace_back(message);
-  };
-  const rumble_factory& f = soil_factory(type);
-  api_ = static_cast<const rumble_soil_api*>(f.api);
-  const char* error = nullptr;
-  const std::string params = with_defaults(f, params_json);
-  if (f.create(params.c_str(), &host_, &self_, &error) != RUMBLE_OK)
-    throw std::runtime_error(std::string("create failed: ") + (error ? error : ""));
+VectorXd static_displacement(SoilInstance& soil, const VectorXd& F) {
+  const std::vector<double> f(F.data(), F.data() + F.size());
+  std::vector<double> u;
+  soil.initialize(0.0, f, u);
+  return Eigen::Map<const VectorXd>(u.data(), static_cast<Eigen::Index>(u.size()));
 }
 
-void TestSoil::set_results_dir(const std::string& dir) {
-  results_dir_ = dir;
-  host_.results_dir = results_dir_.c_str();
+void advance_waveform(SoilInstance& soil, double t, double H, unsigned order,
+                      const VectorXd& coeff) {
+  const auto n = static_cast<std::uint64_t>(coeff.size() / (order + 1));
+  const rumble_waveform w{order, n, coeff.data()};
+  soil.advance(t, H, w);
 }
 
-std::string TestSoil::last_log(const std::string& text) const {
-  for (auto line = logs_.rbegin(); line != logs_.rend(); ++line)
-    if (line->find(text) != std::string::npos) return *line;
-  return "";
+void advance_linear(SoilInstance& soil, double t, double H, const VectorXd& f0,
+                    const VectorXd& f1) {
+  VectorXd coeff(2 * f0.size());
+  coeff << f0, f1 - f0;
+  advance_waveform(soil, t, H, 1, coeff);
+}
+
+void advance_held(SoilInstance& soil, double t, double H, const VectorXd& f) {
+  advance_waveform(soil, t, H, 0, f);
+}
+
+Motion motion(const SoilInstance& soil, Eigen::Index n) {
+  Motion m{VectorXd(n), VectorXd(n)};
+  soil.motion(m.u.data(), m.v.data(), static_cast<std::size_t>(n));
+  return m;
+}
+
+MatrixXcd receptance(SoilInstance& soil, double f_hz, Eigen::Index n) {
+  std::vector<std::complex<double>> h;
+  if (!soil.frequency_response(f_hz, static_cast<std::size_t>(n), h))
+    throw std::runtime_error("soil '" + soil.type_name() + "' offers no frequency response");
+  return Eigen::Map<const MatrixXcd>(h.data(), n, n);  // column-major, as the ABI writes it
+}
+
+// ---------------------------------------------------------------- TestSoil
+
+/// Every message a logger hands it, in order.
+class TestSoil::LogCapture final : public spdlog::sinks::base_sink<std::mutex> {
+ public:
+  const std::vector<std::string>& lines() const { return lines_; }
+
+ protected:
+  void sink_it_(const spdlog::details::log_msg& msg) override {
+    lines_.emplace_back(msg.payload.data(), msg.payload.size());
+  }
+  void flush_() override {}
+
+ private:
+  std::vector<std::string> lines_;
+};
+
+TestSoil::TestSoil(const std::string& type, const std::string& params_json)
+    // The logger the engine gives every soil of this type (Instance: "<kind>/<type>").
+    : logger_(logger(std::string(kind_name(RUMBLE_KIND_SOIL)) + "/" + type)),
+      logs_(std::make_shared<LogCapture>()) {
+  logger_->sinks().push_back(logs_);
+  try {
+    std::string error;
+    soil_ = create(type, params_json, &self_, &error);
+  } catch (...) {
+    stop_listening();
+    throw;
+  }
+  api_ = static_cast<const rumble_soil_api*>(soil_factory(type).api);
 }
 
 TestSoil::~TestSoil() {
-  if (self_ != nullptr) api_->common.destroy(self_);
+  soil_.reset();
+  stop_listening();
 }
 
-void TestSoil::check(rumble_status status, const char* call) const {
-  if (status != RUMBLE_OK) {
-    throw std::runtime_error(std::string(call) + " returned " + std::to_string(status) + ": " +
-                             api_->common.last_message(self_));
+void TestSoil::stop_listening() {
+  std::erase(logger_->sinks(), static_cast<spdlog::sink_ptr>(logs_));
+}
+
+rumble_status TestSoil::refusal(const std::exception& e, const char* call,
+                                std::string* message) const {
+  if (message != nullptr) {
+    const char* said = api_->common.last_message(self_);
+    *message = plugin_message(e, said != nullptr ? said : "");
   }
+  // The status the engine turned into `e` (Instance::check: "<call> refused: " for DISCARD,
+  // "<call> failed fatally: " for FATAL); accept_layout's arrives as a ConfigError.
+  const std::string what = e.what();
+  if (dynamic_cast<const Discarded*>(&e) != nullptr ||
+      what.find(std::string(call) + " refused: ") != std::string::npos)
+    return RUMBLE_DISCARD;
+  if (what.find(std::string(call) + " failed fatally: ") != std::string::npos) return RUMBLE_FATAL;
+  return RUMBLE_ERROR;
 }
 
 rumble_status TestSoil::try_accept_layout(const std::vector<rumble_footprint>& footprints,
                                           std::string* message) {
-  const rumble_status s = api_->accept_layout(self_, footprints.data(), footprints.size());
-  if (s == RUMBLE_OK) {
-    n_ = static_cast<Eigen::Index>(footprints.size());
-  } else if (message != nullptr) {
-    *message = api_->common.last_message(self_);
+  try {
+    soil_->accept_layout(footprints);
+  } catch (const std::runtime_error& e) {
+    return refusal(e, "accept_layout", message);
   }
-  return s;
+  n_ = static_cast<Eigen::Index>(footprints.size());
+  return RUMBLE_OK;
 }
 
 void TestSoil::accept_layout(const std::vector<rumble_footprint>& footprints) {
-  std::string message;
-  if (try_accept_layout(footprints, &message) != RUMBLE_OK)
-    throw std::runtime_error("accept_layout: " + message);
+  soil_->accept_layout(footprints);
+  n_ = static_cast<Eigen::Index>(footprints.size());
 }
 
 VectorXd TestSoil::initialize(const VectorXd& static_force) {
-  VectorXd u(n_);
-  check(api_->initialize(self_, 0.0, static_force.data(), u.data(), n_), "initialize");
-  return u;
+  return static_displacement(*soil_, static_force);
+}
+
+void TestSoil::advance(double t, double H, unsigned order, const VectorXd& coeff) {
+  const rumble_waveform w{order, static_cast<std::uint64_t>(n_), coeff.data()};
+  soil_->advance(t, H, w);
 }
 
 rumble_status TestSoil::try_advance(double t, double H, unsigned order, const VectorXd& coeff,
                                     std::string* message) {
-  const rumble_waveform w{order, static_cast<std::uint64_t>(n_), coeff.data()};
-  const rumble_status s = api_->advance(self_, t, H, &w);
-  if (s != RUMBLE_OK && message != nullptr) *message = api_->common.last_message(self_);
-  return s;
-}
-
-void TestSoil::advance(double t, double H, unsigned order, const VectorXd& coeff) {
-  std::string message;
-  if (try_advance(t, H, order, coeff, &message) != RUMBLE_OK)
-    throw std::runtime_error("advance: " + message);
+  try {
+    advance(t, H, order, coeff);
+  } catch (const std::runtime_error& e) {
+    return refusal(e, "advance", message);
+  }
+  return RUMBLE_OK;
 }
 
 void TestSoil::advance_linear(double t, double H, const VectorXd& f0, const VectorXd& f1) {
-  VectorXd coeff(2 * n_);
-  coeff << f0, f1 - f0;
-  advance(t, H, 1, coeff);
+  test::advance_linear(*soil_, t, H, f0, f1);
 }
 
 void TestSoil::drive_probes(const std::function<double(double)>& force, double H, double t_end,
@@ -168,8 +279,8 @@ void TestSoil::drive_probes(const std::function<double(double)>& force, double H
     f1 << force(t + H);
     advance_linear(t, H, f0, f1);
     std::uint64_t n = 0;
-    check(api_->probe_samples(self_, times.data(), values.data(), times.size(), &n),
-          "probe_samples");
+    if (api_->probe_samples(self_, times.data(), values.data(), times.size(), &n) != RUMBLE_OK)
+      throw std::runtime_error("probe_samples: " + std::string(api_->common.last_message(self_)));
     for (std::uint64_t s = 0; s < n; ++s)
       for (std::size_t p = 0; p < probes; ++p)
         sample(times[s], p, &values[(s * probes + p) * RUMBLE_PROBE_VALUES]);
@@ -177,33 +288,45 @@ void TestSoil::drive_probes(const std::function<double(double)>& force, double H
 }
 
 VectorXd TestSoil::displacement() {
-  VectorXd u(n_), v(n_);
-  check(api_->motion(self_, u.data(), v.data(), n_), "motion");
-  return u;
+  return motion(*soil_, n_).u;
 }
 
 VectorXd TestSoil::velocity() {
-  VectorXd u(n_), v(n_);
-  check(api_->motion(self_, u.data(), v.data(), n_), "motion");
-  return v;
+  return motion(*soil_, n_).v;
 }
 
 MatrixXcd TestSoil::receptance(double f_hz) {
-  MatrixXd re(n_, n_), im(n_, n_);
-  check(api_->frequency_response(self_, f_hz, re.data(), im.data(), n_), "frequency_response");
-  return re.cast<std::complex<double>>() + std::complex<double>(0.0, 1.0) * im;
+  return test::receptance(*soil_, f_hz, n_);
 }
 
 std::vector<double> TestSoil::save() {
   std::uint64_t size = 0;
-  check(api_->common.state_size(self_, &size), "state_size");
-  std::vector<double> state(size);
-  check(api_->common.save_state(self_, state.data(), size), "save_state");
-  return state;
+  std::vector<double> state;
+  if (api_->common.state_size(self_, &size) == RUMBLE_OK) {
+    state.resize(size);
+    if (api_->common.save_state(self_, state.data(), size) == RUMBLE_OK) return state;
+  }
+  throw std::runtime_error("save: " + std::string(api_->common.last_message(self_)));
 }
 
 void TestSoil::restore(const std::vector<double>& state) {
-  check(api_->common.restore_state(self_, state.data(), state.size()), "restore_state");
+  if (api_->common.restore_state(self_, state.data(), state.size()) != RUMBLE_OK)
+    throw std::runtime_error("restore: " + std::string(api_->common.last_message(self_)));
+}
+
+const std::vector<std::string>& TestSoil::logs() const {
+  return logs_->lines();
+}
+
+std::string TestSoil::last_log(const std::string& text) const {
+  const std::vector<std::string>& lines = logs();
+  for (auto line = lines.rbegin(); line != lines.rend(); ++line)
+    if (line->find(text) != std::string::npos) return *line;
+  return "";
+}
+
+void TestSoil::set_results_dir(const std::string& dir) {
+  soil_->set_results_dir(dir);
 }
 
 }  // namespace rumble::test

@@ -1,13 +1,23 @@
-// soil_harness.hpp: drive a soil plugin through its C table (rumble_soil_api), as the engine
-// does, from the built .so in RUMBLE_TEST_PLUGIN_DIR.
+// soil_harness.hpp: the soil plugins as the engine drives them, for the tests. Each type's .so
+// (RUMBLE_TEST_PLUGIN_DIR/<type>.so, only the ones a test uses) is loaded by the engine's
+// PluginRegistry and each instance is a SoilInstance, the engine's wrapper: it gives the plugin
+// the engine's host and turns every status into an exception quoting the plugin's message.
+// The free functions on a SoilInstance are the steps every soil test takes (tests/soils/instance
+// uses them through soil_rig.hpp); TestSoil keeps, on top of them, the status-and-message view
+// of the plugin tests (tests/soils, tests/fem, tests/fem_mesh_file).
+// Units: SI throughout, z down (abi.h): F > 0 [N] pushes the soil down, u > 0 [m] is downward.
 #pragma once
 
 #include <rumble/abi.h>
 
 #include <Eigen/Dense>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
+
+#include "plugin/instance.hpp"
+#include "plugin/registry.hpp"
 
 namespace rumble::test {
 
@@ -15,11 +25,13 @@ using Eigen::MatrixXcd;
 using Eigen::MatrixXd;
 using Eigen::VectorXd;
 
-/// The factory of a soil type, from <RUMBLE_TEST_PLUGIN_DIR>/<type>.so (loaded once, never
-/// unloaded).
+/// The soil type `type` from RUMBLE_TEST_PLUGIN_DIR/<type>.so, loaded on first use (and never
+/// unloaded); throws PluginLoadError when the file is missing or no plugin.
+const ComponentType& soil_type(const std::string& type);
+/// Its factory, as the plugin declared it (type name, params schema).
 const rumble_factory& soil_factory(const std::string& type);
 
-/// The error message create() returns for these params ("" when it succeeds).
+/// The plugin's message when it refuses these params at creation, "" when it accepts them.
 std::string creation_error(const std::string& type, const std::string& params_json);
 
 /// n whole-sleeper footprints on the track axis, x = i spacing [m], length (across) x width
@@ -27,8 +39,31 @@ std::string creation_error(const std::string& type, const std::string& params_js
 std::vector<rumble_footprint> sleeper_row(std::size_t n, double spacing = 0.6, double length = 2.6,
                                           double width = 0.26);
 
-/// One soil instance created by the plugin's factory; calls other than try_accept_layout()
-/// throw std::runtime_error with the plugin's message unless they return RUMBLE_OK.
+/// Static displacements [m] under the footprint forces F [N] (SoilInstance::initialize at t 0).
+VectorXd static_displacement(SoilInstance& soil, const VectorXd& F);
+/// Advance over [t, t + H] with a waveform of `order`: coeff[k n + i] (rumble_waveform).
+void advance_waveform(SoilInstance& soil, double t, double H, unsigned order,
+                      const VectorXd& coeff);
+/// Advance with the force varying linearly from f0 (at t) to f1 (at t + H): an order-1
+/// waveform, coefficients {f0, f1 - f0}.
+void advance_linear(SoilInstance& soil, double t, double H, const VectorXd& f0, const VectorXd& f1);
+/// Advance with the force held at f (order-0 waveform).
+void advance_held(SoilInstance& soil, double t, double H, const VectorXd& f);
+
+struct Motion {
+  VectorXd u;  // m
+  VectorXd v;  // m/s
+};
+Motion motion(const SoilInstance& soil, Eigen::Index n);
+
+/// Receptance H(f) [m/N], n x n (u = H F, e^{+i w t}); throws when the soil offers none.
+MatrixXcd receptance(SoilInstance& soil, double f_hz, Eigen::Index n);
+
+/// One soil, a SoilInstance labelled "/soil" in the scenario directory ".", with the plugin's
+/// statuses and messages in view: the try_ calls return the status the engine turned into an
+/// exception and the plugin's own message (the engine's exception quotes it), and the others
+/// throw the engine's exception (std::runtime_error) unless the plugin returns RUMBLE_OK (or
+/// RUMBLE_WARNING, which the engine logs).
 class TestSoil {
  public:
   TestSoil(const std::string& type, const std::string& params_json);
@@ -36,7 +71,10 @@ class TestSoil {
   TestSoil(const TestSoil&) = delete;
   TestSoil& operator=(const TestSoil&) = delete;
 
-  /// accept_layout's status; its message in *message when not RUMBLE_OK.
+  /// The engine's wrapper, for the calls TestSoil does not name.
+  SoilInstance& instance() { return *soil_; }
+
+  /// accept_layout's status; the plugin's message in *message when not RUMBLE_OK.
   rumble_status try_accept_layout(const std::vector<rumble_footprint>& footprints,
                                   std::string* message);
   void accept_layout(const std::vector<rumble_footprint>& footprints);
@@ -48,9 +86,14 @@ class TestSoil {
   void advance(double t, double H, unsigned order, const VectorXd& coeff);
   /// Advance with the force varying linearly from f0 (at t) to f1 (at t + H).
   void advance_linear(double t, double H, const VectorXd& f0, const VectorXd& f1);
+  /// Status of advance(); the plugin's message in *message when not RUMBLE_OK (the engine's
+  /// own when it refused before calling the plugin: forces that are not finite).
+  rumble_status try_advance(double t, double H, unsigned order, const VectorXd& coeff,
+                            std::string* message);
   /// Drives a soil of one footprint from t = 0 to t_end in steps of H, the force [N] linear in
   /// each step from force(t) to force(t + H), and hands each probe sample to
-  /// sample(t, probe, values): the RUMBLE_PROBE_VALUES values of probe `probe` at time t.
+  /// sample(t, probe, values): the RUMBLE_PROBE_VALUES values of probe `probe` at time t. The
+  /// probes are the ones set through api() (read back through it too).
   void drive_probes(const std::function<double(double)>& force, double H, double t_end,
                     std::size_t probes,
                     const std::function<void(double, std::size_t, const double*)>& sample);
@@ -58,17 +101,24 @@ class TestSoil {
   VectorXd velocity();
   /// Receptance H(f) [m/N], n x n.
   MatrixXcd receptance(double f_hz);
+
+  /// The soil's state through the C table's save_state / restore_state (raw, as api()): the
+  /// engine keeps checkpoints inside one instance (SoilInstance::checkpoint_*, reached through
+  /// instance()), while this state can be read, sized and restored into another instance of
+  /// the same layout, which is what the tests of it check.
   std::vector<double> save();
   void restore(const std::vector<double>& state);
 
-  /// Status and message of advance(), for the refusals.
-  rumble_status try_advance(double t, double H, unsigned order, const VectorXd& coeff,
-                            std::string* message);
-
+  /// The raw C boundary of this same instance, for the tests of what the engine's wrapper does
+  /// not let through (a status with its message as returned, the probes, the plugin's own
+  /// checkpoints, calls counted for allocations). Calls made here bypass SoilInstance.
   const rumble_soil_api& api() const { return *api_; }
   rumble_instance* self() const { return self_; }
-  /// The messages the soil logged through the host, in order.
-  const std::vector<std::string>& logs() const { return logs_; }
+
+  /// What the soil logged through the engine's host while this TestSoil lived, in order (its
+  /// type's spdlog logger, at the engine's log level: info and above by default; a soil of the
+  /// same type alive at the same time would be heard too).
+  const std::vector<std::string>& logs() const;
   /// The last logged message containing `text`, or "".
   std::string last_log(const std::string& text) const;
   /// Makes the soil part of a run writing into `dir` (the host's results_dir; "" until then, as
@@ -76,12 +126,16 @@ class TestSoil {
   void set_results_dir(const std::string& dir);
 
  private:
-  void check(rumble_status status, const char* call) const;
+  class LogCapture;
+  void stop_listening();
+  /// The plugin's message (when the engine's exception quotes it) and status for `e`, thrown
+  /// by the engine's wrapper for `call`.
+  rumble_status refusal(const std::exception& e, const char* call, std::string* message) const;
+  std::shared_ptr<spdlog::logger> logger_;
+  std::shared_ptr<LogCapture> logs_;  // one of logger_'s sinks while the soil lives
+  std::unique_ptr<SoilInstance> soil_;
   const rumble_soil_api* api_ = nullptr;
   rumble_instance* self_ = nullptr;
-  rumble_host host_{};
-  std::vector<std::string> logs_;
-  std::string results_dir_;
   Eigen::Index n_ = 0;
 };
 
