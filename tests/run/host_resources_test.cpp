@@ -51,11 +51,12 @@ TEST(HostResources, FreeDiskOfAMissingPathIsItsNearestExistingParents) {
   EXPECT_TRUE(std::isfinite(free_disk_bytes("/")));
 }
 
+/// The keys the size estimate reads, as a validated scenario has them (defaults filled).
 nlohmann::json sized_scenario(double sleepers, double t_end, double macro_step) {
   return {{"time", {{"end", t_end}, {"macro_step", macro_step}}},
           {"track", {{"sleepers", {{"count", sleepers}}}}},
           {"vehicles", nlohmann::json::array({nlohmann::json::object()})},
-          {"outputs", {{"every", 1}}},
+          {"outputs", {{"every", 1}, {"receiver_interval", 0}}},
           {"coupling", {{"type", "gauss_seidel"}}}};
 }
 
