@@ -44,23 +44,24 @@ with open(tree / "plugins/soils/winkler/CMakeLists.txt", "a") as f:
 with open(tree / "engine/post/src/ppv.cpp", "a") as f:
     f.write("namespace rumble {\nint too_long_for_a_reader() {\n  int x = 0;\n" +
             "  ++x;\n" * 86 + "  return x;\n}\n}  // namespace rumble\n")
-length = subprocess.run([sys.executable, str(tree / "tools/check_function_length.py")],
-                        capture_output=True, text=True)
-print(length.stdout, length.stderr)
-if length.returncode != 1 or "too_long_for_a_reader is 90 lines" not in length.stdout:
-    print(f"function-length check: exit status {length.returncode} (1 expected), the 90-line "
-          "function not reported")
-    sys.exit(1)
 
+
+def expect_caught(tool, message, what):
+    """Runs tools/`tool` on the broken tree; exits unless it fails (status 1) saying `message`."""
+    run = subprocess.run([sys.executable, str(tree / "tools" / tool)], capture_output=True,
+                         text=True)
+    print(run.stdout, run.stderr)
+    if run.returncode != 1 or message not in run.stdout:
+        print(f"{tool}: exit status {run.returncode} (1 expected), {what} not reported")
+        sys.exit(1)
+
+
+expect_caught("check_function_length.py", "too_long_for_a_reader is 90 lines",
+              "the 90-line function")
 edit("plugins/vehicles/single_wheel/single_wheel.cpp", 'p.get<double>("wheel_radius")',
      'p.get_or<double>("wheel_radius", 0.46)')
-once = subprocess.run([sys.executable, str(tree / "tools/check_declared_once.py")],
-                      capture_output=True, text=True)
-print(once.stdout, once.stderr)
-if once.returncode != 1 or 'writes the default of "wheel_radius" again' not in once.stdout:
-    print(f"declared-once check: exit status {once.returncode} (1 expected), the repeated "
-          "default not reported")
-    sys.exit(1)
+expect_caught("check_declared_once.py", 'writes the default of "wheel_radius" again',
+              "the repeated default")
 
 check = subprocess.run([sys.executable, str(tree / "tools/check_architecture.py"),
                         "--scratch", str(scratch / "check")], capture_output=True, text=True)
