@@ -84,4 +84,46 @@ TEST(Params, WithoutASchemaOnlyGivenValuesExist) {
   EXPECT_THROW((void)p.get<double>("stiffness"), std::invalid_argument);
 }
 
+constexpr const char* kChoiceSchema = R"({
+  "type": "object",
+  "properties": {
+    "type": {"enum": ["spring", "pml"], "default": "spring"},
+    "pml": {"type": "object", "properties": {"elements": {"type": "number", "default": 8}}},
+    "alpha": {"type": "number"},
+    "step": {"type": "number"}
+  },
+  "allOf": [
+    {"if": {"required": ["type"], "properties": {"type": {"const": "pml"}}},
+     "then": {"properties": {"pml": {"default": {}}, "alpha": {"default": 1.5}}}}
+  ]
+})";
+
+TEST(Params, ADefaultOnlyOneChoiceHasFollowsTheChoice) {
+  const rumble::Params pml(R"({"type": "pml"})", kChoiceSchema);
+  EXPECT_EQ(pml.get<double>("alpha"), 1.5) << "the then-branch's default";
+  EXPECT_EQ(pml.object("pml").get<double>("elements"), 8.0);
+  const rumble::Params spring("{}", kChoiceSchema);
+  EXPECT_FALSE(spring.optional<double>("alpha").has_value())
+      << "the if requires type, absent here: the choice is not pml";
+  EXPECT_THROW((void)spring.get<double>("alpha"), std::invalid_argument);
+}
+
+TEST(Params, OptionalGivesTheValueTheDefaultOrNothing) {
+  const rumble::Params p(R"({"step": 0.5})", kChoiceSchema);
+  EXPECT_EQ(p.optional<double>("step"), 0.5);
+  EXPECT_EQ(rumble::Params("{}", kSchema).optional<double>("mass"), 1000.0);
+  EXPECT_FALSE(rumble::Params("{}", kChoiceSchema).optional<double>("step").has_value());
+}
+
+TEST(Params, TheComponentsNamePrefixesEveryMessage) {
+  const rumble::Params p(R"({"mesh": {"f_max": "high"}})", kSchema, "acme_soil");
+  EXPECT_EQ(p.object("mesh").pointer("f_max"), "acme_soil: params/mesh/f_max: ");
+  try {
+    (void)p.get<std::string>("name");
+    FAIL() << "read a value that does not exist";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "acme_soil: params/name: missing, and the schema gives no default");
+  }
+}
+
 }  // namespace

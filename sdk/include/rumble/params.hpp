@@ -14,6 +14,7 @@
 #include <initializer_list>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -35,12 +36,15 @@ inline std::string object_schema(std::initializer_list<std::string> properties) 
 class Params {
  public:
   /// `schema_json`: the component's params schema (its params_schema()); optional, but without
-  /// it a key that is absent has no default here.
-  explicit Params(const std::string& json_text, const char* schema_json = nullptr)
+  /// it a key that is absent has no default here. `component`: prefixes every message
+  /// ("fem: params/mesh/radius: ..."); "" for none.
+  explicit Params(const std::string& json_text, const char* schema_json = nullptr,
+                  const std::string& component = "")
       : j_(nlohmann::json::parse(json_text)),
         schema_(std::make_shared<const nlohmann::json>(
             schema_json != nullptr ? nlohmann::json::parse(schema_json) : nlohmann::json())),
-        node_(schema_.get()) {}
+        node_(schema_.get()),
+        where_(component.empty() ? "params/" : component + ": params/") {}
 
   /// True when params give `key` (a default does not count: this tells what the user set).
   bool has(const char* key) const { return j_.contains(key) && !j_.at(key).is_null(); }
@@ -67,6 +71,18 @@ class Params {
     return has(key) ? get<T>(key) : fallback;
   }
 
+  /// The value of `key`, else the schema's default, else nothing: for a key whose default
+  /// derives from other values, which the caller computes where it reads it.
+  template <class T>
+  std::optional<T> optional(const char* key) const {
+    if (!has(key) && schema_default(key) == nullptr) return std::nullopt;
+    return get<T>(key);
+  }
+
+  /// The message prefix of `key`: "params/mesh/radius: " (with the component's name before it
+  /// when given), for a check of the caller's own to name the key as get() does.
+  std::string pointer(const char* key) const { return where_ + key + ": "; }
+
   /// The object `key` (given, else the schema's default, else empty), read against its own
   /// schema: its get() falls back to the defaults declared inside it.
   Params object(const char* key) const {
@@ -92,14 +108,48 @@ class Params {
   }
 
   const nlohmann::json* property_in(const nlohmann::json& node, const char* key, int depth) const {
+    return declaration_in(node, key, depth, [](const nlohmann::json&) { return true; });
+  }
+
+  // The first declaration of `key` below `node` that `wanted` accepts, looking in properties,
+  // then in the parts of allOf, then in the branch of an if/then/else that applies.
+  template <class Wanted>
+  const nlohmann::json* declaration_in(const nlohmann::json& node, const char* key, int depth,
+                                       const Wanted& wanted) const {
     const nlohmann::json* n = resolved(node, depth);
     if (n == nullptr || !n->is_object() || depth > kMaxDepth) return nullptr;
     if (const auto props = n->find("properties"); props != n->end() && props->contains(key))
-      return resolved(props->at(key), depth + 1);
+      if (const nlohmann::json* p = resolved(props->at(key), depth + 1); p && wanted(*p)) return p;
     if (const auto all = n->find("allOf"); all != n->end() && all->is_array())
       for (const nlohmann::json& part : *all)
-        if (const nlohmann::json* p = property_in(part, key, depth + 1)) return p;
+        if (const nlohmann::json* p = declaration_in(part, key, depth + 1, wanted)) return p;
+    if (const nlohmann::json* branch = branch_taken(*n))
+      return declaration_in(*branch, key, depth + 1, wanted);
     return nullptr;
+  }
+
+  // The "then" or "else" of `node` that applies to the params read here, for an "if" that only
+  // requires keys and compares them with "const" (a default that only one choice has: the FEM
+  // soil's boundary.pml); nullptr for no if, or one this reader cannot decide.
+  const nlohmann::json* branch_taken(const nlohmann::json& node) const {
+    const auto test = node.find("if");
+    if (test == node.end() || !test->is_object()) return nullptr;
+    bool holds = true;
+    for (const auto& [keyword, value] : test->items()) {
+      if (keyword == "required" && value.is_array()) {
+        for (const nlohmann::json& k : value)
+          holds = holds && k.is_string() && j_.contains(k.get<std::string>());
+      } else if (keyword == "properties" && value.is_object()) {
+        for (const auto& [k, rule] : value.items()) {
+          if (!rule.is_object() || rule.size() != 1 || !rule.contains("const")) return nullptr;
+          holds = holds && (!j_.contains(k) || j_.at(k) == rule.at("const"));
+        }
+      } else {
+        return nullptr;
+      }
+    }
+    const auto branch = node.find(holds ? "then" : "else");
+    return branch != node.end() ? &*branch : nullptr;
   }
 
   // `node` with its local "$ref" ("#/definitions/x") followed; nullptr for a broken one.
@@ -117,16 +167,17 @@ class Params {
   }
 
   const nlohmann::json* schema_default(const char* key) const {
-    const nlohmann::json* p = property(key);
-    if (p == nullptr || !p->is_object()) return nullptr;
-    const auto d = p->find("default");
-    return d != p->end() ? &*d : nullptr;
+    if (node_ == nullptr) return nullptr;
+    const nlohmann::json* p = declaration_in(*node_, key, 0, [](const nlohmann::json& d) {
+      return d.is_object() && d.contains("default");
+    });
+    return p != nullptr ? &p->at("default") : nullptr;
   }
 
   nlohmann::json j_;
   std::shared_ptr<const nlohmann::json> schema_;  // the whole document, for local $refs
   const nlohmann::json* node_ = nullptr;          // the schema of j_, inside *schema_
-  std::string where_ = "params/";
+  std::string where_;  // "params/" or "<component>: params/", then the path of nested objects
 };
 
 }  // namespace rumble
