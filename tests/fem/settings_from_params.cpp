@@ -7,14 +7,13 @@
 
 namespace rumble::test {
 
-fem::FemSettings settings_from(nlohmann::json params) {
+fem::FemSettings settings_from(const nlohmann::json& params) {
   static const scenario::SchemaChecker checker(fem::settings_schema());
   std::string refused;
   for (const scenario::SchemaIssue& issue : checker.check(params))
     refused += "\n  params" + issue.pointer + ": " + issue.message;
   if (!refused.empty())
     throw std::invalid_argument("the FEM schema refuses " + params.dump() + ":" + refused);
-  checker.fill_defaults(params);
   return fem::read_settings(params.dump());
 }
 

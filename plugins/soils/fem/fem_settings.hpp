@@ -115,10 +115,10 @@ struct FemSettings {
   const soils::SoilProperties& properties_at(double depth) const;
 };
 
-/// Reads params (JSON text) validated against settings_schema() with its defaults filled, and
-/// checks what the schema cannot say (relations between keys); messages start
-/// "fem: params/<key>: ...". A key the schema gives a default is required here: its absence is
-/// a caller's bug (the host fills them; the tests fill them through the engine's checker).
+/// Reads params (JSON text) validated against settings_schema(), and checks what the schema
+/// cannot say (relations between keys); messages start "fem: params/<key>: ...". A key absent
+/// from params reads the schema's default (the host fills them in already; a direct caller of
+/// the C API need not), and one with neither is a plugin bug, named as such.
 FemSettings read_settings(const std::string& params_json);
 
 }  // namespace rumble::fem

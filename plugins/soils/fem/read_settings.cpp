@@ -1,14 +1,17 @@
 // read_settings: the FEM soil's params, validated against the schema (fem_schema.cpp) and filled
-// with its defaults by the host, read once into FemSettings. Each object of the params has its
-// reader; what the schema cannot say (relations between keys, the matched layer's size, the
-// Maxwell fit) is checked here, with the key, the rule, the value and the fix. Ranges and
-// defaults are the schema's alone: none is repeated here.
+// with its defaults by the host, read once into FemSettings with the SDK's rumble::Params against
+// the same schema (so a caller of the C API that fills no default reads the schema's own, and no
+// default is written here). Each object of the params has its reader; what the schema cannot say
+// (relations between keys, the matched layer's size, the Maxwell fit) is checked here, with the
+// key, the rule, the value and the fix. Ranges and defaults are the schema's alone: none is
+// repeated here.
 #include <iomanip>
+#include <rumble/params.hpp>
 #include <sstream>
 #include <stdexcept>
 
+#include "fem_schema.hpp"
 #include "fem_settings.hpp"
-#include "params_reader.hpp"
 #include "results_file.hpp"
 #include "soil_params.hpp"
 
@@ -78,7 +81,7 @@ void check_mesh(const MeshRequest& m) {
            m.h_near);
 }
 
-MeshRequest read_mesh(const ParamsObject& mesh) {
+MeshRequest read_mesh(const rumble::Params& mesh) {
   MeshRequest m;
   m.shape = mesh.get<std::string>("shape") == "box" ? MeshShape::kBox : MeshShape::kHemisphere;
   m.radius = mesh.get<double>("radius");
@@ -114,7 +117,7 @@ void check_pml_size(const BoundaryRequest& b, const MeshRequest& m) {
 }
 
 // boundary.pml, which the schema refuses under another boundary.type and fills only under pml.
-void read_pml(const ParamsObject& pml, const MeshRequest& m, BoundaryRequest& b) {
+void read_pml(const rumble::Params& pml, const MeshRequest& m, BoundaryRequest& b) {
   // Derived when not given: mesh.radius / 2 (the schema's description says so).
   b.pml_thickness = pml.optional<double>("thickness").value_or(0.5 * m.radius);
   b.pml_reflection = pml.get<double>("reflection");
@@ -122,7 +125,7 @@ void read_pml(const ParamsObject& pml, const MeshRequest& m, BoundaryRequest& b)
   if (m.file.empty()) check_pml_size(b, m);
 }
 
-BoundaryRequest read_boundary(const ParamsObject& boundary, const MeshRequest& m) {
+BoundaryRequest read_boundary(const rumble::Params& boundary, const MeshRequest& m) {
   BoundaryRequest b;
   const std::string kind = boundary.get<std::string>("type");
   b.kind = kind == "fixed"     ? BoundaryKind::kFixed
@@ -161,7 +164,7 @@ void check_maxwell_fit(const DampingRequest& damping) {
   throw std::invalid_argument(message.str());
 }
 
-DampingRequest read_damping(const ParamsObject& damping) {
+DampingRequest read_damping(const rumble::Params& damping) {
   DampingRequest d;
   d.ratio = damping.get<double>("ratio");
   d.f_low = damping.get<double>("f_low");
@@ -176,7 +179,7 @@ DampingRequest read_damping(const ParamsObject& damping) {
   return d;
 }
 
-ReceptanceRequest read_receptance(const ParamsObject& receptance, const MeshRequest& m) {
+ReceptanceRequest read_receptance(const rumble::Params& receptance, const MeshRequest& m) {
   ReceptanceRequest r;
   r.impulse = receptance.get<std::string>("method") == "impulse";
   r.duration = receptance.get<double>("duration");
@@ -193,9 +196,9 @@ ReceptanceRequest read_receptance(const ParamsObject& receptance, const MeshRequ
 }
 
 // The integrator's keys and courant (at the params' top level).
-void read_integrator(const ParamsObject& params, FemSettings& s) {
+void read_integrator(const rumble::Params& params, FemSettings& s) {
   s.courant = params.get<double>("courant");
-  const ParamsObject integrator = params.object("integrator");
+  const rumble::Params integrator = params.object("integrator");
   s.implicit = integrator.get<std::string>("scheme") == "implicit";
   // Derived when not given: 20 steps per period at mesh.f_max (the schema's description).
   s.implicit_step = integrator.optional<double>("max_step").value_or(1.0 / (20.0 * s.mesh.f_max));
@@ -230,12 +233,11 @@ void check_pml_needs(const FemSettings& s) {
 
 FemSettings read_settings(const std::string& params_json) {
   const soils::SoilParams soil(params_json, "fem");
-  const nlohmann::json json = nlohmann::json::parse(params_json);
-  const ParamsObject params(json, "");
+  const rumble::Params params(params_json, settings_schema(), "fem");
   FemSettings s;
   s.half_space = soil.half_space();
   s.layers = soil.layers();
-  s.layer_names = read_layer_names(json);
+  s.layer_names = read_layer_names(params.json());
   s.mesh = read_mesh(params.object("mesh"));
   s.mesh_threads = params.object("mesh").get<unsigned>("threads");
   s.boundary = read_boundary(params.object("boundary"), s.mesh);

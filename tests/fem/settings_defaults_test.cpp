@@ -1,0 +1,56 @@
+// read_settings reads a default the host did not fill from the FEM soil's schema itself
+// (rumble::Params), so that params filled by the engine's checker and params as a direct caller
+// of the C API wrote them give the same settings: each default is written once, in the schema
+// (fem_schema.cpp), including those only one choice of another key has (its if/then).
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "fem_schema.hpp"
+#include "fem_settings.hpp"
+#include "scenario/schema_check.hpp"
+
+namespace rumble::test {
+namespace {
+
+using nlohmann::json;
+
+json filled(json params) {
+  static const scenario::SchemaChecker checker(fem::settings_schema());
+  checker.fill_defaults(params);
+  return params;
+}
+
+TEST(FemSettingsDefaults, UnfilledParamsReadTheSchemasDefaults) {
+  const json params = {{"E", 750e6}, {"nu", 0.3}, {"rho", 1800.0}};
+  const fem::FemSettings unfilled = fem::read_settings(params.dump());
+  const fem::FemSettings host = fem::read_settings(filled(params).dump());
+  EXPECT_EQ(unfilled.mesh.f_max, host.mesh.f_max);
+  EXPECT_EQ(unfilled.mesh.radius, host.mesh.radius);
+  EXPECT_EQ(unfilled.mesh.max_dofs, host.mesh.max_dofs);
+  EXPECT_EQ(unfilled.courant, host.courant);
+  EXPECT_EQ(unfilled.boundary.kind, fem::BoundaryKind::kViscousSpring);
+  EXPECT_EQ(unfilled.damping.maxwell, host.damping.maxwell);
+  EXPECT_EQ(unfilled.receptance.duration, host.receptance.duration);
+  EXPECT_EQ(unfilled.local_steps, host.local_steps);
+}
+
+TEST(FemSettingsDefaults, ADefaultOnlyOneChoiceHasFollowsThatChoice) {
+  const json params = {{"E", 750e6},
+                       {"nu", 0.3},
+                       {"rho", 1800.0},
+                       {"mesh", {{"shape", "box"}}},
+                       {"boundary", {{"type", "pml"}, {"springs", "liu"}}},
+                       {"damping", {{"model", "maxwell"}}}};
+  const fem::FemSettings unfilled = fem::read_settings(params.dump());
+  const fem::FemSettings host = fem::read_settings(filled(params).dump());
+  EXPECT_EQ(unfilled.boundary.pml_reflection, host.boundary.pml_reflection);
+  EXPECT_EQ(unfilled.boundary.pml_elements, host.boundary.pml_elements);
+  EXPECT_EQ(unfilled.boundary.alpha_normal, host.boundary.alpha_normal);
+  EXPECT_EQ(unfilled.damping.mechanisms, host.damping.mechanisms);
+  EXPECT_GT(host.damping.mechanisms, 0) << "the host filled it under maxwell";
+  EXPECT_GT(host.boundary.alpha_normal, 0.0) << "the host filled it under liu";
+}
+
+}  // namespace
+}  // namespace rumble::test
