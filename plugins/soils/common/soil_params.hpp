@@ -1,10 +1,12 @@
 // Reading a reduced soil's params: the two ways of giving them (directly, or from soil
 // properties), range checks with messages that name the key, the value and the rule, and the
 // JSON Schema fragments both soils share. The host has validated the params against the schema
-// already; these checks repeat what a direct caller of the C API could still get wrong, and add
-// what the schema cannot say (a direct key mixed with a soil key).
+// already. The checks here are the model's own domain, not the schema's ranges: a value a direct
+// caller of the C API could still give that would break the formulas (nu >= 0.5 divides by zero,
+// k <= 0 has no motion), and what the schema cannot say (a direct key mixed with a soil key).
 #pragma once
 
+#include <cmath>
 #include <initializer_list>
 #include <rumble/params.hpp>
 #include <sstream>
@@ -102,10 +104,9 @@ class SoilParams {
     if (!p_.has("layers")) return out;
     const auto& layers = p_.json().at("layers");
     for (std::size_t i = 0; i < layers.size(); ++i) {
-      const auto& l = layers[i];
       const std::string where = type_ + ": params/layers/" + std::to_string(i);
-      SoilLayer layer{l.value("thickness", 0.0),
-                      {l.value("E", 0.0), l.value("nu", -1.0), l.value("rho", 0.0)}};
+      const auto value = [&](const char* key) { return layer_value(layers[i], where, key); };
+      SoilLayer layer{value("thickness"), {value("E"), value("nu"), value("rho")}};
       if (!(layer.thickness > 0.0) || !std::isfinite(layer.thickness)) {
         std::ostringstream m;
         m << where << "/thickness: must be > 0 m, got " << layer.thickness;
@@ -132,6 +133,15 @@ class SoilParams {
     m << type_ << ": params/" << key << ": must be " << (strictly ? "> 0 " : ">= 0 ") << unit
       << ", got " << x;
     throw std::invalid_argument(m.str());
+  }
+
+  // A layer's number `key` (the schema requires each of a layer's four).
+  static double layer_value(const nlohmann::json& layer, const std::string& where,
+                            const char* key) {
+    const auto it = layer.find(key);
+    if (it == layer.end() || !it->is_number())
+      throw std::invalid_argument(where + "/" + key + ": missing or not a number");
+    return it->get<double>();
   }
 
   static std::string list(const std::vector<std::string>& keys) {
