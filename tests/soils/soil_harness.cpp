@@ -14,44 +14,18 @@
 #include "core/logging.hpp"
 #include "scenario/schema_check.hpp"
 
+namespace rumble {
+
+/// The plugin's handle of an instance (Instance's friend): TestSoil::self() for the tests that
+/// call the plugin's own C table.
+struct PluginHandle {
+  static rumble_instance* of(const Instance& instance) { return instance.handle(); }
+};
+
+}  // namespace rumble
+
 namespace rumble::test {
 namespace {
-
-/// The engine keeps an instance's handle to itself (Instance::handle() is protected and
-/// SoilInstance final), and TestSoil::api()/self() need it: the soil is created through a copy
-/// of its type whose factory's create() is the plugin's, called with the engine's host and
-/// arguments, noting what it returns on its way to the SoilInstance.
-struct Noted {
-  const rumble_factory* factory = nullptr;  // the plugin's
-  rumble_instance* self = nullptr;
-  std::string error;  // create()'s message, copied (static or thread-local text in the plugin)
-};
-thread_local Noted* noted = nullptr;
-
-rumble_status create_noting(const char* params, const rumble_host* host, rumble_instance** out,
-                            const char** error) {
-  const rumble_status s = noted->factory->create(params, host, out, error);
-  noted->self = *out;
-  noted->error = *error != nullptr ? *error : "";
-  return s;
-}
-
-struct NotingType {
-  rumble_factory factory{};
-  ComponentType type;
-};
-
-const ComponentType& noting_type(const std::string& name) {
-  static std::map<std::string, NotingType> types;  // nodes stay put: type.factory points in
-  auto [it, added] = types.try_emplace(name);
-  if (added) {
-    it->second.type = soil_type(name);
-    it->second.factory = *it->second.type.factory;
-    it->second.factory.create = &create_noting;
-    it->second.type.factory = &it->second.factory;
-  }
-  return it->second.type;
-}
 
 /// The params as the host hands them to the plugin: with every default of the type's schema
 /// filled in (the engine's own SchemaChecker). Not validated: the tests of the plugins' own
@@ -67,25 +41,11 @@ nlohmann::json with_defaults(const ComponentType& type, const std::string& param
   return params;
 }
 
-/// A SoilInstance of `type` from `params_json`, and the plugin's handle (*self) and creation
-/// message (*error) as create() returned them; throws the engine's ConfigError when refused.
-std::unique_ptr<SoilInstance> create(const std::string& type, const std::string& params_json,
-                                     rumble_instance** self, std::string* error) {
-  const ComponentType& noting = noting_type(type);
+/// A SoilInstance of `type` from `params_json`, as the host creates it; throws the engine's
+/// ParamsRefused when the plugin refuses them.
+std::unique_ptr<SoilInstance> create(const std::string& type, const std::string& params_json) {
   const nlohmann::json params = with_defaults(soil_type(type), params_json);
-  Noted note{soil_type(type).factory, nullptr, {}};
-  noted = &note;
-  struct Forget {
-    ~Forget() { noted = nullptr; }
-  } forget;
-  try {
-    auto soil = std::make_unique<SoilInstance>(noting, "/soil", params, ".");
-    *self = note.self;
-    return soil;
-  } catch (const ConfigError&) {
-    *error = note.error;
-    throw;
-  }
+  return std::make_unique<SoilInstance>(soil_type(type), "/soil", params, ".");
 }
 
 /// The plugin's message `plugin` when the engine's exception `e` quotes it (the plugin refused),
@@ -115,12 +75,12 @@ const rumble_factory& soil_factory(const std::string& type) {
 }
 
 std::string creation_error(const std::string& type, const std::string& params_json) {
-  rumble_instance* self = nullptr;
-  std::string error;
   try {
-    create(type, params_json, &self, &error);
+    create(type, params_json);
+  } catch (const ParamsRefused& e) {
+    return e.plugin_message();
   } catch (const ConfigError& e) {
-    return plugin_message(e, error.empty() ? "no message" : error);
+    return e.what();  // the engine refused before the plugin was called
   }
   return "";
 }
@@ -194,8 +154,8 @@ TestSoil::TestSoil(const std::string& type, const std::string& params_json)
       logs_(std::make_shared<LogCapture>()) {
   logger_->sinks().push_back(logs_);
   try {
-    std::string error;
-    soil_ = create(type, params_json, &self_, &error);
+    soil_ = create(type, params_json);
+    self_ = PluginHandle::of(*soil_);
   } catch (...) {
     stop_listening();
     throw;

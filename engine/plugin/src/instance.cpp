@@ -76,9 +76,11 @@ Instance::Instance(const ComponentType& type, std::string label, const nlohmann:
     throw_escaped("create", "an exception not derived from std::exception");
   }
   if (s != RUMBLE_OK || handle_ == nullptr) {
-    throw ConfigError(label_ + ": " + kind_name(type.kind) + " type '" + type.type_name +
-                      "' refused its params: " + (error != nullptr ? error : "no message") +
-                      " (plugin " + type.library->path.string() + ")");
+    const std::string said = error != nullptr && *error != '\0' ? error : "no message";
+    throw ParamsRefused(label_ + ": " + kind_name(type.kind) + " type '" + type.type_name +
+                            "' refused its params: " + said + " (plugin " +
+                            type.library->path.string() + ")",
+                        said);
   }
 }
 

@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "core/errors.hpp"
 #include "plugin/abi_adapter.hpp"
 #include "plugin/registry.hpp"
 
@@ -33,10 +34,26 @@ class Discarded : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// Thrown when a plugin refuses its params at creation: a ConfigError whose text gives the
+/// component's place, type and library around the plugin's words; plugin_message() is those
+/// words alone, for a caller that shows or compares them by themselves (a plugin's own message
+/// tests).
+class ParamsRefused : public ConfigError {
+ public:
+  ParamsRefused(const std::string& what, std::string plugin_message)
+      : ConfigError(what), plugin_message_(std::move(plugin_message)) {}
+  const std::string& plugin_message() const { return plugin_message_; }
+
+ private:
+  std::string plugin_message_;
+};
+
+struct PluginHandle;
+
 class Instance {
  public:
   /// label: where the component sits in the scenario, e.g. "/soil" or "/vehicles/1".
-  /// Throws ConfigError when the plugin refuses the params (its message included).
+  /// Throws ParamsRefused when the plugin refuses the params.
   Instance(const ComponentType& type, std::string label, const nlohmann::json& params,
            const std::filesystem::path& scenario_dir);
   virtual ~Instance();
@@ -104,6 +121,9 @@ class Instance {
   rumble_instance* handle() const { return handle_; }
 
  private:
+  // The plugin tests (tests/soils/soil_harness) call the plugin's own C table on the handle, to
+  // test its statuses and messages past the engine's wrapper; nothing in the engine does.
+  friend struct PluginHandle;
   static void log_callback(void* host_data, int32_t level, const char* message);
   static int32_t progress_callback(void* host_data, double fraction);
   ComponentType type_;  // a copy: the instance may outlive the registry; type_.library keeps
