@@ -11,6 +11,7 @@
 #include "cli/exit_codes.hpp"
 #include "core/errors.hpp"
 #include "core/logging.hpp"
+#include "core/thread_waits.hpp"
 
 namespace rumble::cli {
 namespace {
@@ -165,6 +166,7 @@ int help_command(const std::vector<std::string>& rest) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  prefer_passive_thread_waits();  // before any plugin loads OpenMP (core/thread_waits.hpp)
   std::vector<std::string> args(argv + 1, argv + argc);
   try {
     take_log_level(args);
