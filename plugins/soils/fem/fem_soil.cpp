@@ -37,6 +37,7 @@
 #include "statics/static_solver.hpp"
 #include "time/explicit_solver.hpp"
 #include "time/implicit_solver.hpp"
+#include "time/thread_tuner.hpp"
 #include "wave_speeds.hpp"
 
 namespace {
@@ -187,9 +188,20 @@ class FemSoil final : public rumble::Soil {
     for (std::size_t j = 0; j < footprints_.size(); ++j) static_u[j] = average(j, u_static_);
   }
 
+  void finalize() override {
+    // Which team sizes the explicit steps ran on, when the host granted more than one thread:
+    // on a busy machine, one thread most of the time (time/thread_tuner.hpp).
+    if (tuner_.sizes().size() > 1 && !tuner_.account().empty())
+      host_.log(RUMBLE_LOG_INFO, "fem: explicit steps on " + tuner_.account() +
+                                     ", each size taken as the machine let it step fastest");
+  }
+
   void advance(double t, double H, const rumble::Waveform& force) override {
     require_layout("advance");
-    op_->set_threads(host_.threads());  // granted with the run context, after the layout
+    // Granted with the run context, after the layout; the explicit step uses what the tuner finds
+    // fastest on this machine now (time/thread_tuner.hpp).
+    tuner_.grant(host_.threads());
+    op_->set_threads(implicit_ ? host_.threads() : tuner_.threads());
     if (settings_.local_steps > 1 && !implicit_ && !local_steps_chosen_) {
       enable_local_steps(H);
       local_steps_chosen_ = true;
@@ -222,10 +234,13 @@ class FemSoil final : public rumble::Soil {
     for (int k = 1; k <= sub_steps; ++k) {
       const double tau = static_cast<double>(k) / sub_steps;
       footprint_forces(force, tau, f_, force_static_.data());
-      if (implicit_)
+      const auto start = std::chrono::steady_clock::now();
+      if (implicit_) {
         implicit_->step(state_, f_, dt);
-      else
+      } else {
         op_->step(state_, f_, dt);
+        tune_threads(std::chrono::steady_clock::now() - start);
+      }
       record_probes(t + tau * H);
       const auto now = std::chrono::steady_clock::now();
       if (now - last_check > std::chrono::milliseconds(100)) {
@@ -699,6 +714,17 @@ class FemSoil final : public rumble::Soil {
           "footprint force makes the whole soil drift");
   }
 
+  // The explicit step just taken lasted `took`: the tuner may move the next to another team.
+  void tune_threads(std::chrono::steady_clock::duration took) {
+    tuner_.record(std::chrono::duration<double>(took).count());
+    if (tuner_.threads() != op_->threads()) {
+      host_.log(RUMBLE_LOG_DEBUG, "fem: the explicit step goes on " +
+                                      std::to_string(tuner_.threads()) +
+                                      " thread(s), the fastest now");
+      op_->set_threads(tuner_.threads());
+    }
+  }
+
   rumble::fem::FemSettings settings_;
   std::string params_;  // the params as validated, one line (part of the receptance cache key)
   rumble::Host host_;
@@ -728,6 +754,7 @@ class FemSoil final : public rumble::Soil {
   double sample_interval_ = 0.0, next_sample_ = -1.0;  // s
   double reported_macro_step_ = -1.0;                  // s: the stepping is logged per H
   bool local_steps_chosen_ = false;                    // integrator.local_steps: at the first H
+  rumble::fem::ThreadTuner tuner_;                     // the explicit step's team size
   std::array<Checkpoint, RUMBLE_CHECKPOINT_SLOTS> checkpoints_;
 };
 
