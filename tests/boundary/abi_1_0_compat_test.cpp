@@ -65,7 +65,8 @@ TEST(Abi10Plugin, RunsWithResultsIdenticalToTheSameSourceBuiltFor11) {
 
   // And the 1.0 soil really ran: its static displacement is F / k (k = 1e8 N/m by default), to
   // the 9 significant digits the CSV files hold, and to the static consistency the engine
-  // iterates to (1e-9 of the largest footprint displacement, track_participant.cpp).
+  // iterates to (1e-9 of the largest footprint displacement, track/static_interface.hpp, iterated
+  // in track_statics.cpp).
   std::vector<double> t_f, force, t_u, u;
   read_csv(old_dir / "footprint_force.csv", t_f, force);
   read_csv(old_dir / "footprint_displacement.csv", t_u, u);
