@@ -8,8 +8,16 @@
 // Per final step u_{k+1} = (a - b u_k) / s, so u_k = u* + (u_0 - u*) r^k with u* = a / (s + b)
 // and r = -b / s, whatever the steps' lengths. The soil's outputs are velocity then
 // displacement (the engine's soils give displacement first): the coupler must match channels by
-// group name. Each participant checks that it advances from where it is, so a track not put
-// back after a refused soil step is caught.
+// group name. Each participant checks that it advances from where it is, so a participant not
+// put back after a refused step is caught.
+//
+// Two parts, for whoever turns this template into another scheme: the contract every coupler
+// keeps with the host whatever its scheme (keeps_the_contract: the run ends at its end on both
+// sides, one report per final step with no gap, every checkpoint freed, a refused step retried
+// shorter or the run stopped with a message), which stays; and this template's own scheme,
+// Gauss-Seidel of order 0, checked against its closed form and its order of calls (the
+// functions after "This template's scheme"), which a new scheme replaces with its own answers.
+// The stand-in lets either participant save and restore its state, as the engine's do.
 // Standard C++17 and the SDK headers only: no test framework, no engine. `ctest` runs it with
 // the library's path as the argument; it prints each failed check and exits non-zero when there
 // is one.
@@ -105,16 +113,29 @@ struct StandIn {
   std::vector<double> soil_input = std::vector<double>(kFootprints, 0.0);       // F
   // Refusals: a participant refuses (DISCARD) any step longer than its limit [s].
   double track_max_step = 1.0, soil_max_step = 1.0;
-  bool track_checkpoints = true;
-  // The track's checkpoints: time and outputs per slot.
-  std::array<double, RUMBLE_CHECKPOINT_SLOTS> saved_time{};
-  std::array<std::vector<double>, RUMBLE_CHECKPOINT_SLOTS> saved_force{};
+  bool track_checkpoints = true, soil_checkpoints = true;
+  // The checkpoints: time and outputs per slot, per participant (track, soil).
+  std::array<double, RUMBLE_CHECKPOINT_SLOTS> saved_time{}, saved_soil_time{};
+  std::array<std::vector<double>, RUMBLE_CHECKPOINT_SLOTS> saved_force{}, saved_motion{};
+  std::array<std::array<bool, RUMBLE_CHECKPOINT_SLOTS>, 2> held{};  // saved and not yet freed
   // Record.
-  std::string calls;  // per advance: 'T' / 'S' (taken), 't' / 's' (refused); 'R' per restore
+  std::string calls;  // per advance: 'T' / 'S' (taken), 't' / 's' (refused); per restore 'R'
+                      // (track) or 'Q' (soil)
   int saves = 0, frees = 0;
   std::vector<Report> reports;
 
   static StandIn& of(void* ctx) { return *static_cast<StandIn*>(ctx); }
+
+  bool can_save(std::uint32_t p, std::uint32_t slot) const {
+    const bool can = p == kTrack ? track_checkpoints : p == kSoil && soil_checkpoints;
+    return can && slot < RUMBLE_CHECKPOINT_SLOTS;
+  }
+  bool holds_a_checkpoint() const {
+    for (const auto& slots : held)
+      for (const bool h : slots)
+        if (h) return true;
+    return false;
+  }
 
   static rumble_status groups(const rumble_channel_group* groups, std::uint64_t count,
                               rumble_channel_group* out, std::uint64_t capacity, std::uint64_t* n) {
@@ -186,27 +207,36 @@ struct StandIn {
     h.advance = [](void* ctx, std::uint32_t p, double t, double step) {
       return p == kTrack ? of(ctx).advance_track(t, step) : of(ctx).advance_soil(t, step);
     };
-    // Only the track is ever put back (it advances first); slots 0 .. RUMBLE_CHECKPOINT_SLOTS-1.
+    // Either participant may be put back, when it can; slots 0 .. RUMBLE_CHECKPOINT_SLOTS-1.
     h.save = [](void* ctx, std::uint32_t p, std::uint32_t slot) {
       StandIn& s = of(ctx);
-      check(p == kTrack && s.track_checkpoints && slot < RUMBLE_CHECKPOINT_SLOTS,
-            "save of the track, when it can, in a valid slot");
-      if (p != kTrack || !s.track_checkpoints || slot >= RUMBLE_CHECKPOINT_SLOTS)
-        return RUMBLE_ERROR;
+      const bool can = s.can_save(p, slot);
+      check(can, "save of a participant that can checkpoint, in a valid slot");
+      if (!can) return RUMBLE_ERROR;
       ++s.saves;
-      s.saved_time[slot] = s.track_time;
-      s.saved_force[slot] = s.force;
+      s.held[p == kTrack ? 0 : 1][slot] = true;
+      if (p == kTrack) {
+        s.saved_time[slot] = s.track_time;
+        s.saved_force[slot] = s.force;
+      } else {
+        s.saved_soil_time[slot] = s.soil_time;
+        s.saved_motion[slot] = s.motion;
+      }
       return RUMBLE_OK;
     };
     h.restore = [](void* ctx, std::uint32_t p, std::uint32_t slot) {
       StandIn& s = of(ctx);
-      check(p == kTrack && slot < RUMBLE_CHECKPOINT_SLOTS && !s.saved_force[slot].empty(),
-            "restore of a saved track slot");
-      if (p != kTrack || slot >= RUMBLE_CHECKPOINT_SLOTS || s.saved_force[slot].empty())
-        return RUMBLE_ERROR;
-      s.calls += 'R';
-      s.track_time = s.saved_time[slot];
-      s.force = s.saved_force[slot];
+      const bool saved = s.can_save(p, slot) && s.held[p == kTrack ? 0 : 1][slot];
+      check(saved, "restore of a saved slot");
+      if (!saved) return RUMBLE_ERROR;
+      s.calls += p == kTrack ? 'R' : 'Q';
+      if (p == kTrack) {
+        s.track_time = s.saved_time[slot];
+        s.force = s.saved_force[slot];
+      } else {
+        s.soil_time = s.saved_soil_time[slot];
+        s.motion = s.saved_motion[slot];
+      }
       return RUMBLE_OK;
     };
     h.step_done = [](void*, double, double, double) {
@@ -247,13 +277,15 @@ struct StandIn {
       of(ctx).reports.push_back(k);
       return RUMBLE_OK;
     };
-    h.free_checkpoint = [](void* ctx, std::uint32_t p, std::uint32_t) {
-      check(p == kTrack, "only the track's checkpoint is freed");
-      ++of(ctx).frees;
+    h.free_checkpoint = [](void* ctx, std::uint32_t p, std::uint32_t slot) {
+      StandIn& s = of(ctx);
+      check(s.can_save(p, slot), "a free of a participant that can checkpoint, in a valid slot");
+      if (s.can_save(p, slot)) s.held[p == kTrack ? 0 : 1][slot] = false;
+      ++s.frees;
       return RUMBLE_OK;
     };
     h.can_checkpoint = [](void* ctx, std::uint32_t p) -> std::int32_t {
-      return p == kTrack && of(ctx).track_checkpoints ? 1 : 0;
+      return of(ctx).can_save(p, 0) ? 1 : 0;
     };
   }
 };
@@ -306,6 +338,47 @@ double residual(const Report& r, const std::string& group, bool relative) {
   check(false, "no residual of group '" + group + "' reported");
   return -1.0;
 }
+
+// ---- The contract every coupler keeps with the host, whatever its scheme.
+
+/// The run ends at kEnd on both sides, reports each final step once with no gap or overlap from
+/// kStart to kEnd, and gives back every checkpoint it took.
+void check_contract(const StandIn& s, const std::string& what) {
+  check(std::abs(s.track_time - kEnd) < 1e-12 && std::abs(s.soil_time - kEnd) < 1e-12,
+        what + ": both participants end at the run's end");
+  double t = kStart;
+  for (const Report& r : s.reports) {
+    check(std::abs(r.t - t) < 1e-12 && r.H > 0.0, what + ": the reported steps follow each other");
+    t = r.t + r.H;
+  }
+  check(!s.reports.empty() && std::abs(t - kEnd) < 1e-12, what + ": the reports reach the end");
+  check(!s.holds_a_checkpoint(), what + ": every checkpoint is freed");
+}
+
+void keeps_the_contract(const rumble_factory& f) {
+  std::string message;
+  StandIn plain = displaced();
+  check(run(f, plain, message) == RUMBLE_OK, "run: " + message);
+  check_contract(plain, "a plain run");
+  // A refusal (DISCARD) is retried shorter after the participants are put back, or stops the
+  // run with a message saying who refused where; it never ends a run as if it were complete.
+  for (const bool soil : {true, false}) {
+    StandIn refusing = displaced();
+    (soil ? refusing.soil_max_step : refusing.track_max_step) = 0.6e-3;
+    const std::string who = soil ? "the soil" : "the track";
+    if (run(f, refusing, message) == RUMBLE_OK) {
+      check_contract(refusing, "a run where " + who + " refuses long steps");
+      for (const Report& r : refusing.reports)
+        check(r.H <= 0.6e-3 + 1e-12, "no step longer than " + who + " accepts is reported");
+    } else {
+      check(message.find("refused") != std::string::npos,
+            "a run stopped by a refusal says so: " + message);
+    }
+  }
+}
+
+// ---- This template's scheme: Gauss-Seidel of order 0 (track first). Replace these checks
+// with your scheme's answers when you change the scheme.
 
 void closed_form(const rumble_factory& f) {
   StandIn s = displaced();
@@ -427,7 +500,8 @@ int main(int argc, char** argv) {
   }
   const rumble_factory* f = load_factory(argv[1], RUMBLE_KIND_COUPLER, kType);
   if (f == nullptr) return 1;
-  closed_form(*f);
+  keeps_the_contract(*f);  // every coupler
+  closed_form(*f);         // this template's scheme, from here on
   soil_discard_is_taken_as_halves(*f);
   track_discard_is_taken_as_halves(*f);
   discard_that_cannot_be_retried_stops_the_run(*f);
