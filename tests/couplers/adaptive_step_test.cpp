@@ -53,10 +53,10 @@ const Histories& reference() {
   return u;
 }
 
-/// interface.csv's macro step column (the 7th after t), without the t = 0 row.
+/// interface.csv's macro step column (the 7th of 8 after t), without the t = 0 row.
 std::vector<double> macro_steps(const std::filesystem::path& dir, std::vector<double>& ends) {
   const Histories h = csv(dir / "interface.csv");
-  constexpr std::size_t kColumns = 7;
+  constexpr std::size_t kColumns = 8;
   std::vector<double> steps;
   ends.clear();
   for (std::size_t k = 1; k < h.times.size(); ++k) {
