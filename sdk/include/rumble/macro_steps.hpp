@@ -14,9 +14,8 @@
 //   e = max over groups g of  absolute_g / max(tolerance scale_g, absolute_tolerance_g)
 // (step_error()): each group's residual relative to its largest value so far in the run, with
 // a floor in the group's unit, since a group that starts at rest (the footprint velocity) has
-// no scale at first and would read 1 at its first moving step,
-// and the next step (the usual controller for a local error of order p + 1, e.g. Hairer,
-// Norsett & Wanner, Solving ODEs I, II.4) is
+// no scale at first and would read 1 at its first moving step. The next step is the usual
+// controller's for a local error of order p + 1 (docs/couplers.md, adaptive macro steps):
 //   h_next = h clamp(safety (1 / e)^(1 / (p + 1)), min_change, max_change)
 // within [min_step, max_step] (applied to the unrounded step) and rounded to a whole number of
 // min_step, so that participants that sub-cycle at a step dividing min_step keep one sub-step
