@@ -110,8 +110,9 @@ TEST(Implicit, RecordsIterationsPerStep) {
   EXPECT_NEAR(c["iterations"]["total"].get<double>(),
               c["iterations"]["mean_per_step"].get<double>() * 10, 1e-9);
   EXPECT_GE(c["iterations"]["max_per_step"], 2);
-  // interface.csv: residual, power, energy, iterations, track energy, energy residual, macro step
-  constexpr std::size_t kColumns = 7;
+  // interface.csv: residual, power, energy, iterations, track energy, energy residual, macro
+  // step, predictor residual
+  constexpr std::size_t kColumns = 8;
   std::vector<double> times, values;
   read_csv(r.dir / "interface.csv", times, values);
   ASSERT_EQ(times.size(), 11u);

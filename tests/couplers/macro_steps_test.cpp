@@ -3,7 +3,9 @@
 //   - fixed steps are exactly the SDK 1.1 ones (index-computed starts, a short last step);
 //   - the controller grows the step by max_change while the error is 0, shrinks it while the
 //     error is large, keeps every step a whole number of min_step within the bounds, ends
-//     exactly at t_end, and settles where the error is on target for an error that grows with h;
+//     exactly at t_end, and settles where the error model puts it for an error of order p + 1
+//     in h, p = 0 and 1;
+//   - a step above the tolerance is taken again, shorter;
 //   - inverted bounds are refused with both values and the fix;
 //   - the energy residual of a step is the trapezoid of the power residual (the force side's
 //     forces on the velocities it was given minus the motion side's given forces on its
@@ -42,7 +44,7 @@ TEST(MacroSteps, FixedStepsAreTheIndexedOnes) {
   for (; !steps.done(); ++k) {
     EXPECT_EQ(steps.t(), rumble::coupling::macro_step_start(0.0, 1e-3, k));
     EXPECT_EQ(steps.h(), rumble::coupling::macro_step_length(0.0, 0.0105, 1e-3, k));
-    steps.accept(123.0, 1.0);  // energies do not steer fixed steps
+    steps.accept(123.0, 0);  // errors do not steer fixed steps
   }
   EXPECT_EQ(k, 11u);
   EXPECT_EQ(steps.error(), 0.0);
@@ -63,7 +65,7 @@ TEST(MacroSteps, AnErrorFreeRunGrowsToTheLongestStepAndEndsOnTime) {
     }
     previous = h;
     end = steps.t() + h;
-    steps.accept(0.0, 1.0);
+    steps.accept(0.0, 0);
   }
   EXPECT_DOUBLE_EQ(end, t_end);
   EXPECT_DOUBLE_EQ(steps.t(), t_end);
@@ -71,25 +73,50 @@ TEST(MacroSteps, AnErrorFreeRunGrowsToTheLongestStepAndEndsOnTime) {
 
 TEST(MacroSteps, ALargeErrorShrinksTheStepToTheShortest) {
   MacroSteps steps(0.0, 1.0, 2e-3, adaptive(1e-4, 2e-3));
-  for (int k = 0; k < 30; ++k) steps.accept(1e6, 1.0);  // error >> 1: every change 0.2
+  for (int k = 0; k < 30; ++k) steps.accept(1e6, 0);  // error >> 1: every change 0.2
   EXPECT_DOUBLE_EQ(steps.h(), 1e-4);
   EXPECT_GT(steps.error(), 1.0);
 }
 
-TEST(MacroSteps, SettlesWhereTheErrorIsOnTarget) {
-  // A first-order scheme: residual power c h (energy residual c h^2 per step) against a steady
-  // power of 1 W through the cut, so the error is c h / tolerance and is on target (safety 0.9)
-  // at h = 0.9 tolerance / c.
-  AdaptiveStep a = adaptive(1e-6, 1e-2);
-  const double c = 1e3;  // W/s
-  const double expected = a.safety * a.tolerance / c;
-  MacroSteps steps(0.0, 0.5, 1e-2, a);
-  for (int k = 0; k < 200 && !steps.done(); ++k) {
-    const double h = steps.h();
-    steps.accept(c * h * h, 1.0 * h);
+TEST(MacroSteps, SettlesWhereTheErrorModelPutsIt) {
+  // A residual c h^(p + 1) (extrapolation of order p) is on the tolerance at
+  // h* = (tolerance / c)^(1 / (p + 1)). Each step sets h_next = safety h e^(-1 / (p + 1)) =
+  // safety h*: the controller lands there in one step and stays, its error safety^(p + 1).
+  for (const std::uint32_t p : {0u, 1u}) {
+    const AdaptiveStep a = adaptive(1e-6, 1e-2);
+    const double c = p == 0 ? 10.0 : 1e5;  // 1/s or 1/s^2
+    const double target = a.safety * std::pow(a.tolerance / c, 1.0 / (p + 1.0));
+    MacroSteps steps(0.0, 0.5, 1e-3, a);
+    for (int k = 0; k < 50 && !steps.done(); ++k) {
+      const double h = steps.h();
+      steps.accept(c * std::pow(h, p + 1.0) / a.tolerance, p);
+    }
+    EXPECT_NEAR(steps.h() / target, 1.0, 0.02) << p;  // min_step rounding: 1e-6 of 9e-4, 2.8e-4
+    EXPECT_NEAR(steps.error(), std::pow(a.safety, p + 1.0), 0.02) << p;
   }
-  EXPECT_NEAR(steps.h() / expected, 1.0, 0.02);  // min_step rounding: 1e-6 of 4.5e-5
-  EXPECT_NEAR(steps.error(), a.safety, 0.05);
+}
+
+TEST(MacroSteps, AStepAboveTheToleranceIsTakenAgainShorter) {
+  const AdaptiveStep a = adaptive(1e-4, 2e-3);
+  MacroSteps steps(0.0, 1.0, 1e-3, a);
+  EXPECT_FALSE(steps.retake(0.5, 1));
+  EXPECT_DOUBLE_EQ(steps.h(), 1e-3);
+  // 8 times the tolerance at second order: h 0.9 / sqrt(8) = 0.32 ms, rounded to 0.3 ms.
+  EXPECT_TRUE(steps.retake(8.0, 1));
+  EXPECT_NEAR(steps.h(), 3e-4, 1e-15);
+  EXPECT_EQ(steps.retaken(), 1u);
+  EXPECT_EQ(steps.taken(), 0u);
+}
+
+TEST(MacroSteps, TheStepErrorIsEachGroupsResidualOnItsScaleWithAFloor) {
+  const AdaptiveStep a = adaptive(1e-4, 1e-3);
+  const double tolerance = a.tolerance, floor = a.absolute.at("footprint_velocity");
+  // The displacement on its scale: 0.5 of the tolerance. The velocity from rest (no scale yet):
+  // against its floor alone, 3 times it.
+  const rumble::GroupResidual r[2] = {{"footprint_displacement", 0.5 * tolerance * 1e-3, 0.0, 1e-3},
+                                      {"footprint_velocity", 3.0 * floor, 1.0, 0.0}};
+  EXPECT_DOUBLE_EQ(rumble::coupling::step_error(a, r, 1), 0.5);
+  EXPECT_DOUBLE_EQ(rumble::coupling::step_error(a, r, 2), 3.0);
 }
 
 TEST(MacroSteps, InvertedBoundsAreRefusedWithBothValues) {
@@ -110,10 +137,11 @@ TEST(MacroSteps, DefaultsComeFromTheSchemaAlone) {
   const AdaptiveStep a = adaptive(1e-4, 1e-3);
   const nlohmann::json& p = schema.at("properties");
   EXPECT_EQ(a.tolerance, p.at("tolerance").at("default").get<double>());
-  EXPECT_EQ(a.power_floor, p.at("power_floor").at("default").get<double>());
   EXPECT_EQ(a.safety, p.at("safety").at("default").get<double>());
-  EXPECT_EQ(a.proportional_gain, p.at("proportional_gain").at("default").get<double>());
-  EXPECT_EQ(a.integral_gain, p.at("integral_gain").at("default").get<double>());
+  const nlohmann::json& floors = p.at("absolute_tolerance").at("properties");
+  EXPECT_EQ(a.absolute.size(), floors.size());
+  for (const auto& [group, floor] : a.absolute)
+    EXPECT_EQ(floor, floors.at(group).at("default").get<double>()) << group;
   EXPECT_EQ(a.retake, p.at("retake").at("default").get<bool>());
   EXPECT_DOUBLE_EQ(a.min_step, 1e-4);
 }

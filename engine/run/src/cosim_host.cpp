@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <string_view>
 
 #include "core/errors.hpp"
 #include "core/logging.hpp"
@@ -28,10 +29,25 @@ void log_from_coupler(void*, int32_t level, const char* message) {
 
 }  // namespace
 
+const char* StepOutcome::predicted_group(const rumble_group_residual& g) {
+  constexpr std::string_view kPrefix = RUMBLE_PREDICTOR_RESIDUAL_PREFIX;
+  if (g.group == nullptr || std::string_view(g.group).substr(0, kPrefix.size()) != kPrefix)
+    return nullptr;
+  return g.group + kPrefix.size();
+}
+
 double StepOutcome::max_relative_residual() const {
   double r = 0.0;
-  for (const rumble_group_residual& g : residuals) r = std::max(r, g.relative);
+  for (const rumble_group_residual& g : residuals)
+    if (predicted_group(g) == nullptr) r = std::max(r, g.relative);
   return r;
+}
+
+double StepOutcome::predictor_residual() const {
+  double r = -1.0;
+  for (const rumble_group_residual& g : residuals)
+    if (predicted_group(g) != nullptr) r = std::max(r, g.relative);
+  return r >= 0.0 ? r : max_relative_residual();
 }
 
 template <class F>

@@ -50,7 +50,7 @@ RunRecorder::RunRecorder(ResultsDirectory& results, const TrackParticipant& trac
       results.file("interface.csv"),
       std::vector<std::string>{"t [s]", "relative residual [-]", "power at cut [W]",
                                "energy exchanged [J]", "iterations [-]", "track energy at cut [J]",
-                               "energy residual [J]", "macro step [s]"});
+                               "energy residual [J]", "macro step [s]", "predictor residual [-]"});
   for (const SoilSide* e : extras) {
     extras_.push_back(
         {e,
@@ -78,7 +78,7 @@ RunRecorder::RunRecorder(ResultsDirectory& results, const TrackParticipant& trac
 
 void RunRecorder::record_initial() {
   record_track(0.0);
-  record_soil(0.0, 0.0, 0, 0.0);
+  record_soil(0.0, {}, 0, 0.0);
   for (std::size_t e = 0; e < extras_.size(); ++e) record_extra(e, 0.0);
 }
 
@@ -112,7 +112,7 @@ void RunRecorder::record_track(double t) {
   track_energy_.push_back(track_work_.add(force_.data(), track_u_.data()));
 }
 
-void RunRecorder::record_soil(double t, double residual, std::uint32_t iterations,
+void RunRecorder::record_soil(double t, StepResiduals residuals, std::uint32_t iterations,
                               double macro_step) {
   const std::size_t n = force_.size();
   // The force the soil really took (an explicit scheme may give it an extrapolated one, not the
@@ -132,10 +132,11 @@ void RunRecorder::record_soil(double t, double residual, std::uint32_t iteration
                                                                    : track_energy_.back();
   ++soil_records_;
   energy_residual_ = track_energy - energy_;
-  const double iface[7] = {
-      residual,         power,     energy_, static_cast<double>(iterations), track_energy,
-      energy_residual_, macro_step};
-  interface_->row(t, iface, 7);
+  const double iface[8] = {residuals.final, power,
+                           energy_,         static_cast<double>(iterations),
+                           track_energy,    energy_residual_,
+                           macro_step,      residuals.predictor};
+  interface_->row(t, iface, 8);
   if (receivers_) {
     soil_.soil().receiver_velocity(rx_v_.data(), rx_v_.size());
     for (std::size_t r = 0; r < rx_v_.size(); ++r)

@@ -214,9 +214,13 @@ void summarize_coupling(SummaryWriter& summary, const StepObserver& observer,
   // Per channel group, relative to the group's largest value over the run (run_residuals.hpp):
   // the velocity of an explicit scheme's held inputs lags the produced one by more than the
   // displacement does, which a single maximum over the groups would hide.
+  // The predictor's residuals: the coupling error, of the scheme's order (docs/couplers.md).
   const RunResiduals& residuals = observer.residuals();
+  const RunResiduals& predictor = observer.predictor_residuals();
   summary.set("interface", {{"max_relative_residual", residuals.largest_relative()},
                             {"max_relative_residual_by_group", residuals.relative()},
+                            {"predictor_relative_residual", predictor.largest_relative()},
+                            {"predictor_relative_residual_by_group", predictor.relative()},
                             {"max_absolute_residual_by_group", residuals.absolute()},
                             {"energy_exchanged_J", recorder.energy_exchanged()},
                             {"track_energy_J", recorder.track_energy()},

@@ -48,7 +48,7 @@ bool StepObserver::Reach::advance(double t, std::size_t every, double t_end) {
 
 void StepObserver::operator()(const StepOutcome& step) {
   const double t = step.t + step.H;
-  for (const rumble_group_residual& g : step.residuals) residuals_.add(g);
+  add_residuals(step);
   bool all = step.final_for(RUMBLE_PARTICIPANT_TRACK) && step.final_for(RUMBLE_PARTICIPANT_SOIL);
   if (step.final_for(RUMBLE_PARTICIPANT_TRACK)) on_track(t);
   if (step.final_for(RUMBLE_PARTICIPANT_SOIL)) on_soil(step, t);
@@ -72,6 +72,22 @@ void StepObserver::operator()(const StepOutcome& step) {
   progress_.update(0.5 * (track_.reached + soil_.reached));
 }
 
+void StepObserver::add_residuals(const StepOutcome& step) {
+  bool predicted = false;
+  for (const rumble_group_residual& g : step.residuals) {
+    const char* group = StepOutcome::predicted_group(g);
+    if (group == nullptr) {
+      residuals_.add(g);
+    } else {
+      predictor_residuals_.add({group, g.absolute, g.relative});
+      predicted = true;
+    }
+  }
+  if (predicted) return;
+  // No predictor reported: the final residuals are the predictor's (an explicit scheme).
+  for (const rumble_group_residual& g : step.residuals) predictor_residuals_.add(g);
+}
+
 void StepObserver::on_track(double t) {
   if (track_.advance(t, every_, t_end_)) sinks_.recorder.record_track(t);
   for (std::size_t w = 0; w < track_participant_.vehicles().wheel_count(); ++w) {
@@ -93,7 +109,10 @@ void StepObserver::on_soil(const StepOutcome& step, double t) {
   if (!step.converged) ++unconverged_;
   if (sinks_.probes != nullptr) sinks_.probes->take();
   if (sinks_.fields != nullptr) sinks_.fields->at(t);
-  if (record) sinks_.recorder.record_soil(t, step.max_relative_residual(), step.iterations, step.H);
+  if (record) {
+    sinks_.recorder.record_soil(t, {step.max_relative_residual(), step.predictor_residual()},
+                                step.iterations, step.H);
+  }
   check_soil(soil_side_, 0, t, step.H);
 }
 

@@ -13,10 +13,10 @@
 // checkpoint taken at the step's start (the track's state is small; a soil advancing first is
 // checkpointed only when it can be).
 //
-// With "adaptive", the macro step follows the energy residual at the cut (rumble/macro_steps.hpp).
-#include <memory>
+// With "adaptive", the macro step follows the coupling error of each step: the first
+// participant's extrapolated input against what the second produced (rumble/macro_steps.hpp).
+#include <algorithm>
 #include <rumble/coupling.hpp>
-#include <rumble/cut_energy.hpp>
 #include <rumble/macro_steps.hpp>
 #include <rumble/params.hpp>
 #include <rumble/plugin.hpp>
@@ -25,7 +25,6 @@
 namespace {
 
 using rumble::CosimHost;
-using rumble::coupling::CutEnergy;
 using rumble::coupling::GroupResiduals;
 using rumble::coupling::Link;
 using rumble::coupling::OutputHistory;
@@ -83,15 +82,11 @@ class GaussSeidel final : public rumble::Coupler {
     report_.residuals.resize(s.residuals.groups());
     new_first_.resize(s.first_history.size());
     new_second_.resize(s.second_history.size());
-    if (adaptive_.enabled()) {
-      s.energy = std::make_unique<CutEnergy>(host, CosimHost::kTrack, CosimHost::kSoil);
-      s.energy->start(track_first_ ? s.first_history.latest() : s.second_history.latest(),
-                      track_first_ ? s.second_history.latest() : s.first_history.latest());
-    }
     rumble::coupling::MacroSteps steps(t0, t_end, H, adaptive_);
     while (!steps.done()) {
-      step_energy_ = step_work_ = 0.0;
-      if (step(s, steps.t(), steps.h(), 0, &steps)) steps.accept(step_energy_, step_work_);
+      step_error_ = 0.0;
+      step_order_ = extrapolation_;
+      if (step(s, steps.t(), steps.h(), 0, &steps)) steps.accept(step_error_, step_order_);
     }
     if (adaptive_.enabled()) rumble::coupling::log_adaptive_steps(host, steps);
     if (s.retakes) host.free_checkpoint(second, kSlot);
@@ -110,7 +105,6 @@ class GaussSeidel final : public rumble::Coupler {
     GroupResiduals residuals;  // of the second participant's outputs
     bool checkpoints;          // the first participant is checkpointed at every step start
     bool retakes;              // ... and the second: a step may be taken again (adaptive)
-    std::unique_ptr<CutEnergy> energy = nullptr;  // with an adaptive step
   };
 
   /// Takes [t, t + h]; false when `steps` asked for it again, shorter (both participants are
@@ -142,24 +136,24 @@ class GaussSeidel final : public rumble::Coupler {
       return retry(s, t, h, halvings);
     }
     host.get_output(s.second, new_second_);
-    if (s.energy) {
-      const double residual = track_first_
-                                  ? s.energy->step(h, in_first_, order_first, new_first_,
-                                                   in_second_, order_second, new_second_)
-                                  : s.energy->step(h, in_second_, order_second, new_second_,
-                                                   in_first_, order_first, new_first_);
-      if (s.retakes && steps != nullptr && steps->retake(residual, s.energy->work())) {
-        s.energy->undo();
+    rumble::GroupResidual* residuals = report_.residuals.data();
+    if (s.retakes && steps != nullptr) {
+      s.residuals.measure_trial(wave_, order_first, new_second_, residuals);
+      const double error = rumble::coupling::step_error(adaptive_, residuals, s.residuals.groups());
+      if (steps->retake(error, order_first)) {
         host.restore(s.first, kSlot);
         host.restore(s.second, kSlot);
         return false;
       }
-      step_energy_ += residual;
-      step_work_ += s.energy->work();
     }
     s.first_history.push(t + h, new_first_);
     s.second_history.push(t + h, new_second_);
-    s.residuals.measure(wave_, order_first, s.second_history.latest(), report_.residuals.data());
+    s.residuals.measure(wave_, order_first, s.second_history.latest(), residuals);
+    // The step's coupling error: the prediction the first participant used against the second's
+    // outputs, O(h^(order_first + 1)); over the halves of a refused step, the worst.
+    step_error_ = std::max(
+        step_error_, rumble::coupling::step_error(adaptive_, residuals, s.residuals.groups()));
+    step_order_ = std::min(step_order_, order_first);
     report_.t = t;
     report_.H = h;
     host.step_report(report_);
@@ -178,7 +172,8 @@ class GaussSeidel final : public rumble::Coupler {
   std::uint32_t interpolation_ = 0;
   int max_halvings_ = 10;
   rumble::coupling::AdaptiveStep adaptive_;
-  double step_energy_ = 0.0, step_work_ = 0.0;  // J, over the macro step being taken
+  double step_error_ = 0.0;       // -, of the macro step being taken (MacroSteps::accept)
+  std::uint32_t step_order_ = 0;  // its extrapolation order
   std::vector<double> wave_, wave_second_, in_first_, in_second_, new_first_, new_second_;
   rumble::StepReport report_;
 };

@@ -28,6 +28,10 @@
 // every group has. After max_iterations the step is accepted as it is, reported not converged,
 // with a warning naming the time (on_no_convergence "warn"), or the run stops ("stop").
 //
+// Each step also reports the residuals of its first iterate, the predictor, under group names
+// prefixed with RUMBLE_PREDICTOR_RESIDUAL_PREFIX: the coupling error of the extrapolation, of order
+// extrapolation + 1 in h, where the final residuals only say the iterations converged.
+//
 // A participant that refuses a step (DISCARD: state unchanged) gets it again as two halves, up
 // to max_step_halvings times, the other participant restored from the step's checkpoint, as
 // gauss_seidel and jacobi do. Needs save/restore of the soil (declared: rumble validate refuses a
@@ -164,13 +168,15 @@ class Implicit final : public rumble::Coupler {
     s.track_residuals.observe(s.track.latest());
     s.soil_residuals.observe(s.soil.latest());
     const std::size_t groups = s.track_residuals.groups() + s.soil_residuals.groups();
-    report_.residuals.resize(groups);
+    report_.residuals.resize(2 * groups);  // the final residuals, then the predictor's
     s.tolerance.clear();
     for (const std::uint32_t p : {kTrack, kSoil}) {
       for (const rumble::ChannelGroup& g : host.groups(p, RUMBLE_SIDE_OUTPUT)) {
         const auto it = absolute_tolerance_.find(g.name);
         s.tolerance.push_back(
             it != absolute_tolerance_.end() ? it->second : std::numeric_limits<double>::infinity());
+        report_.residuals[groups + s.tolerance.size() - 1].group =
+            RUMBLE_PREDICTOR_RESIDUAL_PREFIX + g.name;
       }
     }
     const std::size_t n_force = s.track.size(), n_motion = s.soil.size();
@@ -285,6 +291,7 @@ class Implicit final : public rumble::Coupler {
       GroupResidual* out = report_.residuals.data();
       s.track_residuals.measure_trial(force_wave_, force_order, x_tilde_, out);
       s.soil_residuals.measure_trial(y_used_, 0, y_, out + s.track_residuals.groups());
+      if (k == 1) keep_predictor_residuals(s.tolerance.size());
       converged = within_tolerance(s);
       if (converged || k >= max_iterations_) break;
       s.accelerator.next(x_, x_tilde_, x_next_);
@@ -301,7 +308,7 @@ class Implicit final : public rumble::Coupler {
     ++steps_;
     iterations_ += static_cast<std::uint64_t>(k);
     max_used_ = std::max(max_used_, k);
-    if (!converged) unconverged(host, t, h);
+    if (!converged) unconverged(host, t, h, s.tolerance.size());
     report_.t = t;
     report_.H = h;
     report_.iterations = static_cast<std::uint32_t>(k);
@@ -309,8 +316,16 @@ class Implicit final : public rumble::Coupler {
     host.step_report(report_);
   }
 
+  /// The first iterate's residuals (of the `groups` groups) are the predictor's.
+  void keep_predictor_residuals(std::size_t groups) {
+    for (std::size_t g = 0; g < groups; ++g) {
+      report_.residuals[groups + g].absolute = report_.residuals[g].absolute;
+      report_.residuals[groups + g].relative = report_.residuals[g].relative;
+    }
+  }
+
   bool within_tolerance(const Scheme& s) const {
-    for (std::size_t g = 0; g < report_.residuals.size(); ++g) {
+    for (std::size_t g = 0; g < s.tolerance.size(); ++g) {
       const GroupResidual& r = report_.residuals[g];
       if (!(r.absolute <= s.tolerance[g]) || !(r.relative <= relative_tolerance_)) return false;
     }
@@ -318,12 +333,14 @@ class Implicit final : public rumble::Coupler {
   }
 
   /// A step accepted without converging: warn (the first few times) or stop.
-  void unconverged(const CosimHost& host, double t, double h) {
+  void unconverged(const CosimHost& host, double t, double h, std::size_t groups) {
     ++unconverged_;
     std::string m = "macro step at t = " + number(t) + " s (h = " + number(h) +
                     " s) did not converge in " + std::to_string(max_iterations_) + " iterations:";
-    for (const GroupResidual& r : report_.residuals)
+    for (std::size_t g = 0; g < groups; ++g) {
+      const GroupResidual& r = report_.residuals[g];
       m += " " + r.group + " " + number(r.absolute) + " (relative " + number(r.relative) + ")";
+    }
     if (stop_unconverged_) {
       throw CosimHost::Stop(RUMBLE_ERROR, m + "; raise max_iterations, loosen the tolerances, use "
                                               "acceleration iqn_ils, or shorten time.macro_step "

@@ -8,12 +8,12 @@
 // participant that did advance is restored from the checkpoint taken at the step's start, so
 // retrying needs both participants to checkpoint (otherwise a refusal stops the run).
 //
-// With "adaptive", the macro step follows the energy residual at the cut (rumble/macro_steps.hpp).
+// With "adaptive", the macro step follows the coupling error of each step: each participant's
+// extrapolated input against what the other produced (rumble/macro_steps.hpp).
+#include <algorithm>
 #include <exception>
-#include <memory>
 #include <optional>
 #include <rumble/coupling.hpp>
-#include <rumble/cut_energy.hpp>
 #include <rumble/macro_steps.hpp>
 #include <rumble/params.hpp>
 #include <rumble/plugin.hpp>
@@ -24,7 +24,6 @@
 namespace {
 
 using rumble::CosimHost;
-using rumble::coupling::CutEnergy;
 using rumble::coupling::GroupResiduals;
 using rumble::coupling::Link;
 using rumble::coupling::OutputHistory;
@@ -72,17 +71,14 @@ class Jacobi final : public rumble::Coupler {
     s.track_residuals.observe(s.track.latest());
     s.soil_residuals.observe(s.soil.latest());
     report_.residuals.resize(s.soil_residuals.groups() + s.track_residuals.groups());
-    if (adaptive_.enabled()) {
-      s.energy = std::make_unique<CutEnergy>(host, kTrack, kSoil);
-      s.energy->start(s.track.latest(), s.soil.latest());
-    }
     new_track_.resize(s.track.size());
     new_soil_.resize(s.soil.size());
     if (threads_ == 2) s.soil_worker.emplace(host, kSoil);
     rumble::coupling::MacroSteps steps(t0, t_end, H, adaptive_);
     while (!steps.done()) {
-      step_energy_ = step_work_ = 0.0;
-      if (step(s, steps.t(), steps.h(), 0, &steps)) steps.accept(step_energy_, step_work_);
+      step_error_ = 0.0;
+      step_order_ = extrapolation_;
+      if (step(s, steps.t(), steps.h(), 0, &steps)) steps.accept(step_error_, step_order_);
     }
     if (adaptive_.enabled()) rumble::coupling::log_adaptive_steps(host, steps);
     if (s.checkpoints) {
@@ -101,7 +97,6 @@ class Jacobi final : public rumble::Coupler {
     GroupResiduals track_residuals, soil_residuals;
     bool checkpoints;  // both participants are checkpointed at every step start (a refused
                        // step is retried, a step above the adaptive tolerance retaken)
-    std::unique_ptr<CutEnergy> energy = nullptr;  // with an adaptive step
     std::optional<rumble_jacobi::AdvanceWorker> soil_worker = std::nullopt;  // with two threads
   };
 
@@ -140,27 +135,38 @@ class Jacobi final : public rumble::Coupler {
     }
     host.get_output(kTrack, new_track_);
     host.get_output(kSoil, new_soil_);
-    if (s.energy) {
-      const double residual =
-          s.energy->step(h, in_track_, order_track, new_track_, in_soil_, order_soil, new_soil_);
-      if (s.checkpoints && steps != nullptr && steps->retake(residual, s.energy->work())) {
-        s.energy->undo();
-        host.restore(kTrack, kSlot);
-        host.restore(kSoil, kSlot);
-        return false;
-      }
-      step_energy_ += residual;
-      step_work_ += s.energy->work();
+    const std::uint32_t order = std::min(order_track, order_soil);
+    if (s.checkpoints && steps != nullptr &&
+        steps->retake(trial_error(s, order_track, order_soil), order)) {
+      host.restore(kTrack, kSlot);
+      host.restore(kSoil, kSlot);
+      return false;
     }
     s.track.push(t + h, new_track_);
     s.soil.push(t + h, new_soil_);
-    s.soil_residuals.measure(from_soil_, order_track, s.soil.latest(), report_.residuals.data());
+    rumble::GroupResidual* residuals = report_.residuals.data();
+    s.soil_residuals.measure(from_soil_, order_track, s.soil.latest(), residuals);
     s.track_residuals.measure(from_track_, order_soil, s.track.latest(),
-                              report_.residuals.data() + s.soil_residuals.groups());
+                              residuals + s.soil_residuals.groups());
+    // The step's coupling error: each side's prediction against the other's outputs,
+    // O(h^(order + 1)); over the halves of a refused step, the worst.
+    step_error_ = std::max(
+        step_error_, rumble::coupling::step_error(adaptive_, residuals, report_.residuals.size()));
+    step_order_ = std::min(step_order_, order);
     report_.t = t;
     report_.H = h;
     host.step_report(report_);
     return true;
+  }
+
+  /// The coupling error of the step just taken, before it is final [-]: the predictions against
+  /// the new outputs (new_track_, new_soil_), as the step report will give them.
+  double trial_error(const Scheme& s, std::uint32_t order_track, std::uint32_t order_soil) {
+    rumble::GroupResidual* residuals = report_.residuals.data();
+    s.soil_residuals.measure_trial(from_soil_, order_track, new_soil_, residuals);
+    s.track_residuals.measure_trial(from_track_, order_soil, new_track_,
+                                    residuals + s.soil_residuals.groups());
+    return rumble::coupling::step_error(adaptive_, residuals, report_.residuals.size());
   }
 
   /// Advances the track and the soil over [t, t + h], the soil on the worker thread when there
@@ -187,7 +193,8 @@ class Jacobi final : public rumble::Coupler {
   int threads_ = 2;
   int max_halvings_ = 10;
   rumble::coupling::AdaptiveStep adaptive_;
-  double step_energy_ = 0.0, step_work_ = 0.0;  // J, over the macro step being taken
+  double step_error_ = 0.0;       // -, of the macro step being taken (MacroSteps::accept)
+  std::uint32_t step_order_ = 0;  // its extrapolation order
   std::vector<double> from_soil_, from_track_, in_track_, in_soil_, new_track_, new_soil_;
   rumble::StepReport report_;
 };

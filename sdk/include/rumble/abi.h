@@ -401,6 +401,13 @@ typedef struct rumble_group_residual {
   double relative;   /**< absolute / the group's scale (see the coupler's documentation) */
 } rumble_group_residual;
 
+/** A group residual named with this prefix and then a group's name is not a final residual: it is
+ *  the residual of the step's predictor for that group (the inputs extrapolated from past steps
+ *  against the values produced: an iterating scheme's first iterate), the coupling error of the
+ *  step, of the scheme's order (docs/couplers.md). Hosts record it apart; a scheme reporting none
+ *  has final residuals that are its predictor's (an explicit one). A name, not a layout change. */
+#define RUMBLE_PREDICTOR_RESIDUAL_PREFIX "predictor:"
+
 /** 1.1: what a coupler reports when a macro step is final. */
 typedef struct rumble_step_report {
   uint32_t struct_size;

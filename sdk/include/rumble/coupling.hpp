@@ -249,6 +249,7 @@ class GroupResiduals {
       out[g].group = groups_[g].name;
       out[g].absolute = worst;
       out[g].relative = scale_[g] > 0.0 ? worst / scale_[g] : worst;
+      out[g].scale = scale_[g];
     }
   }
   /// As measure(), for outputs that may not be final (an iterate of an iterating scheme): the
@@ -268,6 +269,7 @@ class GroupResiduals {
       out[g].group = groups_[g].name;
       out[g].absolute = worst;
       out[g].relative = scale > 0.0 ? worst / scale : worst;
+      out[g].scale = scale;
     }
   }
 

@@ -1,34 +1,38 @@
 // SPDX-License-Identifier: MIT
 // rumble/macro_steps.hpp: the macro steps of a non-iterated coupling scheme over [t0, t_end],
-// fixed or adaptive. SDK 1.2; needs nlohmann-json (through rumble/params.hpp).
+// fixed or adaptive. SDK 1.3 (the adaptive error changed from 1.2's energy residual); needs
+// nlohmann-json (through rumble/params.hpp).
 //
 // Fixed: steps of H, each start computed from its index (no drift); a final partial step ends
 // exactly at t_end.
 //
-// Adaptive (the idea of ECCO, Sadjina et al., Eng. Comput. 33:607-620, 2017): after each step the
-// scheme gives the step's energy residual at the cut dE [J] (rumble/cut_energy.hpp: the power
-// residual of the force x velocity bond, integrated over the step) and the work through the cut
-// W [J]. The error of the step is
-//   e = |dE| / (h max(tolerance P_max, power_floor))
-// with P_max the largest mean power W / h of any step so far in the run [W]: the residual power
-// relative to the run's own scale, so a step at a turning point of the motion (W near 0) is not
-// judged against nothing. A PI controller (Gustafsson's) sets the next step from e (1 is the
-// tolerance) and the previous e, aiming at e = safety:
-//   h_next = h clamp((safety / e)^integral_gain (e_prev / e)^proportional_gain, min_change,
-//                    max_change)
+// Adaptive: a local-error controller on the coupling error of each step. An explicit scheme
+// gives each participant an input extrapolated from past steps by a polynomial of order p (its
+// "extrapolation"; 0: held); the value actually produced at the step's end differs from that
+// prediction by O(h^(p+1)): the coupling's local error, which GroupResiduals measures per output
+// group relative to the group's scale. The error of the step is
+//   e = max over groups g of  absolute_g / max(tolerance scale_g, absolute_tolerance_g)
+// (step_error()): each group's residual relative to its largest value so far in the run, with
+// a floor in the group's unit, since a group that starts at rest (the footprint velocity) has
+// no scale at first and would read 1 at its first moving step. The next step is the usual
+// controller's for a local error of order p + 1 (docs/couplers.md, adaptive macro steps):
+//   h_next = h clamp(safety (1 / e)^(1 / (p + 1)), min_change, max_change)
 // within [min_step, max_step] (applied to the unrounded step) and rounded to a whole number of
 // min_step, so that participants that sub-cycle at a step dividing min_step keep one sub-step
-// length (no refactorisation). A step whose error is above 1 is taken again, shorter (h safety /
-// e, at least one min_step shorter), when both participants can be restored ("retake"; ECCO
-// itself has no rollback, and a long step over the onset of a transient would spoil the rest of
-// the run); a participant's refusal (DISCARD) is retried by halving as with fixed steps. The
-// last step may be shorter than min_step, to end exactly at t_end.
+// length (no refactorisation). A step whose error is above 1 is taken again, shorter (by the
+// same rule, at most 0.9 times and at least one min_step shorter), when both participants can
+// be restored ("retake"); a participant's refusal (DISCARD) is retried by halving as with fixed
+// steps. The last step may be shorter than min_step, to end exactly at t_end. Why not SDK 1.2's
+// energy residual at the cut: it converges at first order whatever the scheme and is largest
+// where the power is, not where the coupling errs (docs/couplers.md, adaptive macro steps).
 #ifndef RUMBLE_MACRO_STEPS_HPP
 #define RUMBLE_MACRO_STEPS_HPP
 
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
+#include <map>
 #include <rumble/coupling.hpp>
 #include <rumble/params.hpp>
 #include <sstream>
@@ -40,12 +44,11 @@ namespace rumble::coupling {
 /// The "adaptive" params object of a coupler, read by read_adaptive_step() (its defaults are
 /// declared once, in kAdaptiveStepObjectSchema); max_step 0: fixed steps.
 struct AdaptiveStep {
-  double min_step = 0.0, max_step = 0.0;  // s
-  double tolerance = 0.0;                 // energy residual / work through the cut [-]
-  double power_floor = 0.0;               // W
-  double safety = 0.0;                    // -
-  double proportional_gain = 0.0, integral_gain = 0.0;  // -
-  double min_change = 0.2, max_change = 1.5;            // per step [-]; not params
+  double min_step = 0.0, max_step = 0.0;      // s
+  double tolerance = 0.0;                     // predictor residual / group's scale [-]
+  std::map<std::string, double> absolute;     // group -> floor of the tolerance [its unit]
+  double safety = 0.0;                        // -
+  double min_change = 0.2, max_change = 1.5;  // per step [-]; not params
   bool retake = false;  // take a step above the tolerance again when the scheme can restore
   bool enabled() const { return max_step > 0.0; }
 };
@@ -68,16 +71,22 @@ inline void require_halving_left(const CosimHost& host, double t, double h, std:
 /// JSON schema of the "adaptive" object (the one declaration of its parameters).
 inline constexpr const char* kAdaptiveStepObjectSchema = R"schema({
   "type": "object", "additionalProperties": false, "required": ["min_step", "max_step"],
-  "description": "adaptive macro step controlled by the energy residual at the cut (docs/couplers.md); time.macro_step is the first step. Absent: fixed steps of time.macro_step",
+  "description": "adaptive macro step controlled by the coupling error of each step, the extrapolated input against the value produced (docs/couplers.md); time.macro_step is the first step. Absent: fixed steps of time.macro_step",
   "properties": {
     "min_step": {"type": "number", "minimum": 1e-7, "maximum": 1, "description": "shortest macro step [s]; every step is a whole number of it; [1e-7, 1] s: as time.macro_step's (usually 1e-4 to 1e-3 s; a step beyond 1 s couples none of a train's vibration)"},
     "max_step": {"type": "number", "minimum": 1e-7, "maximum": 1, "description": "longest macro step [s], >= min_step; [1e-7, 1] s: as time.macro_step's (usually 1e-4 to 1e-3 s; a step beyond 1 s couples none of a train's vibration)"},
-    "tolerance": {"type": "number", "exclusiveMinimum": 0, "maximum": 1, "default": 0.05, "description": "the energy residual a step may create, relative to the energy the run's strongest step passed through the cut in the same time [-]; (0, 1]: a residual as large as the energy itself is no control"},
-    "power_floor": {"type": "number", "exclusiveMinimum": 0, "maximum": 1e6, "default": 0.001, "description": "residual power always tolerated [W] (before anything moves); (0, 1e6] W: a whole run passes joules through the cut (docs/couplers.md), so a megawatt tolerates any residual"},
-    "safety": {"type": "number", "exclusiveMinimum": 0, "maximum": 1, "default": 0.9, "description": "the controller aims at this fraction of the tolerance [-]; (0, 1]: a fraction"},
-    "proportional_gain": {"type": "number", "minimum": 0, "maximum": 1, "default": 0.2, "description": "PI controller's gain on the change of the error [-]; [0, 1]: ECCO's 0.2; above 1 the step oscillates"},
-    "integral_gain": {"type": "number", "exclusiveMinimum": 0, "maximum": 1, "default": 0.15, "description": "PI controller's gain on the error [-]; (0, 1]: ECCO's 0.15; above 1 the step oscillates"},
-    "retake": {"type": "boolean", "default": true, "description": "take a step whose energy residual is above the tolerance again, shorter, when both participants can save and restore their state (false: never, as ECCO)"}
+    "tolerance": {"type": "number", "exclusiveMinimum": 0, "maximum": 1, "default": 0.01, "description": "the coupling error a step may make [-]: the largest difference, over the interface channels, between the input a participant was given (extrapolated from past steps) and the value produced at the step's end, relative to the channel group's largest value so far in the run; (0, 1]: a fraction"},
+    "absolute_tolerance": {
+      "type": "object", "additionalProperties": false, "default": {},
+      "description": "coupling error always tolerated, per channel group in its unit, whatever the group's scale (a group at rest has none)",
+      "properties": {
+        "footprint_force": {"type": "number", "exclusiveMinimum": 0, "maximum": 1e6, "default": 100, "description": "[N]; (0, 1e6] N: a footprint carries some 1e4 to 1e5 N"},
+        "footprint_displacement": {"type": "number", "exclusiveMinimum": 0, "maximum": 0.01, "default": 1e-7, "description": "[m]; (0, 0.01] m: a footprint settles about 1 mm and vibrates some 0.01 to 0.1 mm"},
+        "footprint_velocity": {"type": "number", "exclusiveMinimum": 0, "maximum": 1, "default": 1e-3, "description": "[m/s]; (0, 1] m/s: footprints move at mm/s to some 0.1 m/s; 1e-3: 1e-4 held the step at min_step for the first ms of the dip case (docs/couplers.md)"}
+      }
+    },
+    "safety": {"type": "number", "exclusiveMinimum": 0, "maximum": 1, "default": 0.9, "description": "the next step is this fraction of the step at which the error model puts the error on the tolerance [-], so that few steps are taken again; (0, 1]: a fraction"},
+    "retake": {"type": "boolean", "default": true, "description": "take a step whose coupling error is above the tolerance again, shorter, when both participants can save and restore their state (false: never)"}
   }
 })schema";
 
@@ -100,12 +109,27 @@ inline AdaptiveStep read_adaptive_step(const Params& params) {
     throw std::invalid_argument(m.str());
   }
   a.tolerance = j.get<double>("tolerance");
-  a.power_floor = j.get<double>("power_floor");
   a.safety = j.get<double>("safety");
-  a.proportional_gain = j.get<double>("proportional_gain");
-  a.integral_gain = j.get<double>("integral_gain");
+  const Params absolute = j.object("absolute_tolerance");
+  for (const char* group : {"footprint_force", "footprint_displacement", "footprint_velocity"})
+    a.absolute[group] = absolute.get<double>(group);
   a.retake = j.get<bool>("retake");
   return a;
+}
+
+/// The error [-] (1: on the tolerance) of a step whose predictor had these n residuals: the
+/// inputs the participants were given against the values produced (GroupResiduals), under the
+/// adaptive step a.
+inline double step_error(const AdaptiveStep& a, const GroupResidual* residuals, std::size_t n) {
+  double e = 0.0;
+  for (std::size_t g = 0; g < n; ++g) {
+    const auto floor = a.absolute.find(residuals[g].group);
+    const double allowed =
+        std::max(a.tolerance * residuals[g].scale, floor != a.absolute.end() ? floor->second : 0.0);
+    if (residuals[g].absolute > 0.0)
+      e = std::max(e, allowed > 0.0 ? residuals[g].absolute / allowed : 1e300);
+  }
+  return e;
 }
 
 class MacroSteps {
@@ -132,38 +156,29 @@ class MacroSteps {
     return h >= left * (1.0 - 1e-9) ? left : h;
   }
 
-  /// The step just taken is final; energy_residual [J] and work [J] over it steer an adaptive
-  /// step (ignored for fixed steps).
-  void accept(double energy_residual, double work) {
+  /// The step just taken is final. error [-]: its step_error(); order: the polynomial order of
+  /// the extrapolation, so that the error is O(h^(order + 1)). Both steer an adaptive step
+  /// (ignored for fixed steps).
+  void accept(double error, std::uint32_t order) {
     const double h = this->h();
     ++k_;
     shortest_ = std::min(shortest_, h);
     longest_ = std::max(longest_, h);
     t_ = a_.enabled() ? t_ + h : macro_step_start(t0_, H_, k_);
     if (!a_.enabled()) return;
-    power_max_ = std::max(power_max_, work / h);
-    error_ = std::abs(energy_residual) / (h * std::max(a_.tolerance * power_max_, a_.power_floor));
-    double change = a_.max_change;
-    if (error_ > 0.0) {
-      change = std::pow(a_.safety / error_, a_.integral_gain) *
-               std::pow(previous_error_ / error_, a_.proportional_gain);
-      change = std::clamp(change, a_.min_change, a_.max_change);
-    }
-    previous_error_ = std::max(error_, 1e-10);  // a zero error must not zero the next ratio
+    error_ = error;
     // On the unrounded target: rounding alone must not hold a step that should grow.
-    target_ = std::clamp(target_ * change, a_.min_step, a_.max_step);
+    target_ = std::clamp(target_ * change(error_, order, a_.max_change), a_.min_step, a_.max_step);
   }
 
-  /// Whether the step just taken (not yet accepted) is to be taken again, shorter: its error is
-  /// above 1, retaking is on and the step can still shrink. If so, h() is now shorter.
-  bool retake(double energy_residual, double work) {
+  /// Whether the step just taken (not yet accepted) is to be taken again, shorter: its error
+  /// (and order, as for accept()) is above 1, retaking is on and the step can still shrink. If
+  /// so, h() is now shorter.
+  bool retake(double error, std::uint32_t order) {
     const double h = this->h();
     if (!a_.enabled() || !a_.retake || h <= a_.min_step * (1.0 + 1e-9)) return false;
-    const double power = std::max(power_max_, work / h);
-    const double error =
-        std::abs(energy_residual) / (h * std::max(a_.tolerance * power, a_.power_floor));
     if (error <= 1.0) return false;
-    const double shorter = h * std::clamp(a_.safety / error, a_.min_change, 0.9);
+    const double shorter = h * change(error, order, 0.9);
     target_ = std::clamp(std::min(shorter, h - a_.min_step), a_.min_step, a_.max_step);
     ++retaken_;
     return true;
@@ -183,10 +198,16 @@ class MacroSteps {
   std::size_t count_;  // fixed steps
   double t_ = t0_;
   std::size_t k_ = 0, retaken_ = 0;
-  double target_;                              // s, before rounding to min_step
-  double shortest_ = 1e300, longest_ = 0.0;    // s
-  double power_max_ = 0.0;                     // W
-  double error_ = 0.0, previous_error_ = 1.0;  // -
+  double target_;                            // s, before rounding to min_step
+  double shortest_ = 1e300, longest_ = 0.0;  // s
+  double error_ = 0.0;                       // -
+
+  /// Factor on the step for an error e [-] of order + 1 in h, at most `most`.
+  double change(double e, std::uint32_t order, double most) const {
+    if (!(e > 0.0)) return most;
+    const double factor = a_.safety * std::pow(1.0 / e, 1.0 / (static_cast<double>(order) + 1.0));
+    return std::clamp(factor, a_.min_change, most);
+  }
 };
 
 /// Says at info level what an adaptive run's steps were (the engine records each one in

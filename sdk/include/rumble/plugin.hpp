@@ -313,6 +313,7 @@ struct GroupResidual {
   std::string group;
   double absolute = 0.0;  // [group's unit]
   double relative = 0.0;  // absolute / the group's scale
+  double scale = 0.0;     // [group's unit] (SDK 1.3; 0: none known, relative is then absolute)
 };
 
 /// What a coupler reports when a macro step is final (ABI 1.1 rumble_step_report).

@@ -28,8 +28,15 @@ struct StepOutcome {
   bool converged = true;
   std::vector<rumble_group_residual> residuals;  // names valid during the callback only
   std::uint64_t participants = 0;                // bit p: final for participant p; 0: all
-  /// The largest relative residual of any group (the 1.0 single residual).
+  /// The largest relative residual of any group (the 1.0 single residual), the predictor's
+  /// (RUMBLE_PREDICTOR_RESIDUAL_PREFIX) left out.
   double max_relative_residual() const;
+  /// The largest relative residual of the step's predictor: the predictor groups', or, when the
+  /// coupler reported none (an explicit scheme, whose final residuals are its predictor's),
+  /// max_relative_residual(). Of the scheme's order in H (docs/couplers.md).
+  double predictor_residual() const;
+  /// The group's name without RUMBLE_PREDICTOR_RESIDUAL_PREFIX when it has it, else null.
+  static const char* predicted_group(const rumble_group_residual& g);
   bool final_for(std::uint32_t participant) const {
     return participants == 0 || ((participants >> participant) & 1u) != 0;
   }

@@ -18,7 +18,9 @@
 //                                 displacement increments are right at any step, end-of-step
 //                                 velocities of an explicit scheme are not (issue #10); the
 //                                 macro step that ended [s] (0 at t = 0; varies with an
-//                                 adaptive step or a halved refused one)
+//                                 adaptive step or a halved refused one), and the relative
+//                                 residual of the step's predictor: the coupling error, of
+//                                 the scheme's order (StepOutcome::predictor_residual)
 //           receivers.csv         vertical velocity of surface receivers [m/s] (soils that offer
 //                                 them)
 //   extra soils of the coupler (e.g. two_step's reduced_soil):
@@ -46,9 +48,13 @@ class RunRecorder {
               const std::vector<double>& receiver_distances, bool receivers_offered);
   /// The track's state at time t [s].
   void record_track(double t);
-  /// The soil's state at time t [s]; residual: the coupler's relative interface residual of
+  /// The relative interface residuals of a macro step [-]: the final one, the predictor's.
+  struct StepResiduals {
+    double final = 0.0, predictor = 0.0;
+  };
+  /// The soil's state at time t [s]; residuals: the coupler's relative interface residuals of
   /// the last macro step, iterations: its iterations in that step (0 for the initial state).
-  void record_soil(double t, double residual, std::uint32_t iterations, double macro_step);
+  void record_soil(double t, StepResiduals residuals, std::uint32_t iterations, double macro_step);
   /// Extra soil e's footprint motion at time t [s].
   void record_extra(std::size_t e, double t);
   /// Everything at t = 0 (the static state).

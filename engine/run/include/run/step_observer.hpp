@@ -52,6 +52,9 @@ class StepObserver {
   /// finish the track and the soil together, two_step the track (on its reduced soil) first.
   /// The interface residual of each channel group the coupler reported, over the run.
   const RunResiduals& residuals() const { return residuals_; }
+  /// The residual of each step's predictor per channel group, over the run: the coupling error,
+  /// of the scheme's order (StepOutcome::predictor_residual).
+  const RunResiduals& predictor_residuals() const { return predictor_residuals_; }
   /// s: the time up to which both the track and the soil are final
   double t_reached() const { return std::min(track_.reached, soil_.reached); }
   std::size_t steps() const { return soil_.steps; }  // final steps of the soil
@@ -97,7 +100,9 @@ class StepObserver {
   double shortest_step_ = std::numeric_limits<double>::infinity(), longest_step_ = 0.0;  // s
   DivergenceMonitor divergence_;
   std::vector<double> scratch_;  // soil outputs, sized once
-  RunResiduals residuals_;
+  RunResiduals residuals_, predictor_residuals_;
+  /// Adds a step's residuals to residuals_ and predictor_residuals_.
+  void add_residuals(const StepOutcome& step);
 };
 
 }  // namespace rumble
