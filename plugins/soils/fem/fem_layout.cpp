@@ -1,0 +1,222 @@
+// The FEM soil's layout: everything that happens once when the track announces its footprints
+// (the mesh, generated, cached or read; the operators; the report of what was built; the local
+// steps' choice at the first macro step), kept apart from the per-step code so that the costly,
+// once-per-layout set-up reads as one story.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "boundary/absorbing_boundary.hpp"
+#include "boundary/pml.hpp"
+#include "fem_soil.hpp"
+#include "mesh/gmsh_model.hpp"
+#include "mesh/mesh_cache.hpp"
+#include "mesh/mesh_generator.hpp"
+#include "operator/elasticity.hpp"
+#include "operator/footprint_loads.hpp"
+#include "statics/static_solver.hpp"
+#include "time/implicit_solver.hpp"
+
+namespace rumble::fem {
+
+void FemSoil::accept_layout(const std::vector<rumble::Footprint>& footprints) {
+  using namespace rumble::fem;
+  const auto start = std::chrono::steady_clock::now();
+  receptance_.reset();  // it refers to the operators of the previous layout
+  impulse_.reset();
+  receptance_key_.reset();
+  footprints_ = footprints;
+  if (settings_.mesh.file.empty()) {
+    plan_ = plan_mesh(settings_, footprints);
+    host_.info("fem: a mesh of about " + format(3.0 * plan_.estimated_nodes) + " DOFs (h_near " +
+               format(plan_.h_near) + " m, h_max " + format(plan_.h_max) + " m, radius " +
+               format(plan_.radius) + " m)");
+    mesh_ = cached_or_new_mesh();
+    export_due_ = !settings_.mesh.export_file.empty();
+    export_if_due();
+  } else {
+    MeshFile file = load_mesh_file(settings_, mesh_file_);
+    check_mesh_footprints(file, footprints);
+    mesh_ = std::move(file.mesh);
+    plan_ = {.region = TrackRegion::of(footprints)};  // sizes unknown: radius 0
+    host_.info("fem: mesh read from " + mesh_file_);
+  }
+  const double mesh_seconds = seconds_since(start);
+  weights_ = footprint_weights(mesh_, footprints);
+  std::vector<BoundaryNode> boundary = absorbing_boundary(mesh_, settings_, footprints);
+  std::vector<char> fixed(mesh_.node_count(), 0);
+  // Behind a matched layer the surface is fixed: with the viscous-spring blocks or dashpots
+  // there the discrete layer grew at every step tried (docs/fem-soil.md section 3.1).
+  if (settings_.boundary.kind == BoundaryKind::kFixed ||
+      settings_.boundary.kind == BoundaryKind::kPml)
+    for (const BoundaryNode& b : boundary) fixed[b.node] = 1;
+  op_.emplace(assemble_stiffness(mesh_, settings_), lumped_mass(mesh_, settings_),
+              std::move(boundary), settings_.boundary.springs(), std::move(fixed),
+              settings_.damping.mass_coefficient(), settings_.damping.stiffness_coefficient(),
+              host_.threads(),
+              settings_.single_precision_step ? StepPrecision::kSingle : StepPrecision::kDouble);
+  op_->set_loaded_nodes(loaded_nodes(weights_));  // (the footprints' forces act there only)
+  // Ctrl-C inside the static solves and the local steps' choice, checked every 0.1 s at most.
+  op_->set_stop_check([this, last = std::chrono::steady_clock::now()]() mutable {
+    const auto now = std::chrono::steady_clock::now();
+    if (now - last < std::chrono::milliseconds(100)) return;
+    last = now;
+    host_.check_stop();
+  });
+  if (settings_.damping.maxwell) op_->set_maxwell_damping(settings_.damping.maxwell_mechanisms());
+  if (settings_.boundary.kind == BoundaryKind::kPml)
+    op_->set_pml(PmlLayer(mesh_, settings_, pml_profile()));
+  local_steps_chosen_ = false;  // (at the first macro step, whose length they are fitted to)
+  statics_ = std::make_unique<StaticSolver>(op_->soil(), mesh_.nodes);
+  far_field_.reset();  // (built at the first static solve: validate needs none)
+  if (settings_.boundary.spring_model == rumble::fem::SpringModel::kHalfSpace &&
+      !settings_.layers.empty() && settings_.boundary.springs())
+    host_.info(
+        "fem: a layered profile: the statics hold no half-space far field (no closed form), "
+        "the boundary springs alone, fitted to the half-space's field with each node's own G "
+        "and nu (docs/fem-soil.md section 3.2)");
+  implicit_.reset();
+  if (settings_.implicit)
+    implicit_ = std::make_unique<ImplicitSolver>(*op_, settings_.damping.mass_coefficient(),
+                                                 settings_.damping.stiffness_coefficient());
+  const Eigen::Index n = op_->dofs();
+  state_ = op_->rest_state();
+  u_static_ = Eigen::VectorXd::Zero(n);
+  f_ = Eigen::VectorXd::Zero(n);
+  df_ = Eigen::VectorXd::Zero(n);
+  force_static_.assign(footprints.size(), 0.0);
+  force_last_.assign(footprints.size(), 0.0);
+  report(mesh_seconds, seconds_since(start));
+}
+
+rumble::fem::TetMesh FemSoil::cached_or_new_mesh() const {
+  using namespace rumble::fem;
+  const auto dir = mesh_cache_directory();
+  if (!dir) {
+    hint_fast_meshing();
+    return generate_mesh(settings_, footprints_, plan_);
+  }
+  const auto path = *dir / mesh_cache_name(settings_, footprints_, plan_);
+  if (auto cached = read_cached_mesh(path)) {
+    host_.info("fem: mesh from the cache " + path.string());
+    return std::move(*cached);
+  }
+  hint_fast_meshing();
+  TetMesh mesh = generate_mesh(settings_, footprints_, plan_);
+  if (!write_cached_mesh(path, mesh))
+    host_.warn("fem: could not keep the mesh in " + path.string() +
+               " (set RUMBLE_MESH_CACHE to a writable directory, or to off)");
+  return mesh;
+}
+
+void FemSoil::hint_fast_meshing() const {
+  constexpr double kLargeMeshDofs = 2e5;  // where Delaunay takes more than about 15 s
+  if (settings_.mesh.fast_algorithm || 3.0 * plan_.estimated_nodes < kLargeMeshDofs) return;
+  host_.info("fem: meshing about " + format(3.0 * plan_.estimated_nodes) +
+             " DOFs with gmsh's delaunay (about 1e4 DOFs per second, one thread); "
+             "params/mesh/algorithm \"hxt\" with mesh/threads 2 meshed 1e6 DOFs 15x faster "
+             "(its mesh differs slightly from run to run; cached meshes are reused either way)");
+}
+
+void FemSoil::report(double mesh_seconds, double setup_seconds) const {
+  using rumble::fem::BoundaryKind;
+  double shortest_edge = 1e300;
+  for (const auto& t : mesh_.tets)
+    for (int a = 0; a < 4; ++a)
+      for (int b = a + 1; b < 4; ++b)
+        shortest_edge = std::min(shortest_edge, (mesh_.node(t[a]) - mesh_.node(t[b])).norm());
+  const double c_r = rayleigh_speed();
+  std::ostringstream m;
+  m << "fem: " << mesh_.node_count() << " nodes, " << mesh_.tets.size() << " tetrahedra, "
+    << op_->dofs() << " DOFs, " << footprints_.size() << " footprints, " << op_->boundary().size()
+    << " boundary nodes; shortest edge " << format(shortest_edge) << " m; meshed in "
+    << format(mesh_seconds, 2) << " s, ready in " << format(setup_seconds, 2) << " s; "
+    << format(op_->bytes() / 1048576.0) << " MiB ("
+    << format(static_cast<double>(op_->bytes()) / op_->dofs(), 3) << " B per DOF); stable step "
+    << format(op_->stable_step()) << " s (" << op_->eigen_iterations() << " Lanczos iterations), "
+    << (implicit_ ? "implicit" : "explicit") << " step " << format(max_step()) << " s"
+    << (op_->precision() == StepPrecision::kSingle ? " (K read in single precision)" : "");
+  if (const auto& d = op_->maxwell_damping(); d.mechanisms() > 0)
+    m << "; " << d.mechanisms() << " Maxwell mechanisms, ratio within "
+      << format(100.0 * d.band_error(settings_.damping.ratio, settings_.damping.f_low,
+                                     settings_.damping.f_high),
+                2)
+      << " % of " << settings_.damping.ratio << " over " << format(settings_.damping.f_low) << "-"
+      << format(settings_.damping.f_high) << " Hz, static modulus "
+      << format(settings_.damping.relaxed_modulus_factor(), 4) << " E, unrelaxed "
+      << format(settings_.damping.relaxed_modulus_factor() * d.unrelaxed(), 4) << " E";
+  if (plan_.radius > 0.0)  // (0: a user's mesh, whose sizes the soil did not choose)
+    m << "; f_max resolved at " << settings_.mesh.elements_per_wavelength
+      << " elements per Rayleigh wavelength:";
+  for (double d : {2.5, 5.0, 10.0, 20.0, 40.0})
+    if (d < plan_.radius)
+      m << ' ' << format(plan_.resolved_frequency(d, c_r, settings_.mesh.elements_per_wavelength))
+        << " Hz at " << d << " m;";
+  if (const rumble::fem::PmlLayer* pml = op_->pml())
+    m << " perfectly matched layer " << format(plan_.pml) << " m thick (elements up to "
+      << format(plan_.h_pml) << " m): " << pml->tetrahedra() << " tetrahedra, damping up to "
+      << format(pml->max_damping()) << " 1/s, which bounds the stable step to "
+      << format(rumble::fem::PmlLayer::kStableDampingStep / pml->max_damping())
+      << " s (a thicker layer or a higher boundary.pml.reflection lowers the damping and lifts "
+         "the bound);";
+  host_.info(m.str());
+  const double epw = c_r / (settings_.mesh.f_max * plan_.h_near);
+  if (plan_.h_near > 0.0 && epw < 8.0)
+    host_.warn("fem: params/mesh/h_near " + format(plan_.h_near) + " m gives " + format(epw, 2) +
+               " elements per Rayleigh wavelength at f_max " + format(settings_.mesh.f_max) +
+               " Hz (c_R " + format(c_r) + " m/s); 8-10 are needed: lower h_near or f_max");
+  if (settings_.boundary.kind == BoundaryKind::kDashpot)
+    host_.warn(
+        "fem: boundary.type dashpot has no static support: a change of the net "
+        "footprint force makes the whole soil drift");
+}
+
+void FemSoil::enable_local_steps(double H) {
+  const double single = op_->single_rate_step(), layer_limit = op_->layer_step_limit();
+  std::ostringstream m;
+  m << "fem: local time stepping (integrator.local_steps " << settings_.local_steps << "): ";
+  const auto start = std::chrono::steady_clock::now();
+  const rumble::fem::LocalTimeStepping* lts =
+      op_->enable_local_steps(settings_.local_steps, H, settings_.courant) ? op_->local_steps()
+                                                                           : nullptr;
+  const double seconds = seconds_since(start);
+  if (lts == nullptr) {
+    const double a1 = settings_.damping.stiffness_coefficient();
+    if (layer_limit < 1.1 * single)
+      m << "the matched layer's own limit on the step (" << format(layer_limit)
+        << " s) is below 1.1 times one rate's (" << format(single)
+        << " s), so there is nothing to gain; the soil steps on one rate (a thicker layer or a "
+           "higher boundary.pml.reflection lifts that limit)";
+    else if (rumble::fem::LocalTimeStepping::tau_for(single, a1) == 0.0)
+      m << "the damping a1 K, taken half a step late, limits the step here (a1 = " << format(a1)
+        << " s is " << format(a1 / single, 2) << " of the step " << format(single)
+        << " s; local steps need below 0.4): set damping.model \"maxwell\" (frequency-flat "
+           "mechanisms, nothing lags), raise damping.f_high or lower damping.ratio to lower "
+           "a1, or set local_steps 1";
+    else
+      m << "no step longer than one rate's " << format(single)
+        << " s that makes fewer sub-steps of the macro step " << format(H)
+        << " s pays on this mesh (too many nodes would have to be fine, or the step needed is "
+           "beyond local_steps times one rate's); the soil steps on one rate (set local_steps 1 "
+           "to skip this search)";
+    host_.warn(m.str());
+    return;
+  }
+  m << lts->fine_nodes() << " fine nodes ("
+    << format(100.0 * static_cast<double>(lts->fine_nodes()) / mesh_.node_count(), 2) << " % of "
+    << mesh_.node_count() << "; " << lts->halo().size() << " with their neighbours) take "
+    << lts->substeps() << " steps per soil step; stable step " << format(op_->stable_step())
+    << " s against " << format(single) << " s on one rate (x"
+    << format(op_->stable_step() / single, 3) << "): " << std::ceil(H / max_step() - 1e-9)
+    << " sub-steps per macro step of " << format(H) << " s instead of "
+    << std::ceil(H / (settings_.courant * single) - 1e-9) << " (chosen in " << format(seconds, 2)
+    << " s)";
+  host_.info(m.str());
+}
+
+}  // namespace rumble::fem
