@@ -110,9 +110,14 @@ inline AdaptiveStep read_adaptive_step(const Params& params) {
   }
   a.tolerance = j.get<double>("tolerance");
   a.safety = j.get<double>("safety");
+  // The groups are the schema's properties of absolute_tolerance: named there alone.
   const Params absolute = j.object("absolute_tolerance");
-  for (const char* group : {"footprint_force", "footprint_displacement", "footprint_velocity"})
-    a.absolute[group] = absolute.get<double>(group);
+  const nlohmann::json groups = nlohmann::json::parse(kAdaptiveStepObjectSchema)
+                                    .at("properties")
+                                    .at("absolute_tolerance")
+                                    .at("properties");
+  for (const auto& group : groups.items())
+    a.absolute[group.key()] = absolute.get<double>(group.key().c_str());
   a.retake = j.get<bool>("retake");
   return a;
 }
