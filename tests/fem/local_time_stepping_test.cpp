@@ -15,6 +15,7 @@
 
 #include "boundary/absorbing_boundary.hpp"
 #include "boundary/pml.hpp"
+#include "inclusion_box.hpp"
 #include "mesh/kuhn_box.hpp"
 #include "operator/elasticity.hpp"
 #include "random_state.hpp"
@@ -24,27 +25,12 @@
 namespace rumble::fem {
 namespace {
 
+using test::box_with_inclusion;
 using test::energy_after;
 using test::growth_from_random_state;
+using test::inclusion_soil;
 
-constexpr double kEdge = 0.5;  // m
-
-TetMesh box_with_inclusion() {
-  TetMesh m = kuhn_box(6, kEdge);
-  for (std::size_t e = 0; e < m.tets.size(); ++e) {
-    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
-    for (const std::int32_t node : m.tets[e]) centre += m.node(node) / 4.0;
-    m.layer[e] = (centre.array() < 2.0 * kEdge).all() ? 0 : 1;
-  }
-  return m;
-}
-
-FemSettings inclusion_soil() {
-  FemSettings s =
-      rumble::test::soil_settings(155e6, 0.3, 1800.0);  // docs/physics.md §1.4: medium soil
-  s.layers = {{1.0, soils::SoilProperties{930e6, 0.3, 1800.0}}};  // the inclusion (layer 0)
-  return s;
-}
+constexpr double kEdge = test::kInclusionBoxEdge;  // m
 
 ExplicitSolver solver(const TetMesh& m, double a1,
                       StepPrecision precision = StepPrecision::kDouble) {

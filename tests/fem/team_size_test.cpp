@@ -9,26 +9,17 @@
 #include <Eigen/Dense>
 #include <vector>
 
-#include "mesh/kuhn_box.hpp"
+#include "inclusion_box.hpp"
 #include "operator/elasticity.hpp"
 #include "random_state.hpp"
-#include "settings_from_params.hpp"
 #include "time/explicit_solver.hpp"
 
 namespace rumble::fem {
 namespace {
 
-constexpr double kTeamBoxEdge = 0.5;  // m
-
 ExplicitSolver inclusion_solver(StepPrecision precision) {
-  TetMesh m = kuhn_box(6, kTeamBoxEdge);
-  for (std::size_t e = 0; e < m.tets.size(); ++e) {  // a corner of 2 x 2 x 2 cubes, stiffer
-    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
-    for (const std::int32_t node : m.tets[e]) centre += m.node(node) / 4.0;
-    m.layer[e] = (centre.array() < 2.0 * kTeamBoxEdge).all() ? 0 : 1;
-  }
-  FemSettings s = rumble::test::soil_settings(155e6, 0.3, 1800.0);
-  s.layers = {{1.0, soils::SoilProperties{930e6, 0.3, 1800.0}}};
+  const TetMesh m = test::box_with_inclusion();
+  const FemSettings s = test::inclusion_soil();
   return ExplicitSolver(assemble_stiffness(m, s), lumped_mass(m, s), {}, false,
                         std::vector<char>(m.node_count(), 0), 0.0, 1e-5, 1, precision);
 }
