@@ -12,6 +12,8 @@
 #include "core/errors.hpp"
 #include "core/logging.hpp"
 #include "core/thread_waits.hpp"
+#include "parallel/mpi_session.hpp"
+#include "plugin/soil_server.hpp"
 
 namespace rumble::cli {
 namespace {
@@ -163,11 +165,8 @@ int help_command(const std::vector<std::string>& rest) {
   return kExitOk;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  prefer_passive_thread_waits();  // before any plugin loads OpenMP (core/thread_waits.hpp)
-  std::vector<std::string> args(argv + 1, argv + argc);
+/// The command line's command, run in this process; its exit code (every error caught).
+int command_in_process(std::vector<std::string>& args) {
   try {
     take_log_level(args);
     std::size_t i = 0;
@@ -195,6 +194,33 @@ int main(int argc, char** argv) {
     std::cerr << "rumble: error: " << e.what() << '\n';
     return kExitRunFailed;
   }
+}
+
+/// Under an MPI launcher (decision 0012): rank 0 is the engine, with MPI started before anything
+/// so that the other ranks can meet it; the other ranks serve until rank 0 releases them.
+int launched_command(std::vector<std::string>& args) {
+  if (!parallel::launched()) return command_in_process(args);
+  try {
+    parallel::start();
+    if (parallel::world_rank() > 0) {
+      serve_soils();
+      return kExitOk;
+    }
+  } catch (const std::exception& e) {
+    std::cerr << "rumble: error: " << e.what() << '\n';
+    return kExitRunFailed;
+  }
+  return command_in_process(args);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  prefer_passive_thread_waits();  // before any plugin loads OpenMP (core/thread_waits.hpp)
+  std::vector<std::string> args(argv + 1, argv + argc);
+  const int code = launched_command(args);
+  parallel::finish();  // after every plugin instance is gone (decision 0012)
+  return code;
 }
 
 }  // namespace rumble::cli

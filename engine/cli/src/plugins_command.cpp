@@ -5,10 +5,23 @@
 #include "cli/arguments.hpp"
 #include "cli/commands.hpp"
 #include "cli/exit_codes.hpp"
+#include "parallel/mpi_session.hpp"
 #include "plugin/capabilities.hpp"
 #include "plugin/registry.hpp"
 
 namespace rumble::cli {
+namespace {
+
+/// The MPI the engine would start for a distributed soil (docs/decisions/0012), without starting
+/// it; and, under a launcher, the rank count it was given.
+std::string mpi_line() {
+  std::string line = "MPI: " + parallel::library_version() + " (MPI " +
+                     parallel::standard_version() + "), started only for a soil that uses it; ";
+  if (!parallel::launched()) return line + "not launched by mpirun (one rank)";
+  return line + "launched on " + std::to_string(parallel::launched_size()) + " ranks";
+}
+
+}  // namespace
 
 int plugins_command(const std::vector<std::string>& args) {
   const Arguments a(args, {}, {"format"});
@@ -45,7 +58,8 @@ int plugins_command(const std::vector<std::string>& args) {
     std::cout << out.dump(2) << '\n';
     return kExitOk;
   }
-  std::cout << "plugin directory: " << PluginRegistry::builtin_plugin_directory().string() << '\n';
+  std::cout << "plugin directory: " << PluginRegistry::builtin_plugin_directory().string() << '\n'
+            << mpi_line() << '\n';
   if (registry.libraries().empty()) {
     std::cout << "no plugins found; build the project, or set RUMBLE_PLUGIN_PATH\n";
   }
@@ -53,7 +67,8 @@ int plugins_command(const std::vector<std::string>& args) {
     const auto* d = lib->descriptor;
     std::cout << '\n'
               << d->plugin_name << ' ' << d->plugin_version << "  (ABI " << d->abi_major << '.'
-              << d->abi_minor << ")  " << lib->path.string() << "  (from " << lib->origin << ")\n";
+              << d->abi_minor << ")  " << lib->path.string() << "  (from " << lib->origin << ")\n"
+              << "  built with: " << d->build_fingerprint << '\n';
     for (const ComponentType& t : registry.types()) {
       if (t.library != lib) continue;
       std::cout << "  " << kind_name(t.kind) << ' ' << t.type_name << ": " << t.summary << '\n';

@@ -23,7 +23,8 @@ constexpr Name kNames[] = {
     {RUMBLE_CAP_ONCE_PER_PROCESS, "once_per_process", "run once per process"},
     {RUMBLE_CAP_WAVE_SPEEDS, "wave_speeds", "give its wave speeds"},
     {RUMBLE_CAP_SURFACE_RECEIVERS, "surface_receivers", "record surface receivers (ABI 1.0)"},
-    {RUMBLE_CAP_MONOLITHIC, "monolithic", "have the soil integrated with the track"}};
+    {RUMBLE_CAP_MONOLITHIC, "monolithic", "have the soil integrated with the track"},
+    {RUMBLE_CAP_DISTRIBUTED, "distributed", "run on every rank of an MPI launch"}};
 
 }  // namespace
 

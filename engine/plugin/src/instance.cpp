@@ -1,6 +1,7 @@
 #include "plugin/instance.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <optional>
 
@@ -8,6 +9,8 @@
 #include "core/interrupt.hpp"
 #include "core/logging.hpp"
 #include "core/number_text.hpp"
+#include "parallel/mirror_transport.hpp"
+#include "parallel/mpi_session.hpp"
 
 namespace rumble {
 namespace {
@@ -65,11 +68,22 @@ Instance::Instance(const ComponentType& type, std::string label, const nlohmann:
   host_.results_dir = results_dir_.c_str();
   host_.threads = 1;
   host_.progress = &Instance::progress_callback;
-  const std::string text = params.dump();
+  host_.communicator = &Instance::communicator_callback;
+  const bool everywhere = type.kind == RUMBLE_KIND_SOIL &&
+                          type.capabilities.has(RUMBLE_CAP_DISTRIBUTED) && parallel::running() &&
+                          parallel::world_size() > 1 && parallel::world_rank() == 0;
+  if (everywhere) {
+    create_everywhere(params);
+  } else {
+    create_here(params.dump());
+  }
+}
+
+void Instance::create_here(const std::string& params_text) {
   const char* error = nullptr;
   rumble_status s = RUMBLE_ERROR;
   try {  // a plugin written against abi.h directly may let an exception escape
-    s = type.factory->create(text.c_str(), &host_, &handle_, &error);
+    s = type_.factory->create(params_text.c_str(), &host_, &handle_, &error);
   } catch (const std::exception& e) {
     throw_escaped("create", e.what());
   } catch (...) {
@@ -77,15 +91,68 @@ Instance::Instance(const ComponentType& type, std::string label, const nlohmann:
   }
   if (s != RUMBLE_OK || handle_ == nullptr) {
     const std::string said = error != nullptr && *error != '\0' ? error : "no message";
-    throw ParamsRefused(label_ + ": " + kind_name(type.kind) + " type '" + type.type_name +
+    throw ParamsRefused(label_ + ": " + kind_name(type_.kind) + " type '" + type_.type_name +
                             "' refused its params: " + said + " (plugin " +
-                            type.library->path.string() + ")",
+                            type_.library->path.string() + ")",
                         said);
   }
 }
 
+void Instance::create_everywhere(const nlohmann::json& params) {
+  static std::atomic<std::uint64_t> next_id{1};
+  mirror_id_ = next_id++;
+  const std::string text = params.dump();
+  mirror::Writer w;
+  w.put(mirror::Call::kCreate).put(mirror_id_);
+  w.put_text(type_.library->path.string()).put_text(type_.type_name).put_text(label_);
+  w.put_text(text).put_text(scenario_dir_);
+  try {
+    run_mirrored(w, [&] { create_here(text); });
+  } catch (...) {
+    destroy_everywhere();  // the ranks where it was created
+    throw;
+  }
+}
+
+void Instance::destroy_everywhere() noexcept {
+  mirror::Writer w;
+  w.put(mirror::Call::kDestroy).put(mirror_id_);
+  try {
+    run_mirrored(w, [&] {
+      if (handle_ != nullptr) common_->destroy(handle_);
+      handle_ = nullptr;
+    });
+  } catch (const std::exception& e) {
+    logger_->error("{}: destroying it: {}", who(), e.what());
+  }
+}
+
+void Instance::run_mirrored(const mirror::Writer& w, const std::function<void()>& body) const {
+  parallel::send_to_servers(w.bytes());
+  std::exception_ptr failed;
+  std::string mine;
+  in_mirrored_call_ = true;
+  try {
+    body();
+  } catch (const std::exception& e) {
+    failed = std::current_exception();
+    mine = e.what();
+  } catch (...) {
+    failed = std::current_exception();
+    mine = "an exception not derived from std::exception";
+  }
+  in_mirrored_call_ = false;
+  const std::string first = parallel::first_failure(mine);
+  if (failed) std::rethrow_exception(failed);
+  if (!first.empty()) throw RunError("MPI " + first);  // "MPI rank 1: soil 'x' (/soil): ..."
+}
+
 Instance::~Instance() {
-  if (handle_ != nullptr) common_->destroy(handle_);
+  if (mirror_id_ != 0) {
+    destroy_everywhere();
+  } else if (handle_ != nullptr) {
+    common_->destroy(handle_);
+  }
 }
 
 void Instance::log_callback(void* host_data, int32_t level, const char* message) {
@@ -109,6 +176,25 @@ int32_t Instance::progress_callback(void* /*host_data*/, double /*fraction*/) {
   return interrupt_requested() ? 1 : 0;
 }
 
+rumble_status Instance::communicator_callback(void* host_data, int64_t* fortran_handle,
+                                              int32_t* rank, int32_t* size) {
+  auto* self = static_cast<Instance*>(host_data);
+  try {
+    if (self->communicator_ == nullptr) {
+      const bool world = self->type_.capabilities.has(RUMBLE_CAP_DISTRIBUTED);
+      self->communicator_ = std::make_unique<parallel::Communicator>(world);
+    }
+    *fortran_handle = self->communicator_->fortran_handle();
+    *rank = self->communicator_->rank();
+    *size = self->communicator_->size();
+    return RUMBLE_OK;
+  } catch (const std::exception& e) {
+    self->logger_->error("{}", e.what());
+    *size = 0;
+    return RUMBLE_ERROR;
+  }
+}
+
 void Instance::set_run_context(const std::filesystem::path& results_dir, unsigned threads) {
   set_results_dir(results_dir);
   grant_threads(threads);
@@ -117,40 +203,61 @@ void Instance::set_run_context(const std::filesystem::path& results_dir, unsigne
 void Instance::set_results_dir(const std::filesystem::path& results_dir) {
   results_dir_ = results_dir.string();
   host_.results_dir = results_dir_.c_str();
+  mirror_host_context();
 }
 
 void Instance::grant_threads(unsigned threads) {
   host_.threads = std::max(1u, threads);
+  mirror_host_context();
+}
+
+void Instance::mirror_host_context() const {
+  const auto encode = [&](mirror::Writer& w) { w.put_text(results_dir_).put(host_.threads); };
+  mirrored(mirror::Call::kHostContext, encode, [] {});
 }
 
 void Instance::finalize() {
-  if (lifecycle_ != nullptr && lifecycle_->finalize != nullptr)
-    call("finalize", [&] { return lifecycle_->finalize(handle_); });
+  if (lifecycle_ == nullptr || lifecycle_->finalize == nullptr) return;
+  mirrored(
+      mirror::Call::kFinalize, [](mirror::Writer&) {},
+      [&] { call("finalize", [&] { return lifecycle_->finalize(handle_); }); });
 }
 
 bool Instance::can_checkpoint() const {
   if (checkpoints_.plugin_held()) return true;
-  std::uint64_t n = 0;
-  call("state_size", [&] { return checkpoints_.state_size(handle_, &n); });
-  return n > 0;
+  return mirrored(
+      mirror::Call::kCanCheckpoint, [](mirror::Writer&) {},
+      [&] {
+        std::uint64_t n = 0;
+        call("state_size", [&] { return checkpoints_.state_size(handle_, &n); });
+        return n > 0;
+      });
 }
 void Instance::checkpoint_save(std::uint32_t slot) {
   check_checkpoint_slot(slot);
-  if (!can_checkpoint()) {
-    throw RunError(std::string(kind_name(type_.kind)) + " '" + type_.type_name +
-                   "' does not support save/restore, which this coupling scheme needs");
-  }
-  call("checkpoint_save", [&] { return checkpoints_.save(handle_, slot); });
+  mirrored(
+      mirror::Call::kCheckpointSave, [&](mirror::Writer& w) { w.put(slot); },
+      [&] {
+        if (!can_checkpoint()) {
+          throw RunError(std::string(kind_name(type_.kind)) + " '" + type_.type_name +
+                         "' does not support save/restore, which this coupling scheme needs");
+        }
+        call("checkpoint_save", [&] { return checkpoints_.save(handle_, slot); });
+      });
 }
 void Instance::checkpoint_restore(std::uint32_t slot) {
   check_checkpoint_slot(slot);
   if (!checkpoints_.restorable(slot))
     throw RunError("restore from checkpoint slot " + std::to_string(slot) + " never saved");
-  call("checkpoint_restore", [&] { return checkpoints_.restore(handle_, slot); });
+  mirrored(
+      mirror::Call::kCheckpointRestore, [&](mirror::Writer& w) { w.put(slot); },
+      [&] { call("checkpoint_restore", [&] { return checkpoints_.restore(handle_, slot); }); });
 }
 void Instance::checkpoint_free(std::uint32_t slot) {
   check_checkpoint_slot(slot);
-  call("checkpoint_free", [&] { return checkpoints_.release(handle_, slot); });
+  mirrored(
+      mirror::Call::kCheckpointFree, [&](mirror::Writer& w) { w.put(slot); },
+      [&] { call("checkpoint_free", [&] { return checkpoints_.release(handle_, slot); }); });
 }
 
 std::string Instance::who() const {
@@ -280,8 +387,13 @@ SoilInstance::SoilInstance(const ComponentType& type, std::string label,
 
 void SoilInstance::accept_layout(const std::vector<rumble_footprint>& footprints) {
   try {
-    call("accept_layout",
-         [&] { return api_.accept_layout(handle(), footprints.data(), footprints.size()); });
+    mirrored(
+        mirror::Call::kAcceptLayout,
+        [&](mirror::Writer& w) { w.put_array(footprints.data(), footprints.size()); },
+        [&] {
+          call("accept_layout",
+               [&] { return api_.accept_layout(handle(), footprints.data(), footprints.size()); });
+        });
   } catch (const std::exception& e) {
     throw ConfigError(std::string(e.what()) +
                       "; the layout comes from /track/sleepers (count, spacing, footprint)");
@@ -290,8 +402,14 @@ void SoilInstance::accept_layout(const std::vector<rumble_footprint>& footprints
 void SoilInstance::initialize(double t0, const std::vector<double>& static_force,
                               std::vector<double>& u) {
   u.resize(static_force.size());
-  call("initialize",
-       [&] { return api_.initialize(handle(), t0, static_force.data(), u.data(), u.size()); });
+  mirrored(
+      mirror::Call::kInitialize,
+      [&](mirror::Writer& w) { w.put(t0).put_array(static_force.data(), static_force.size()); },
+      [&] {
+        call("initialize", [&] {
+          return api_.initialize(handle(), t0, static_force.data(), u.data(), u.size());
+        });
+      });
   if (const auto bad = first_not_finite(u.data(), u.size()))
     throw_not_finite("initialize", "static displacement", *bad, u[*bad],
                      all_finite(static_force.data(), static_force.size()));
@@ -307,10 +425,16 @@ void SoilInstance::advance(double t, double H, const rumble_waveform& force) {
                    "); reduce time.macro_step or track.integrator.micro_step, or use the "
                    "implicit coupler");
   }
-  call("advance", [&] { return api_.advance(handle(), t, H, &force); });
+  const auto encode = [&](mirror::Writer& w) {
+    w.put(t).put(H).put(force.order).put_array(force.coeff, n_coeff);
+  };
+  mirrored(mirror::Call::kAdvance, encode,
+           [&] { call("advance", [&] { return api_.advance(handle(), t, H, &force); }); });
 }
 void SoilInstance::motion(double* u, double* v, std::size_t n) const {
-  call("motion", [&] { return api_.motion(handle(), u, v, n); });
+  mirrored(
+      mirror::Call::kMotion, [&](mirror::Writer& w) { w.put(static_cast<std::uint64_t>(n)); },
+      [&] { call("motion", [&] { return api_.motion(handle(), u, v, n); }); });
   // Every input (the forces) was checked finite by advance, so a value that is not finite is
   // the plugin's own (the divergence monitor would otherwise blame the coupling for it).
   if (const auto bad = first_not_finite(u, n))
@@ -325,8 +449,13 @@ bool SoilInstance::frequency_response(double f_hz, std::size_t n,
   re_.resize(n * n);
   im_.resize(n * n);
   try {
-    call("frequency_response",
-         [&] { return api_.frequency_response(handle(), f_hz, re_.data(), im_.data(), n); });
+    mirrored(
+        mirror::Call::kFrequencyResponse,
+        [&](mirror::Writer& w) { w.put(f_hz).put(static_cast<std::uint64_t>(n)); },
+        [&] {
+          call("frequency_response",
+               [&] { return api_.frequency_response(handle(), f_hz, re_.data(), im_.data(), n); });
+        });
   } catch (const Discarded&) {
     return false;
   }
@@ -342,27 +471,48 @@ bool SoilInstance::set_receivers(const std::vector<rumble_receiver>& receivers) 
   if (api_.set_receivers == nullptr || !capabilities().has(RUMBLE_CAP_SURFACE_RECEIVERS))
     return false;
   try {
-    call("set_receivers",
-         [&] { return api_.set_receivers(handle(), receivers.data(), receivers.size()); });
+    mirrored(
+        mirror::Call::kSetReceivers,
+        [&](mirror::Writer& w) { w.put_array(receivers.data(), receivers.size()); },
+        [&] {
+          call("set_receivers",
+               [&] { return api_.set_receivers(handle(), receivers.data(), receivers.size()); });
+        });
   } catch (const Discarded&) {
     return false;
   }
   return true;
 }
 void SoilInstance::receiver_velocity(double* v, std::size_t n) const {
-  call("receiver_velocity", [&] { return api_.receiver_velocity(handle(), v, n); });
+  mirrored(
+      mirror::Call::kReceiverVelocity,
+      [&](mirror::Writer& w) { w.put(static_cast<std::uint64_t>(n)); },
+      [&] { call("receiver_velocity", [&] { return api_.receiver_velocity(handle(), v, n); }); });
   if (const auto bad = first_not_finite(v, n))
     throw_not_finite("receiver_velocity", "receiver velocity", *bad, v[*bad]);
 }
 bool SoilInstance::set_probes(const std::vector<rumble_probe>& probes, double sample_interval) {
   if (api_.set_probes == nullptr || !capabilities().has(RUMBLE_CAP_RECEIVERS)) return false;
-  call("set_probes",
-       [&] { return api_.set_probes(handle(), probes.data(), probes.size(), sample_interval); });
+  const auto encode = [&](mirror::Writer& w) {
+    w.put(sample_interval).put(static_cast<std::uint64_t>(probes.size()));
+    for (const rumble_probe& p : probes)
+      w.put_text(p.name != nullptr ? p.name : "").put(p.x).put(p.y).put(p.depth);
+  };
+  mirrored(mirror::Call::kSetProbes, encode, [&] {
+    call("set_probes",
+         [&] { return api_.set_probes(handle(), probes.data(), probes.size(), sample_interval); });
+  });
   n_probes_ = probes.size();
   return true;
 }
 void SoilInstance::take_probe_samples(std::vector<double>& times, std::vector<double>& values) {
   if (n_probes_ == 0) return;
+  mirrored(
+      mirror::Call::kTakeProbeSamples, [](mirror::Writer&) {},
+      [&] { take_probe_samples_here(times, values); });
+}
+void SoilInstance::take_probe_samples_here(std::vector<double>& times,
+                                           std::vector<double>& values) {
   std::uint64_t n = 0;
   call("probe_samples", [&] { return api_.probe_samples(handle(), nullptr, nullptr, 0, &n); });
   if (n == 0) return;
@@ -381,8 +531,12 @@ std::optional<SoilInstance::ProbeResolution> SoilInstance::probe_resolution() co
   ProbeResolution r;
   r.f_hz.assign(n_probes_, 0.0);
   const char* rule = nullptr;
-  call("probe_resolution",
-       [&] { return api_.probe_resolution(handle(), r.f_hz.data(), n_probes_, &rule); });
+  mirrored(
+      mirror::Call::kProbeResolution, [](mirror::Writer&) {},
+      [&] {
+        call("probe_resolution",
+             [&] { return api_.probe_resolution(handle(), r.f_hz.data(), n_probes_, &rule); });
+      });
   for (std::size_t p = 0; p < n_probes_; ++p) {
     if (!std::isfinite(r.f_hz[p]))
       throw_not_finite("probe_resolution", "resolved frequency", p, r.f_hz[p]);
@@ -402,12 +556,19 @@ bool SoilInstance::offers_fields() const {
 
 bool SoilInstance::write_fields(double t, const std::filesystem::path& path) {
   if (!offers_fields()) return false;
-  call("write_fields", [&] { return api_.write_fields(handle(), t, path.c_str()); });
+  mirrored(
+      mirror::Call::kWriteFields, [&](mirror::Writer& w) { w.put(t).put_text(path.string()); },
+      [&] { call("write_fields", [&] { return api_.write_fields(handle(), t, path.c_str()); }); });
   return true;
 }
 bool SoilInstance::linear_matrix(rumble_matrix which, Eigen::SparseMatrix<double>& out) {
   if (api_.linear_matrix == nullptr || !capabilities().has(RUMBLE_CAP_LINEAR_MATRICES))
     return false;
+  return mirrored(
+      mirror::Call::kLinearMatrix, [&](mirror::Writer& w) { w.put(which); },
+      [&] { return linear_matrix_here(which, out); });
+}
+bool SoilInstance::linear_matrix_here(rumble_matrix which, Eigen::SparseMatrix<double>& out) {
   rumble_csc csc{};
   call("linear_matrix", [&] { return api_.linear_matrix(handle(), which, &csc); });
   const std::uint64_t rows = csc.rows, cols = csc.cols, nnz = csc.nnz;
@@ -450,7 +611,9 @@ bool SoilInstance::linear_matrix(rumble_matrix which, Eigen::SparseMatrix<double
 
 bool SoilInstance::wave_speeds(double& c_s_min, double& c_r_min) const {
   if (api_.wave_speeds == nullptr || !capabilities().has(RUMBLE_CAP_WAVE_SPEEDS)) return false;
-  call("wave_speeds", [&] { return api_.wave_speeds(handle(), &c_s_min, &c_r_min); });
+  mirrored(
+      mirror::Call::kWaveSpeeds, [](mirror::Writer&) {},
+      [&] { call("wave_speeds", [&] { return api_.wave_speeds(handle(), &c_s_min, &c_r_min); }); });
   if (!std::isfinite(c_s_min)) throw_not_finite("wave_speeds", "shear wave speed", 0, c_s_min);
   if (!std::isfinite(c_r_min)) throw_not_finite("wave_speeds", "Rayleigh wave speed", 0, c_r_min);
   return true;

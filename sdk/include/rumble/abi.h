@@ -45,6 +45,9 @@
  *   1.3 (2026-12-04) appended to the soil's table (docs/decisions/0010-abi-1-3.md):
  *       probe_resolution, the band a soil resolves at each probe, so that every number drawn
  *       from a receiver can say where it stops being valid.
+ *   1.4 (2026-12-05) appended to rumble_host (docs/decisions/0012-distributed-soil.md):
+ *       communicator, the MPI communicator an instance works on; RUMBLE_CAP_DISTRIBUTED, a soil
+ *       whose calls are collective over it, created on every rank of an MPI launch.
  */
 #ifndef RUMBLE_ABI_H
 #define RUMBLE_ABI_H
@@ -57,7 +60,7 @@ extern "C" {
 #endif
 
 #define RUMBLE_ABI_MAJOR 1
-#define RUMBLE_ABI_MINOR 3
+#define RUMBLE_ABI_MINOR 4
 
 /** Name of the one symbol every plugin library exports (see rumble_plugin_entry_fn). */
 #define RUMBLE_PLUGIN_ENTRY_SYMBOL "rumble_plugin_entry"
@@ -126,6 +129,18 @@ typedef struct rumble_host {
    *  nonzero when the host asks the instance to stop (Ctrl-C). The plugin then returns
    *  RUMBLE_ERROR promptly; its state may be left mid-step (the run is over). */
   int32_t (*progress)(void* host_data, double fraction);
+  /* ---- 1.4 (docs/decisions/0012-distributed-soil.md) */
+  /** The MPI communicator this instance works on, as MPI's Fortran handle (MPI_Comm_c2f; the
+   *  plugin turns it back with MPI_Comm_f2c, from the same MPI library as the host's), with this
+   *  process's rank in it and its size. A soil declaring RUMBLE_CAP_DISTRIBUTED gets a duplicate
+   *  of MPI_COMM_WORLD made for it: under an MPI launcher the host creates it on every rank and
+   *  makes each of its calls on every rank with the same inputs. Any other instance gets a
+   *  duplicate of MPI_COMM_SELF (size 1). The first call starts MPI when it is not running (a
+   *  singleton); the host finishes MPI at exit, after destroying every instance: a plugin never
+   *  initialises or finalises MPI itself. Returns ERROR when MPI cannot start (the host logs
+   *  why). Null: the host has no MPI; run on one process without it, or refuse. */
+  rumble_status (*communicator)(void* host_data, int64_t* fortran_handle, int32_t* rank,
+                                int32_t* size);
 } rumble_host;
 
 /** Opaque instance handle created by a factory. */
@@ -179,6 +194,11 @@ typedef struct rumble_lifecycle_api {
  *  only (the soil's outputs follow it; advancing the soil is an error) and must also need
  *  RUMBLE_CAP_LINEAR_MATRICES in soil_needs. */
 #define RUMBLE_CAP_MONOLITHIC (UINT64_C(1) << 11)
+/** 1.4, soil: every call of this soil is collective over rumble_host.communicator's
+ *  communicator (MPI_COMM_WORLD's duplicate): under an MPI launcher the host creates it on every
+ *  rank and mirrors each call from rank 0 with the same inputs; outputs are read on rank 0
+ *  (docs/decisions/0012-distributed-soil.md). Without a launcher it runs as one rank. */
+#define RUMBLE_CAP_DISTRIBUTED (UINT64_C(1) << 12)
 
 /**
  * 1.1: what a component type offers and, for a coupler, what it needs, declared on its factory

@@ -39,6 +39,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -65,6 +66,16 @@ inline constexpr std::uint64_t kCapOncePerProcess = RUMBLE_CAP_ONCE_PER_PROCESS;
 inline constexpr std::uint64_t kCapSaveRestore = RUMBLE_CAP_SAVE_RESTORE;
 inline constexpr std::uint64_t kCapLinearMatrices = RUMBLE_CAP_LINEAR_MATRICES;
 inline constexpr std::uint64_t kCapMonolithic = RUMBLE_CAP_MONOLITHIC;
+inline constexpr std::uint64_t kCapDistributed = RUMBLE_CAP_DISTRIBUTED;
+
+/// The MPI communicator an instance works on (ABI 1.4, docs/decisions/0012-distributed-soil.md):
+/// MPI's Fortran handle, to be turned back with MPI_Comm_f2c; the rank of this process in it and
+/// its size. No MPI header here: a plugin that uses MPI includes its own <mpi.h>.
+struct HostCommunicator {
+  std::int64_t fortran_handle = 0;
+  int rank = 0;
+  int size = 1;
+};
 
 /// Host services (logging, directories, thread budget, stop requests). Cheap to copy; valid for
 /// the instance's life.
@@ -97,6 +108,20 @@ class Host {
   bool stop_requested(double fraction = -1.0) const {
     return RUMBLE_HAS_FIELD(host_, rumble_host, progress) && host_->progress != nullptr &&
            host_->progress(host_->host_data, fraction) != 0;
+  }
+  /// The instance's communicator (the host starts MPI on the first call); nothing when the host
+  /// has no MPI (older than ABI 1.4, or built without it). Throws std::runtime_error when the
+  /// host could not start MPI (it logged why).
+  std::optional<HostCommunicator> communicator() const {
+    if (!RUMBLE_HAS_FIELD(host_, rumble_host, communicator) || host_->communicator == nullptr)
+      return std::nullopt;
+    HostCommunicator c;
+    std::int32_t rank = 0, size = 0;
+    if (host_->communicator(host_->host_data, &c.fortran_handle, &rank, &size) != RUMBLE_OK)
+      throw std::runtime_error("the host could not give an MPI communicator (see its log)");
+    c.rank = rank;
+    c.size = size;
+    return c;
   }
   /// stop_requested(), throwing rumble::Stopped when asked to stop.
   void check_stop(double fraction = -1.0) const {

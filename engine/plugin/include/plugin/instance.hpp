@@ -11,19 +11,25 @@
 #include <complex>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "core/errors.hpp"
 #include "plugin/abi_adapter.hpp"
+#include "plugin/mirror_message.hpp"
 #include "plugin/registry.hpp"
 
 namespace spdlog {
 class logger;
+}
+namespace rumble::parallel {
+class Communicator;
 }
 
 namespace rumble {
@@ -120,12 +126,47 @@ class Instance {
   std::string last_message() const;
   rumble_instance* handle() const { return handle_; }
 
+  /// Under an MPI launch, a distributed soil's call is first sent to the other ranks, whose
+  /// servers make the same call (plugin/soil_server.hpp), then `body` makes it here, then every
+  /// rank's error comes back: this rank's is thrown as it was, another's as a RunError naming
+  /// the rank (docs/decisions/0012-distributed-soil.md). Otherwise, and inside such a call (a
+  /// call made by another), body() alone. `encode` writes the call's inputs after its id.
+  template <class Encode, class Body>
+  auto mirrored(mirror::Call call, Encode&& encode, Body&& body) const -> decltype(body()) {
+    if (mirror_id_ == 0 || in_mirrored_call_) return body();
+    mirror::Writer w;
+    w.put(call).put(mirror_id_);
+    encode(w);
+    if constexpr (std::is_void_v<decltype(body())>) {
+      run_mirrored(w, [&] { body(); });
+    } else {
+      std::optional<decltype(body())> result;
+      run_mirrored(w, [&] { result.emplace(body()); });
+      return std::move(*result);
+    }
+  }
+  /// What every server's copy of this instance is known by; 0 when the instance is not mirrored.
+  std::uint64_t mirror_id() const { return mirror_id_; }
+
  private:
+  /// Sends `w`, runs `body`, gathers the ranks' errors and throws the first (see mirrored()).
+  void run_mirrored(const mirror::Writer& w, const std::function<void()>& body) const;
+  /// The constructor's part under a launch: a distributed soil is created on every rank.
+  void create_everywhere(const nlohmann::json& params);
+  void create_here(const std::string& params_text);
+  /// The destructor's part: destroys the servers' copies (their errors are logged).
+  void destroy_everywhere() noexcept;
+  /// Gives the servers' copies this instance's results directory and threads.
+  void mirror_host_context() const;
   // The plugin tests (tests/soils/soil_harness) call the plugin's own C table on the handle, to
   // test its statuses and messages past the engine's wrapper; nothing in the engine does.
   friend struct PluginHandle;
   static void log_callback(void* host_data, int32_t level, const char* message);
   static int32_t progress_callback(void* host_data, double fraction);
+  /// rumble_host.communicator (ABI 1.4): made on the first call, a duplicate of MPI_COMM_WORLD
+  /// for a distributed soil, of MPI_COMM_SELF for anything else; freed with the instance.
+  static rumble_status communicator_callback(void* host_data, int64_t* fortran_handle,
+                                             int32_t* rank, int32_t* size);
   ComponentType type_;  // a copy: the instance may outlive the registry; type_.library keeps
                         // the code (and the factory and tables it points to) mapped
   std::string label_;
@@ -136,7 +177,10 @@ class Instance {
   const rumble_common_api* common_ = nullptr;
   const rumble_lifecycle_api* lifecycle_ = nullptr;  // null: a 1.0 plugin, or none offered
   abi::Checkpoints checkpoints_;
+  std::unique_ptr<parallel::Communicator> communicator_;  // after the handle's destruction
   rumble_instance* handle_ = nullptr;
+  std::uint64_t mirror_id_ = 0;            // 0: not mirrored
+  mutable bool in_mirrored_call_ = false;  // a mirrored call is running: nested ones are not
 };
 
 class VehicleInstance final : public Instance {
@@ -199,6 +243,8 @@ class SoilInstance final : public Instance {
   bool linear_matrix(rumble_matrix which, Eigen::SparseMatrix<double>& out);
 
  private:
+  void take_probe_samples_here(std::vector<double>& times, std::vector<double>& values);
+  bool linear_matrix_here(rumble_matrix which, Eigen::SparseMatrix<double>& out);
   rumble_soil_api api_;          // in the current shape
   std::vector<double> re_, im_;  // scratch for frequency_response
   std::size_t n_probes_ = 0;

@@ -1,0 +1,91 @@
+# `rumble` under mpirun (docs/decisions/0012-distributed-soil.md), one case per test:
+#   plugins_show_mpi             `rumble plugins` names the MPI library, one rank, MPI not started
+#   plugins_launched             under mpirun -n 2 it says 2 ranks, printed once (rank 0 alone)
+#   same_results_on_N_ranks      the split_dashpot scenario run without mpirun and on N ranks:
+#                                the soil says it is split over N ranks, every CSV is identical
+#   rank_failure_stops_every_rank  split_dashpot failing on rank 1 at 20 ms: every rank stops
+#                                (no hang: the test's timeout), exit code 3, rank 1's message,
+#                                results up to then on disk
+#   interrupt_stops_every_rank   Ctrl-C to mpirun mid-run: summary.json says "interrupted"
+set(mpirun ${MPIEXEC} --oversubscribe)
+set(scenario ${SOURCE_DIR}/split_dashpot.json)
+file(REMOVE_RECURSE ${WORK_DIR})
+file(MAKE_DIRECTORY ${WORK_DIR})
+
+function(rumble_run out_var code_var)
+  execute_process(COMMAND ${ARGN} OUTPUT_VARIABLE out ERROR_VARIABLE err RESULT_VARIABLE code)
+  set(${out_var} "${out}${err}" PARENT_SCOPE)
+  set(${code_var} ${code} PARENT_SCOPE)
+endfunction()
+
+function(expect_match text regex)
+  if(NOT text MATCHES "${regex}")
+    message(FATAL_ERROR "expected output matching '${regex}', got:\n${text}")
+  endif()
+endfunction()
+
+if(CASE STREQUAL "plugins_show_mpi")
+  rumble_run(out code ${RUMBLE} plugins)
+  expect_match("${out}" "MPI: Open MPI v[0-9.]+ \\(MPI [0-9.]+\\)")
+  expect_match("${out}" "not launched by mpirun")
+elseif(CASE STREQUAL "plugins_launched")
+  rumble_run(out code ${mpirun} -n 2 ${RUMBLE} plugins)
+  expect_match("${out}" "launched on 2 ranks")
+  string(REGEX MATCHALL "plugin directory:" printed "${out}")
+  list(LENGTH printed n)
+  if(NOT code EQUAL 0 OR NOT n EQUAL 1)
+    message(FATAL_ERROR "exit ${code}, printed ${n} times (rank 0 alone must print):\n${out}")
+  endif()
+elseif(CASE MATCHES "^same_results_on_([0-9])_ranks$")
+  set(ranks ${CMAKE_MATCH_1})
+  rumble_run(out code ${RUMBLE} run ${scenario} --output ${WORK_DIR}/one)
+  if(NOT code EQUAL 0)
+    message(FATAL_ERROR "the run on one process failed (${code}):\n${out}")
+  endif()
+  expect_match("${out}" "rank 0 of 1 ranks owns 40 footprints")
+  rumble_run(out code ${mpirun} -n ${ranks} ${RUMBLE} run ${scenario}
+             --output ${WORK_DIR}/many)
+  if(NOT code EQUAL 0)
+    message(FATAL_ERROR "the run on ${ranks} ranks failed (${code}):\n${out}")
+  endif()
+  math(EXPR last "${ranks} - 1")
+  foreach(rank RANGE ${last})
+    expect_match("${out}" "rank ${rank} of ${ranks} ranks owns")
+  endforeach()
+  foreach(csv footprint_displacement footprint_velocity footprint_force contact vehicles interface)
+    execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files ${WORK_DIR}/one/${csv}.csv
+                            ${WORK_DIR}/many/${csv}.csv RESULT_VARIABLE differ)
+    if(NOT differ EQUAL 0)
+      message(FATAL_ERROR "${csv}.csv differs between 1 process and ${ranks} ranks")
+    endif()
+  endforeach()
+elseif(CASE STREQUAL "rank_failure_stops_every_rank")
+  rumble_run(out code ${mpirun} -n 2 ${RUMBLE} run ${scenario}
+             --output ${WORK_DIR}/failed --set /soil/params/fail_rank=1
+             --set /soil/params/fail_at=0.02)
+  if(NOT code EQUAL 3)
+    message(FATAL_ERROR "expected exit code 3 (run failed), got ${code}:\n${out}")
+  endif()
+  expect_match("${out}" "error: MPI rank 1: soil .split_dashpot. \\(/soil\\): advance failed: split_dashpot failed on purpose at t = 0.02")
+  file(STRINGS ${WORK_DIR}/failed/footprint_displacement.csv rows)
+  list(LENGTH rows n)
+  if(n LESS 150)
+    message(FATAL_ERROR "the results up to 20 ms are not on disk (${n} rows)")
+  endif()
+elseif(CASE STREQUAL "interrupt_stops_every_rank")
+  # mpirun, stopped (SIGTERM, as a batch system stops a job; a backgrounded shell job ignores
+  # SIGINT), sends SIGTERM to every rank: rank 0 stops as a run does, the servers wait
+  # for it; nothing is left running, and what was computed is on disk.
+  string(JOIN " " launch ${mpirun} -n 2 ${RUMBLE} run ${scenario} --output ${WORK_DIR}/stopped
+         --set /time/end=0.5 --set /time/macro_step=1e-5)
+  # Lines, not ';': the script passes through a CMake list.
+  rumble_run(out code sh -c "${launch} & pid=$!\nsleep 3\nkill -TERM $pid\nwait $pid")
+  file(READ ${WORK_DIR}/stopped/summary.json summary)
+  string(JSON status GET "${summary}" status)
+  if(NOT status STREQUAL "interrupted")
+    message(FATAL_ERROR "summary.json status '${status}', expected 'interrupted':\n${out}")
+  endif()
+  expect_match("${out}" "interrupted at t = [0-9.e-]+ s")
+else()
+  message(FATAL_ERROR "unknown case ${CASE}")
+endif()
