@@ -291,11 +291,12 @@ void co_simulate(const scenario::RunSpec& spec, const RunOptions& options, RunCo
                         {rec.recorder, rec.probes.get(), rec.fields.get(), &summary}, spec.t_end,
                         spec.outputs.every, outcome.results_dir, options.progress, spec.divergence);
   double recording_seconds = 0.0;  // in the step callback: records, checks, heartbeat
-  CosimHostImpl host(sides.participants, c.coupler->type().abi_minor, [&](const StepOutcome& step) {
-    const auto start = Clock::now();
-    observer(step);
-    recording_seconds += seconds_since(start);
-  });
+  CosimHostImpl host(sides.participants, c.track->footprints(), c.coupler->type().abi_minor,
+                     [&](const StepOutcome& step) {
+                       const auto start = Clock::now();
+                       observer(step);
+                       recording_seconds += seconds_since(start);
+                     });
   std::string coupler_message;
   const StopPhase stepping("the time stepping");
   const rumble_status status = c.coupler->run(*host.table(), 0.0, spec.t_end, H, coupler_message);
