@@ -181,6 +181,7 @@ struct StandIn {
     h.ctx = this;
     set_functions_1_0(h);
     set_functions_1_1(h);
+    set_functions_1_4(h);
     return h;
   }
 
@@ -286,6 +287,18 @@ struct StandIn {
     };
     h.can_checkpoint = [](void* ctx, std::uint32_t p) -> std::int32_t {
       return of(ctx).can_save(p, 0) ? 1 : 0;
+    };
+  }
+
+  /// The host's function ABI 1.4 added: the footprint layout (CosimHost::footprints()), for a
+  /// scheme that applies loads of its own: 2.6 x 0.26 m sleepers 0.6 m apart.
+  static void set_functions_1_4(rumble_cosim_host& h) {
+    h.footprint_layout = [](void*, rumble_footprint* out, std::uint64_t capacity,
+                            std::uint64_t* n) {
+      *n = kFootprints;
+      for (std::uint64_t i = 0; i < kFootprints && i < capacity; ++i)
+        out[i] = {0.6 * static_cast<double>(i), 0.0, 2.6, 0.26};
+      return RUMBLE_OK;
     };
   }
 };

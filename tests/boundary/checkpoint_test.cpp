@@ -26,7 +26,7 @@ TEST(Checkpoints, PluginHeldSlotsRestoreExactlyAndCanBeFreed) {
   soil.accept_layout({{0.0, 0.0, 2.6, 0.26}, {0.6, 0.0, 2.6, 0.26}});
   std::vector<double> u;
   soil.initialize(0.0, {1e4, 2e4}, u);
-  SoilSide side("soil", soil, 2);
+  SoilSide side("soil", soil, {1e4, 2e4});
   std::vector<double> coeff{5e4, 5e4}, before(4), after(4), again(4);
   side.set_input({0, 2, coeff.data()});
   side.checkpoint(3);

@@ -2,7 +2,7 @@
 // factor times the static one stops a run that asked to stop and only warns otherwise; a
 // velocity beyond 10 m/s is treated alike; a displacement beyond 1 m or a value that is not finite
 // stops every run; each with the footprint, the value and the time the motion first passed twice
-// its static value.
+// its static value. A soil with no static load (a prescribed-load coupler) has no factor bound.
 #include "run/divergence_monitor.hpp"
 
 #include <gmock/gmock.h>
@@ -77,6 +77,32 @@ TEST(DivergenceMonitor, ADisplacementNoTrainMakesStopsEveryRun) {
   going_on.watch("soil", rest.data(), 2);
   EXPECT_THAT(message_of(going_on, {0.1, 1.5}, still, 0.3),
               HasSubstr("displacement is 1.5 m (limit 1 m)"));
+}
+
+TEST(DivergenceMonitor, NoStaticLoadLeavesTheFactorOutAndKeepsTheLimits) {
+  // A prescribed load on a soil with nothing static on it (a 1 kg wheel: 3e-8 m): 1e-4 m is
+  // 3000 x the settlement, Lamb's problem, not a divergence; the limits still hold.
+  const std::vector<double> rest{3e-8, 1e-8}, still{0.0, 0.0};
+  DivergenceMonitor m = monitor(true);
+  m.watch("soil", rest.data(), 2);
+  EXPECT_EQ(message_of(m, {1e-4, 4e-5}, {0.02, 0.01}, 0.01), "");
+  EXPECT_FALSE(m.detected());
+  EXPECT_TRUE(m.summary()["displacement_bound_m"].is_null());
+  EXPECT_TRUE(m.summary()["t_first_beyond_twice_static_s"].is_null());
+  EXPECT_THAT(message_of(m, {1e-4, 4e-5}, {12.0, 0.01}, 0.02),
+              HasSubstr("soil footprint 0 velocity is 12 m/s, more than 10 m/s"));
+  DivergenceMonitor hard = monitor(false);
+  hard.watch("soil", still.data(), 2);  // exactly nothing static
+  EXPECT_EQ(message_of(hard, {0.5, 0.0}, still, 0.01), "");
+  EXPECT_THAT(message_of(hard, {1.5, 0.0}, still, 0.02),
+              HasSubstr("displacement is 1.5 m (limit 1 m)"));
+  // A train's settlement keeps the factor: 20 x 1e-5 m.
+  DivergenceMonitor train = monitor(true);
+  const std::vector<double> settled{1e-5, 2e-6};
+  train.watch("soil", settled.data(), 2);
+  EXPECT_DOUBLE_EQ(train.summary()["displacement_bound_m"].get<double>(), 2e-4);
+  EXPECT_THAT(message_of(train, {3e-4, 0.0}, still, 0.01),
+              HasSubstr("more than 20 x its largest static displacement (1e-05 m)"));
 }
 
 }  // namespace

@@ -2,7 +2,7 @@
 // twice anything before is caught with its rate per macro step (within 3 windows when it flips
 // sign every step, as an unstable explicit coupling over a massless soil does; after 60 ms of
 // rising otherwise); what a passing train does (a start from rest, a dip's blow that rings down,
-// a steady ripple) is not.
+// a steady ripple) is not, nor the motion under a prescribed load rising from rest.
 #include "run/growth_watch.hpp"
 
 #include <gtest/gtest.h>
@@ -78,6 +78,43 @@ TEST(GrowthWatch, LeavesAStartFromRestADipAndASteadyTrainAlone) {
     EXPECT_FALSE(watch(dip, kSmooth, H, 1.0)) << H;
     // Rounding noise of a soil at rest, even if it drifts up.
     EXPECT_FALSE(watch([](double t) { return 1e-12 * std::exp(10.0 * t); }, kSmooth, H, 1.0)) << H;
+  }
+}
+
+TEST(GrowthWatch, LeavesALoadThatRisesFromRestAndRingsDownAlone) {
+  // A prescribed load on a soil with no static load (docs/couplers.md, "No static load"): the
+  // footprints are at rest until the load starts at t0, so nothing came before to be twice of,
+  // and a slow load rises for longer than 60 ms. The speed follows the load's rate: a smooth
+  // ramp (1 - cos over T) moves it as sin(pi s / T), a Hann pulse as |sin(2 pi s / T)|; after
+  // the load it rings down. Each was taken for growth before the steady-rate check (T >= 0.15 s
+  // and >= 0.3 s).
+  const double pi = std::acos(-1.0);
+  for (double H : {1e-4, 5e-4, 1e-3}) {
+    for (double T : {0.01, 0.06, 0.15, 0.3, 1.0}) {
+      for (double t0 : {0.0, 0.05}) {
+        const auto since = [t0](double t) { return t - t0; };
+        const Signal ramp = [&](double t) {
+          const double s = since(t);
+          return s <= 0.0 ? 0.0 : s < T ? std::sin(pi * s / T) : 0.1 * std::exp(-(s - T) / 0.02);
+        };
+        const Signal pulse = [&](double t) {
+          const double s = since(t);
+          return s <= 0.0 || s >= T ? 0.0 : std::abs(std::sin(2.0 * pi * s / T));
+        };
+        EXPECT_FALSE(watch(ramp, kSmooth, H, 1.5)) << "ramp over " << T << " s, H = " << H;
+        EXPECT_FALSE(watch(pulse, kSmooth, H, 1.5)) << "pulse of " << T << " s, H = " << H;
+      }
+    }
+  }
+}
+
+TEST(GrowthWatch, CatchesAnUnstableModeGrowingFromRest) {
+  // The same soil at rest under an unstable coupling: its error grows from rounding at one rate.
+  for (double rho : {1.01, 1.04, 1.2}) {
+    const double H = 1e-3;
+    const auto seen = watch([&](double t) { return 1e-9 * std::pow(rho, t / H); }, kSmooth, H, 2.0);
+    ASSERT_TRUE(seen.has_value()) << rho;
+    EXPECT_NEAR(seen->first.per_step, rho, 0.1 * (rho - 1.0)) << rho;
   }
 }
 

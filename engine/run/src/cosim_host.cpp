@@ -73,8 +73,10 @@ rumble_status CosimHostImpl::guard(F&& f, bool allow_discard) {
 }
 
 CosimHostImpl::CosimHostImpl(std::vector<Participant*> participants,
+                             std::vector<rumble_footprint> footprints,
                              std::uint32_t coupler_abi_minor, OnStep on_step)
     : participants_(std::move(participants)),
+      footprints_(std::move(footprints)),
       coupler_takes_discard_(abi::coupler_takes_discard(coupler_abi_minor)),
       on_step_(std::move(on_step)) {
   if (participants_.size() < 2) throw RunError("a co-simulation needs a track and a soil");
@@ -86,6 +88,7 @@ void CosimHostImpl::fill_table() {
   table_.ctx = this;
   fill_participant_calls();
   fill_named_calls();
+  fill_layout_calls();
   table_.step_report = &CosimHostImpl::report_step;
   abi::fill_cosim_host_1_0<&CosimHostImpl::report_step>(table_);  // what a 1.0 coupler calls
 }
@@ -174,6 +177,18 @@ void CosimHostImpl::fill_named_calls() {
     int32_t can = 0;
     self(ctx).guard([&] { can = self(ctx).checked(p)->can_checkpoint() ? 1 : 0; });
     return can;
+  };
+}
+
+void CosimHostImpl::fill_layout_calls() {
+  table_.footprint_layout = [](void* ctx, rumble_footprint* out, uint64_t capacity, uint64_t* n) {
+    return self(ctx).guard([&] {
+      if (n == nullptr || (capacity > 0 && out == nullptr))
+        throw RunError("coupler asked for the footprint layout without a count or an array");
+      const std::vector<rumble_footprint>& layout = self(ctx).footprints_;
+      *n = layout.size();
+      std::copy_n(layout.begin(), std::min<std::size_t>(layout.size(), capacity), out);
+    });
   };
 }
 

@@ -40,6 +40,15 @@ bool GrowthWatch::keeps_rising_beyond(double before) const {
   return rising >= kBeyondWindows && seconds >= kBeyondSeconds * (1.0 - 1e-9);
 }
 
+bool GrowthWatch::rises_steadily(std::size_t first) const {
+  const std::size_t n = windows_.size(), mid = first + (n - first) / 2;
+  const Window &older = windows_[first], &middle = windows_[mid], &newest = windows_.back();
+  if (!(older.peak > 0.0)) return false;  // from rest: a load's start, not a mode's growth
+  const double early = std::log(middle.peak / older.peak) / (middle.t_mid() - older.t_mid());
+  const double late = std::log(newest.peak / middle.peak) / (newest.t_mid() - middle.t_mid());
+  return late >= kSteadyRate * early;  // 1/s
+}
+
 GrowthWatch::Fit GrowthWatch::fit_exponential(std::size_t first) const {
   // The peaks are the train's motion B plus the growing mode A e^{r t}: a line through log(peak)
   // mixes B in and reads a slower rate (0.018 per step where the mode grew 0.04, seen on the
@@ -91,7 +100,8 @@ std::optional<Growth> GrowthWatch::growing_span(std::size_t span) const {
   if (n < span + 1) return std::nullopt;
   const std::size_t first = n - span;
   const double before = peak_upto_[first - 1];
-  if (!keeps_rising_beyond(before) || windows_.back().peak < kMinGrowth * windows_[first].peak)
+  if (!keeps_rising_beyond(before) || windows_.back().peak < kMinGrowth * windows_[first].peak ||
+      !rises_steadily(first))
     return std::nullopt;
   const Fit fit = fit_exponential(first);
   if (!(fit.rate > 0.0) || fit.quality < kMinFit) return std::nullopt;

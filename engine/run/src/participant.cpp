@@ -80,15 +80,19 @@ void TrackSide::restore_state(const std::vector<double>& b) {
 
 // ---------------------------------------------------------------- soil
 
-SoilSide::SoilSide(std::string name, SoilInstance& soil, std::size_t n_footprints,
+SoilSide::SoilSide(std::string name, SoilInstance& soil, const std::vector<double>& static_force,
                    const TrackParticipant* integrated_in)
     : Participant(std::move(name)),
       soil_(soil),
-      n_(n_footprints),
+      n_(static_force.size()),
       integrated_in_(integrated_in),
-      coeff_(3 * n_footprints, 0.0),
-      u_start_(n_footprints, 0.0),
-      v_start_(n_footprints, 0.0) {
+      coeff_(3 * n_, 0.0),
+      applied_(static_force),
+      u_start_(n_, 0.0),
+      v_start_(n_, 0.0) {
+  // Held at its static forces until a coupler says otherwise: a soil advanced without an input
+  // stays loaded as its statics were solved, as the track holds its static footprint motion.
+  std::copy(static_force.begin(), static_force.end(), coeff_.begin());
   input_ = rumble_waveform{0, n_, coeff_.data()};
   set_groups(motion_groups(n_), force_group(n_));
 }
@@ -113,21 +117,15 @@ void SoilSide::set_input(const rumble_waveform& u) {
   }
   std::copy(u.coeff, u.coeff + (u.order + 1) * n_, coeff_.begin());
   input_.order = u.order;
-  has_input_ = true;
 }
 void SoilSide::reported_motion(double* u, double* v) const {
   motion(u, v);
   if (!reports_step_mean()) return;
   for (std::size_t i = 0; i < n_; ++i) v[i] = (u[i] - u_start_[i]) / held_step_;
 }
-bool SoilSide::applied_force(double* f) const {
-  if (!has_input_) return false;
-  for (std::size_t i = 0; i < n_; ++i) {
-    double sum = 0.0;
-    for (std::uint32_t k = 0; k <= input_.order; ++k) sum += coeff_[k * n_ + i];
-    f[i] = sum;
-  }
-  return true;
+void SoilSide::applied_force(double* f) const {
+  if (integrated_in_ != nullptr) return integrated_in_->footprint_forces(f);
+  std::copy(applied_.begin(), applied_.end(), f);
 }
 void SoilSide::advance(double t, double H) {
   if (integrated_in_ != nullptr) {
@@ -139,6 +137,13 @@ void SoilSide::advance(double t, double H) {
   if (held) motion(u_start_.data(), v_start_.data());
   soil_.advance(t, H, input_);
   held_step_ = held ? H : 0.0;
+  // What it took at the step's end, summed in the order of the coefficients (c0 + c1 + c2), as a
+  // coupler that interpolates to the track's new forces wrote them.
+  for (std::size_t i = 0; i < n_; ++i) {
+    double sum = 0.0;
+    for (std::uint32_t k = 0; k <= input_.order; ++k) sum += coeff_[k * n_ + i];
+    applied_[i] = sum;
+  }
 }
 bool SoilSide::can_checkpoint() const {
   if (integrated_in_ != nullptr) return false;  // its state is the track's

@@ -68,6 +68,7 @@ RunRecorder::RunRecorder(ResultsDirectory& results, const TrackParticipant& trac
   }
   force_.assign(n, 0.0);
   u_.assign(n, 0.0);
+  track_force_.assign(n, 0.0);
   track_u_.assign(n, 0.0);
   soil_work_.resize(n);
   track_work_.resize(n);
@@ -105,19 +106,19 @@ void RunRecorder::record_track(double t) {
   for (std::size_t w = 0; w < wheels_.size(); ++w) wheels_[w] = track_.contact_force(w);
   contact_->row(t, wheels_.data(), wheels_.size());
   vehicles_->row(t, track_.vehicle_q().data(), static_cast<std::size_t>(track_.vehicle_q().size()));
-  track_.footprint_forces(force_.data());
-  fp_force_->row(t, force_.data(), force_.size());
   // The track's forces on the footprint motion it used.
-  for (std::size_t i = 0; i < force_.size(); ++i) track_u_[i] = track_.footprint_u(i);
-  track_energy_.push_back(track_work_.add(force_.data(), track_u_.data()));
+  track_.footprint_forces(track_force_.data());
+  for (std::size_t i = 0; i < track_force_.size(); ++i) track_u_[i] = track_.footprint_u(i);
+  track_energy_.push_back(track_work_.add(track_force_.data(), track_u_.data()));
 }
 
 void RunRecorder::record_soil(double t, StepResiduals residuals, std::uint32_t iterations,
                               double macro_step) {
   const std::size_t n = force_.size();
-  // The force the soil really took (an explicit scheme may give it an extrapolated one, not the
-  // track's current one); before its first step, the track's static forces.
-  if (!soil_.applied_force(force_.data())) track_.footprint_forces(force_.data());
+  // The force the soil really took, which the coupler chose: an explicit scheme may give it an
+  // extrapolated one, a prescribed-load coupler its own; before its first step, the static ones.
+  soil_.applied_force(force_.data());
+  fp_force_->row(t, force_.data(), n);
   soil_.reported_motion(u_.data(), v_.data());
   double power = 0.0;  // W: work done on the soil per second, now
   for (std::size_t i = 0; i < n; ++i) {

@@ -142,9 +142,10 @@ double announce_micro_step(TrackParticipant& track, double H) {
 struct Sides {
   Sides(RunComponents& c, bool integrated)
       : track(*c.track),
-        soil("soil", *c.soil, c.track->interface_size(), integrated ? c.track.get() : nullptr) {
+        static_force(static_forces(*c.track)),
+        soil("soil", *c.soil, static_force, integrated ? c.track.get() : nullptr) {
     for (auto& [name, extra] : c.extras) {
-      extra_sides.push_back(std::make_unique<SoilSide>(name, *extra, c.track->interface_size()));
+      extra_sides.push_back(std::make_unique<SoilSide>(name, *extra, static_force));
       participants.push_back(extra_sides.back().get());
       extras.push_back(extra_sides.back().get());
     }
@@ -152,7 +153,16 @@ struct Sides {
   Sides(const Sides&) = delete;
   Sides& operator=(const Sides&) = delete;
 
+  /// The track's footprint forces [N] now: after the statics, those every soil was initialized
+  /// under (run/run_statics.hpp).
+  static std::vector<double> static_forces(const TrackParticipant& track) {
+    std::vector<double> f(track.interface_size());
+    track.footprint_forces(f.data());
+    return f;
+  }
+
   TrackSide track;
+  std::vector<double> static_force;  // N
   SoilSide soil;
   std::vector<std::unique_ptr<SoilSide>> extra_sides;
   std::vector<Participant*> participants{&track, &soil};
@@ -291,11 +301,12 @@ void co_simulate(const scenario::RunSpec& spec, const RunOptions& options, RunCo
                         {rec.recorder, rec.probes.get(), rec.fields.get(), &summary}, spec.t_end,
                         spec.outputs.every, outcome.results_dir, options.progress, spec.divergence);
   double recording_seconds = 0.0;  // in the step callback: records, checks, heartbeat
-  CosimHostImpl host(sides.participants, c.coupler->type().abi_minor, [&](const StepOutcome& step) {
-    const auto start = Clock::now();
-    observer(step);
-    recording_seconds += seconds_since(start);
-  });
+  CosimHostImpl host(sides.participants, c.track->footprints(), c.coupler->type().abi_minor,
+                     [&](const StepOutcome& step) {
+                       const auto start = Clock::now();
+                       observer(step);
+                       recording_seconds += seconds_since(start);
+                     });
   std::string coupler_message;
   const StopPhase stepping("the time stepping");
   const rumble_status status = c.coupler->run(*host.table(), 0.0, spec.t_end, H, coupler_message);

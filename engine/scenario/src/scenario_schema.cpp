@@ -171,7 +171,7 @@ constexpr std::string_view kSchema = R"json({
           "description": "what a diverging run does: a footprint speed that keeps growing at one exponential rate past twice anything the run did before, or a soil footprint displacement beyond displacement_factor x that soil's largest static one, counts as diverging (docs/couplers.md, Divergence)",
           "properties": {
             "action": {"enum": ["stop", "continue"], "default": "stop", "description": "stop: the run ends failed, with the time and the fix; continue: warn once, record it in summary.json and go on (a displacement beyond 1 m or not finite still stops it)"},
-            "displacement_factor": {"type": "number", "exclusiveMinimum": 2, "maximum": 1e6, "default": 20, "description": "bound on |footprint displacement| as a multiple of the largest static one [-]; (2, 1e6]: a passing train amplifies the static settlement a few times at most"}
+            "displacement_factor": {"type": "number", "exclusiveMinimum": 2, "maximum": 1e6, "default": 20, "description": "bound on |footprint displacement| as a multiple of the largest static one [-]; (2, 1e6]: a passing train amplifies the static settlement a few times at most; not applied to a soil with no static load (below 1 um: a coupler that prescribes the forces)"}
           }
         }
       }

@@ -47,7 +47,10 @@
  *       from a receiver can say where it stops being valid.
  *   1.4 (2026-12-05) appended to rumble_host (docs/decisions/0012-distributed-soil.md):
  *       communicator, the MPI communicator an instance works on; RUMBLE_CAP_DISTRIBUTED, a soil
- *       whose calls are collective over it, created on every rank of an MPI launch.
+ *       whose calls are collective over it, created on every rank of an MPI launch. Appended to
+ *       rumble_cosim_host (docs/decisions/0013-coupler-contract.md): footprint_layout, the
+ *       footprints' positions and sizes, for a coupler that applies loads of its own
+ *       (docs/couplers.md, "The coupler contract").
  */
 #ifndef RUMBLE_ABI_H
 #define RUMBLE_ABI_H
@@ -447,6 +450,9 @@ typedef struct rumble_step_report {
  *   track output: F_i [N] (n values)      -> soil input (waveform of n channels)
  *   soil output:  u_i [m] then v_i [m/s]  -> track input (waveform of 2n channels)
  * Calls on different participants may run concurrently; calls on one participant may not.
+ * What the host has done before run (statics: every participant at its static state, the soils'
+ * inputs their static footprint forces) and what the coupler owns: docs/couplers.md, "The
+ * coupler contract".
  */
 typedef struct rumble_cosim_host {
   uint32_t struct_size;
@@ -481,6 +487,13 @@ typedef struct rumble_cosim_host {
   /** Nonzero when the participant can save and restore (every soil a coupler needing
    *  RUMBLE_CAP_SAVE_RESTORE drives can: validate checked it). */
   int32_t (*can_checkpoint)(void* ctx, uint32_t participant);
+  /* ---- 1.4 */
+  /** The footprint layout every soil accepted (accept_layout), in channel order: footprint i is
+   *  channel i of footprint_force [N] and of footprint_displacement [m] and footprint_velocity
+   *  [m/s] of every participant. Writes at most capacity footprints and the count to *n (call
+   *  with capacity 0 first). */
+  rumble_status (*footprint_layout)(void* ctx, rumble_footprint* out, uint64_t capacity,
+                                    uint64_t* n);
 } rumble_cosim_host;
 
 typedef struct rumble_coupler_api {

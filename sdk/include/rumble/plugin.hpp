@@ -450,6 +450,24 @@ class CosimHost {
   }
   bool can_checkpoint(std::uint32_t p) const { return h_->can_checkpoint(h_->ctx, p) != 0; }
 
+  // ---- ABI 1.4
+  /// The footprints every soil accepted, in channel order: footprint i is channel i of the
+  /// footprint_force [N], footprint_displacement [m] and footprint_velocity [m/s] groups (x, y
+  /// of its centre [m]; length across and width along the track [m]). For a coupler that
+  /// applies loads of its own (docs/couplers.md, "The coupler contract"). Throws Stop on a host
+  /// that does not give it (older than ABI 1.4: such a host refuses a 1.4 coupler anyway).
+  std::vector<Footprint> footprints() const {
+    if (!RUMBLE_HAS_FIELD(h_, rumble_cosim_host, footprint_layout) ||
+        h_->footprint_layout == nullptr)
+      throw Stop(RUMBLE_ERROR, "the host gives no footprint layout (ABI 1.4 appended it)");
+    std::uint64_t n = 0;
+    check(h_->footprint_layout(h_->ctx, nullptr, 0, &n), "footprint_layout");
+    std::vector<Footprint> out(static_cast<std::size_t>(n));
+    check(h_->footprint_layout(h_->ctx, out.data(), n, &n), "footprint_layout");
+    out.resize(static_cast<std::size_t>(n));
+    return out;
+  }
+
  private:
   rumble_status check(rumble_status s, const char* what) const {
     if (s == RUMBLE_ERROR || s == RUMBLE_FATAL)

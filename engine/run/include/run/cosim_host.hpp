@@ -48,10 +48,11 @@ class CosimHostImpl {
   /// rethrown).
   using OnStep = std::function<void(const StepOutcome&)>;
 
-  /// participants[0] is the track, [1] the soil, then the coupler's extras. coupler_abi_minor:
-  /// the ABI minor the coupler was built for (abi::coupler_takes_discard).
-  CosimHostImpl(std::vector<Participant*> participants, std::uint32_t coupler_abi_minor,
-                OnStep on_step);
+  /// participants[0] is the track, [1] the soil, then the coupler's extras; footprints: the
+  /// layout every soil accepted, in channel order (footprint_layout). coupler_abi_minor: the ABI
+  /// minor the coupler was built for (abi::coupler_takes_discard).
+  CosimHostImpl(std::vector<Participant*> participants, std::vector<rumble_footprint> footprints,
+                std::uint32_t coupler_abi_minor, OnStep on_step);
   const rumble_cosim_host* table() const { return &table_; }
   /// Rethrows the first exception a participant or on_step raised, if any.
   void rethrow_if_failed() const;
@@ -71,8 +72,10 @@ class CosimHostImpl {
   void fill_table();
   void fill_participant_calls();  // outputs, inputs, advance, checkpoints
   void fill_named_calls();        // participant names, channel groups, reports, checkpoint care
+  void fill_layout_calls();       // the footprint layout (1.4)
 
   std::vector<Participant*> participants_;
+  std::vector<rumble_footprint> footprints_;
   bool coupler_takes_discard_;
   OnStep on_step_;
   rumble_cosim_host table_{};

@@ -3,6 +3,9 @@
 // once and go on. A displacement beyond `displacement_factor` times the participant's largest
 // static footprint displacement counts as diverging: a passing train amplifies the static
 // settlement by a few times at most (at the critical speed), an unstable coupling without bound.
+// A soil with no static load (static displacements below 1 um: a coupler that prescribes the
+// forces) has nothing to scale that bound by: it is not applied there, and the growth, the
+// velocity limit and the hard limits watch it (docs/couplers.md, "Divergence").
 // The onset reported is the first time any footprint passed twice its static settlement. Beyond
 // 1 m, or a value that is not finite, the run stops whatever the policy (nothing useful follows).
 // Growth counts before size: a footprint speed that keeps growing at one exponential rate past
@@ -37,7 +40,8 @@ class DivergenceMonitor {
              double H);
 
   bool detected() const { return t_detected_ < kNever; }
-  /// summary.json's "divergence": the policy, and when it was detected and began (null: never).
+  /// summary.json's "divergence": the policy, the scenario's soil's displacement bound [m] (null
+  /// without a static load), and when it was detected and began (null: never).
   nlohmann::json summary() const;
 
  private:
@@ -45,6 +49,7 @@ class DivergenceMonitor {
   struct Watched {
     std::string name;
     double settlement = 0.0;   // m, largest static |u|
+    double bound = kNever;     // m, displacement_factor x settlement; kNever: no static load
     std::vector<double> u;     // m, the footprints at the end of the last step
     std::vector<double> v;     // m/s, their velocity then
     std::vector<double> rate;  // m/s, their mean velocity over it

@@ -11,7 +11,9 @@
 // it rises by at least kMinGrowth, and its last windows keep rising beyond kMinGrowth times every
 // peak before the span for kBeyondSeconds (3 windows when what grows flips sign every step) and
 // beyond kFloor (rounding noise of a soil at rest): a start from rest or a dip's blow rise once
-// and ring down. The rate reported is the exponential's.
+// and ring down. And the span rises at a steady rate: a load that rises from rest (a prescribed
+// load's ramp or pulse, docs/couplers.md) rises at a falling one, as a power of the time since
+// it began, and can rise for longer than kBeyondSeconds. The rate reported is the exponential's.
 #pragma once
 
 #include <cstddef>
@@ -46,6 +48,13 @@ class GrowthWatch {
   // nothing physical moves at 1 / (2 H), so three windows tell.
   static constexpr std::size_t kAlternatingWindows = 3;
   static constexpr double kAlternating = 0.5;
+  // The newer half of a growing span rises at least this fraction of the older half's rate (per
+  // second, of the log of the peaks): an unstable mode rises at one rate, or faster as it
+  // emerges from the train's motion; the speed under a load rising from rest slows its rate (as
+  // p / t for t^p). Measured (growth_watch_test.cpp): the speed under a 1 - cos ramp of the load
+  // over up to 1 s, or a Hann pulse, stays under it; a t^3 rise of the speed kept up for 0.3 s
+  // and more does not, and is taken for growth.
+  static constexpr double kSteadyRate = 0.7;
 
   /// One final macro step of length H [s] ending at t [s]: `speed` [m/s], the largest footprint
   /// speed; `alternating` [m/s], the largest half change of a footprint's mean velocity from the
@@ -62,6 +71,8 @@ class GrowthWatch {
   };
   /// Whether the last windows rise beyond kMinGrowth x `before` long enough to be growth.
   bool keeps_rising_beyond(double before) const;
+  /// Whether the windows from `first` on rise at a steady rate (kSteadyRate); never from rest.
+  bool rises_steadily(std::size_t first) const;
   std::optional<Growth> growing_span(std::size_t span) const;
   /// The windows from `first` on as a constant plus an exponential: its rate [1/s] and how much
   /// of the peaks' relative spread it explains (R^2).

@@ -89,12 +89,15 @@ class TrackSide final : public Participant {
 };
 
 /// A soil: output footprint_displacement then footprint_velocity (2n), input footprint_force
-/// (n). A soil integrated in the vehicle/track (`integrated_in`: a monolithic coupler, decision
-/// 0008) is stepped by the track: its outputs are the track's footprint motion, advancing it is
-/// an error, and its state is checkpointed with the track's.
+/// (n). Its input starts as the static footprint forces it was initialized under, held, until a
+/// coupler sets another (docs/couplers.md, "The coupler contract"). A soil integrated in the
+/// vehicle/track (`integrated_in`: a monolithic coupler, decision 0008) is stepped by the track:
+/// its outputs are the track's footprint motion, advancing it is an error, and its state is
+/// checkpointed with the track's.
 class SoilSide final : public Participant {
  public:
-  SoilSide(std::string name, SoilInstance& soil, std::size_t n_footprints,
+  /// static_force: the n footprint forces [N] the soil's statics were solved under.
+  SoilSide(std::string name, SoilInstance& soil, const std::vector<double>& static_force,
            const TrackParticipant* integrated_in = nullptr);
   std::string description() const override;
   std::size_t output_size() const override { return 2 * n_; }
@@ -116,9 +119,11 @@ class SoilSide final : public Participant {
   void reported_motion(double* u, double* v) const;
   /// Whether reported_motion() gives the mean velocity over the last step.
   bool reports_step_mean() const { return held_step_ > 0.0; }
-  /// The footprint forces [N] the soil took at the end of its last step (its last input
-  /// waveform at tau = 1), n values; false (f untouched) before its first input.
-  bool applied_force(double* f) const;
+  /// The footprint forces [N] the soil took at the end of its last step (the input waveform of
+  /// its last advance at tau = 1), n values: what a coupler gave it, which need not be the
+  /// track's forces; before its first step the static forces; integrated in the track, the
+  /// track's forces now.
+  void applied_force(double* f) const;
 
  private:
   SoilInstance& soil_;
@@ -126,7 +131,7 @@ class SoilSide final : public Participant {
   const TrackParticipant* integrated_in_;
   std::vector<double> coeff_;  // the force waveform until the next advance
   rumble_waveform input_{0, 0, nullptr};
-  bool has_input_ = false;
+  std::vector<double> applied_;            // N: the last advance's waveform at tau = 1
   std::vector<double> u_start_, v_start_;  // m, m/s: the motion when the last step began
   double held_step_ = 0.0;                 // s: the last step's H when its force was held; else 0
 };

@@ -3,8 +3,13 @@
 // the track on its reduced soil first, then the soil):
 //   track:  contact.csv           wheel/rail contact force of every wheel [N]
 //           vehicles.csv          vehicle DOFs [m or rad]
-//           footprint_force.csv   force the track puts on the soil at every footprint [N] (down +)
-//   soil:   footprint_displacement.csv, footprint_velocity.csv   footprint u [m], v [m/s] (down +);
+//   soil:   footprint_force.csv   force the soil took at every footprint at the step's end [N]
+//                                 (down +): the coupler's input to it, which is the track's
+//                                 force for gauss_seidel (track first), two_step and monolithic,
+//                                 an extrapolated one for jacobi, an iterate for implicit, a
+//                                 prescribed load for a coupler that applies its own
+//                                 (SoilSide::applied_force; docs/couplers.md)
+//           footprint_displacement.csv, footprint_velocity.csv   footprint u [m], v [m/s] (down +);
 //                                 v after a step under a held force is the mean over the step
 //                                 (SoilSide::reported_motion)
 //           interface.csv         coupler's relative interface residual (the largest of its
@@ -95,8 +100,8 @@ class RunRecorder {
   double energy_ = 0.0;  // J
   CutWork soil_work_, track_work_;
   // The track's energy [J] at each of its records (the soil's k-th record compares with the
-  // track's k-th: the same time).
-  std::vector<double> track_energy_, track_u_;
+  // track's k-th: the same time), from its forces [N] on the footprint motion [m] it used.
+  std::vector<double> track_energy_, track_force_, track_u_;
   std::size_t soil_records_ = 0;
   double energy_residual_ = 0.0;  // J
 };
