@@ -15,8 +15,9 @@ or archived alone) and STUDY_OUTPUT_DIR/figures/*.png and *.svg:
   third_octave       vertical one-third-octave velocity levels at the receivers nearest 2.5 m
                      and 5 m, one line per run
   contact_force      the first wheel's wheel/rail force of every run
-  interface          the energy passed through the track/soil cut and the coupler's residual
-                     over time: a diverging run shows here first
+  interface          the energy passed through the track/soil cut, the coupler's residual and
+                     its predictor residual (the coupling error of each step, of the scheme's
+                     order: docs/couplers.md) over time: a diverging run shows here first
 and the tables: PPV per distance per run, each run's co-simulation diagnostics (with the energy
 residual at the cut and when a diverging run was caught), and per receiver
 the indicators of post/ppv.csv (PPV, dominant frequency, KB_F,max, DIN 4150-3 / BS 7385-2 ratios). Needs
@@ -327,23 +328,29 @@ def contact_figure(runs):
 
 
 def interface_figure(runs):
-    fig, (top, bottom) = plt.subplots(2, 1, figsize=(8, 5.6), sharex=True)
+    """Energy through the cut; the final residual; the predictor residual, the coupling error of
+    each step with its scheme's order (docs/couplers.md), which the energy residual cannot show."""
+    fig, (top, middle, bottom) = plt.subplots(3, 1, figsize=(8, 7.4), sharex=True)
     drawn = False
     for r in runs:
         table = read_csv(r.dir / "interface.csv")
         if table is None:
             continue
-        _, data = table
+        header, data = table
         top.plot(data[:, 0], data[:, 3], lw=0.9, label=r.name)
         residual = np.where(data[:, 1] > 0, data[:, 1], np.nan)
-        bottom.semilogy(data[:, 0], residual, lw=0.7, label=r.name)
+        middle.semilogy(data[:, 0], residual, lw=0.7, label=r.name)
+        if "predictor residual [-]" in header:
+            column = data[:, header.index("predictor residual [-]")]
+            bottom.semilogy(data[:, 0], np.where(column > 0, column, np.nan), lw=0.7, label=r.name)
         drawn = True
     if not drawn:
         plt.close(fig)
         return None
     top.set(ylabel="energy into the soil [J]", title="the track/soil cut")
-    bottom.set(xlabel="t [s]", ylabel="relative residual [-]")
-    for ax in (top, bottom):
+    middle.set(ylabel="final residual [-]")
+    bottom.set(xlabel="t [s]", ylabel="predictor residual [-]\n(coupling error per step)")
+    for ax in (top, middle, bottom):
         ax.grid(True, which="both", alpha=0.4)
     top.legend(fontsize=7)
     fig.tight_layout()
@@ -470,6 +477,7 @@ def diagnostics_table(runs):
         mean_its = its.get("mean_per_step")
         energy = iface.get("energy_exchanged_J")
         energy_residual = iface.get("energy_residual_J")
+        predictor = iface.get("predictor_relative_residual")
         diverged = (s.get("divergence") or {}).get("t_detected_s")
         status = r.status if r.status != "unknown" else s.get("status", "unknown")
         css = "ok" if status in ("completed", "skipped") else "bad"
@@ -481,12 +489,15 @@ def diagnostics_table(runs):
             f"<td>{'' if mean_its is None else f'{mean_its:.3g}'}</td>"
             f"<td>{residuals}</td><td>{'' if energy is None else f'{energy:.4g}'}</td>"
             f"<td>{'' if energy_residual is None else f'{energy_residual:.3g}'}</td>"
+            f"<td>{'' if predictor is None else f'{predictor:.3g}'}</td>"
             f"<td>{'' if diverged is None else f'{diverged:.4g}'}</td>"
             f"<td>{coupling.get('discarded_steps', '')}</td><td>{message}</td></tr>")
     return ("<table><caption>Co-simulation diagnostics</caption><tr><th>run</th><th>status</th>"
             "<th>wall time [s]</th><th>macro step [s]</th><th>iterations per step</th>"
             "<th>largest relative residual by channel group</th><th>energy into the soil [J]</th>"
-            "<th>energy residual at the cut [J]</th><th>diverging from t [s]</th>"
+            "<th>energy residual at the cut [J]</th>"
+            "<th>predictor residual (coupling error, the scheme's order) [-]</th>"
+            "<th>diverging from t [s]</th>"
             "<th>discarded steps</th><th>message</th></tr>" + "".join(rows) + "</table>")
 
 
@@ -532,7 +543,8 @@ def main(directory):
         ("Wavelet transform at 5 m", "scalogram_5m", scalogram_figure(runs, 5.0)),
         ("One-third-octave velocity levels", "third_octave", third_octave_figure(runs)),
         ("Wheel/rail contact force", "contact_force", contact_figure(runs)),
-        ("The track/soil cut: energy and residual", "interface", interface_figure(runs)),
+        ("The track/soil cut: energy, residual and coupling error", "interface",
+         interface_figure(runs)),
     ):
         if fig is None:
             continue

@@ -100,6 +100,9 @@ TEST(StudyReport, RendersInABrowserWithEveryImageAndEveryRun) {
   EXPECT_THAT(dom, HasSubstr("All 2 runs completed."));
   EXPECT_THAT(dom, HasSubstr("Vertical PPV [mm/s] by distance from the track [m]"));
   EXPECT_THAT(dom, HasSubstr("footprint_displacement mismatch"));
+  // The coupling error with the scheme's order (docs/couplers.md), in the table and the figure.
+  EXPECT_THAT(dom, HasSubstr("predictor residual (coupling error, the scheme's order)"));
+  EXPECT_THAT(dom, HasSubstr("energy, residual and coupling error"));
   // No raw number of a record mostly above its resolved band without a mark: the PPV table's
   // cell and the indicators' six raw values (PPV_z, PPV_3c, f_dom, KB, DIN, BS) of each such
   // receiver are shaded and starred (issue 29; this coarse mesh has such receivers at 5 m).
