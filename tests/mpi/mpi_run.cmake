@@ -7,6 +7,7 @@
 #                                (no hang: the test's timeout), exit code 3, rank 1's message,
 #                                results up to then on disk
 #   interrupt_stops_every_rank   Ctrl-C to mpirun mid-run: summary.json says "interrupted"
+#   foreign_launcher_is_refused  a launcher of another MPI: a clear error before any work
 set(mpirun ${MPIEXEC} --oversubscribe)
 set(scenario ${SOURCE_DIR}/split_dashpot.json)
 file(REMOVE_RECURSE ${WORK_DIR})
@@ -86,6 +87,16 @@ elseif(CASE STREQUAL "interrupt_stops_every_rank")
     message(FATAL_ERROR "summary.json status '${status}', expected 'interrupted':\n${out}")
   endif()
   expect_match("${out}" "interrupted at t = [0-9.e-]+ s")
+elseif(CASE STREQUAL "foreign_launcher_is_refused")
+  # Another MPI's launcher (MPICH's hydra sets PMI_SIZE and PMI_RANK): OpenMPI would run each
+  # process as a world of one, N copies of the whole run; the engine stops and says why.
+  set(ENV{PMI_SIZE} 2)
+  set(ENV{PMI_RANK} 0)
+  rumble_run(out code ${RUMBLE} plugins)
+  if(NOT code EQUAL 3)
+    message(FATAL_ERROR "expected exit code 3, got ${code}:\n${out}")
+  endif()
+  expect_match("${out}" "the launcher started 2 processes but MPI sees each alone .*use that MPI's mpirun")
 else()
   message(FATAL_ERROR "unknown case ${CASE}")
 endif()
