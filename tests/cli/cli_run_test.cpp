@@ -26,6 +26,9 @@ TEST(CliRun, GaussSeidelRunWritesResultsAndSummary) {
   EXPECT_EQ(summary["scenario"]["name"], "cli test: single wheel on winkler");
   EXPECT_TRUE(summary["wall_time_s"].contains("vehicle/track"));
   EXPECT_TRUE(summary["wall_time_s"].contains("recording"));
+  // Each phase's peak resident memory (core/peak_memory.hpp): a process of some MB at least.
+  for (const char* phase : {"build", "statics", "stepping"})
+    EXPECT_GT(summary["memory"]["peak_resident_bytes"][phase].get<double>(), 1e6) << phase;
   // An explicit scheme: one iteration per step, every step converged.
   EXPECT_EQ(summary["coupling"]["iterations"]["total"], 50);
   EXPECT_EQ(summary["coupling"]["iterations"]["max_per_step"], 1);

@@ -12,6 +12,7 @@
 #include "core/errors.hpp"
 #include "core/interrupt.hpp"
 #include "core/logging.hpp"
+#include "core/peak_memory.hpp"
 #include "run/cosim_host.hpp"
 #include "run/crash_record.hpp"
 #include "run/field_writer.hpp"
@@ -281,12 +282,27 @@ void summarize_outputs(SummaryWriter& summary, const ReceiverSetup& receivers,
   summary.set("files", files);
 }
 
-/// The run's start and its static equilibrium, for the summary.
+/// The run's start, its static equilibrium and its memory so far, for the summary.
 struct RunSoFar {
   Clock::time_point start;
   bool integrated = false;
   const StaticState& statics;
+  PhasePeaks& memory;
 };
+
+/// summary.json's "memory": each phase's peak resident memory (core/peak_memory.hpp).
+nlohmann::json memory_summary(const PhasePeaks& memory) {
+  nlohmann::json peaks = nlohmann::json::object();
+  for (const auto& [phase, bytes] : memory.peaks()) peaks[phase] = bytes;
+  return {{"peak_resident_bytes", peaks},
+          {"definition",
+           memory.separate()
+               ? "each phase's own peak of the process's resident memory (VmHWM, restarted at "
+                 "the phase's start); build: everything before the statics, validation and the "
+                 "soil's meshing and assembly included"
+               : "the process's peak resident memory from its start to each phase's end (this "
+                 "system does not let a process restart its peak)"}};
+}
 
 /// The coupled time stepping from t = 0 to time.end in macro steps, every step recorded and
 /// watched; the outcome judged and summary.json completed with what the run measured.
@@ -310,6 +326,7 @@ void co_simulate(const scenario::RunSpec& spec, const RunOptions& options, RunCo
   std::string coupler_message;
   const StopPhase stepping("the time stepping");
   const rumble_status status = c.coupler->run(*host.table(), 0.0, spec.t_end, H, coupler_message);
+  so_far.memory.end("stepping");
   const Ending ending =
       judge(host, status, coupler_message, *c.coupler, observer, spec.t_end, outcome.results_dir);
   outcome.status = ending.status;
@@ -326,6 +343,7 @@ void co_simulate(const scenario::RunSpec& spec, const RunOptions& options, RunCo
               wall_times(so_far.start, so_far.statics.seconds, recording_seconds, sides));
   summary.set("static", {{"wheel_loads_N", so_far.statics.wheel_loads},
                          {"iterations", so_far.statics.iterations}});
+  summary.set("memory", memory_summary(so_far.memory));
   summarize_coupling(summary, observer, host, rec.recorder, sides.soil);
   summarize_outputs(summary, c.receivers, rec);
   summary.finish(outcome.status, outcome.message);
@@ -337,7 +355,9 @@ RunOutcome run_scenario(const scenario::RunSpec& spec, const PluginRegistry& reg
                         ResultsDirectory& results, const RunOptions& options) {
   const auto run_start = Clock::now();
   ExitGuard exit_guard;  // from the first plugin call: a constructor may call exit() too
+  PhasePeaks memory;
   RunComponents c = build_components(spec, registry, options.built_soils);
+  memory.end("build");
 
   RunOutcome outcome;
   outcome.results_dir = results.path();
@@ -353,7 +373,9 @@ RunOutcome run_scenario(const scenario::RunSpec& spec, const PluginRegistry& reg
   try {
     const bool integrated = integrate_soil_if_asked(c);
     const StaticState statics = static_equilibrium(c, outcome.results_dir);
-    co_simulate(spec, options, c, results, summary, {run_start, integrated, statics}, outcome);
+    memory.end("statics");
+    co_simulate(spec, options, c, results, summary, {run_start, integrated, statics, memory},
+                outcome);
   } catch (const Interrupted& e) {
     summary.fail(e.what(), RunStatus::kInterrupted);
     throw;
