@@ -8,6 +8,7 @@
 #                                results up to then on disk
 #   interrupt_stops_every_rank   Ctrl-C to mpirun mid-run: summary.json says "interrupted"
 #   foreign_launcher_is_refused  a launcher of another MPI: a clear error before any work
+#   study_spreads_runs_over_ranks  a study's runs shared out over the ranks, all completed
 set(mpirun ${MPIEXEC} --oversubscribe)
 set(scenario ${SOURCE_DIR}/split_dashpot.json)
 file(REMOVE_RECURSE ${WORK_DIR})
@@ -97,6 +98,33 @@ elseif(CASE STREQUAL "foreign_launcher_is_refused")
     message(FATAL_ERROR "expected exit code 3, got ${code}:\n${out}")
   endif()
   expect_match("${out}" "the launcher started 2 processes but MPI sees each alone .*use that MPI's mpirun")
+elseif(CASE STREQUAL "study_spreads_runs_over_ranks")
+  # Three runs on two ranks: the first and third on rank 0, the second on rank 1 (k mod N), each
+  # a process of its own (its environment without the launcher's), rank 0 writing study.json.
+  file(COPY ${scenario} DESTINATION ${WORK_DIR})
+  file(WRITE ${WORK_DIR}/spread.study.json [=[
+{"study_version": 1, "scenario": "split_dashpot.json", "jobs": 1,
+ "axes": [{"name": "k", "values": {"soft": {"/soil/params/stiffness": 5e7},
+                                    "mid": {"/soil/params/stiffness": 1e8},
+                                    "hard": {"/soil/params/stiffness": 2e8}}}]}
+]=])
+  rumble_run(out code ${mpirun} -n 2 ${RUMBLE} study ${WORK_DIR}/spread.study.json --no-report)
+  if(NOT code EQUAL 0)
+    message(FATAL_ERROR "the study on 2 ranks failed (${code}):\n${out}")
+  endif()
+  file(READ ${WORK_DIR}/results/spread.study/study.json state)
+  foreach(k RANGE 2)
+    string(JSON name GET "${state}" runs ${k} name)
+    string(JSON status GET "${state}" runs ${k} status)
+    string(JSON rank GET "${state}" runs ${k} mpi rank)
+    math(EXPR expected "${k} % 2")
+    if(NOT status STREQUAL "completed" OR NOT rank EQUAL expected)
+      message(FATAL_ERROR "run ${name}: ${status} on rank ${rank} (expected completed on rank "
+                          "${expected}):\n${state}")
+    endif()
+    file(READ ${WORK_DIR}/results/spread.study/${name}/run.log log)
+    expect_match("${log}" "rank 0 of 1 ranks owns 40 footprints")  # its own process, one rank
+  endforeach()
 else()
   message(FATAL_ERROR "unknown case ${CASE}")
 endif()

@@ -9,11 +9,11 @@
 
 #include "cli/arguments.hpp"
 #include "cli/exit_codes.hpp"
+#include "cli/rank_server.hpp"
 #include "core/errors.hpp"
 #include "core/logging.hpp"
 #include "core/thread_waits.hpp"
 #include "parallel/mpi_session.hpp"
-#include "plugin/soil_server.hpp"
 
 namespace rumble::cli {
 namespace {
@@ -203,7 +203,7 @@ int launched_command(std::vector<std::string>& args) {
   try {
     parallel::start();
     if (parallel::world_rank() > 0) {
-      serve_soils();
+      serve_rank_zero();
       return kExitOk;
     }
   } catch (const std::exception& e) {

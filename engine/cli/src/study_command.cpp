@@ -3,6 +3,7 @@
 // child processes, at most N at once, skipping those whose results are up to date; the state in
 // OUTPUT/study.json. docs/study.md.
 #include <algorithm>
+#include <functional>
 #include <iostream>
 
 #include "cli/arguments.hpp"
@@ -11,11 +12,13 @@
 #include "cli/plot_script.hpp"
 #include "core/cpu_affinity.hpp"
 #include "core/interrupt.hpp"
+#include "parallel/mpi_session.hpp"
 #include "plugin/registry.hpp"
 #include "scenario/report.hpp"
 #include "study/expansion.hpp"
 #include "study/output_lock.hpp"
 #include "study/prepare_runs.hpp"
+#include "study/rank_share.hpp"
 #include "study/runner.hpp"
 #include "study/study_file.hpp"
 #include "study/study_state.hpp"
@@ -53,6 +56,20 @@ std::size_t count(const std::vector<RunRecord>& records, RunState state) {
 
 std::string shown(const fs::path& p) {
   return p.lexically_normal().string();
+}
+
+/// Runs the pending runs, `jobs` at a time here; under mpirun spread over the ranks
+/// (study/rank_share.hpp), each rank running `jobs_given` at a time (0: its own choice). False
+/// when interrupted.
+bool run_runs(std::vector<RunRecord>& records, int jobs, int jobs_given,
+              const std::function<void()>& on_change) {
+  study::RunnerOptions options;
+  options.executable = fs::read_symlink("/proc/self/exe");
+  options.jobs = jobs;
+  options.progress = &std::cerr;
+  if (parallel::world_size() > 1)
+    return study::run_over_ranks(records, options, jobs_given, on_change);
+  return study::run_pending(records, options, on_change);
 }
 
 }  // namespace
@@ -115,11 +132,8 @@ int study_command(const std::vector<std::string>& args) {
     study::write_state(state_file, *s, records, status, jobs);
   };
   write("running");
-  study::RunnerOptions options;
-  options.executable = fs::read_symlink("/proc/self/exe");
-  options.jobs = jobs;
-  options.progress = &std::cerr;
-  const bool whole = study::run_pending(records, options, [&] { write("running"); });
+  const bool whole = run_runs(records, jobs, cli_jobs > 0 ? cli_jobs : s->jobs.value_or(0),
+                              [&] { write("running"); });
   const std::size_t failed = count(records, RunState::kFailed) + invalid;
   const std::size_t interrupted = count(records, RunState::kInterrupted);
   write(!whole ? "interrupted" : failed + interrupted > 0 ? "failed" : "completed");

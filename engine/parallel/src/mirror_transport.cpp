@@ -57,7 +57,7 @@ std::optional<std::vector<char>> next_from_root() {
   return message;
 }
 
-std::string first_failure(const std::string& mine) {
+std::vector<std::vector<char>> gather_to_root(const std::vector<char>& mine) {
   int rank = 0, size = 1;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   MPI_Comm_size(MPI_COMM_WORLD, &size);
@@ -70,14 +70,23 @@ std::string first_failure(const std::string& mine) {
     offsets[k] = total;
     total += lengths[k];
   }
-  std::string all(static_cast<std::size_t>(total), ' ');
+  std::vector<char> all(static_cast<std::size_t>(total));
   MPI_Gatherv(mine.data(), length, MPI_CHAR, all.data(), lengths.data(), offsets.data(), MPI_CHAR,
               0, MPI_COMM_WORLD);
+  std::vector<std::vector<char>> each;
   for (std::size_t k = 0; k < lengths.size(); ++k) {
-    if (lengths[k] > 0) {
-      return "rank " + std::to_string(k) + ": " +
-             all.substr(static_cast<std::size_t>(offsets[k]), static_cast<std::size_t>(lengths[k]));
-    }
+    const auto from = all.begin() + offsets[k];
+    each.emplace_back(from, from + lengths[k]);
+  }
+  return each;
+}
+
+std::string first_failure(const std::string& mine) {
+  const std::vector<std::vector<char>> each =
+      gather_to_root(std::vector<char>(mine.begin(), mine.end()));
+  for (std::size_t k = 0; k < each.size(); ++k) {
+    if (!each[k].empty())
+      return "rank " + std::to_string(k) + ": " + std::string(each[k].begin(), each[k].end());
   }
   return "";
 }

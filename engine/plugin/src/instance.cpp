@@ -103,7 +103,7 @@ void Instance::create_everywhere(const nlohmann::json& params) {
   mirror_id_ = next_id++;
   const std::string text = params.dump();
   mirror::Writer w;
-  w.put(mirror::Call::kCreate).put(mirror_id_);
+  w.put(mirror::Service::kSoil).put(mirror::Call::kCreate).put(mirror_id_);
   w.put_text(type_.library->path.string()).put_text(type_.type_name).put_text(label_);
   w.put_text(text).put_text(scenario_dir_);
   try {
@@ -116,7 +116,7 @@ void Instance::create_everywhere(const nlohmann::json& params) {
 
 void Instance::destroy_everywhere() noexcept {
   mirror::Writer w;
-  w.put(mirror::Call::kDestroy).put(mirror_id_);
+  w.put(mirror::Service::kSoil).put(mirror::Call::kDestroy).put(mirror_id_);
   try {
     run_mirrored(w, [&] {
       if (handle_ != nullptr) common_->destroy(handle_);

@@ -1,6 +1,5 @@
 #include "plugin/soil_server.hpp"
 
-#include <csignal>
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -17,33 +16,6 @@ namespace {
 
 using mirror::Call;
 using mirror::Reader;
-
-/// The servers' copies, by the id rank 0 gave them.
-class Copies {
- public:
-  void create(Reader& r, std::uint64_t id) {
-    const std::string library = r.get_text();
-    const std::string type_name = r.get_text();
-    const std::string label = r.get_text();
-    const std::string params = r.get_text();
-    const std::string scenario_dir = r.get_text();
-    registry_.load_library(library, "rank 0's");  // once: a second load finds it loaded
-    const ComponentType* type = registry_.find(RUMBLE_KIND_SOIL, type_name);
-    if (type == nullptr) throw RunError("no soil type '" + type_name + "' in " + library);
-    soils_[id] =
-        std::make_unique<SoilInstance>(*type, label, nlohmann::json::parse(params), scenario_dir);
-  }
-  void destroy(std::uint64_t id) { soils_.erase(id); }
-  SoilInstance& at(std::uint64_t id) {
-    const auto it = soils_.find(id);
-    if (it == soils_.end()) throw RunError("no copy of instance " + std::to_string(id));
-    return *it->second;
-  }
-
- private:
-  PluginRegistry registry_;
-  std::map<std::uint64_t, std::unique_ptr<SoilInstance>> soils_;
-};
 
 void host_context(SoilInstance& soil, Reader& r) {
   const std::string results_dir = r.get_text();
@@ -129,11 +101,35 @@ void outputs(SoilInstance& soil, Call call, Reader& r) {
   }
 }
 
+}  // namespace
+
+void SoilServer::create(Reader& r, std::uint64_t id) {
+  const std::string library = r.get_text();
+  const std::string type_name = r.get_text();
+  const std::string label = r.get_text();
+  const std::string params = r.get_text();
+  const std::string scenario_dir = r.get_text();
+  registry_.load_library(library, "rank 0's");  // once: a second load finds it loaded
+  const ComponentType* type = registry_.find(RUMBLE_KIND_SOIL, type_name);
+  if (type == nullptr) throw RunError("no soil type '" + type_name + "' in " + library);
+  soils_[id] =
+      std::make_unique<SoilInstance>(*type, label, nlohmann::json::parse(params), scenario_dir);
+}
+
+SoilInstance& SoilServer::at(std::uint64_t id) {
+  const auto it = soils_.find(id);
+  if (it == soils_.end()) throw RunError("no copy of instance " + std::to_string(id));
+  return *it->second;
+}
+
 /// Makes one call on this rank's copy.
-void make(Copies& copies, Call call, std::uint64_t id, Reader& r) {
-  if (call == Call::kCreate) return copies.create(r, id);
-  if (call == Call::kDestroy) return copies.destroy(id);
-  SoilInstance& soil = copies.at(id);
+void SoilServer::make(Call call, std::uint64_t id, Reader& r) {
+  if (call == Call::kCreate) return create(r, id);
+  if (call == Call::kDestroy) {
+    soils_.erase(id);
+    return;
+  }
+  SoilInstance& soil = at(id);
   switch (call) {
     case Call::kHostContext:
       return host_context(soil, r);
@@ -168,24 +164,15 @@ void make(Copies& copies, Call call, std::uint64_t id, Reader& r) {
   }
 }
 
-}  // namespace
-
-void serve_soils() {
-  std::signal(SIGINT, SIG_IGN);
-  std::signal(SIGTERM, SIG_IGN);
-  Copies copies;
-  while (const std::optional<std::vector<char>> message = parallel::next_from_root()) {
-    Reader r(*message);
-    const auto call = r.get<Call>();
-    const auto id = r.get<std::uint64_t>();
-    std::string error;
-    try {
-      make(copies, call, id, r);
-    } catch (const std::exception& e) {
-      error = e.what();
-    }
-    parallel::first_failure(error);
+void SoilServer::serve(Reader& message) {
+  std::string error;
+  try {
+    const auto call = message.get<Call>();
+    make(call, message.get<std::uint64_t>(), message);
+  } catch (const std::exception& e) {
+    error = e.what();
   }
+  parallel::first_failure(error);
 }
 
 }  // namespace rumble

@@ -14,6 +14,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <ostream>
+#include <string_view>
 #include <thread>
 
 #include "core/cpu_affinity.hpp"
@@ -58,6 +59,19 @@ std::string summary_status(const fs::path& dir) {
   }
 }
 
+/// This process's environment less what an MPI launcher set (OMPI_*, PMI_*, PMIX_*): a run of a
+/// study under mpirun is a process of its own, not one more rank of the launch (which would make
+/// it start MPI as a rank it is not). Made before fork: the child only calls execve.
+std::vector<std::string> environment_without_launcher() {
+  std::vector<std::string> kept;
+  for (char** e = environ; *e != nullptr; ++e) {
+    const std::string_view v(*e);
+    if (v.rfind("OMPI_", 0) == 0 || v.rfind("PMI_", 0) == 0 || v.rfind("PMIX_", 0) == 0) continue;
+    kept.emplace_back(v);
+  }
+  return kept;
+}
+
 /// Starts one child: its own process group (the terminal's Ctrl-C reaches the study only, which
 /// forwards it once), on `cpus` (its share of the study's: a run gives its soil as many threads
 /// as it may use CPUs, so runs side by side must not each see all of them), stdin from
@@ -71,6 +85,10 @@ pid_t start_child(const fs::path& executable, const std::vector<std::string>& co
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
+  std::vector<std::string> environment = environment_without_launcher();
+  std::vector<char*> envp;
+  for (std::string& e : environment) envp.push_back(e.data());
+  envp.push_back(nullptr);
   const pid_t study = ::getpid();
   const pid_t pid = ::fork();
   if (pid == 0) {
@@ -87,7 +105,7 @@ pid_t start_child(const fs::path& executable, const std::vector<std::string>& co
     ::dup2(log_fd, STDERR_FILENO);
     ::signal(SIGINT, SIG_DFL);
     ::signal(SIGTERM, SIG_DFL);
-    ::execv(argv[0], argv.data());
+    ::execve(argv[0], argv.data(), envp.data());
     const char* why = std::strerror(errno);
     const char prefix[] = "rumble: error: cannot start the run: ";
     if (::write(STDERR_FILENO, prefix, sizeof prefix - 1) < 0 ||

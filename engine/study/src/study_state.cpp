@@ -113,6 +113,7 @@ void write_state(const fs::path& study_json, const StudyFile& study,
     e["results"] = fs::absolute(r.results).lexically_normal().string();
     e["log"] = fs::absolute(r.results / "run.log").lexically_normal().string();
     if (!r.message.empty()) e["message"] = r.message;
+    if (r.rank) e["mpi"] = {{"rank", *r.rank}, {"host", r.host}};
     j["runs"].push_back(std::move(e));
   }
   replace_file(study_json, fs::path(study_json.string() + ".tmp"),

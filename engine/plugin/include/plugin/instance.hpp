@@ -135,7 +135,7 @@ class Instance {
   auto mirrored(mirror::Call call, Encode&& encode, Body&& body) const -> decltype(body()) {
     if (mirror_id_ == 0 || in_mirrored_call_) return body();
     mirror::Writer w;
-    w.put(call).put(mirror_id_);
+    w.put(mirror::Service::kSoil).put(call).put(mirror_id_);
     encode(w);
     if constexpr (std::is_void_v<decltype(body())>) {
       run_mirrored(w, [&] { body(); });

@@ -1,5 +1,6 @@
-// One call of a distributed soil as bytes, written on rank 0 and read on every other rank
-// (docs/decisions/0012-distributed-soil.md §1). Plain values are copied as their bytes: every rank
+// A message from rank 0 to the other ranks of a launch as bytes, written on rank 0 and read on
+// every other rank (docs/decisions/0012-distributed-soil.md): a call of a distributed soil, or a
+// study's runs. Plain values are copied as their bytes: every rank
 // runs the same binary on the same kind of machine (an MPI job's ranks do).
 #pragma once
 
@@ -13,6 +14,12 @@
 #include <vector>
 
 namespace rumble::mirror {
+
+/// Whom a message from rank 0 is for on the other ranks: the first byte of every message.
+enum class Service : std::uint8_t {
+  kSoil = 1,  // a call of a distributed soil (Call below)
+  kStudy = 2  // a study's runs, each rank running its share (study/rank_share.hpp)
+};
 
 /// What a message asks a server to do with its instance (one per mirrored SoilInstance call).
 enum class Call : std::uint8_t {

@@ -30,6 +30,9 @@ struct RunRecord {
   std::string message;  // why it failed, was skipped or did not start
   /// The child's command line after the executable: run FILE --set ... --output DIR ...
   std::vector<std::string> command;
+  /// Under mpirun: the rank that ran it and that rank's host (study/rank_share.hpp).
+  std::optional<int> rank;
+  std::string host;
 };
 
 /// What the last study.json says of a run.

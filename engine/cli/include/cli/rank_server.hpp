@@ -1,0 +1,13 @@
+// Ranks other than 0 of an MPI launch (docs/decisions/0012-distributed-soil.md): rank 0 runs the
+// command, and this loop serves it until it releases the other ranks: a distributed soil's calls
+// (plugin/soil_server.hpp) and a study's runs (study/rank_share.hpp).
+#pragma once
+
+namespace rumble::cli {
+
+/// Serves rank 0's messages until it releases this rank. Ignores SIGINT and SIGTERM, which
+/// mpirun sends every rank: rank 0 alone decides how a run stops (a study's share listens while
+/// its runs go).
+void serve_rank_zero();
+
+}  // namespace rumble::cli
