@@ -6,10 +6,11 @@
 // (up to FACTOR_LIMIT DOFs) and conjugate gradients preconditioned by multigrid or by the
 // diagonal (our CG), or PETSc's CG with its algebraic multigrid GAMG (issue #33). Prints one line
 // per path and mesh: DOFs, setup and solve times [s], CG iterations, and the difference between
-// paths. PATHS: any of multigrid-cg, gamg-cg, jacobi-cg, gamg-aij (GAMG with CG's products on
-// compressed rows, not 3 x 3 blocks; default: all but gamg-aij), in that order in one process, so
-// that a busy machine loads them alike; compare them by their ratios. PETSC_OPTIONS with the prefix
-// fem_statics_ tunes GAMG (statics/petsc_static_solver.hpp).
+// paths. PATHS: a comma-separated list of multigrid-cg, gamg-cg, jacobi-cg, gamg-aij (GAMG with
+// CG's products on compressed rows, not 3 x 3 blocks; default: the first three), run in that
+// order in one process, so that a busy machine loads them alike; compare them by their ratios,
+// and in both orders (the first path pays the first touch of fresh memory). PETSC_OPTIONS with the
+// prefix fem_statics_ tunes GAMG (statics/petsc_static_solver.hpp).
 //   OMP_WAIT_POLICY=passive build/release/bin/fem_static_bench [--paths=PATHS] [FACTOR_LIMIT]
 //       F_MAX...   (default 4e5; 50 80 120)
 #include <Eigen/Core>
@@ -19,6 +20,7 @@
 #include <cstdlib>
 #include <functional>
 #include <memory>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -152,20 +154,22 @@ void run(double f_max, Eigen::Index factor_limit, const std::string& paths) {
     std::printf("  cholmod        setup+solve %7.2f s  solve %6.3f s\n", first,
                 seconds_since(start));
   }
-  for (const auto& [name, kind] : {std::pair{"multigrid-cg", CgPreconditioner::kMultigrid},
-                                   std::pair{"gamg-cg", CgPreconditioner::kGamg},
-                                   std::pair{"jacobi-cg", CgPreconditioner::kJacobi}})
-    if (paths.find(name) != std::string::npos)
-      time_path(name, static_solver(op.soil(), mesh.nodes, kind), f, reference);
-  if (paths.find("gamg-aij") != std::string::npos)
-    time_path("gamg-aij", gamg_on_rows(op.soil(), mesh.nodes), f, reference);
+  std::istringstream names(paths);  // (in the order given: the first pays fresh memory's faults)
+  for (std::string name; std::getline(names, name, ',');) {
+    if (name == "gamg-aij")
+      time_path("gamg-aij", gamg_on_rows(op.soil(), mesh.nodes), f, reference);
+    for (const auto& [path, kind] : {std::pair{"multigrid-cg", CgPreconditioner::kMultigrid},
+                                     std::pair{"gamg-cg", CgPreconditioner::kGamg},
+                                     std::pair{"jacobi-cg", CgPreconditioner::kJacobi}})
+      if (name == path) time_path(path, static_solver(op.soil(), mesh.nodes, kind), f, reference);
+  }
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
   std::vector<std::string> args(argv + 1, argv + argc);
-  std::string paths = "multigrid-cg gamg-cg jacobi-cg";
+  std::string paths = "multigrid-cg,gamg-cg,jacobi-cg";
   if (!args.empty() && args.front().rfind("--paths=", 0) == 0) {
     paths = args.front().substr(8);
     args.erase(args.begin());
