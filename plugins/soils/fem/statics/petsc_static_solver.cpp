@@ -31,6 +31,15 @@ struct PetscStopTest {
 
 namespace {
 
+/// K + S in 3 x 3 blocks, each column-major as BAIJ stores them, compressed block rows (node
+/// rows; within a block, entries absent from the rows are zero): a block row is then one
+/// column-oriented MatSetValuesBlocked. (PETSc 3.18 takes no such arrays without a copy for
+/// blocks larger than 1: MatCreateSeqBAIJWithArrays refuses them.)
+struct PetscBlockRows {
+  std::vector<PetscInt> start, column;
+  std::vector<PetscScalar> value;
+};
+
 PetscErrorCode converged_or_stopped(KSP ksp, PetscInt it, PetscReal rnorm,
                                     KSPConvergedReason* reason, void* context) {
   auto* test = static_cast<PetscStopTest*>(context);
@@ -44,17 +53,14 @@ PetscErrorCode converged_or_stopped(KSP ksp, PetscInt it, PetscReal rnorm,
   return KSPConvergedDefault(ksp, it, rnorm, reason, test->default_test);
 }
 
-/// K + S in 3 x 3 blocks, each row-major: BAIJ's compressed block rows (node rows; within a
-/// block, entries absent from the rows are zero).
-struct BlockRows {
-  std::vector<PetscInt> start, column;
-  std::vector<PetscScalar> value;
-};
-
-BlockRows block_rows(const RowSparse& a) {
-  BlockRows b;
+/// a in blocks; the matrix must have 3 x 3 blocks' rows (3 DOFs per node).
+PetscBlockRows block_rows(const RowSparse& a) {
+  PetscBlockRows b;
   const Eigen::Index nodes = a.rows() / 3;
   b.start.assign(nodes + 1, 0);
+  const auto blocks = static_cast<std::size_t>(a.nonZeros() / 9 + nodes);  // (9 a full block)
+  b.column.reserve(blocks);
+  b.value.reserve(9 * blocks);
   std::vector<PetscInt> slot(nodes, -1);  // per node column: its block in the current row
   for (Eigen::Index i = 0; i < nodes; ++i) {
     const auto first = static_cast<PetscInt>(b.column.size());
@@ -72,7 +78,7 @@ BlockRows block_rows(const RowSparse& a) {
     b.value.resize(9 * b.column.size(), 0.0);
     for (int c = 0; c < 3; ++c)
       for (RowSparse::InnerIterator e(a, 3 * i + c); e; ++e)
-        b.value[9 * slot[e.col() / 3] + 3 * c + e.col() % 3] = e.value();
+        b.value[9 * slot[e.col() / 3] + 3 * (e.col() % 3) + c] = e.value();
     b.start[i + 1] = static_cast<PetscInt>(b.column.size());
   }
   return b;
@@ -111,10 +117,11 @@ PetscStaticSolver::PetscStaticSolver(const SoilOperator& op, const Eigen::Matrix
   petsc_check(MatSetBlockSize(p.aij, 3), "MatSetBlockSize");  // nodes, for GAMG's aggregates
   petsc_check(MatSetOption(p.aij, MAT_SPD, PETSC_TRUE), "MatSetOption");
   if (storage == Storage::kBaijProduct) {
-    const BlockRows blocks = block_rows(p.rows);
+    const PetscBlockRows blocks = block_rows(p.rows);
     petsc_check(MatCreate(PETSC_COMM_SELF, &p.product), "MatCreate");
     petsc_check(MatSetSizes(p.product, n, n, n, n), "MatSetSizes");
     petsc_check(MatSetType(p.product, MATSEQBAIJ), "MatSetType");
+    petsc_check(MatSetOption(p.product, MAT_ROW_ORIENTED, PETSC_FALSE), "MatSetOption");
     petsc_check(MatSeqBAIJSetPreallocationCSR(p.product, 3, blocks.start.data(),
                                               blocks.column.data(), blocks.value.data()),
                 "MatSeqBAIJSetPreallocationCSR");
