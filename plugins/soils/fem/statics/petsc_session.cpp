@@ -40,10 +40,10 @@ PetscSession::PetscSession() {
     throw std::runtime_error("fem: PETSc (and MPI) did not start (PetscInitialize failed)");
   owns_petsc_ = true;
   PetscPushErrorHandler(keep_petsc_message, nullptr);
-  // GAMG's Galerkin products P^T A P by forming P^T first ("rap"): 1.3-2x faster set-ups than
-  // PETSc 3.18's default for one rank ("scalable", which avoids the transpose's memory), measured
-  // on the statics (docs/fem-soil.md §7). A process-wide option, as MatPtAP reads it without a
-  // prefix; PETSC_OPTIONS may still choose another.
+  // GAMG's Galerkin products P^T A P by forming P^T first ("rap"): GAMG set up 1.7-2x faster
+  // than with PETSc 3.18's default for one rank ("scalable", which avoids the transpose's
+  // memory) on the statics at 2.1e5 DOFs (docs/fem-soil.md §7.1). A process-wide option, as
+  // MatPtAP reads it without a prefix; PETSC_OPTIONS may still choose another.
   PetscBool chosen = PETSC_FALSE;
   petsc_check(PetscOptionsHasName(nullptr, nullptr, "-matptap_via", &chosen),
               "PetscOptionsHasName");

@@ -1,5 +1,5 @@
 // The static solve (K + S) u = f by PETSc's conjugate gradients preconditioned by its smoothed-
-// aggregation algebraic multigrid, GAMG (issue #33; docs/fem-soil.md §7, docs/numerics.md §4.2),
+// aggregation algebraic multigrid, GAMG (issue #33; docs/fem-soil.md §7.1, docs/numerics.md §4.4),
 // on one rank (PETSC_COMM_SELF) for now: StaticSolver's path above its factor limit.
 //
 // The matrix is the operator's K + S in double, 3 DOFs per node (block size 3, so GAMG
@@ -8,14 +8,14 @@
 // (MatNullSpaceCreateRigidBody): the displacements that cost elasticity no energy, which each
 // aggregate's coarse basis must reproduce for the coarse levels to correct the smooth error the
 // smoother leaves. CG stops when the residual of the true system, unpreconditioned, is 1e-10 of
-// the load (the hand-written CG's test), and starts from the last solution: the engine's static
-// iteration asks again with a slightly changed load. The hierarchy is built at the first solve
-// and kept for every later one (the matrix does not change).
+// the load (the test of the hand-written CG it replaced), and starts from the last solution: the
+// engine's static iteration asks again with a slightly changed load. The hierarchy is built once,
+// by the constructor (StaticSolver's first solve), and kept (the matrix does not change).
 //
 // Options: GAMG with one smoothing of the prolongator, Chebyshev(2) smoothing with Jacobi on
 // each level (PETSc 3.18's defaults), set before KSPSetFromOptions, so that PETSC_OPTIONS with
 // the prefix "fem_statics_" overrides them for tuning (e.g. PETSC_OPTIONS="
-// -fem_statics_pc_gamg_threshold 0.02"; docs/fem-soil.md §7 has what was measured).
+// -fem_statics_pc_gamg_threshold 0.02"; docs/fem-soil.md §7.1 has what was measured).
 #pragma once
 
 #include <Eigen/Core>
@@ -31,7 +31,7 @@ class PetscStaticSolver {
   /// with no copy, for everything. kBaijProduct (the default): the same for GAMG's set-up, and a
   /// copy in 3 x 3 blocks (BAIJ) for CG's products and the mesh level's smoothing, which read a
   /// third fewer bytes (one column index per block): the solve 1.5-2.5x faster at 2e5-1e6 DOFs
-  /// for 0.4 kB more per DOF (docs/fem-soil.md §7). PETSc 3.18's GAMG cannot set up from BAIJ
+  /// for 0.4 kB more per DOF (docs/fem-soil.md §7.1). PETSc 3.18's GAMG cannot set up from BAIJ
   /// alone (no MatCreateGraph for it: "No support for this operation").
   enum class Storage { kAij, kBaijProduct };
 
