@@ -1,17 +1,16 @@
-// The FEM soil's static start at growing size (issues #9 and #33; the figures in
+// The FEM soil's static start at growing size (issue #9; the figures in
 // bench/fem/MEASUREMENTS.md, "Speed and memory"): on the stiff
 // example's graded hemisphere (scenarios/examples/stiff_soil_fem.json: R = 15 m, 30 sleeper
 // footprints, resolution near_distance 5 m) meshed at each F_MAX, the time and iterations of
 // one static solve under the sleepers' weight by each path StaticSolver has: the CHOLMOD factor
-// (up to FACTOR_LIMIT DOFs) and PETSc's CG with its algebraic multigrid GAMG. Prints one line per
-// path and mesh: DOFs, setup and solve times [s], CG iterations, and the difference between
-// paths. PATHS: a comma-separated list of gamg-cg (StaticSolver's) and gamg-aij (GAMG with CG's
-// products on compressed rows, not 3 x 3 blocks; default: gamg-cg), run in that order in one
-// process, so that a busy machine loads them alike; compare them by their ratios, and in both
-// orders (the first path pays the first touch of fresh memory). PETSC_OPTIONS with the prefix
-// fem_statics_ tunes GAMG (statics/petsc_static_solver.hpp). The comparison with the
-// hand-written multigrid that GAMG replaced (multigrid-cg, jacobi-cg) is this file at commit
-// 3100871 (docs/fem-soil.md §7.1).
+// (up to FACTOR_LIMIT DOFs) and conjugate gradients preconditioned by multigrid or by the
+// diagonal (our CG), or PETSc's CG with its algebraic multigrid GAMG (issue #33). Prints one line
+// per path and mesh: DOFs, setup and solve times [s], CG iterations, and the difference between
+// paths. PATHS: a comma-separated list of multigrid-cg, gamg-cg, jacobi-cg, gamg-aij (GAMG with
+// CG's products on compressed rows, not 3 x 3 blocks; default: the first three), run in that
+// order in one process, so that a busy machine loads them alike; compare them by their ratios,
+// and in both orders (the first path pays the first touch of fresh memory). PETSC_OPTIONS with the
+// prefix fem_statics_ tunes GAMG (statics/petsc_static_solver.hpp).
 //   OMP_WAIT_POLICY=passive build/release/bin/fem_static_bench [--paths=PATHS] [FACTOR_LIMIT]
 //       F_MAX...   (default 4e5; 50 80 120)
 #include <Eigen/Core>
@@ -51,6 +50,13 @@ FemSettings stiff_example(double f_max) {
   return s;
 }
 
+std::string level_sizes(const AmgPreconditioner& amg) {
+  std::string sizes;
+  for (int l = 0; l < amg.levels(); ++l)
+    sizes += (l ? " " : "") + std::to_string(static_cast<long>(amg.dofs(l)));
+  return sizes;
+}
+
 std::vector<Footprint> sleepers() {  // 30 at 0.6 m, 2.6 m x 0.26 m, centred on x = 0
   std::vector<Footprint> fp;
   for (int i = 0; i < 30; ++i) fp.push_back({(i - 14.5) * 0.6, 0.0, 2.6, 0.26});
@@ -62,15 +68,20 @@ struct Solved {
   Eigen::VectorXd u;
   double setup_s = 0.0;  // its set-up, within the first solve
   int iterations = 0, levels = 0;
+  std::string hierarchy;  // the hand-written multigrid's sizes, or empty
 };
 using Path = std::function<Solved(const Eigen::VectorXd&)>;
 
-/// A StaticSolver on its iterative path (built with the path, set up at its first solve).
-Path static_solver(const SoilOperator& soil, const Eigen::Matrix3Xd& nodes) {
-  auto cg = std::make_shared<StaticSolver>(soil, nodes, 0);
+/// A StaticSolver on its iterative path `kind` (built with the path, set up at its first solve).
+Path static_solver(const SoilOperator& soil, const Eigen::Matrix3Xd& nodes, CgPreconditioner kind) {
+  auto cg = std::make_shared<StaticSolver>(soil, nodes, 0, kind);
   return [cg](const Eigen::VectorXd& f) {
-    return Solved{cg->solve(f), cg->multigrid_setup_seconds(), cg->last_cg_iterations(),
-                  cg->multigrid_levels()};
+    Solved s{cg->solve(f), cg->multigrid_setup_seconds(), cg->last_cg_iterations(),
+             cg->multigrid_levels(), ""};
+    if (const AmgPreconditioner* amg = cg->multigrid())
+      s.hierarchy = level_sizes(*amg) + ", operator complexity " +
+                    std::to_string(amg->operator_complexity()).substr(0, 4);
+    return s;
   };
 }
 
@@ -83,7 +94,7 @@ Path gamg_on_rows(const SoilOperator& soil, const Eigen::Matrix3Xd& nodes) {
       *solver = std::make_unique<PetscStaticSolver>(soil, nodes, PetscStaticSolver::Storage::kAij);
     const PetscStaticSolver& s = **solver;
     Eigen::VectorXd u = (*solver)->solve(f);
-    return Solved{std::move(u), s.setup_seconds(), s.last_iterations(), s.levels()};
+    return Solved{std::move(u), s.setup_seconds(), s.last_iterations(), s.levels(), ""};
   };
 }
 
@@ -97,6 +108,7 @@ void time_path(const char* name, const Path& path, const Eigen::VectorXd& f,
   std::printf("  %-14s setup %6.2f s  solve %6.2f s  %5d iterations", name, first.setup_s,
               first_s - first.setup_s, first.iterations);
   if (first.levels > 0) std::printf("  %d levels", first.levels);
+  if (!first.hierarchy.empty()) std::printf(" (%s)", first.hierarchy.c_str());
   if (reference.size())
     std::printf("  |u - u_factor| / |u_factor| = %.1e",
                 (first.u - reference).norm() / reference.norm());
@@ -119,7 +131,7 @@ void run(double f_max, Eigen::Index factor_limit, const std::string& paths) {
   const ExplicitSolver op(
       assemble_stiffness(mesh, s), lumped_mass(mesh, s), absorbing_boundary(mesh, s, plan.region),
       true, std::vector<char>(mesh.node_count(), 0), 0.0, 0.0, 2,
-      StepPrecision::kSingle);  // (the plugin's default; the statics solve K in double)
+      StepPrecision::kSingle);  // (the plugin's default: multigrid's fine products)
   // 1 kN down on every surface node inside a footprint: the shape of the sleepers' weight.
   Eigen::VectorXd f = Eigen::VectorXd::Zero(op.dofs());
   for (Eigen::Index node = 0; node < mesh.nodes.cols(); ++node) {
@@ -146,10 +158,10 @@ void run(double f_max, Eigen::Index factor_limit, const std::string& paths) {
   for (std::string name; std::getline(names, name, ',');) {
     if (name == "gamg-aij")
       time_path("gamg-aij", gamg_on_rows(op.soil(), mesh.nodes), f, reference);
-    else if (name == "gamg-cg")
-      time_path("gamg-cg", static_solver(op.soil(), mesh.nodes), f, reference);
-    else
-      std::printf("  (no path %s)\n", name.c_str());
+    for (const auto& [path, kind] : {std::pair{"multigrid-cg", CgPreconditioner::kMultigrid},
+                                     std::pair{"gamg-cg", CgPreconditioner::kGamg},
+                                     std::pair{"jacobi-cg", CgPreconditioner::kJacobi}})
+      if (name == path) time_path(path, static_solver(op.soil(), mesh.nodes, kind), f, reference);
   }
 }
 
@@ -157,7 +169,7 @@ void run(double f_max, Eigen::Index factor_limit, const std::string& paths) {
 
 int main(int argc, char** argv) {
   std::vector<std::string> args(argv + 1, argv + argc);
-  std::string paths = "gamg-cg";
+  std::string paths = "multigrid-cg,gamg-cg,jacobi-cg";
   if (!args.empty() && args.front().rfind("--paths=", 0) == 0) {
     paths = args.front().substr(8);
     args.erase(args.begin());

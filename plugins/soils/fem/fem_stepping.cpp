@@ -30,7 +30,7 @@ constexpr double kMaxSubSteps = 1e9;
 void FemSoil::initialize(double /*t0*/, const double* static_force, double* static_u) {
   require_layout("initialize");
   export_if_due();  // a run's soil was laid out by its validation, before it had a directory
-  op_->set_threads(host_.threads());  // (the statics run on one thread: GAMG, one PETSc rank)
+  op_->set_threads(host_.threads());  // the statics' products and multigrid set-up use them
   force_static_.assign(static_force, static_force + footprints_.size());
   force_last_ = force_static_;
   spread(force_static_.data(), f_);

@@ -1,5 +1,4 @@
-// Linear combinations of the FEM soil's operators as one sparse symmetric matrix for CHOLMOD (or
-// whole, in rows, for PETSc):
+// Linear combinations of the FEM soil's operators as one sparse symmetric matrix for CHOLMOD:
 //   k K + m M + S (when springs) + d D,
 // K the elastic stiffness, M the lumped mass, S and D the boundary's spring and dashpot blocks;
 // fixed DOFs become identity rows and columns. The static matrix is K + S; Newmark's effective
@@ -16,14 +15,12 @@
 #include <SuiteSparse_config.h>
 
 #include "operator/soil_operator.hpp"
+#include "operator/sparse_product.hpp"
 
 namespace rumble::fem {
 
 /// CHOLMOD's 64-bit interface (cholmod_l): docs/numerics.md §4.2, the int one fails near 1e6 DOFs.
 using LongSparse = Eigen::SparseMatrix<double, Eigen::ColMajor, SuiteSparse_long>;
-/// Compressed rows with 32-bit indices: PETSc's AIJ storage (as Debian builds it), which the
-/// static solve's GAMG takes without a copy (statics/petsc_static_solver.hpp).
-using RowSparse = Eigen::SparseMatrix<double, Eigen::RowMajor, int>;
 
 struct Combination {
   double stiffness = 0.0;  // k
@@ -34,8 +31,8 @@ struct Combination {
 
 /// The lower triangle of the combination, CSC (for CHOLMOD).
 LongSparse lower_combination(const SoilOperator& op, const Combination& c);
-/// The whole combination, compressed rows with 32-bit indices (for PETSc's GAMG, which reads
-/// rows): built directly, without the lower triangle's 16 B per nonzero on the way.
+/// The whole combination, compressed rows with 32-bit indices (for multigrid, whose products
+/// read rows): built directly, without the lower triangle's 16 B per nonzero on the way.
 RowSparse full_combination(const SoilOperator& op, const Combination& c);
 
 }  // namespace rumble::fem

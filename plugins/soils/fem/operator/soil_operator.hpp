@@ -83,8 +83,8 @@ class SoilOperator {
   /// y = K x + S x (S when with_springs), K in double; 0 on fixed nodes.
   virtual void stiffness_times(const Eigen::VectorXd& x, Eigen::VectorXd& y,
                                bool with_springs) const = 0;
-  /// The same with K as the step reads it (precision()): the eigenvalue iterations' product
-  /// (and the strain energy's), threaded.
+  /// The same with K as the step reads it (precision()): the statics' and the eigenvalue
+  /// iterations' product, threaded.
   virtual void stepped_stiffness_times(const Eigen::VectorXd& x, Eigen::VectorXd& y,
                                        bool with_springs) const = 0;
   /// The explicit step's product: K x (as the step reads it) handed to `take` node by node,
@@ -92,9 +92,9 @@ class SoilOperator {
   /// and unchanged; no barrier at the end.
   virtual void stepped_product(const double* x, NodeProducts& take) const = 0;
   virtual StepPrecision precision() const = 0;
-  /// K's assembled rows in double (CSR, 3 DOFs per node): what the direct solvers factor and
-  /// the statics' GAMG takes (effective_matrix.hpp), the matrices the plugin exports
-  /// (linear_matrices.hpp), the receptance's, and the local time stepping's set-up read.
+  /// K's assembled rows in double (CSR, 3 DOFs per node): what the direct solvers factor
+  /// (effective_matrix.hpp), the matrices the plugin exports (linear_matrices.hpp), the
+  /// receptance's, and the local time stepping's set-up read.
   virtual const CsrMatrix& stiffness() const = 0;
   /// Memory held [bytes], the node data included.
   virtual std::size_t bytes() const = 0;

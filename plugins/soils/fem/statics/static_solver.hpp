@@ -2,29 +2,35 @@
 // fixed). A sparse Cholesky factor from CHOLMOD's 64-bit interface (cholmod_l, docs/toolchain.md §4
 // and docs/numerics.md §4.2: the int interface fails near 1e6 DOFs), computed once and reused by
 // every solve (the engine iterates the static state with the track); above kFactorLimit DOFs, where
-// the factor would take more memory than the soil itself by far, PETSc's conjugate gradients
-// preconditioned by its algebraic multigrid GAMG (petsc_static_solver.hpp, docs/numerics.md
-// §4.4), set up at the first solve and kept likewise. Both solve K + S in double.
+// the factor would take more memory than the soil itself by far, conjugate gradients
+// preconditioned by smoothed-aggregation multigrid (amg_preconditioner.hpp), or by the diagonal
+// (Jacobi, kept as the baseline bench/fem/fem_static_bench.cpp measures against), or PETSc's CG
+// preconditioned by its algebraic multigrid GAMG (petsc_static_solver.hpp; issue #33).
 #pragma once
 
 #include <Eigen/Core>
 #include <memory>
 
 #include "operator/soil_operator.hpp"
+#include "statics/amg_preconditioner.hpp"
 #include "statics/petsc_static_solver.hpp"
 
 namespace rumble::fem {
+
+/// The iterative path: our CG with our smoothed-aggregation multigrid or the diagonal, or
+/// PETSc's CG with GAMG (PETSc started at the first such solve, never before).
+enum class CgPreconditioner { kMultigrid, kJacobi, kGamg };
 
 class StaticSolver {
  public:
   static constexpr Eigen::Index kFactorLimit = 400000;  // DOFs: a factor of about 5 GB
 
   /// Uses the operator's K, boundary springs (always: they carry the static load) and fixed
-  /// nodes; nodes: the mesh's coordinates [m] (GAMG's rigid-body modes). Factors on first use
-  /// when op has at most factor_limit DOFs, else solves by CG with GAMG (PETSc started then, and
-  /// only then: petsc_session.hpp).
+  /// nodes; nodes: the mesh's coordinates [m] (multigrid's rigid-body modes). Factors on first
+  /// use when op has at most factor_limit DOFs, else uses CG with the given preconditioner.
   StaticSolver(const SoilOperator& op, const Eigen::Matrix3Xd& nodes,
-               Eigen::Index factor_limit = kFactorLimit);
+               Eigen::Index factor_limit = kFactorLimit,
+               CgPreconditioner preconditioner = CgPreconditioner::kMultigrid);
   ~StaticSolver();
   StaticSolver(const StaticSolver&) = delete;
   StaticSolver& operator=(const StaticSolver&) = delete;
@@ -34,23 +40,32 @@ class StaticSolver {
   /// the last solution (the engine's static iteration asks again with a slightly changed load).
   Eigen::VectorXd solve(const Eigen::VectorXd& f);
   bool factored() const { return factor_ != nullptr; }
-  /// CG's iterations in the last solve (0 with the factor).
-  int last_cg_iterations() const { return gamg_ ? gamg_->last_iterations() : 0; }
-  /// Seconds GAMG's matrices and hierarchy took to build (0 before, or with the factor).
-  double multigrid_setup_seconds() const { return gamg_ ? gamg_->setup_seconds() : 0.0; }
-  /// GAMG's levels once built (the mesh's included), else 0.
-  int multigrid_levels() const { return gamg_ ? gamg_->levels() : 0; }
-  /// The path op's size takes, for the log: "CHOLMOD" or "CG + GAMG (PETSc)".
+  int last_cg_iterations() const { return cg_iterations_; }
+  /// Seconds the multigrid hierarchy took to build (0 before, or with the factor or Jacobi).
+  double multigrid_setup_seconds() const { return multigrid_seconds_; }
+  /// The hand-written multigrid hierarchy once CG has built it, else null.
+  const AmgPreconditioner* multigrid() const { return multigrid_.get(); }
+  /// Levels of either multigrid once built (the mesh's included), else 0.
+  int multigrid_levels() const;
+  /// What the iterative path is, for the log: "CG + GAMG (PETSc)", "CG + multigrid", ...
   const char* method() const;
 
  private:
   struct Factor;
+  Eigen::VectorXd conjugate_gradients(const Eigen::VectorXd& f);
+
+  void precondition(const Eigen::VectorXd& r, Eigen::VectorXd& z) const;
 
   const SoilOperator& op_;
   const Eigen::Matrix3Xd& nodes_;
   Eigen::Index factor_limit_;
+  CgPreconditioner preconditioner_;
   std::unique_ptr<Factor> factor_;
+  std::unique_ptr<AmgPreconditioner> multigrid_;
   std::unique_ptr<PetscStaticSolver> gamg_;
+  Eigen::VectorXd diagonal_, last_;  // CG: the Jacobi preconditioner; the last solution
+  int cg_iterations_ = 0;
+  double multigrid_seconds_ = 0.0;
 };
 
 }  // namespace rumble::fem
