@@ -7,7 +7,8 @@
 // diagonal (our CG), or PETSc's CG with its algebraic multigrid GAMG (issue #33). Prints one line
 // per path and mesh: DOFs, setup and solve times [s], CG iterations, and the difference between
 // paths. PATHS: a comma-separated list of multigrid-cg, gamg-cg, jacobi-cg, gamg-aij (GAMG with
-// CG's products on compressed rows, not 3 x 3 blocks; default: the first three), run in that
+// CG's products on compressed rows, not 3 x 3 blocks), gamg-stepped (by the operator's threaded
+// product, K as the step reads it; default: the first three), run in that
 // order in one process, so that a busy machine loads them alike; compare them by their ratios,
 // and in both orders (the first path pays the first touch of fresh memory). PETSC_OPTIONS with the
 // prefix fem_statics_ tunes GAMG (statics/petsc_static_solver.hpp).
@@ -85,13 +86,13 @@ Path static_solver(const SoilOperator& soil, const Eigen::Matrix3Xd& nodes, CgPr
   };
 }
 
-/// PETSc's GAMG with K + S in compressed rows (AIJ) alone, CG's products included (the default
-/// takes those on 3 x 3 blocks, petsc_static_solver.hpp), set up at its first solve.
-Path gamg_on_rows(const SoilOperator& soil, const Eigen::Matrix3Xd& nodes) {
+/// PETSc's GAMG with CG's products stored as `storage` says (StaticSolver's: 3 x 3 blocks;
+/// petsc_static_solver.hpp), set up at its first solve.
+Path gamg_with(const SoilOperator& soil, const Eigen::Matrix3Xd& nodes,
+               PetscStaticSolver::Storage storage) {
   auto solver = std::make_shared<std::unique_ptr<PetscStaticSolver>>();
-  return [solver, &soil, &nodes](const Eigen::VectorXd& f) {
-    if (!*solver)
-      *solver = std::make_unique<PetscStaticSolver>(soil, nodes, PetscStaticSolver::Storage::kAij);
+  return [solver, &soil, &nodes, storage](const Eigen::VectorXd& f) {
+    if (!*solver) *solver = std::make_unique<PetscStaticSolver>(soil, nodes, storage);
     const PetscStaticSolver& s = **solver;
     Eigen::VectorXd u = (*solver)->solve(f);
     return Solved{std::move(u), s.setup_seconds(), s.last_iterations(), s.levels(), ""};
@@ -157,7 +158,12 @@ void run(double f_max, Eigen::Index factor_limit, const std::string& paths) {
   std::istringstream names(paths);  // (in the order given: the first pays fresh memory's faults)
   for (std::string name; std::getline(names, name, ',');) {
     if (name == "gamg-aij")
-      time_path("gamg-aij", gamg_on_rows(op.soil(), mesh.nodes), f, reference);
+      time_path("gamg-aij", gamg_with(op.soil(), mesh.nodes, PetscStaticSolver::Storage::kAij), f,
+                reference);
+    if (name == "gamg-stepped")
+      time_path("gamg-stepped",
+                gamg_with(op.soil(), mesh.nodes, PetscStaticSolver::Storage::kSteppedProduct), f,
+                reference);
     for (const auto& [path, kind] : {std::pair{"multigrid-cg", CgPreconditioner::kMultigrid},
                                      std::pair{"gamg-cg", CgPreconditioner::kGamg},
                                      std::pair{"jacobi-cg", CgPreconditioner::kJacobi}})

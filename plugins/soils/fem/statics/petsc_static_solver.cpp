@@ -95,10 +95,31 @@ struct PetscStaticSolver::Petsc {
     MatDestroy(&product);
     MatDestroy(&aij);
   }
+  /// y = (K + S) x by the operator's threaded product, K as the step reads it; identity rows on
+  /// fixed DOFs, as in aij (the operator gives 0 there). A MATSHELL's MATOP_MULT.
+  static PetscErrorCode stepped_product(Mat a, Vec x, Vec y) {
+    Petsc* p = nullptr;
+    const PetscScalar* in = nullptr;
+    PetscScalar* out = nullptr;
+    PetscCall(MatShellGetContext(a, &p));
+    PetscCall(VecGetArrayRead(x, &in));
+    std::copy(in, in + p->in.size(), p->in.data());
+    PetscCall(VecRestoreArrayRead(x, &in));
+    p->op->stepped_stiffness_times(p->in, p->out, true);
+    const std::vector<char>& fixed = p->op->fixed();
+    for (Eigen::Index k = 0; k < p->in.size(); ++k)
+      if (fixed[k / 3]) p->out[k] = p->in[k];
+    PetscCall(VecGetArray(y, &out));
+    std::copy(p->out.data(), p->out.data() + p->out.size(), out);
+    PetscCall(VecRestoreArray(y, &out));
+    return 0;
+  }
   std::shared_ptr<PetscSession> session = PetscSession::get();
+  const SoilOperator* op = nullptr;
   RowSparse rows;                        // K + S, whose arrays aij shares
-  Mat aij = nullptr, product = nullptr;  // product: BAIJ's copy, or null
+  Mat aij = nullptr, product = nullptr;  // product: CG's and the mesh level's, or null (aij)
   Vec x = nullptr, b = nullptr;          // over the solver's own vectors (VecPlaceArray)
+  Eigen::VectorXd in, out;               // stepped_product's
   KSP ksp = nullptr;
   PetscStopTest stop;
 };
@@ -108,6 +129,7 @@ PetscStaticSolver::PetscStaticSolver(const SoilOperator& op, const Eigen::Matrix
     : op_(op), petsc_(std::make_unique<Petsc>()) {
   const auto start = std::chrono::steady_clock::now();
   Petsc& p = *petsc_;
+  p.op = &op;
   p.rows = full_combination(op, {.stiffness = 1.0, .springs = true});
   p.rows.makeCompressed();
   const auto n = static_cast<PetscInt>(p.rows.rows());
@@ -116,7 +138,26 @@ PetscStaticSolver::PetscStaticSolver(const SoilOperator& op, const Eigen::Matrix
               "MatCreateSeqAIJWithArrays");
   petsc_check(MatSetBlockSize(p.aij, 3), "MatSetBlockSize");  // nodes, for GAMG's aggregates
   petsc_check(MatSetOption(p.aij, MAT_SPD, PETSC_TRUE), "MatSetOption");
-  if (storage == Storage::kBaijProduct) {
+  make_product(storage);
+  petsc_check(VecCreateSeqWithArray(PETSC_COMM_SELF, 3, n, nullptr, &p.x), "VecCreateSeqWithArray");
+  petsc_check(VecCreateSeqWithArray(PETSC_COMM_SELF, 3, n, nullptr, &p.b), "VecCreateSeqWithArray");
+  build_solver(nodes);
+  setup_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  last_ = Eigen::VectorXd::Zero(n);
+}
+
+void PetscStaticSolver::make_product(Storage storage) {
+  Petsc& p = *petsc_;
+  const auto n = static_cast<PetscInt>(p.rows.rows());
+  if (storage == Storage::kSteppedProduct) {
+    p.in.resize(n);
+    p.out.resize(n);
+    petsc_check(MatCreateShell(PETSC_COMM_SELF, n, n, n, n, &p, &p.product), "MatCreateShell");
+    petsc_check(MatShellSetOperation(p.product, MATOP_MULT,
+                                     reinterpret_cast<void (*)(void)>(&Petsc::stepped_product)),
+                "MatShellSetOperation");
+    petsc_check(MatSetBlockSize(p.product, 3), "MatSetBlockSize");
+  } else if (storage == Storage::kBaijProduct) {
     const PetscBlockRows blocks = block_rows(p.rows);
     petsc_check(MatCreate(PETSC_COMM_SELF, &p.product), "MatCreate");
     petsc_check(MatSetSizes(p.product, n, n, n, n), "MatSetSizes");
@@ -127,11 +168,6 @@ PetscStaticSolver::PetscStaticSolver(const SoilOperator& op, const Eigen::Matrix
                 "MatSeqBAIJSetPreallocationCSR");
     petsc_check(MatSetOption(p.product, MAT_SPD, PETSC_TRUE), "MatSetOption");
   }
-  petsc_check(VecCreateSeqWithArray(PETSC_COMM_SELF, 3, n, nullptr, &p.x), "VecCreateSeqWithArray");
-  petsc_check(VecCreateSeqWithArray(PETSC_COMM_SELF, 3, n, nullptr, &p.b), "VecCreateSeqWithArray");
-  build_solver(nodes);
-  setup_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  last_ = Eigen::VectorXd::Zero(n);
 }
 
 PetscStaticSolver::~PetscStaticSolver() = default;
@@ -163,7 +199,7 @@ void PetscStaticSolver::build_solver(const Eigen::Matrix3Xd& nodes) {
   petsc_check(KSPSetInitialGuessNonzero(p.ksp, PETSC_TRUE), "KSPSetInitialGuessNonzero");
   petsc_check(KSPGetPC(p.ksp, &pc), "KSPGetPC");
   petsc_check(PCSetType(pc, PCGAMG), "PCSetType");
-  if (p.product) petsc_check(PCSetUseAmat(pc, PETSC_TRUE), "PCSetUseAmat");  // mesh level: BAIJ
+  if (p.product) petsc_check(PCSetUseAmat(pc, PETSC_TRUE), "PCSetUseAmat");  // the mesh's level
   petsc_check(KSPSetFromOptions(p.ksp), "KSPSetFromOptions");
   p.stop.op = &op_;
   petsc_check(KSPConvergedDefaultCreate(&p.stop.default_test), "KSPConvergedDefaultCreate");

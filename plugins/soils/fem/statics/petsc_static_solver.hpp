@@ -33,7 +33,10 @@ class PetscStaticSolver {
   /// third fewer bytes (one column index per block): the solve 1.5-2.5x faster at 2e5-1e6 DOFs
   /// for 0.4 kB more per DOF (docs/fem-soil.md §7.1). PETSc 3.18's GAMG cannot set up from BAIJ
   /// alone (no MatCreateGraph for it: "No support for this operation").
-  enum class Storage { kAij, kBaijProduct };
+  /// kSteppedProduct: CG's products and the mesh level's smoothing by the operator's own
+  /// threaded product (stepped_stiffness_times: K's upper blocks as the step reads them, in its
+  /// precision, on the host's threads), GAMG set up from the AIJ rows.
+  enum class Storage { kAij, kBaijProduct, kSteppedProduct };
 
   /// Builds the matrix and GAMG's hierarchy (PETSc started on first use, petsc_session.hpp).
   /// nodes: the mesh's coordinates [m], 3 x op.nodes(). Throws std::runtime_error when PETSc
@@ -58,6 +61,7 @@ class PetscStaticSolver {
 
  private:
   struct Petsc;
+  void make_product(Storage storage);
   void build_solver(const Eigen::Matrix3Xd& nodes);
 
   const SoilOperator& op_;
