@@ -105,7 +105,11 @@ struct PetscStaticSolver::Petsc {
     PetscCall(VecGetArrayRead(x, &in));
     std::copy(in, in + p->in.size(), p->in.data());
     PetscCall(VecRestoreArrayRead(x, &in));
-    p->op->stepped_stiffness_times(p->in, p->out, true);
+    try {  // (a C++ exception must not cross PETSc's C frames)
+      p->op->stepped_stiffness_times(p->in, p->out, true);
+    } catch (...) {
+      return PETSC_ERR_LIB;
+    }
     const std::vector<char>& fixed = p->op->fixed();
     for (Eigen::Index k = 0; k < p->in.size(); ++k)
       if (fixed[k / 3]) p->out[k] = p->in[k];
