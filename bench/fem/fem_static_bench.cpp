@@ -4,14 +4,24 @@
 // footprints, resolution near_distance 5 m) meshed at each F_MAX, the time and iterations of
 // one static solve under the sleepers' weight by each path StaticSolver has: the CHOLMOD factor
 // (up to FACTOR_LIMIT DOFs) and conjugate gradients preconditioned by multigrid or by the
-// diagonal. Prints one line per path
-// and mesh: DOFs, setup and solve times [s], CG iterations, and the difference between paths.
-//   build/release/bin/fem_static_bench [FACTOR_LIMIT] F_MAX...   (default 4e5; 50 80 120)
+// diagonal (our CG), or PETSc's CG with its algebraic multigrid GAMG (issue #33). Prints one line
+// per path and mesh: DOFs, setup and solve times [s], CG iterations, and the difference between
+// paths. PATHS: a comma-separated list of multigrid-cg, gamg-cg, jacobi-cg, gamg-aij (GAMG with
+// CG's products on compressed rows, not 3 x 3 blocks), gamg-stepped (by the operator's threaded
+// product, K as the step reads it; default: the first three), run in that
+// order in one process, so that a busy machine loads them alike; compare them by their ratios,
+// and in both orders (the first path pays the first touch of fresh memory). PETSC_OPTIONS with the
+// prefix fem_statics_ tunes GAMG (statics/petsc_static_solver.hpp).
+//   OMP_WAIT_POLICY=passive build/release/bin/fem_static_bench [--paths=PATHS] [FACTOR_LIMIT]
+//       F_MAX...   (default 4e5; 50 80 120)
 #include <Eigen/Core>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <functional>
+#include <memory>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -41,13 +51,78 @@ FemSettings stiff_example(double f_max) {
   return s;
 }
 
+std::string level_sizes(const AmgPreconditioner& amg) {
+  std::string sizes;
+  for (int l = 0; l < amg.levels(); ++l)
+    sizes += (l ? " " : "") + std::to_string(static_cast<long>(amg.dofs(l)));
+  return sizes;
+}
+
 std::vector<Footprint> sleepers() {  // 30 at 0.6 m, 2.6 m x 0.26 m, centred on x = 0
   std::vector<Footprint> fp;
   for (int i = 0; i < 30; ++i) fp.push_back({(i - 14.5) * 0.6, 0.0, 2.6, 0.26});
   return fp;
 }
 
-void run(double f_max, Eigen::Index factor_limit) {
+/// A path's solve: the solution and what the path reports after it.
+struct Solved {
+  Eigen::VectorXd u;
+  double setup_s = 0.0;  // its set-up, within the first solve
+  int iterations = 0, levels = 0;
+  std::string hierarchy;  // the hand-written multigrid's sizes, or empty
+};
+using Path = std::function<Solved(const Eigen::VectorXd&)>;
+
+/// A StaticSolver on its iterative path `kind` (built with the path, set up at its first solve).
+Path static_solver(const SoilOperator& soil, const Eigen::Matrix3Xd& nodes, CgPreconditioner kind) {
+  auto cg = std::make_shared<StaticSolver>(soil, nodes, 0, kind);
+  return [cg](const Eigen::VectorXd& f) {
+    Solved s{cg->solve(f), cg->multigrid_setup_seconds(), cg->last_cg_iterations(),
+             cg->multigrid_levels(), ""};
+    if (const AmgPreconditioner* amg = cg->multigrid())
+      s.hierarchy = level_sizes(*amg) + ", operator complexity " +
+                    std::to_string(amg->operator_complexity()).substr(0, 4);
+    return s;
+  };
+}
+
+/// PETSc's GAMG with CG's products stored as `storage` says (StaticSolver's: 3 x 3 blocks;
+/// petsc_static_solver.hpp), set up at its first solve.
+Path gamg_with(const SoilOperator& soil, const Eigen::Matrix3Xd& nodes,
+               PetscStaticSolver::Storage storage) {
+  auto solver = std::make_shared<std::unique_ptr<PetscStaticSolver>>();
+  return [solver, &soil, &nodes, storage](const Eigen::VectorXd& f) {
+    if (!*solver) *solver = std::make_unique<PetscStaticSolver>(soil, nodes, storage);
+    const PetscStaticSolver& s = **solver;
+    Eigen::VectorXd u = (*solver)->solve(f);
+    return Solved{std::move(u), s.setup_seconds(), s.last_iterations(), s.levels(), ""};
+  };
+}
+
+/// One path's cold solve (its set-up included) and its solve again with the load changed by 1 %,
+/// as the engine's static iteration asks; reference: the factor's solution, or empty.
+void time_path(const char* name, const Path& path, const Eigen::VectorXd& f,
+               const Eigen::VectorXd& reference) {
+  auto start = std::chrono::steady_clock::now();
+  const Solved first = path(f);
+  const double first_s = seconds_since(start);
+  std::printf("  %-14s setup %6.2f s  solve %6.2f s  %5d iterations", name, first.setup_s,
+              first_s - first.setup_s, first.iterations);
+  if (first.levels > 0) std::printf("  %d levels", first.levels);
+  if (!first.hierarchy.empty()) std::printf(" (%s)", first.hierarchy.c_str());
+  if (reference.size())
+    std::printf("  |u - u_factor| / |u_factor| = %.1e",
+                (first.u - reference).norm() / reference.norm());
+  std::printf("\n");
+  std::fflush(stdout);
+  start = std::chrono::steady_clock::now();
+  const Solved again = path(1.01 * f);
+  std::printf("  %-14s again (load +1 %%)  solve %6.2f s  %5d iterations\n", name,
+              seconds_since(start), again.iterations);
+  std::fflush(stdout);
+}
+
+void run(double f_max, Eigen::Index factor_limit, const std::string& paths) {
   const FemSettings s = stiff_example(f_max);
   const std::vector<Footprint> fp = sleepers();
   const MeshPlan plan = plan_mesh(s, fp);
@@ -77,45 +152,41 @@ void run(double f_max, Eigen::Index factor_limit) {
     const double first = seconds_since(start);
     start = std::chrono::steady_clock::now();
     factor.solve(f);
-    std::printf("  cholmod          setup+solve %7.2f s  solve %6.3f s\n", first,
+    std::printf("  cholmod        setup+solve %7.2f s  solve %6.3f s\n", first,
                 seconds_since(start));
   }
-  for (const auto& [name, kind] : {std::pair{"multigrid-cg", CgPreconditioner::kMultigrid},
-                                   std::pair{"jacobi-cg", CgPreconditioner::kJacobi}}) {
-    StaticSolver cg(op.soil(), mesh.nodes, 0, kind);
-    start = std::chrono::steady_clock::now();
-    const Eigen::VectorXd u = cg.solve(f);
-    const double first = seconds_since(start);
-    std::printf("  %-16s setup+solve %7.2f s  %5d iterations", name, first,
-                cg.last_cg_iterations());
-    if (const AmgPreconditioner* amg = cg.multigrid()) {
-      std::printf("  levels");
-      for (int l = 0; l < amg->levels(); ++l) std::printf(" %ld", static_cast<long>(amg->dofs(l)));
-      std::printf(", operator complexity %.2f", amg->operator_complexity());
-    }
-    if (reference.size())
-      std::printf("  |u - u_factor| / |u_factor| = %.1e",
-                  (u - reference).norm() / reference.norm());
-    std::printf("\n");
-    std::fflush(stdout);
-    // The engine's static iteration asks again with a load a little changed.
-    start = std::chrono::steady_clock::now();
-    cg.solve(1.01 * f);
-    std::printf("  %-16s again (load +1 %%) %7.2f s  %5d iterations\n", name, seconds_since(start),
-                cg.last_cg_iterations());
-    std::fflush(stdout);
+  std::istringstream names(paths);  // (in the order given: the first pays fresh memory's faults)
+  for (std::string name; std::getline(names, name, ',');) {
+    if (name == "gamg-aij")
+      time_path("gamg-aij", gamg_with(op.soil(), mesh.nodes, PetscStaticSolver::Storage::kAij), f,
+                reference);
+    if (name == "gamg-stepped")
+      time_path("gamg-stepped",
+                gamg_with(op.soil(), mesh.nodes, PetscStaticSolver::Storage::kSteppedProduct), f,
+                reference);
+    for (const auto& [path, kind] : {std::pair{"multigrid-cg", CgPreconditioner::kMultigrid},
+                                     std::pair{"gamg-cg", CgPreconditioner::kGamg},
+                                     std::pair{"jacobi-cg", CgPreconditioner::kJacobi}})
+      if (name == path) time_path(path, static_solver(op.soil(), mesh.nodes, kind), f, reference);
   }
-  std::fflush(stdout);
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::vector<double> f_max;
+  std::vector<std::string> args(argv + 1, argv + argc);
+  std::string paths = "multigrid-cg,gamg-cg,jacobi-cg";
+  if (!args.empty() && args.front().rfind("--paths=", 0) == 0) {
+    paths = args.front().substr(8);
+    args.erase(args.begin());
+  }
   Eigen::Index limit = StaticSolver::kFactorLimit;
-  int first = 1;
-  if (argc > 2) limit = static_cast<Eigen::Index>(std::atof(argv[first++]));
-  for (int i = first; i < argc; ++i) f_max.push_back(std::atof(argv[i]));
+  if (args.size() > 1) {
+    limit = static_cast<Eigen::Index>(std::atof(args.front().c_str()));
+    args.erase(args.begin());
+  }
+  std::vector<double> f_max;
+  for (const std::string& a : args) f_max.push_back(std::atof(a.c_str()));
   if (f_max.empty()) f_max = {50, 80, 120};
-  for (const double f : f_max) run(f, limit);
+  for (const double f : f_max) run(f, limit, paths);
 }

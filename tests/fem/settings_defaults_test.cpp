@@ -33,6 +33,13 @@ TEST(FemSettingsDefaults, UnfilledParamsReadTheSchemasDefaults) {
   EXPECT_EQ(unfilled.damping.maxwell, host.damping.maxwell);
   EXPECT_EQ(unfilled.receptance.duration, host.receptance.duration);
   EXPECT_EQ(unfilled.local_steps, host.local_steps);
+  EXPECT_EQ(unfilled.gamg_statics, host.gamg_statics);
+  EXPECT_FALSE(host.gamg_statics);  // (the soil's own multigrid: docs/fem-soil.md §7.1)
+  EXPECT_TRUE(
+      fem::read_settings(
+          json{{"E", 750e6}, {"nu", 0.3}, {"rho", 1800.0}, {"statics", {{"solver", "gamg"}}}}
+              .dump())
+          .gamg_statics);
 }
 
 TEST(FemSettingsDefaults, ADefaultOnlyOneChoiceHasFollowsThatChoice) {

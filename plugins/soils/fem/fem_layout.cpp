@@ -72,7 +72,9 @@ void FemSoil::accept_layout(const std::vector<rumble::Footprint>& footprints) {
   if (settings_.boundary.kind == BoundaryKind::kPml)
     op_->set_pml(PmlLayer(mesh_, settings_, pml_profile()));
   local_steps_chosen_ = false;  // (at the first macro step, whose length they are fitted to)
-  statics_ = std::make_unique<StaticSolver>(op_->soil(), mesh_.nodes);
+  statics_ = std::make_unique<StaticSolver>(
+      op_->soil(), mesh_.nodes, StaticSolver::kFactorLimit,
+      settings_.gamg_statics ? CgPreconditioner::kGamg : CgPreconditioner::kMultigrid);
   far_field_.reset();  // (built at the first static solve: validate needs none)
   if (settings_.boundary.spring_model == rumble::fem::SpringModel::kHalfSpace &&
       !settings_.layers.empty() && settings_.boundary.springs())

@@ -119,6 +119,17 @@ std::string receptance_schema() {
     })schema";
 }
 
+// The static state's solver above the factor limit (docs/fem-soil.md §7.1).
+std::string statics_schema() {
+  return R"schema(    "statics": {
+      "type": "object", "additionalProperties": false, "default": {},
+      "description": "the static state each run starts from (docs/fem-soil.md section 7.1)",
+      "properties": {
+        "solver": {"enum": ["multigrid", "gamg"], "default": "multigrid", "description": "above 4e5 DOFs, where a CHOLMOD factor would take several GB (below, the factor solves whatever this says): multigrid: conjugate gradients preconditioned by the soil's own smoothed-aggregation multigrid, on the host's threads; gamg: PETSc's conjugate gradients with its algebraic multigrid GAMG, on one thread (PETSc and MPI start then): 25 iterations at 9.4e5 DOFs against 62 and faster solves, but a slower set-up, so a static start of five solves took 1.1-1.25x as long on an idle 2-core machine and 0.5-0.8x on a busy one"}
+      }
+    })schema";
+}
+
 // The explicit step's fraction of the stable step.
 std::string courant_schema() {
   return R"schema(    "courant": {"type": "number", "exclusiveMinimum": 0, "maximum": 1, "default": 0.9, "description": "the explicit step as a fraction of the stable step 2 / omega_max, omega_max the largest eigenfrequency of the mesh (Lanczos iterations) [-]; (0, 1]: beyond 1 the central differences diverge"})schema";
@@ -140,7 +151,8 @@ const char* settings_schema() {
           "they are: element faces follow each interface",
           kLayerName) +
       ",\n" + mesh_schema() + ",\n" + boundary_schema() + ",\n" + damping_schema() + ",\n" +
-      integrator_schema() + ",\n" + receptance_schema() + ",\n" + courant_schema() + R"schema(
+      integrator_schema() + ",\n" + receptance_schema() + ",\n" + statics_schema() + ",\n" +
+      courant_schema() + R"schema(
   }
 })schema";
   return schema.c_str();

@@ -37,16 +37,18 @@ void FemSoil::initialize(double /*t0*/, const double* static_force, double* stat
   add_static_far_field(force_static_.data(), f_);
   // No static load (a check, or a soil driven by forces alone): no factor needed.
   const auto start = std::chrono::steady_clock::now();
-  const bool first_multigrid = statics_->multigrid() == nullptr;
+  const bool first_multigrid = statics_->multigrid_levels() == 0;
   u_static_ = f_.isZero(0.0) ? Eigen::VectorXd::Zero(f_.size()) : statics_->solve(f_);
-  if (first_multigrid && statics_->multigrid() != nullptr)
-    host_.info(
-        "fem: multigrid for the static solves: " + std::to_string(statics_->multigrid()->levels()) +
-        " levels, set up in " + format(statics_->multigrid_setup_seconds(), 2) + " s");
-  if (!statics_->factored() && statics_->last_cg_iterations() > 0)
-    host_.log(RUMBLE_LOG_DEBUG, "fem: static solve in " + format(seconds_since(start), 2) + " s, " +
-                                    std::to_string(statics_->last_cg_iterations()) +
-                                    " CG iterations");
+  const std::string solved = "in " + format(seconds_since(start), 2) + " s, " +
+                             std::to_string(statics_->last_cg_iterations()) + " CG iterations";
+  if (first_multigrid && statics_->multigrid_levels() > 0)  // (once: the hierarchy is kept)
+    host_.info("fem: static solves by " + std::string(statics_->method()) + ": " +
+               std::to_string(statics_->multigrid_levels()) + " levels, set up in " +
+               format(statics_->multigrid_setup_seconds(), 2) +
+               " s; the first solve, set-up included, " + solved);
+  else if (!statics_->factored() && statics_->last_cg_iterations() > 0)
+    host_.log(RUMBLE_LOG_DEBUG,
+              "fem: static solve (" + std::string(statics_->method()) + ") " + solved);
   for (Eigen::Index k = 0; k < f_.size(); ++k) f_[k] = 0.0;
   state_.w.setZero();
   state_.v.setZero();

@@ -244,6 +244,7 @@ FemSettings read_settings(const std::string& params_json) {
   s.damping = read_damping(params.object("damping"));
   s.receptance = read_receptance(params.object("receptance"), s.mesh);
   read_integrator(params, s);
+  s.gamg_statics = params.object("statics").get<std::string>("solver") == "gamg";
   check_pml_needs(s);
   return s;
 }

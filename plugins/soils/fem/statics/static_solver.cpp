@@ -19,7 +19,34 @@ StaticSolver::StaticSolver(const SoilOperator& op, const Eigen::Matrix3Xd& nodes
     : op_(op), nodes_(nodes), factor_limit_(factor_limit), preconditioner_(preconditioner) {}
 StaticSolver::~StaticSolver() = default;
 
+int StaticSolver::multigrid_levels() const {
+  if (gamg_) return gamg_->levels();
+  return multigrid_ ? multigrid_->levels() : 0;
+}
+
+const char* StaticSolver::method() const {
+  if (factor_) return "CHOLMOD";
+  switch (preconditioner_) {
+    case CgPreconditioner::kGamg:
+      return "CG + GAMG (PETSc)";
+    case CgPreconditioner::kMultigrid:
+      return "CG + multigrid";
+    case CgPreconditioner::kJacobi:
+      break;
+  }
+  return "CG + Jacobi";
+}
+
 Eigen::VectorXd StaticSolver::solve(const Eigen::VectorXd& f) {
+  if (op_.dofs() > factor_limit_ && preconditioner_ == CgPreconditioner::kGamg) {
+    if (!gamg_) {
+      gamg_ = std::make_unique<PetscStaticSolver>(op_, nodes_);
+      multigrid_seconds_ = gamg_->setup_seconds();
+    }
+    Eigen::VectorXd u = gamg_->solve(f);
+    cg_iterations_ = gamg_->last_iterations();
+    return u;
+  }
   if (op_.dofs() > factor_limit_) return conjugate_gradients(f);
   if (!factor_) {
     factor_ = std::make_unique<Factor>();

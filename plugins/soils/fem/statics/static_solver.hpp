@@ -4,7 +4,8 @@
 // every solve (the engine iterates the static state with the track); above kFactorLimit DOFs, where
 // the factor would take more memory than the soil itself by far, conjugate gradients
 // preconditioned by smoothed-aggregation multigrid (amg_preconditioner.hpp), or by the diagonal
-// (Jacobi, kept as the baseline bench/fem/fem_static_bench.cpp measures against).
+// (Jacobi, kept as the baseline bench/fem/fem_static_bench.cpp measures against), or PETSc's CG
+// preconditioned by its algebraic multigrid GAMG (petsc_static_solver.hpp; issue #33).
 #pragma once
 
 #include <Eigen/Core>
@@ -12,10 +13,13 @@
 
 #include "operator/soil_operator.hpp"
 #include "statics/amg_preconditioner.hpp"
+#include "statics/petsc_static_solver.hpp"
 
 namespace rumble::fem {
 
-enum class CgPreconditioner { kMultigrid, kJacobi };
+/// The iterative path: our CG with our smoothed-aggregation multigrid or the diagonal, or
+/// PETSc's CG with GAMG (PETSc started at the first such solve, never before).
+enum class CgPreconditioner { kMultigrid, kJacobi, kGamg };
 
 class StaticSolver {
  public:
@@ -39,8 +43,12 @@ class StaticSolver {
   int last_cg_iterations() const { return cg_iterations_; }
   /// Seconds the multigrid hierarchy took to build (0 before, or with the factor or Jacobi).
   double multigrid_setup_seconds() const { return multigrid_seconds_; }
-  /// The multigrid hierarchy once CG has built it, else null.
+  /// The hand-written multigrid hierarchy once CG has built it, else null.
   const AmgPreconditioner* multigrid() const { return multigrid_.get(); }
+  /// Levels of either multigrid once built (the mesh's included), else 0.
+  int multigrid_levels() const;
+  /// What the iterative path is, for the log: "CG + GAMG (PETSc)", "CG + multigrid", ...
+  const char* method() const;
 
  private:
   struct Factor;
@@ -54,6 +62,7 @@ class StaticSolver {
   CgPreconditioner preconditioner_;
   std::unique_ptr<Factor> factor_;
   std::unique_ptr<AmgPreconditioner> multigrid_;
+  std::unique_ptr<PetscStaticSolver> gamg_;
   Eigen::VectorXd diagonal_, last_;  // CG: the Jacobi preconditioner; the last solution
   int cg_iterations_ = 0;
   double multigrid_seconds_ = 0.0;

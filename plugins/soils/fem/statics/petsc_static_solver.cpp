@@ -1,0 +1,258 @@
+#include "statics/petsc_static_solver.hpp"
+
+#include <petscksp.h>
+
+#include <algorithm>
+#include <chrono>
+#include <exception>
+#include <sstream>
+#include <stdexcept>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include "operator/effective_matrix.hpp"
+#include "statics/petsc_session.hpp"
+
+namespace rumble::fem {
+
+// PETSc's matrix shares the rows' arrays (no copy of K + S, a few hundred MB at 1e6 DOFs).
+static_assert(std::is_same_v<PetscInt, RowSparse::StorageIndex>,
+              "PETSc's indices must be the rows' (a 32-bit PETSc, as Debian ships it)");
+static_assert(std::is_same_v<PetscScalar, double>, "a real, double PETSc");
+
+/// The operator's stop check (Ctrl-C) between CG's iterations: PETSc's C frames cannot carry a
+/// C++ exception, so the check's exception is kept, CG told to stop, and rethrown after.
+struct PetscStopTest {
+  const SoilOperator* op = nullptr;
+  void* default_test = nullptr;  // KSPConvergedDefault's context
+  std::exception_ptr stopped;
+};
+
+namespace {
+
+/// K + S in 3 x 3 blocks, each column-major as BAIJ stores them, compressed block rows (node
+/// rows; within a block, entries absent from the rows are zero): a block row is then one
+/// column-oriented MatSetValuesBlocked. (PETSc 3.18 takes no such arrays without a copy for
+/// blocks larger than 1: MatCreateSeqBAIJWithArrays refuses them.)
+struct PetscBlockRows {
+  std::vector<PetscInt> start, column;
+  std::vector<PetscScalar> value;
+};
+
+PetscErrorCode converged_or_stopped(KSP ksp, PetscInt it, PetscReal rnorm,
+                                    KSPConvergedReason* reason, void* context) {
+  auto* test = static_cast<PetscStopTest*>(context);
+  try {
+    test->op->check_stop();
+  } catch (...) {
+    test->stopped = std::current_exception();
+    *reason = KSP_DIVERGED_ITS;
+    return 0;
+  }
+  return KSPConvergedDefault(ksp, it, rnorm, reason, test->default_test);
+}
+
+/// a in blocks; the matrix must have 3 x 3 blocks' rows (3 DOFs per node).
+PetscBlockRows block_rows(const RowSparse& a) {
+  PetscBlockRows b;
+  const Eigen::Index nodes = a.rows() / 3;
+  b.start.assign(nodes + 1, 0);
+  const auto blocks = static_cast<std::size_t>(a.nonZeros() / 9 + nodes);  // (9 a full block)
+  b.column.reserve(blocks);
+  b.value.reserve(9 * blocks);
+  std::vector<PetscInt> slot(nodes, -1);  // per node column: its block in the current row
+  for (Eigen::Index i = 0; i < nodes; ++i) {
+    const auto first = static_cast<PetscInt>(b.column.size());
+    for (int c = 0; c < 3; ++c)
+      for (RowSparse::InnerIterator e(a, 3 * i + c); e; ++e) {
+        const PetscInt node = e.col() / 3;
+        if (slot[node] < first) {  // (a block of an earlier row, or none yet)
+          slot[node] = static_cast<PetscInt>(b.column.size());
+          b.column.push_back(node);
+        }
+      }
+    std::sort(b.column.begin() + first, b.column.end());
+    for (auto k = static_cast<std::size_t>(first); k < b.column.size(); ++k)
+      slot[b.column[k]] = static_cast<PetscInt>(k);
+    b.value.resize(9 * b.column.size(), 0.0);
+    for (int c = 0; c < 3; ++c)
+      for (RowSparse::InnerIterator e(a, 3 * i + c); e; ++e)
+        b.value[9 * slot[e.col() / 3] + 3 * (e.col() % 3) + c] = e.value();
+    b.start[i + 1] = static_cast<PetscInt>(b.column.size());
+  }
+  return b;
+}
+
+}  // namespace
+
+struct PetscStaticSolver::Petsc {
+  ~Petsc() {
+    // (errors ignored: a destructor; the session outlives these objects, as it is a member)
+    KSPDestroy(&ksp);
+    VecDestroy(&x);
+    VecDestroy(&b);
+    MatDestroy(&product);
+    MatDestroy(&aij);
+  }
+  /// y = (K + S) x by the operator's threaded product, K as the step reads it; identity rows on
+  /// fixed DOFs, as in aij (the operator gives 0 there). A MATSHELL's MATOP_MULT.
+  static PetscErrorCode stepped_product(Mat a, Vec x, Vec y) {
+    Petsc* p = nullptr;
+    const PetscScalar* in = nullptr;
+    PetscScalar* out = nullptr;
+    PetscCall(MatShellGetContext(a, &p));
+    PetscCall(VecGetArrayRead(x, &in));
+    std::copy(in, in + p->in.size(), p->in.data());
+    PetscCall(VecRestoreArrayRead(x, &in));
+    try {  // (a C++ exception must not cross PETSc's C frames)
+      p->op->stepped_stiffness_times(p->in, p->out, true);
+    } catch (...) {
+      return PETSC_ERR_LIB;
+    }
+    const std::vector<char>& fixed = p->op->fixed();
+    for (Eigen::Index k = 0; k < p->in.size(); ++k)
+      if (fixed[k / 3]) p->out[k] = p->in[k];
+    PetscCall(VecGetArray(y, &out));
+    std::copy(p->out.data(), p->out.data() + p->out.size(), out);
+    PetscCall(VecRestoreArray(y, &out));
+    return 0;
+  }
+  std::shared_ptr<PetscSession> session = PetscSession::get();
+  const SoilOperator* op = nullptr;
+  RowSparse rows;                        // K + S, whose arrays aij shares
+  Mat aij = nullptr, product = nullptr;  // product: CG's and the mesh level's, or null (aij)
+  Vec x = nullptr, b = nullptr;          // over the solver's own vectors (VecPlaceArray)
+  Eigen::VectorXd in, out;               // stepped_product's
+  KSP ksp = nullptr;
+  PetscStopTest stop;
+};
+
+PetscStaticSolver::PetscStaticSolver(const SoilOperator& op, const Eigen::Matrix3Xd& nodes,
+                                     Storage storage)
+    : op_(op), petsc_(std::make_unique<Petsc>()) {
+  const auto start = std::chrono::steady_clock::now();
+  Petsc& p = *petsc_;
+  p.op = &op;
+  p.rows = full_combination(op, {.stiffness = 1.0, .springs = true});
+  p.rows.makeCompressed();
+  const auto n = static_cast<PetscInt>(p.rows.rows());
+  petsc_check(MatCreateSeqAIJWithArrays(PETSC_COMM_SELF, n, n, p.rows.outerIndexPtr(),
+                                        p.rows.innerIndexPtr(), p.rows.valuePtr(), &p.aij),
+              "MatCreateSeqAIJWithArrays");
+  petsc_check(MatSetBlockSize(p.aij, 3), "MatSetBlockSize");  // nodes, for GAMG's aggregates
+  petsc_check(MatSetOption(p.aij, MAT_SPD, PETSC_TRUE), "MatSetOption");
+  make_product(storage);
+  petsc_check(VecCreateSeqWithArray(PETSC_COMM_SELF, 3, n, nullptr, &p.x), "VecCreateSeqWithArray");
+  petsc_check(VecCreateSeqWithArray(PETSC_COMM_SELF, 3, n, nullptr, &p.b), "VecCreateSeqWithArray");
+  build_solver(nodes);
+  setup_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  last_ = Eigen::VectorXd::Zero(n);
+}
+
+void PetscStaticSolver::make_product(Storage storage) {
+  Petsc& p = *petsc_;
+  const auto n = static_cast<PetscInt>(p.rows.rows());
+  if (storage == Storage::kSteppedProduct) {
+    p.in.resize(n);
+    p.out.resize(n);
+    petsc_check(MatCreateShell(PETSC_COMM_SELF, n, n, n, n, &p, &p.product), "MatCreateShell");
+    petsc_check(MatShellSetOperation(p.product, MATOP_MULT,
+                                     reinterpret_cast<void (*)(void)>(&Petsc::stepped_product)),
+                "MatShellSetOperation");
+    petsc_check(MatSetBlockSize(p.product, 3), "MatSetBlockSize");
+  } else if (storage == Storage::kBaijProduct) {
+    const PetscBlockRows blocks = block_rows(p.rows);
+    petsc_check(MatCreate(PETSC_COMM_SELF, &p.product), "MatCreate");
+    petsc_check(MatSetSizes(p.product, n, n, n, n), "MatSetSizes");
+    petsc_check(MatSetType(p.product, MATSEQBAIJ), "MatSetType");
+    petsc_check(MatSetOption(p.product, MAT_ROW_ORIENTED, PETSC_FALSE), "MatSetOption");
+    petsc_check(MatSeqBAIJSetPreallocationCSR(p.product, 3, blocks.start.data(),
+                                              blocks.column.data(), blocks.value.data()),
+                "MatSeqBAIJSetPreallocationCSR");
+    petsc_check(MatSetOption(p.product, MAT_SPD, PETSC_TRUE), "MatSetOption");
+  }
+}
+
+PetscStaticSolver::~PetscStaticSolver() = default;
+
+void PetscStaticSolver::build_solver(const Eigen::Matrix3Xd& nodes) {
+  Petsc& p = *petsc_;
+  // The rigid-body modes from the coordinates: 3 translations, 3 rotations, orthonormalised.
+  Vec coordinates = nullptr;
+  MatNullSpace modes = nullptr;
+  // (PETSc reads the coordinates only)
+  petsc_check(VecCreateSeqWithArray(PETSC_COMM_SELF, 3, static_cast<PetscInt>(nodes.size()),
+                                    const_cast<double*>(nodes.data()), &coordinates),
+              "VecCreateSeqWithArray");
+  petsc_check(MatNullSpaceCreateRigidBody(coordinates, &modes), "MatNullSpaceCreateRigidBody");
+  petsc_check(MatSetNearNullSpace(p.aij, modes), "MatSetNearNullSpace");
+  if (p.product) petsc_check(MatSetNearNullSpace(p.product, modes), "MatSetNearNullSpace");
+  MatNullSpaceDestroy(&modes);  // (the matrices hold it)
+  VecDestroy(&coordinates);
+
+  PC pc = nullptr;
+  petsc_check(KSPCreate(PETSC_COMM_SELF, &p.ksp), "KSPCreate");
+  petsc_check(KSPSetOptionsPrefix(p.ksp, "fem_statics_"), "KSPSetOptionsPrefix");
+  petsc_check(KSPSetOperators(p.ksp, p.product ? p.product : p.aij, p.aij), "KSPSetOperators");
+  petsc_check(KSPSetType(p.ksp, KSPCG), "KSPSetType");
+  // The hand-written CG's test: the true residual, not the preconditioned one, against the load.
+  petsc_check(KSPSetNormType(p.ksp, KSP_NORM_UNPRECONDITIONED), "KSPSetNormType");
+  petsc_check(KSPSetTolerances(p.ksp, kTolerance, PETSC_DEFAULT, PETSC_DEFAULT, 20000),
+              "KSPSetTolerances");
+  petsc_check(KSPSetInitialGuessNonzero(p.ksp, PETSC_TRUE), "KSPSetInitialGuessNonzero");
+  petsc_check(KSPGetPC(p.ksp, &pc), "KSPGetPC");
+  petsc_check(PCSetType(pc, PCGAMG), "PCSetType");
+  if (p.product) petsc_check(PCSetUseAmat(pc, PETSC_TRUE), "PCSetUseAmat");  // the mesh's level
+  petsc_check(KSPSetFromOptions(p.ksp), "KSPSetFromOptions");
+  p.stop.op = &op_;
+  petsc_check(KSPConvergedDefaultCreate(&p.stop.default_test), "KSPConvergedDefaultCreate");
+  petsc_check(KSPSetConvergenceTest(p.ksp, converged_or_stopped, &p.stop,
+                                    [](void* context) {
+                                      return KSPConvergedDefaultDestroy(
+                                          static_cast<PetscStopTest*>(context)->default_test);
+                                    }),
+              "KSPSetConvergenceTest");
+  petsc_check(KSPSetUp(p.ksp), "KSPSetUp (GAMG's hierarchy)");
+  PetscInt levels = 0;
+  petsc_check(PCMGGetLevels(pc, &levels), "PCMGGetLevels");
+  levels_ = static_cast<int>(levels);
+}
+
+Eigen::VectorXd PetscStaticSolver::solve(const Eigen::VectorXd& f) {
+  Petsc& p = *petsc_;
+  Eigen::VectorXd rhs = f;
+  for (Eigen::Index k = 0; k < rhs.size(); ++k)
+    if (op_.fixed()[k / 3]) rhs[k] = 0.0;
+  if (rhs.isZero(0.0)) {  // no load on a free DOF: at rest
+    iterations_ = 0;
+    last_.setZero();
+    return last_;
+  }
+  Eigen::VectorXd u = last_;
+  petsc_check(VecPlaceArray(p.b, rhs.data()), "VecPlaceArray");
+  petsc_check(VecPlaceArray(p.x, u.data()), "VecPlaceArray");
+  const PetscErrorCode code = KSPSolve(p.ksp, p.b, p.x);
+  VecResetArray(p.x);
+  VecResetArray(p.b);
+  if (p.stop.stopped) std::rethrow_exception(std::exchange(p.stop.stopped, nullptr));
+  petsc_check(code, "KSPSolve");
+  PetscInt iterations = 0;
+  KSPConvergedReason reason = KSP_CONVERGED_ITERATING;
+  KSPGetIterationNumber(p.ksp, &iterations);
+  KSPGetConvergedReason(p.ksp, &reason);
+  iterations_ = static_cast<int>(iterations);
+  if (reason < 0 || !u.allFinite()) {
+    PetscReal residual = 0.0;
+    KSPGetResidualNorm(p.ksp, &residual);
+    std::ostringstream m;
+    m << "fem: the static solve (CG with PETSc's GAMG) did not converge in " << iterations_
+      << " iterations (" << KSPConvergedReasons[reason] << ", residual " << residual / rhs.norm()
+      << " of the load)";
+    throw std::runtime_error(m.str());
+  }
+  last_ = u;
+  return u;
+}
+
+}  // namespace rumble::fem
