@@ -1,5 +1,6 @@
 # `rumble` under mpirun (docs/decisions/0012-distributed-soil.md), one case per test:
-#   plugins_show_mpi             `rumble plugins` names the MPI library, one rank, MPI not started
+#   plugins_show_mpi             `rumble plugins` names the MPI library (one rank, MPI not
+#                                started) and the PETSc the FEM soil is built with
 #   plugins_launched             under mpirun -n 2 it says 2 ranks, printed once (rank 0 alone)
 #   same_results_on_N_ranks      the split_dashpot scenario run without mpirun and on N ranks:
 #                                the soil says it is split over N ranks, every CSV is identical
@@ -30,6 +31,7 @@ if(CASE STREQUAL "plugins_show_mpi")
   rumble_run(out code ${RUMBLE} plugins)
   expect_match("${out}" "MPI: Open MPI v[0-9.]+ \\(MPI [0-9.]+\\)")
   expect_match("${out}" "not launched by mpirun")
+  expect_match("${out}" "built with: [^\n]*PETSc [0-9]+\\.[0-9]+")  # the FEM soil's GAMG
 elseif(CASE STREQUAL "plugins_launched")
   rumble_run(out code ${mpirun} -n 2 ${RUMBLE} plugins)
   expect_match("${out}" "launched on 2 ranks")

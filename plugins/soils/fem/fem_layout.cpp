@@ -72,6 +72,10 @@ void FemSoil::accept_layout(const std::vector<rumble::Footprint>& footprints) {
   if (settings_.boundary.kind == BoundaryKind::kPml)
     op_->set_pml(PmlLayer(mesh_, settings_, pml_profile()));
   local_steps_chosen_ = false;  // (at the first macro step, whose length they are fitted to)
+  const bool gamg = settings_.gamg_statics && op_->dofs() > StaticSolver::kFactorLimit;
+  // PETSc runs on the MPI the host starts for us (ABI 1.4, docs/decisions/0012): asking for the
+  // communicator starts it, and PETSc then neither starts nor finalises MPI itself.
+  if (gamg) host_.communicator();
   statics_ = std::make_unique<StaticSolver>(
       op_->soil(), mesh_.nodes, StaticSolver::kFactorLimit,
       settings_.gamg_statics ? CgPreconditioner::kGamg : CgPreconditioner::kMultigrid);

@@ -947,19 +947,24 @@ rumble_factory factory() {
 
 #define RUMBLE_DETAIL_STR2(x) #x
 #define RUMBLE_DETAIL_STR(x) RUMBLE_DETAIL_STR2(x)
+/// What else a plugin is built with, appended to its build fingerprint (`rumble plugins` prints
+/// it): a string literal starting with ", ", e.g. ", PETSc 3.18.5", defined by the plugin's build.
+#ifndef RUMBLE_PLUGIN_BUILT_WITH
+#define RUMBLE_PLUGIN_BUILT_WITH ""
+#endif
 
 template <class... Ts>
 const rumble_plugin_descriptor* descriptor(const char* name, const char* version) {
   static const std::array<rumble_factory, sizeof...(Ts)> factories{factory<Ts>()...};
-  static const rumble_plugin_descriptor d{sizeof(rumble_plugin_descriptor),
-                                          RUMBLE_ABI_MAJOR,
-                                          RUMBLE_ABI_MINOR,
-                                          name,
-                                          version,
-                                          "g++/clang " __VERSION__
-                                          ", C++ " RUMBLE_DETAIL_STR(__cplusplus),
-                                          sizeof...(Ts),
-                                          factories.data()};
+  static const rumble_plugin_descriptor d{
+      sizeof(rumble_plugin_descriptor),
+      RUMBLE_ABI_MAJOR,
+      RUMBLE_ABI_MINOR,
+      name,
+      version,
+      "g++/clang " __VERSION__ ", C++ " RUMBLE_DETAIL_STR(__cplusplus) RUMBLE_PLUGIN_BUILT_WITH,
+      sizeof...(Ts),
+      factories.data()};
   return &d;
 }
 
