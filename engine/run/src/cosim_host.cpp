@@ -129,7 +129,16 @@ void CosimHostImpl::fill_participant_calls() {
     return self(ctx).guard([&] { self(ctx).checked(p)->set_input(*u); });
   };
   table_.advance = [](void* ctx, uint32_t p, double t, double H) {
-    return self(ctx).guard(
+    CosimHostImpl& host = self(ctx);
+    // A participant that starts while another is inside its advance: the coupler runs two at
+    // once (the cores are shared between them, run/core_share.hpp).
+    if (host.advancing_.fetch_add(1, std::memory_order_relaxed) > 0)
+      host.overlapped_.store(true, std::memory_order_relaxed);
+    struct Left {
+      std::atomic<int>& advancing;
+      ~Left() { advancing.fetch_sub(1, std::memory_order_relaxed); }
+    } left{host.advancing_};
+    return host.guard(
         [&] {
           Participant* part = self(ctx).checked(p);
           const auto start = std::chrono::steady_clock::now();

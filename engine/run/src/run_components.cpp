@@ -1,6 +1,5 @@
 #include "run/run_components.hpp"
 
-#include <algorithm>
 #include <array>
 
 #include "core/cpu_affinity.hpp"
@@ -90,9 +89,9 @@ RunComponents build_components(const scenario::RunSpec& spec, const PluginRegist
 }
 
 void give_run_context(RunComponents& c, const std::filesystem::path& results_dir) {
-  const auto cores = static_cast<unsigned>(usable_cpus());
-  const unsigned soil_threads =
-      c.coupler->capabilities().has(RUMBLE_CAP_THREADS) ? std::max(1u, cores - 1) : cores;
+  // The statics and the soil's set-up run one participant at a time: every core is the soil's.
+  // The time stepping shares them by what the coupler does (run/core_share.hpp).
+  const auto soil_threads = static_cast<unsigned>(usable_cpus());
   c.soil->set_run_context(results_dir, soil_threads);
   for (auto& [name, extra] : c.extras) extra->set_run_context(results_dir, soil_threads);
   c.coupler->set_run_context(results_dir, 1);

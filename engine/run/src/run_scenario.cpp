@@ -9,10 +9,12 @@
 #include <sstream>
 #include <vector>
 
+#include "core/cpu_affinity.hpp"
 #include "core/errors.hpp"
 #include "core/interrupt.hpp"
 #include "core/logging.hpp"
 #include "core/peak_memory.hpp"
+#include "run/core_share.hpp"
 #include "run/cosim_host.hpp"
 #include "run/crash_record.hpp"
 #include "run/field_writer.hpp"
@@ -304,6 +306,12 @@ nlohmann::json memory_summary(const PhasePeaks& memory) {
                  "system does not let a process restart its peak)"}};
 }
 
+/// The soils' threads for the steps to come (run/core_share.hpp).
+void grant_soils(RunComponents& c, unsigned threads) {
+  c.soil->grant_threads(threads);
+  for (auto& [name, extra] : c.extras) extra->grant_threads(threads);
+}
+
 /// The coupled time stepping from t = 0 to time.end in macro steps, every step recorded and
 /// watched; the outcome judged and summary.json completed with what the run measured.
 void co_simulate(const scenario::RunSpec& spec, const RunOptions& options, RunComponents& c,
@@ -317,12 +325,23 @@ void co_simulate(const scenario::RunSpec& spec, const RunOptions& options, RunCo
                         {rec.recorder, rec.probes.get(), rec.fields.get(), &summary}, spec.t_end,
                         spec.outputs.every, outcome.results_dir, options.progress, spec.divergence);
   double recording_seconds = 0.0;  // in the step callback: records, checks, heartbeat
-  CosimHostImpl host(sides.participants, c.track->footprints(), c.coupler->type().abi_minor,
-                     [&](const StepOutcome& step) {
-                       const auto start = Clock::now();
-                       observer(step);
-                       recording_seconds += seconds_since(start);
-                     });
+  CoreShare cores(static_cast<unsigned>(usable_cpus()),
+                  c.coupler->capabilities().has(RUMBLE_CAP_THREADS));
+  grant_soils(c, cores.first_grant());
+  CosimHostImpl host(
+      sides.participants, c.track->footprints(), c.coupler->type().abi_minor,
+      [&](const StepOutcome& step) {
+        const auto start = Clock::now();
+        observer(step);
+        recording_seconds += seconds_since(start);
+        // Between steps: no participant is advancing (the grant is read by the
+        // soil at its next advance).
+        if (const unsigned threads = cores.after_step(
+                sides.track.wall_seconds, sides.soil.wall_seconds, host.take_overlap())) {
+          grant_soils(c, threads);
+          logger("engine")->info("the soil steps on {} thread(s): {}", threads, cores.reason());
+        }
+      });
   std::string coupler_message;
   const StopPhase stepping("the time stepping");
   const rumble_status status = c.coupler->run(*host.table(), 0.0, spec.t_end, H, coupler_message);

@@ -110,13 +110,10 @@ class Jacobi final : public rumble::Coupler {
     const std::uint32_t order_soil = s.track.extrapolate(extrapolation_, t, h, from_track_);
     s.to_track.map(from_soil_, order_track, in_track_);
     s.to_soil.map(from_track_, order_soil, in_soil_);
-    if (s.checkpoints) {
-      host.save(kTrack, kSlot);
-      host.save(kSoil, kSlot);
-    }
+    if (s.checkpoints) host.save(kTrack, kSlot);
     host.set_input(kTrack, order_track, in_track_);
     host.set_input(kSoil, order_soil, in_soil_);
-    const auto [track_status, soil_status] = advance_both(s, t, h);
+    const auto [track_status, soil_status] = advance_both(s, t, h);  // the soil saved first
     const bool track_refused = track_status == RUMBLE_DISCARD;
     const bool soil_refused = soil_status == RUMBLE_DISCARD;
     if (track_refused || soil_refused) {
@@ -170,13 +167,15 @@ class Jacobi final : public rumble::Coupler {
   }
 
   /// Advances the track and the soil over [t, t + h], the soil on the worker thread when there
-  /// is one; returns their statuses (OK, WARNING or DISCARD; a stop is rethrown after both have
-  /// returned).
+  /// is one, the soil checkpointed first when s.checkpoints (on the worker: a large soil's copy
+  /// then runs beside the track's step instead of before both); returns their statuses (OK,
+  /// WARNING or DISCARD; a stop is rethrown after both have returned).
   static std::pair<rumble_status, rumble_status> advance_both(Scheme& s, double t, double h) {
     if (!s.soil_worker) {
+      if (s.checkpoints) s.host.save(CosimHost::kSoil, kSlot);
       return {s.host.advance(CosimHost::kTrack, t, h), s.host.advance(CosimHost::kSoil, t, h)};
     }
-    s.soil_worker->start(t, h);
+    s.soil_worker->start(t, h, s.checkpoints, kSlot);
     rumble_status track_status = RUMBLE_OK;
     std::exception_ptr track_error;
     try {

@@ -124,7 +124,9 @@ typedef struct rumble_host {
    *  inside it, and nowhere else: none while it is "" (docs/plugin-guide.md). */
   const char* results_dir;
   /** Threads this instance may use inside one call (>= 1). The host divides the machine among
-   *  participants that run at once (a Jacobi step runs two). */
+   *  participants that run at once (a Jacobi step runs two), and may change it between calls
+   *  (the statics get every core; the time stepping may keep one for the track): read it at
+   *  each call. */
   uint32_t threads;
   uint32_t reserved0; /**< 0 */
   /** Call from inside a long call (every 0.1 s of work or so), from the thread the host called

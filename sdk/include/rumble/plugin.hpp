@@ -98,7 +98,8 @@ class Host {
                ? host_->results_dir
                : "";
   }
-  /// Threads this instance may use inside one call (>= 1).
+  /// Threads this instance may use inside one call (>= 1); it may change between calls (read it
+  /// at each: abi.h, rumble_host::threads).
   unsigned threads() const {
     return RUMBLE_HAS_FIELD(host_, rumble_host, threads) && host_->threads > 0 ? host_->threads
                                                                                : 1u;

@@ -59,6 +59,8 @@ class CosimHostImpl {
   bool failed() const;
   Participant& participant(std::uint32_t index) const { return *participants_.at(index); }
   std::size_t discards() const { return discards_; }
+  /// Whether two participants advanced at the same time since the last call (run/core_share.hpp).
+  bool take_overlap() { return overlapped_.exchange(false, std::memory_order_relaxed); }
 
  private:
   /// Runs f; any exception is kept (the first one wins) and becomes RUMBLE_ERROR. A refused step
@@ -82,7 +84,9 @@ class CosimHostImpl {
   mutable std::mutex error_mutex_;
   std::exception_ptr error_;
   std::atomic<std::size_t> discards_{0};
-  StepOutcome outcome_;  // the step being reported, reused from step to step
+  std::atomic<int> advancing_{0};        // participants inside advance now
+  std::atomic<bool> overlapped_{false};  // two were at once, since take_overlap()
+  StepOutcome outcome_;                  // the step being reported, reused from step to step
 };
 
 }  // namespace rumble

@@ -42,7 +42,8 @@ RunComponents build_components(const scenario::RunSpec& spec, const PluginRegist
                                BuiltSoils* built = nullptr);
 
 /// What rumble_host tells the plugins during the run: the results directory, and the threads
-/// each may use (all cores; one less for the soils when the coupler runs participants at once).
+/// each may use: all cores for the soils, one for the rest. The time stepping may take one from
+/// the soil while the track advances beside it (run/core_share.hpp).
 void give_run_context(RunComponents& c, const std::filesystem::path& results_dir);
 
 /// The soil as its linear matrices (M, C, K, B) describe it, for `purpose` ("a monolithic
