@@ -15,10 +15,11 @@ host's table between them, the coupler overhead. Runs:
           (two 10-DOF cars, 8 wheels, 120 sleepers) on the medium FEM soil meshed as a box at
           20 Hz (3.7e4 DOFs), BOTH_END s, gauss_seidel and jacobi on 1 and 2 threads.
 Jacobi's speed-up is the wall time of its 1-thread run over its 2-thread run, whole and without
-the statics (the stepping, where the threads work). With two threads
-the host gives the soil one thread fewer (the coupler declares it runs two participants at
-once), so on a 2-core machine the FEM soil steps on 1 thread under jacobi and on 2 under
-gauss_seidel: both are reported. The machine's load average is recorded with the figures.
+the statics (the stepping, where the threads work). While the two sides advance at once the host
+gives the soil one thread fewer, and every core where the track is cheap beside it or the sides
+do not overlap (engine/run/include/run/core_share.hpp). The machine's load average is recorded
+with the figures. Jacobi on two threads against Gauss-Seidel, alternately and repeated, on a
+balanced case: bench/coupling/jacobi_speedup.py.
 
 usage: bench/coupling/coupler_cost.py [RUMBLE] [WORKDIR]
        (defaults: build/release/bin/rumble, or build/dev/bin/rumble if there is none (the dev

@@ -31,8 +31,14 @@ class AdvanceWorker {
   static constexpr std::int64_t kLongestSpin = 50'000;
   static constexpr double kSpinShare = 0.05;
 
-  AdvanceWorker(const rumble::CosimHost& host, std::uint32_t participant)
-      : host_(host), participant_(participant), thread_([this] { loop(); }) {}
+  /// `longest_spin` [ns]: kLongestSpin, or 0 for no spin (bench/coupling/handoff_bench.cpp
+  /// compares the two).
+  AdvanceWorker(const rumble::CosimHost& host, std::uint32_t participant,
+                std::int64_t longest_spin = kLongestSpin)
+      : host_(host),
+        participant_(participant),
+        longest_spin_(longest_spin),
+        thread_([this] { loop(); }) {}
   AdvanceWorker(const AdvanceWorker&) = delete;
   AdvanceWorker& operator=(const AdvanceWorker&) = delete;
   ~AdvanceWorker() {
@@ -85,7 +91,7 @@ class AdvanceWorker {
       }
       const auto work =
           std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - begin).count();
-      spin_ns_.store(std::min(kLongestSpin, static_cast<std::int64_t>(kSpinShare * work)),
+      spin_ns_.store(std::min(longest_spin_, static_cast<std::int64_t>(kSpinShare * work)),
                      std::memory_order_relaxed);
       state_.store(kDone, std::memory_order_release);  // publishes the status and the error
       state_.notify_one();
@@ -124,6 +130,7 @@ class AdvanceWorker {
 
   const rumble::CosimHost& host_;
   std::uint32_t participant_;
+  std::int64_t longest_spin_;  // ns
   std::atomic<std::uint32_t> state_{kIdle};
   std::atomic<std::int64_t> spin_ns_{0};  // ns, the spin before sleeping (0 before any request)
   Clock::duration done_wait_{}, request_wait_{};  // the last waits of wait() and of the worker
