@@ -27,6 +27,7 @@ class CsvFile {
   std::filesystem::path path_;
   std::size_t n_values_ = 0;
   std::FILE* file_ = nullptr;
+  std::string line_;  // one row's text, reused
 };
 
 }  // namespace rumble
