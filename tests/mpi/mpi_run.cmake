@@ -10,6 +10,8 @@
 #   interrupt_stops_every_rank   Ctrl-C to mpirun mid-run: summary.json says "interrupted"
 #   foreign_launcher_is_refused  a launcher of another MPI: a clear error before any work
 #   study_spreads_runs_over_ranks  a study's runs shared out over the ranks, all completed
+#   idle_ranks_are_named         a soil that is not distributed, run under mpirun -n 3: it runs,
+#                                and the log says once that the other 2 ranks wait idle
 set(mpirun ${MPIEXEC} --oversubscribe)
 set(scenario ${SOURCE_DIR}/split_dashpot.json)
 file(REMOVE_RECURSE ${WORK_DIR})
@@ -127,6 +129,19 @@ elseif(CASE STREQUAL "study_spreads_runs_over_ranks")
     file(READ ${WORK_DIR}/results/spread.study/${name}/run.log log)
     expect_match("${log}" "rank 0 of 1 ranks owns 40 footprints")  # its own process, one rank
   endforeach()
+elseif(CASE STREQUAL "idle_ranks_are_named")
+  rumble_run(out code ${mpirun} -n 3 ${RUMBLE} run ${scenario} --output ${WORK_DIR}/idle
+             --set [=[/soil={"type": "winkler", "params": {"k": 1e8, "c": 1e5}}]=]
+             --set /time/end=0.005 --no-plots)
+  if(NOT code EQUAL 0)
+    message(FATAL_ERROR "the winkler run on 3 ranks failed (${code}):\n${out}")
+  endif()
+  expect_match("${out}" "launched on 3 MPI ranks, but soil type 'winkler' runs on one .*the other 2 ranks wait idle")
+  string(REGEX MATCHALL "wait idle" said "${out}")
+  list(LENGTH said n)
+  if(NOT n EQUAL 1)
+    message(FATAL_ERROR "said ${n} times, expected once:\n${out}")
+  endif()
 else()
   message(FATAL_ERROR "unknown case ${CASE}")
 endif()

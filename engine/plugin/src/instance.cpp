@@ -75,8 +75,23 @@ Instance::Instance(const ComponentType& type, std::string label, const nlohmann:
   if (everywhere) {
     create_everywhere(params);
   } else {
+    warn_idle_ranks();
     create_here(params.dump());
   }
+}
+
+void Instance::warn_idle_ranks() const {
+  static std::atomic<bool> said{false};  // once per process: validation builds the soil too
+  if (type_.kind != RUMBLE_KIND_SOIL || !parallel::running() || parallel::world_size() < 2 ||
+      parallel::world_rank() != 0 || said.exchange(true))
+    return;
+  logger_->warn(
+      "{}: launched on {} MPI ranks, but soil type '{}' runs on one (it does not declare the "
+      "'distributed' capability): the other {} wait idle; run it without mpirun, or give "
+      "mpirun a study, whose runs it shares out (docs/decisions/0012-distributed-soil.md)",
+      label_, parallel::world_size(), type_.type_name,
+      parallel::world_size() == 2 ? std::string("rank")
+                                  : std::to_string(parallel::world_size() - 1) + " ranks");
 }
 
 void Instance::create_here(const std::string& params_text) {

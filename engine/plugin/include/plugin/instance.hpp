@@ -154,6 +154,9 @@ class Instance {
   /// The constructor's part under a launch: a distributed soil is created on every rank.
   void create_everywhere(const nlohmann::json& params);
   void create_here(const std::string& params_text);
+  /// Under an MPI launch, says once that a soil that is not distributed leaves the other ranks
+  /// idle.
+  void warn_idle_ranks() const;
   /// The destructor's part: destroys the servers' copies (their errors are logged).
   void destroy_everywhere() noexcept;
   /// Gives the servers' copies this instance's results directory and threads.
