@@ -31,7 +31,7 @@
 // by about its step, so changing the step moves that lag, and the footprints, following the new
 // lag over the soil's relaxation time tau (c/k of a footprint), have their velocity disturbed by
 // about |v| x (the change) / tau (measured on the dip cases: tau 1.3 ms on the small Winkler
-// soil, c/k 2 ms; 1.6 to 3.3 ms on the paper's medium soil, c/k 2.2 ms; docs/couplers.md,
+// soil, c/k 2 ms; 2.1 ms on the paper's medium soil, c/k 2.2 ms; docs/couplers.md,
 // adaptive macro steps). The predictor residual does not see it (it is small exactly where the
 // velocity peaks), yet it is what a peak velocity (PPV) reads, while the lag itself moves a peak
 // in time, not in height. So while the footprints move, an accepted step is followed by one
