@@ -1,22 +1,31 @@
 // The adaptive macro step of the explicit couplers (params.adaptive, rumble/macro_steps.hpp)
-// through the CLI, on the small Winkler scenario with a rail dip that the wheel reaches after
-// 10 ms, the track's micro-step fixed at 25 us (it divides every macro step below), against the
-// monolithic reference recorded every min_step (so every adaptive step ends on its grid):
-//   - the step stays within its bounds, is a whole number of min_step, ends at time.end, is
-//     recorded in interface.csv and summary.json, and is short where the wheel meets the dip;
-//   - its error against the reference falls with the tolerance;
-//   - at equal displacement error it takes at most 0.7 times the steps of fixed steps (their
-//     count interpolated log-log between the fixed steps that bracket the error; the footprint
-//     PPV error is printed, not claimed: docs/couplers.md);
-//   - inverted bounds are refused at validate.
+// through the CLI, against the monolithic reference recorded every min_step (so every adaptive
+// step ends on its grid), the track's micro-step fixed at 25 us (it divides every macro step):
+//   - on the small Winkler scenario with a rail dip that the wheel reaches after 10 ms: the step
+//     stays within its bounds, is a whole number of min_step, ends at time.end, is recorded in
+//     interface.csv and summary.json, and is short where the wheel meets the dip; ending inside
+//     the dip (two thirds of the run), it still costs less than fixed steps at equal
+//     displacement error;
+//   - on the paper's dip case (its track on its medium soil as Winkler footprints, the wheel 3.7
+//     m before the dip, 0.3 s), its steps shrink at the dip; on its medium soil (Winkler and CLM)
+//     and its stiff soil (CLM), its errors fall with the tolerance, and at two tolerances
+//     gauss_seidel's costs at most 0.7 times the steps of fixed steps at equal footprint PPV
+//     error and at equal displacement error (the fixed steps' count interpolated log-log between
+//     the pair that brackets the error; the adaptive cost counts the steps taken again);
+//     jacobi's, whose velocity errs more, at most that of fixed steps at equal PPV error;
+//   - jacobi adapts on the small scenario too; inverted bounds are refused at validate.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
+#include <regex>
 #include <string>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "cli_runner.hpp"
@@ -43,21 +52,46 @@ nlohmann::json adaptive_coupler(const std::string& type, double tolerance) {
        {{"adaptive", {{"min_step", kMinStep}, {"max_step", kMaxStep}, {"tolerance", tolerance}}}}}};
 }
 
-/// The monolithic reference at H = min_step (run once per test process). ctest runs each test
-/// in its own process, in parallel, so the directory is named after the test that asks first:
-/// two tests sharing one directory wiped each other's results (CI, stop 16).
+/// The paper's dip case: one wheel at 25 m/s over the paper's track on one of its soils
+/// (scenarios/paper/<file>.json), the wheel starting 3.7 m before the 1 mm dip at 21 m and run
+/// 0.3 s (the dip is crossed at 0.15 to 0.17 s), gauss_seidel at H.
+nlohmann::json paper_dip(double H, const std::string& file = "medium_soil_winkler") {
+  std::ifstream in(std::string(RUMBLE_TEST_SOURCE_DIR) + "/scenarios/paper/" + file + ".json");
+  nlohmann::json s = nlohmann::json::parse(in);
+  s["vehicles"][0]["start"] = 17.0;  // m
+  s["time"] = {{"end", 0.3}, {"macro_step", H}};
+  s["track"]["integrator"] = {{"micro_step", 2.5e-5}};
+  s["coupling"] = {{"type", "gauss_seidel"}, {"params", nlohmann::json::object()}};
+  s["outputs"] = {{"directory", "results"}, {"plots", false}};
+  return s;
+}
+
+/// The monolithic reference of a scenario at H = min_step (run once per test process). ctest
+/// runs each test in its own process, in parallel, so the directory is named after the test
+/// that asks first: two tests sharing one directory wiped each other's results (CI, stop 16).
+std::filesystem::path monolithic(const std::string& name, nlohmann::json s) {
+  s["time"]["macro_step"] = kMinStep;
+  s["coupling"] = {{"type", "monolithic"}, {"params", nlohmann::json::object()}};
+  const std::string test = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+  return run(name + "_" + test, s);
+}
 const std::filesystem::path& reference_dir() {
-  static const std::filesystem::path dir = [] {
-    nlohmann::json s = dip(kMinStep);
-    s["coupling"] = {{"type", "monolithic"}, {"params", nlohmann::json::object()}};
-    const std::string test = ::testing::UnitTest::GetInstance()->current_test_info()->name();
-    return run("adaptive_reference_" + test, s);
-  }();
+  static const std::filesystem::path dir = monolithic("adaptive_reference", dip(kMinStep));
   return dir;
 }
-const Histories& reference() {
-  static const Histories u = csv(reference_dir() / "footprint_displacement.csv");
-  return u;
+
+/// Runs the scenario like run() and also returns how many steps the adaptive coupler took again
+/// (its log: "..., N taken again above the tolerance").
+std::filesystem::path run_counting_retakes(const std::string& name, const nlohmann::json& s,
+                                           std::size_t& retaken) {
+  const auto dir = scratch_directory(name);
+  const CliResult r = run_rumble({"run", write_scenario(dir, s).string(), "--no-progress"});
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  std::smatch m;
+  retaken = std::regex_search(r.output, m, std::regex("([0-9]+) taken again"))
+                ? static_cast<std::size_t>(std::stoul(m[1].str()))
+                : 0;
+  return dir / "results";
 }
 
 /// interface.csv's macro step column (the 7th of 8 after t), without the t = 0 row.
@@ -105,18 +139,22 @@ TEST(AdaptiveStep, StaysInItsBoundsAndShortensWhereTheWheelMeetsTheDip) {
   EXPECT_NEAR(recorded["longest"].get<double>(), longest, 1e-12);
 }
 
-/// A run's error against the reference: displacements (relative_error) and footprint PPV (the
-/// largest difference over the footprints, relative to the reference's largest PPV).
+/// A run's error against a reference: displacements (relative_error) and footprint PPV (the
+/// largest difference over the footprints, relative to the reference's largest PPV); its cost:
+/// the steps, and those taken again above the tolerance (each a track and a soil solve too).
 struct RunError {
   double displacement = 0.0, ppv = 0.0;
-  std::size_t steps = 0;
+  std::size_t steps = 0, retaken = 0;
+  double cost() const { return static_cast<double>(steps + retaken); }
 };
 
-RunError run_error(const std::filesystem::path& dir) {
+RunError run_error(const std::filesystem::path& dir, const std::filesystem::path& reference,
+                   std::size_t retaken = 0) {
   RunError e;
-  e.displacement = relative_error(csv(dir / "footprint_displacement.csv"), reference());
+  e.displacement = relative_error(csv(dir / "footprint_displacement.csv"),
+                                  csv(reference / "footprint_displacement.csv"));
   const auto ppv = read_json(dir / "summary.json")["peak_footprint_velocity_m_s"];
-  const auto ref = read_json(reference_dir() / "summary.json")["peak_footprint_velocity_m_s"];
+  const auto ref = read_json(reference / "summary.json")["peak_footprint_velocity_m_s"];
   double largest = 0.0;
   for (std::size_t i = 0; i < ref.size(); ++i) {
     e.ppv = std::max(e.ppv, std::abs(ppv[i].get<double>() - ref[i].get<double>()));
@@ -125,60 +163,152 @@ RunError run_error(const std::filesystem::path& dir) {
   e.ppv /= largest;
   std::vector<double> ends;
   e.steps = macro_steps(dir, ends).size();
+  e.retaken = retaken;
   return e;
 }
 
-TEST(AdaptiveStep, ErrorFallsWithTheTolerance) {
-  std::vector<double> errors;
-  for (double tolerance : {0.02, 0.01, 0.005}) {
-    nlohmann::json s = dip(1e-3);
-    s["coupling"] = adaptive_coupler("gauss_seidel", tolerance);
-    const RunError e =
-        run_error(run("adaptive_gs_" + std::to_string(static_cast<int>(1e4 * tolerance)), s));
-    std::cout << "[ measured ] tolerance " << tolerance << ": " << e.steps
-              << " steps, displacement error " << e.displacement << ", PPV error " << e.ppv << "\n";
-    errors.push_back(e.displacement);
+/// The steps fixed steps need for `error` in the measure `of`: log-log between the two fixed
+/// runs (coarse to fine) that bracket it; below the finest one's error, at least the finest's
+/// steps; 0 when even the coarsest is more accurate.
+double fixed_steps_at(const std::vector<RunError>& fixed, double RunError::*of, double error) {
+  if (error <= fixed.back().*of) return fixed.back().cost();
+  for (std::size_t k = 0; k + 1 < fixed.size(); ++k) {
+    const RunError &a = fixed[k], &b = fixed[k + 1];
+    if (a.*of >= error && b.*of <= error) {
+      const double slope = std::log(b.cost() / a.cost()) / std::log(b.*of / a.*of);
+      return a.cost() * std::pow(error / (a.*of), slope);
+    }
   }
-  // Measured 0.020 / 0.012 / 0.0082 (144 / 145 / 249 steps).
-  EXPECT_GT(errors[0] / errors[1], 1.3);
-  EXPECT_GT(errors[1] / errors[2], 1.3);
+  return 0.0;
 }
 
-TEST(AdaptiveStep, CostsLessThanFixedStepsAtEqualDisplacementError) {
-  nlohmann::json s = dip(1e-3);
-  s["coupling"] = adaptive_coupler("gauss_seidel", 0.01);
-  const RunError adaptive = run_error(run("adaptive_gs_cost", s));
-  // Fixed steps on the reference's grid, from coarser to finer than the adaptive run's error.
+/// Fixed steps H [s] on a scenario (`make`), against `reference`, printed.
+template <typename Make>
+std::vector<RunError> fixed_runs(const std::string& name, Make make,
+                                 const std::vector<double>& steps,
+                                 const std::filesystem::path& reference) {
   std::vector<RunError> fixed;
-  for (double H : {2.5e-4, 1.5e-4, 1e-4, 5e-5}) {
-    nlohmann::json f = dip(H);
-    f["coupling"] = {{"type", "gauss_seidel"}, {"params", nlohmann::json::object()}};
-    fixed.push_back(run_error(run("adaptive_gs_fixed_" + std::to_string(std::lround(H * 1e6)), f)));
+  for (double H : steps) {
+    const auto dir = run(name + std::to_string(std::lround(H * 1e6)), make(H));
+    fixed.push_back(run_error(dir, reference));
     std::cout << "[ measured ] fixed " << H << " s: " << fixed.back().steps
               << " steps, displacement error " << fixed.back().displacement << ", PPV error "
               << fixed.back().ppv << "\n";
   }
-  // The fixed steps that reach the adaptive run's error: log-log between the bracketing pair.
-  double equal = 0.0;
-  for (std::size_t k = 0; k + 1 < fixed.size(); ++k) {
-    const RunError &a = fixed[k], &b = fixed[k + 1];
-    if (a.displacement >= adaptive.displacement && b.displacement <= adaptive.displacement) {
-      const double slope = std::log(static_cast<double>(b.steps) / static_cast<double>(a.steps)) /
-                           std::log(b.displacement / a.displacement);
-      equal =
-          static_cast<double>(a.steps) * std::pow(adaptive.displacement / a.displacement, slope);
-    }
-  }
+  return fixed;
+}
+
+/// The scenario with a fixed-step coupler of this type (its default parameters).
+nlohmann::json fixed_coupler(nlohmann::json s, const std::string& type = "gauss_seidel") {
+  s["coupling"] = {{"type", type}, {"params", nlohmann::json::object()}};
+  return s;
+}
+
+TEST(AdaptiveStep, EndingInsideTheDipItStillCostsLessThanFixedSteps) {
+  // Two thirds of this run are the dip, where the step must be short whatever the controller:
+  // steps of 1 ms before the dip and 0.25 ms from it (set by hand) cost 0.84 of fixed steps at
+  // equal PPV error (docs/couplers.md), so only the displacement is claimed here.
+  nlohmann::json s = dip(1e-3);
+  s["coupling"] = adaptive_coupler("gauss_seidel", 0.01);
+  std::size_t retaken = 0;
+  const auto dir = run_counting_retakes("adaptive_gs_cost", s, retaken);
+  const RunError adaptive = run_error(dir, reference_dir(), retaken);
+  const std::vector<RunError> fixed = fixed_runs(
+      "adaptive_gs_fixed_", [](double H) { return fixed_coupler(dip(H)); },
+      {2.5e-4, 1.5e-4, 1e-4, 5e-5}, reference_dir());
+  const double equal = fixed_steps_at(fixed, &RunError::displacement, adaptive.displacement);
   ASSERT_GT(equal, 0.0) << "the fixed steps do not bracket the adaptive error "
                         << adaptive.displacement;
-  const double ratio = static_cast<double>(adaptive.steps) / equal;
-  std::cout << "[ measured ] adaptive (tolerance 0.01): " << adaptive.steps
-            << " steps, displacement error " << adaptive.displacement << ", PPV error "
-            << adaptive.ppv << "; fixed steps at that error: " << equal << "; ratio " << ratio
-            << "\n";
-  // Measured 0.66 (145 steps against 218).
-  EXPECT_LT(ratio, 0.7);
+  const double ratio = adaptive.cost() / equal;
+  std::cout << "[ measured ] adaptive (tolerance 0.01): " << adaptive.steps << " steps + "
+            << adaptive.retaken << " taken again, displacement error " << adaptive.displacement
+            << ", PPV error " << adaptive.ppv
+            << "; fixed steps at that displacement error: " << equal << "; ratio " << ratio << "\n";
+  // Measured 0.82 (164 + 15 against 219); the controller of SDK 1.3 before the step-change
+  // limit: 0.97 (145 + 67 against 218).
+  EXPECT_LT(ratio, 0.9);
 }
+
+TEST(AdaptiveStep, OnThePapersDipCaseItsStepsShrinkAtTheDip) {
+  nlohmann::json s = paper_dip(1e-3);
+  s["coupling"] = adaptive_coupler("gauss_seidel", 0.1);
+  std::vector<double> ends;
+  const std::vector<double> steps = macro_steps(run("adaptive_paper_shrinks", s), ends);
+  double before = 0.0, at_dip = 1.0;
+  for (std::size_t k = 0; k < steps.size(); ++k) {
+    if (ends[k] < 0.14) before = std::max(before, steps[k]);
+    if (ends[k] > 0.148 && ends[k] < 0.175) at_dip = std::min(at_dip, steps[k]);
+  }
+  std::cout << "[ measured ] " << steps.size() << " steps; longest before the dip " << before
+            << " s, shortest at it " << at_dip << " s\n";
+  EXPECT_GT(before, 4.0 * at_dip);  // measured 2 ms and 0.15 ms
+}
+
+/// A soil of the paper and a coupler, with the most the adaptive step may cost against fixed
+/// steps at equal PPV and at equal displacement error.
+struct PaperCase {
+  const char* label;
+  const char* file;
+  const char* coupler;
+  double ppv_bound, displacement_bound;
+};
+
+void PrintTo(const PaperCase& c, std::ostream* os) {
+  *os << c.label;
+}
+
+class AdaptiveStepOnThePapersDipCase : public ::testing::TestWithParam<PaperCase> {};
+
+TEST_P(AdaptiveStepOnThePapersDipCase, CostsLessThanFixedStepsAtEqualPpvAndDisplacementError) {
+  const PaperCase c = GetParam();
+  const std::string name = std::string("adaptive_paper_") + c.file + "_" + c.coupler + "_";
+  const auto reference = monolithic(name + "reference", paper_dip(1e-3, c.file));
+  const std::vector<RunError> fixed = fixed_runs(
+      name + "fixed_", [&](double H) { return fixed_coupler(paper_dip(H, c.file), c.coupler); },
+      {1e-3, 5e-4, 2.5e-4, 1e-4, 5e-5}, reference);
+  std::vector<RunError> adaptive;
+  for (double tolerance : {0.1, 0.04}) {
+    nlohmann::json s = paper_dip(1e-3, c.file);
+    s["coupling"] = adaptive_coupler(c.coupler, tolerance);
+    std::size_t retaken = 0;
+    const auto dir =
+        run_counting_retakes(name + std::to_string(std::lround(1e3 * tolerance)), s, retaken);
+    const RunError e = run_error(dir, reference, retaken);
+    adaptive.push_back(e);
+    for (const auto& [measure, of, bound] :
+         {std::tuple{"PPV", &RunError::ppv, c.ppv_bound},
+          std::tuple{"displacement", &RunError::displacement, c.displacement_bound}}) {
+      const double equal = fixed_steps_at(fixed, of, e.*of);
+      std::cout << "[ measured ] adaptive (tolerance " << tolerance << "): " << e.steps
+                << " steps + " << e.retaken << " taken again, " << measure << " error " << e.*of
+                << "; fixed steps at that error: " << equal << "; ratio " << e.cost() / equal
+                << "\n";
+      EXPECT_GT(equal, 0.0) << "fixed steps of 1 ms are more accurate than the adaptive " << measure
+                            << " error " << e.*of;
+      EXPECT_LE(e.cost() / equal, bound) << measure << ", tolerance " << tolerance;
+    }
+  }
+  // Its errors fall with the tolerance.
+  EXPECT_GT(adaptive[0].displacement / adaptive[1].displacement, 1.3);
+  EXPECT_GT(adaptive[0].ppv, adaptive[1].ppv);
+}
+
+// Measured (docs/couplers.md, adaptive macro steps), tolerance 0.1 and 0.04: PPV 0.41 and
+// 0.25, displacement 0.35 and 0.34 (medium soil, Winkler); 0.39 and 0.21, 0.45 and 0.51
+// (medium, CLM); 0.30 and 0.29, 0.35 and 0.30 (stiff, CLM). jacobi, whose footprint velocity
+// errs at first order with a large constant (fixed 1 ms: 7.8 % of the PPV), is held to fixed
+// steps' cost at equal PPV error: 0.83 and 0.91 (before the step-change limit: 1.10 and 1.55),
+// displacement 0.70 and 0.39.
+INSTANTIATE_TEST_SUITE_P(
+    Soils, AdaptiveStepOnThePapersDipCase,
+    ::testing::Values(
+        PaperCase{"GaussSeidelMediumWinkler", "medium_soil_winkler", "gauss_seidel", 0.7, 0.7},
+        PaperCase{"GaussSeidelMediumClm", "medium_soil_gauss_seidel", "gauss_seidel", 0.7, 0.7},
+        PaperCase{"GaussSeidelStiffClm", "stiff_soil_gauss_seidel", "gauss_seidel", 0.7, 0.7},
+        PaperCase{"JacobiMediumWinkler", "medium_soil_winkler", "jacobi", 1.0, 0.8}),
+    [](const ::testing::TestParamInfo<PaperCase>& param) {
+      return std::string(param.param.label);
+    });
 
 TEST(AdaptiveStep, JacobiAdaptsToo) {
   nlohmann::json s = dip(1e-3);
@@ -186,7 +316,8 @@ TEST(AdaptiveStep, JacobiAdaptsToo) {
   const auto dir = run("adaptive_jacobi", s);
   std::vector<double> ends;
   const std::vector<double> steps = macro_steps(dir, ends);
-  const double error = relative_error(csv(dir / "footprint_displacement.csv"), reference());
+  const double error = relative_error(csv(dir / "footprint_displacement.csv"),
+                                      csv(reference_dir() / "footprint_displacement.csv"));
   std::cout << "[ measured ] jacobi: " << steps.size() << " steps, error " << error << "\n";
   EXPECT_NEAR(ends.back(), kEnd, 1e-12);
   const double shortest = *std::min_element(steps.begin(), steps.end() - 1);

@@ -6,6 +6,9 @@
 //     exactly at t_end, and settles where the error model puts it for an error of order p + 1
 //     in h, p = 0 and 1;
 //   - a step above the tolerance is taken again, shorter;
+//   - bounds given to accept() cut a growth or a shrink to whole min_steps within them, and the
+//     step moves on from there; StepChangeLimit's bounds are the lag L -+ tau share allowed /
+//     |v| by hand, L relaxing towards the step over tau, unlimited while still or without tau;
 //   - inverted bounds are refused with both values and the fix;
 //   - the energy residual of a step is the trapezoid of the power residual (the force side's
 //     forces on the velocities it was given minus the motion side's given forces on its
@@ -14,6 +17,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <rumble/cut_energy.hpp>
 #include <rumble/macro_steps.hpp>
 #include <vector>
@@ -24,6 +28,7 @@ using rumble::CosimHost;
 using rumble::coupling::AdaptiveStep;
 using rumble::coupling::CutEnergy;
 using rumble::coupling::MacroSteps;
+using rumble::coupling::StepChangeLimit;
 using ::testing::HasSubstr;
 
 /// The adaptive step with its schema's defaults and these bounds [s].
@@ -108,6 +113,72 @@ TEST(MacroSteps, AStepAboveTheToleranceIsTakenAgainShorter) {
   EXPECT_EQ(steps.taken(), 0u);
 }
 
+TEST(MacroSteps, BoundsCutAChangeToWholeMinStepsWithinThem) {
+  const AdaptiveStep a = adaptive(1e-4, 2e-3);
+  // Error 0: the step would grow by max_change (1.5), from 1 ms to 1.5 ms; within 1.23 ms it
+  // grows to 1.2 ms, and on from there once unbounded.
+  MacroSteps grow(0.0, 1.0, 1e-3, a);
+  grow.accept(0.0, 0, 0.0, 1.23e-3);
+  EXPECT_NEAR(grow.h(), 1.2e-3, 1e-15);
+  grow.accept(0.0, 0);
+  EXPECT_NEAR(grow.h(), 1.8e-3, 1e-15);
+  // Bounds below the step hold it rather than shrink it.
+  MacroSteps hold(0.0, 1.0, 1e-3, a);
+  hold.accept(0.0, 0, 0.0, 0.5e-3);
+  EXPECT_NEAR(hold.h(), 1e-3, 1e-15);
+  // Error 3 at first order: 0.9 / 3 = 0.3 ms; no shorter than 0.62 ms, it is 0.7 ms.
+  MacroSteps shrink(0.0, 1.0, 1e-3, a);
+  shrink.accept(3.0, 0, 0.62e-3, 2e-3);
+  EXPECT_NEAR(shrink.h(), 0.7e-3, 1e-15);
+  // Unbounded, the same as accept(error, order).
+  MacroSteps free(0.0, 1.0, 1e-3, a), plain(0.0, 1.0, 1e-3, a);
+  free.accept(3.0, 0, -1e300, 1e300);
+  plain.accept(3.0, 0);
+  EXPECT_EQ(free.h(), plain.h());
+}
+
+// A soil that outputs displacements and velocities of two footprints (the test's cut_groups).
+rumble_status cut_groups(void*, std::uint32_t p, std::uint32_t side, rumble_channel_group* out,
+                         std::uint64_t capacity, std::uint64_t* n);
+
+TEST(StepChangeLimit, IsTheLagWithinAShareOfTheVelocitysAllowedErrorOverItsSpeed) {
+  rumble_cosim_host table{};
+  table.struct_size = sizeof table;
+  table.channel_groups = &cut_groups;
+  const CosimHost host(&table);
+  AdaptiveStep a = adaptive(1e-4, 2e-3);
+  const double tau = a.relaxation_time, share = StepChangeLimit::kChangeShare;
+  const double floor = a.absolute.at("footprint_velocity");  // 1e-3 m/s
+  a.tolerance = 0.05;
+  StepChangeLimit limit(host, 1, a);
+  // At rest: unlimited.
+  limit.observe({0.0, 0.0, 0.0, 0.0}, 0.0);
+  EXPECT_EQ(limit.longest(), std::numeric_limits<double>::infinity());
+  // After a step of 1 ms the lag is 1 ms; moving at 0.04 m/s at most (scale 0.04 m/s: the
+  // allowed error 0.05 x 0.04 = 2e-3 m/s, above the floor): 1 ms -+ tau share 2e-3 / 0.04.
+  limit.observe({1e-4, 2e-4, -0.04, 0.01}, 1e-3);
+  const double reach = tau * share * 2e-3 / 0.04;
+  EXPECT_NEAR(limit.longest(), 1e-3 + reach, 1e-15);
+  EXPECT_NEAR(limit.shortest(), 1e-3 - reach, 1e-15);
+  // Slower (0.01 m/s), the scale stays 0.04 m/s: the reach is 4 times as long. After a step of
+  // 0.5 ms the lag has relaxed part of the way: 0.5 ms + 0.5 ms exp(-0.5 ms / tau).
+  limit.observe({1e-4, 2e-4, 0.01, 0.0}, 0.5e-3);
+  const double lag = 0.5e-3 + 0.5e-3 * std::exp(-0.5e-3 / tau);
+  EXPECT_NEAR(limit.longest(), lag + 4.0 * reach, 1e-15);
+  // Below the floor's share the floor holds: a scale of 1e-3 m/s allows 5e-5 < 1e-3 m/s.
+  StepChangeLimit slow(host, 1, a);
+  slow.observe({0.0, 0.0, 1e-3, 0.0}, 1e-3);
+  EXPECT_NEAR(slow.longest(), 1e-3 + tau * share * floor / 1e-3, 1e-15);
+  // No relaxation time (a hand-made AdaptiveStep) or fixed steps: unlimited.
+  a.relaxation_time = 0.0;
+  StepChangeLimit none(host, 1, a);
+  none.observe({1e-4, 2e-4, -0.04, 0.01}, 1e-3);
+  EXPECT_EQ(none.longest(), std::numeric_limits<double>::infinity());
+  StepChangeLimit fixed(host, 1, AdaptiveStep{});
+  fixed.observe({1e-4, 2e-4, -0.04, 0.01}, 1e-3);
+  EXPECT_EQ(fixed.shortest(), -std::numeric_limits<double>::infinity());
+}
+
 TEST(MacroSteps, TheStepErrorIsEachGroupsResidualOnItsScaleWithAFloor) {
   const AdaptiveStep a = adaptive(1e-4, 1e-3);
   const double tolerance = a.tolerance, floor = a.absolute.at("footprint_velocity");
@@ -143,6 +214,7 @@ TEST(MacroSteps, DefaultsComeFromTheSchemaAlone) {
   for (const auto& [group, floor] : a.absolute)
     EXPECT_EQ(floor, floors.at(group).at("default").get<double>()) << group;
   EXPECT_EQ(a.retake, p.at("retake").at("default").get<bool>());
+  EXPECT_EQ(a.relaxation_time, p.at("relaxation_time").at("default").get<double>());
   EXPECT_DOUBLE_EQ(a.min_step, 1e-4);
 }
 

@@ -14,7 +14,8 @@
 // checkpointed only when it can be).
 //
 // With "adaptive", the macro step follows the coupling error of each step: the first
-// participant's extrapolated input against what the second produced (rumble/macro_steps.hpp).
+// participant's extrapolated input against what the second produced, and changes only as far
+// as the soil's footprint velocity allows (rumble/macro_steps.hpp).
 #include <algorithm>
 #include <rumble/coupling.hpp>
 #include <rumble/macro_steps.hpp>
@@ -75,10 +76,12 @@ class GaussSeidel final : public rumble::Coupler {
              Link(host, first, second),
              GroupResiduals(host, second),
              (max_halvings_ > 0 || retakes) && host.can_checkpoint(first),
-             retakes};
+             retakes,
+             rumble::coupling::StepChangeLimit(host, CosimHost::kSoil, adaptive_)};
     s.first_history.sample(t0);
     s.second_history.sample(t0);
     s.residuals.observe(s.second_history.latest());
+    s.change_limit.observe(s.soil_history().latest(), 0.0);
     report_.residuals.resize(s.residuals.groups());
     new_first_.resize(s.first_history.size());
     new_second_.resize(s.second_history.size());
@@ -86,7 +89,8 @@ class GaussSeidel final : public rumble::Coupler {
     while (!steps.done()) {
       step_error_ = 0.0;
       step_order_ = extrapolation_;
-      if (step(s, steps.t(), steps.h(), 0, &steps)) steps.accept(step_error_, step_order_);
+      if (step(s, steps.t(), steps.h(), 0, &steps))
+        steps.accept(step_error_, step_order_, s.change_limit.shortest(), s.change_limit.longest());
     }
     if (adaptive_.enabled()) rumble::coupling::log_adaptive_steps(host, steps);
     if (s.retakes) host.free_checkpoint(second, kSlot);
@@ -105,6 +109,11 @@ class GaussSeidel final : public rumble::Coupler {
     GroupResiduals residuals;  // of the second participant's outputs
     bool checkpoints;          // the first participant is checkpointed at every step start
     bool retakes;              // ... and the second: a step may be taken again (adaptive)
+    rumble::coupling::StepChangeLimit change_limit;  // how far an adaptive step may change
+
+    const OutputHistory& soil_history() const {
+      return first == CosimHost::kSoil ? first_history : second_history;
+    }
   };
 
   /// Takes [t, t + h]; false when `steps` asked for it again, shorter (both participants are
@@ -148,6 +157,7 @@ class GaussSeidel final : public rumble::Coupler {
     }
     s.first_history.push(t + h, new_first_);
     s.second_history.push(t + h, new_second_);
+    s.change_limit.observe(s.soil_history().latest(), h);
     s.residuals.measure(wave_, order_first, s.second_history.latest(), residuals);
     // The step's coupling error: the prediction the first participant used against the second's
     // outputs, O(h^(order_first + 1)); over the halves of a refused step, the worst.

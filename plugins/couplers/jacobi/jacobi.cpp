@@ -9,7 +9,8 @@
 // retrying needs both participants to checkpoint (otherwise a refusal stops the run).
 //
 // With "adaptive", the macro step follows the coupling error of each step: each participant's
-// extrapolated input against what the other produced (rumble/macro_steps.hpp).
+// extrapolated input against what the other produced, and changes only as far as the soil's
+// footprint velocity allows (rumble/macro_steps.hpp).
 #include <algorithm>
 #include <exception>
 #include <optional>
@@ -65,9 +66,11 @@ class Jacobi final : public rumble::Coupler {
              GroupResiduals(host, kTrack),
              GroupResiduals(host, kSoil),
              (max_halvings_ > 0 || (adaptive_.enabled() && adaptive_.retake)) &&
-                 host.can_checkpoint(kTrack) && host.can_checkpoint(kSoil)};
+                 host.can_checkpoint(kTrack) && host.can_checkpoint(kSoil),
+             rumble::coupling::StepChangeLimit(host, kSoil, adaptive_)};
     s.track.sample(t0);
     s.soil.sample(t0);
+    s.change_limit.observe(s.soil.latest(), 0.0);
     s.track_residuals.observe(s.track.latest());
     s.soil_residuals.observe(s.soil.latest());
     report_.residuals.resize(s.soil_residuals.groups() + s.track_residuals.groups());
@@ -78,7 +81,8 @@ class Jacobi final : public rumble::Coupler {
     while (!steps.done()) {
       step_error_ = 0.0;
       step_order_ = extrapolation_;
-      if (step(s, steps.t(), steps.h(), 0, &steps)) steps.accept(step_error_, step_order_);
+      if (step(s, steps.t(), steps.h(), 0, &steps))
+        steps.accept(step_error_, step_order_, s.change_limit.shortest(), s.change_limit.longest());
     }
     if (adaptive_.enabled()) rumble::coupling::log_adaptive_steps(host, steps);
     if (s.checkpoints) {
@@ -97,6 +101,7 @@ class Jacobi final : public rumble::Coupler {
     GroupResiduals track_residuals, soil_residuals;
     bool checkpoints;  // both participants are checkpointed at every step start (a refused
                        // step is retried, a step above the adaptive tolerance retaken)
+    rumble::coupling::StepChangeLimit change_limit;  // how far an adaptive step may change
     std::optional<rumble_jacobi::AdvanceWorker> soil_worker = std::nullopt;  // with two threads
   };
 
@@ -141,6 +146,7 @@ class Jacobi final : public rumble::Coupler {
     }
     s.track.push(t + h, new_track_);
     s.soil.push(t + h, new_soil_);
+    s.change_limit.observe(s.soil.latest(), h);
     rumble::GroupResidual* residuals = report_.residuals.data();
     s.soil_residuals.measure(from_soil_, order_track, s.soil.latest(), residuals);
     s.track_residuals.measure(from_track_, order_soil, s.track.latest(),

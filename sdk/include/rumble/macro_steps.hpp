@@ -25,6 +25,19 @@
 // steps. The last step may be shorter than min_step, to end exactly at t_end. Why not SDK 1.2's
 // energy residual at the cut: it converges at first order whatever the scheme and is largest
 // where the power is, not where the coupling errs (docs/couplers.md, adaptive macro steps).
+//
+// A change of step has an error of its own (appended in SDK 1.3: StepChangeLimit and
+// accept(error, order, shortest, longest)): an explicit scheme lags (or leads) the coupled motion
+// by about its step, so changing the step moves that lag, and the footprints, following the new
+// lag over the soil's relaxation time tau (c/k of a footprint), have their velocity disturbed by
+// about |v| x (the change) / tau (measured on the dip cases: tau 1.3 ms on the small Winkler
+// soil, c/k 2 ms; 2.1 ms on the paper's medium soil, c/k 2.2 ms; docs/couplers.md,
+// adaptive macro steps). The predictor residual does not see it (it is small exactly where the
+// velocity peaks), yet it is what a peak velocity (PPV) reads, while the lag itself moves a peak
+// in time, not in height. So while the footprints move, an accepted step is followed by one
+// within what keeps that disturbance within kChangeShare (1/8) of the velocity's allowed error
+// (StepChangeLimit); a step above the tolerance is still taken again as short as its error asks
+// (accuracy first).
 #ifndef RUMBLE_MACRO_STEPS_HPP
 #define RUMBLE_MACRO_STEPS_HPP
 
@@ -32,6 +45,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <rumble/coupling.hpp>
 #include <rumble/params.hpp>
@@ -49,6 +63,8 @@ struct AdaptiveStep {
   std::map<std::string, double> absolute;     // group -> floor of the tolerance [its unit]
   double safety = 0.0;                        // -
   double min_change = 0.2, max_change = 1.5;  // per step [-]; not params
+  double relaxation_time = 0.0;  // s: over which the footprints forget a change of step (SDK 1.3,
+                                 // appended; StepChangeLimit); 0: no limit
   bool retake = false;  // take a step above the tolerance again when the scheme can restore
   bool enabled() const { return max_step > 0.0; }
 };
@@ -85,6 +101,7 @@ inline constexpr const char* kAdaptiveStepObjectSchema = R"schema({
         "footprint_velocity": {"type": "number", "exclusiveMinimum": 0, "maximum": 1, "default": 1e-3, "description": "[m/s]; (0, 1] m/s: footprints move at mm/s to some 0.1 m/s; 1e-3: 1e-4 held the step at min_step for the first ms of the dip case (docs/couplers.md)"}
       }
     },
+    "relaxation_time": {"type": "number", "exclusiveMinimum": 0, "maximum": 1, "default": 1e-3, "description": "time over which the coupled footprints forget a change of macro step [s], the soil's footprint relaxation time c/k (1.0 ms on the paper's stiff soil, the default and the shortest of its soils; 2.2 ms on its medium): while the footprints move, the step changes only by what keeps the velocity it disturbs, about |v| x (change of step) / relaxation_time, within an eighth of the velocity's allowed error (tolerance x its largest value so far, at least its absolute_tolerance), so shorter is safer (docs/couplers.md); (0, 1] s: footprints relax in about 1 to 10 ms (c/k = 0.85 r0 / c_s), and 1 s all but holds the step while they move"},
     "safety": {"type": "number", "exclusiveMinimum": 0, "maximum": 1, "default": 0.9, "description": "the next step is this fraction of the step at which the error model puts the error on the tolerance [-], so that few steps are taken again; (0, 1]: a fraction"},
     "retake": {"type": "boolean", "default": true, "description": "take a step whose coupling error is above the tolerance again, shorter, when both participants can save and restore their state (false: never)"}
   }
@@ -110,6 +127,7 @@ inline AdaptiveStep read_adaptive_step(const Params& params) {
   }
   a.tolerance = j.get<double>("tolerance");
   a.safety = j.get<double>("safety");
+  a.relaxation_time = j.get<double>("relaxation_time");
   // The groups are the schema's properties of absolute_tolerance: named there alone.
   const Params absolute = j.object("absolute_tolerance");
   const nlohmann::json groups = nlohmann::json::parse(kAdaptiveStepObjectSchema)
@@ -156,8 +174,7 @@ class MacroSteps {
   double h() const {
     if (!a_.enabled()) return macro_step_length(t0_, t_end_, H_, k_);
     const double left = t_end_ - t_;
-    const double whole = std::max(1.0, std::round(target_ / a_.min_step));
-    const double h = whole * a_.min_step;
+    const double h = rounded(target_);
     return h >= left * (1.0 - 1e-9) ? left : h;
   }
 
@@ -165,6 +182,15 @@ class MacroSteps {
   /// the extrapolation, so that the error is O(h^(order + 1)). Both steer an adaptive step
   /// (ignored for fixed steps).
   void accept(double error, std::uint32_t order) {
+    const double unlimited = std::numeric_limits<double>::infinity();
+    accept(error, order, -unlimited, unlimited);
+  }
+  /// As accept(error, order), and the next step lies within [shortest, longest] [s] where the
+  /// error would take it beyond (StepChangeLimit's; SDK 1.3, appended): a growth is cut to the
+  /// most whole min_steps within `longest` (at least this step), a shrink to the fewest within
+  /// `shortest` (at most this step). A step above the tolerance is not accepted but taken again
+  /// (retake()), as short as its error asks, whatever these bounds.
+  void accept(double error, std::uint32_t order, double shortest, double longest) {
     const double h = this->h();
     ++k_;
     shortest_ = std::min(shortest_, h);
@@ -174,6 +200,13 @@ class MacroSteps {
     error_ = error;
     // On the unrounded target: rounding alone must not hold a step that should grow.
     target_ = std::clamp(target_ * change(error_, order, a_.max_change), a_.min_step, a_.max_step);
+    // A change beyond the bounds is cut, the target with it, so that a step held by them moves
+    // on from where it is once the footprints come to rest.
+    const double next = rounded(target_), q = a_.min_step;
+    if (next > h && next > longest)
+      target_ = std::max(h, std::floor(longest / q * (1.0 + 1e-9)) * q);
+    else if (next < h && next < shortest)
+      target_ = std::clamp(std::ceil(shortest / q * (1.0 - 1e-9)) * q, next, h);
   }
 
   /// Whether the step just taken (not yet accepted) is to be taken again, shorter: its error
@@ -207,11 +240,69 @@ class MacroSteps {
   double shortest_ = 1e300, longest_ = 0.0;  // s
   double error_ = 0.0;                       // -
 
+  /// The step for a target [s]: the nearest whole number of min_step, at least one.
+  double rounded(double target) const {
+    return std::max(1.0, std::round(target / a_.min_step)) * a_.min_step;
+  }
+
   /// Factor on the step for an error e [-] of order + 1 in h, at most `most`.
   double change(double e, std::uint32_t order, double most) const {
     if (!(e > 0.0)) return most;
     const double factor = a_.safety * std::pow(1.0 / e, 1.0 / (static_cast<double>(order) + 1.0));
     return std::clamp(factor, a_.min_change, most);
+  }
+};
+
+/// Which macro steps keep the disturbance of a change of step within the tolerance while the
+/// footprints move (SDK 1.3, appended). The footprints follow the scheme's lag with a delay: the
+/// lag L relaxes towards the step h in use over tau (AdaptiveStep::relaxation_time),
+///   L <- h + (L - h) exp(-h / tau)  after each step,
+/// and a footprint moving at v is disturbed by about |v| |h' - L| / tau by a next step h' (the
+/// header's comment). So h' may lie within
+///   L -+ tau kChangeShare allowed / max |v|,  allowed = max(tolerance scale, floor),
+/// scale: the group's largest |v| so far in the run, floor: its absolute tolerance. Measured
+/// from L, not from h: a step cut short by a retake may grow back at once, the footprints having
+/// had no time to follow it. Unlimited while the footprints are still, where the participant has
+/// no such group, and when tau is 0 or the step is fixed.
+class StepChangeLimit {
+ public:
+  /// The share of the velocity's allowed error a change of step may use [-]: near the smallest
+  /// ratio of the PPV error to the displacement error of fixed steps (0.09 to 0.4 on the dip
+  /// cases; docs/couplers.md, adaptive macro steps), so that the changes cost the peak no more
+  /// than the steps do.
+  static constexpr double kChangeShare = 0.125;
+
+  /// Reads `group` (a velocity, e.g. "footprint_velocity") among the outputs of `participant`.
+  StepChangeLimit(const CosimHost& host, std::uint32_t participant, const AdaptiveStep& adaptive,
+                  const std::string& group = "footprint_velocity")
+      : tau_(adaptive.enabled() ? adaptive.relaxation_time : 0.0), tolerance_(adaptive.tolerance) {
+    for (const ChannelGroup& g : host.groups(participant, RUMBLE_SIDE_OUTPUT))
+      if (g.name == group) group_ = g;
+    const auto floor = adaptive.absolute.find(group);
+    if (floor != adaptive.absolute.end()) floor_ = floor->second;
+  }
+  /// The participant's final outputs at the end of a step of h [s] (at the start: h = 0).
+  void observe(const std::vector<double>& outputs, double h) {
+    speed_ = 0.0;
+    for (std::size_t i = group_.offset; i < group_.offset + group_.count; ++i)
+      speed_ = std::max(speed_, std::abs(outputs[i]));
+    scale_ = std::max(scale_, speed_);
+    if (h > 0.0) lag_ = lag_ > 0.0 && tau_ > 0.0 ? h + (lag_ - h) * std::exp(-h / tau_) : h;
+  }
+  /// s: the shortest and the longest next step (-+ infinity when unlimited).
+  double shortest() const { return lag_ - reach(); }
+  double longest() const { return lag_ + reach(); }
+
+ private:
+  ChannelGroup group_;  // count 0: none
+  double tau_, tolerance_, floor_ = 0.0;
+  double speed_ = 0.0, scale_ = 0.0;  // [the group's unit]: the last largest |value|, the run's
+  double lag_ = 0.0;                  // s: L (0 before the first step)
+
+  double reach() const {
+    if (!(tau_ > 0.0) || !(speed_ > 0.0) || !(lag_ > 0.0))
+      return std::numeric_limits<double>::infinity();
+    return tau_ * kChangeShare * std::max(tolerance_ * scale_, floor_) / speed_;
   }
 };
 
