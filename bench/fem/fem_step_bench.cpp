@@ -1,9 +1,13 @@
-// The FEM soil's explicit step against the machine's memory bandwidth (docs/numerics.md §5): the
+// The FEM soil's explicit step against the machine's two bounds (docs/fem-soil.md §4.3): the
 // step streams K's upper blocks once (4 or 8 B per value, one 4 B node index per 3 x 3 block:
-// symmetric_blocks.hpp) plus its vectors, so its time is bounded below by bytes / bandwidth. Each
-// case measures a STREAM-like triad in the same process first and reports the step's effective
-// bandwidth as a fraction of it (roofline_fraction), with million DOF-updates per second (MDOF/s),
-// per thread count.
+// symmetric_blocks.hpp) plus its vectors, so its time is bounded below by bytes / bandwidth, and
+// it does 36 flops per upper block (both of its products), so also by flops / peak flops. Each
+// case measures a STREAM-like triad and the peak multiply-add rate at the product's SIMD width in
+// the same process first (machine_bounds.hpp) and reports both bounds per step, the step's time,
+// and its fraction of whichever bound applies (bound_fraction; roofline_fraction is the memory
+// one), with million DOF-updates per second (MDOF/s), per thread count and kernel (simd 1: the
+// SIMD kernel, block_kernel_avx2.hpp, where the processor has AVX2 and FMA; simd 0: the portable
+// one).
 //   build/release/bin/fem_bench --benchmark_counters_tabular=true
 #include <benchmark/benchmark.h>
 
@@ -11,11 +15,14 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <memory>
 #include <vector>
 
 #include "boundary/absorbing_boundary.hpp"
 #include "boundary/pml.hpp"
+#include "machine_bounds.hpp"
 #include "mesh/kuhn_box.hpp"
+#include "operator/csr_operator.hpp"
 #include "operator/elasticity.hpp"
 #include "settings_from_params.hpp"
 #include "time/explicit_solver.hpp"
@@ -24,23 +31,6 @@ namespace {
 
 using rumble::fem::ExplicitSolver;
 using rumble::fem::ExplicitState;
-
-/// Triad a = b + s c over n doubles with `threads` threads: best bandwidth [B/s] of 20 passes,
-/// counting 24 B per element (two reads, one write).
-double triad_bandwidth(std::int64_t n, int threads) {
-  std::vector<double> a(n, 0.0), b(n, 1.0), c(n, 2.0);
-  double best = 0.0;
-  for (int pass = 0; pass < 20; ++pass) {
-    const auto start = std::chrono::steady_clock::now();
-#pragma omp parallel for num_threads(threads) schedule(static)
-    for (std::int64_t i = 0; i < n; ++i) a[i] = b[i] + 0.5 * c[i];
-    const double s =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    best = std::max(best, 24.0 * static_cast<double>(n) / s);
-  }
-  benchmark::DoNotOptimize(a.data());
-  return best;
-}
 
 /// Steps of dt [s] for as long as the benchmark asks: their wall time [s].
 double timed_steps(benchmark::State& state, const ExplicitSolver& op, ExplicitState& st,
@@ -53,25 +43,51 @@ double timed_steps(benchmark::State& state, const ExplicitSolver& op, ExplicitSt
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+/// What one explicit step of a mesh streams [B] and computes [flop] at least: K's upper blocks
+/// once (the diagonal ones and half of the others: values, a node index per block, a start per
+/// node), the product's pending sums read and written (32 B per node: NodeSum), w v a y read and
+/// written (8 vectors), each mechanism's memory (float) read and written; 36 flops per upper
+/// off-diagonal block (K_ij x_j and K_ij^T x_i), 18 per diagonal one, 13 per DOF for the vector
+/// updates and 4 per DOF and mechanism. (Left out: the force, the mass and the node flags the
+/// step also reads, about 18 B per DOF, so the memory bound is a little tight.)
+struct StepCost {
+  double bytes, flops;
+};
+StepCost step_cost(const ExplicitSolver& op, bool single, int mechanisms) {
+  const auto nnz = static_cast<double>(op.stiffness().nonzeros());
+  const auto dofs = static_cast<double>(op.dofs());
+  const double nodes = dofs / 3.0;
+  const double off_diagonal = (nnz / 9.0 - nodes) / 2.0, upper_blocks = off_diagonal + nodes;
+  const double bytes = (single ? 4.0 : 8.0) * 9.0 * upper_blocks + 4.0 * upper_blocks +
+                       8.0 * nodes + 64.0 * nodes + (64.0 + 8.0 * mechanisms) * dofs;
+  const double flops = 36.0 * off_diagonal + 18.0 * nodes + (13.0 + 4.0 * mechanisms) * dofs;
+  return {bytes, flops};
+}
+
 /// Medium soil (docs/physics.md §1.4) on a Kuhn box of n^3 cubes; LK dashpots and springs on five
 /// sides, 2 % Rayleigh damping (or over 5-100 Hz by `mechanisms` Maxwell mechanisms): the step
-/// the plugin takes, with K read in double (single 0) or single precision (single 1).
+/// the plugin takes, with K read in double (single 0) or single precision (single 1), by the
+/// SIMD kernel (simd 1, where the processor has one) or the portable one (simd 0).
 void BM_ExplicitStep(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
   const int threads = static_cast<int>(state.range(1));
   const bool single = state.range(2) != 0;
   const int mechanisms = static_cast<int>(state.range(3));
+  const bool simd = state.range(4) != 0 && rumble::fem::block_simd_available();
   const nlohmann::json maxwell = {{"damping", {{"model", "maxwell"}, {"mechanisms", mechanisms}}}};
   const rumble::fem::FemSettings s = rumble::test::soil_settings(
       155e6, 0.3, 1800.0, mechanisms > 0 ? maxwell : nlohmann::json::object());
   const rumble::fem::TetMesh mesh = rumble::fem::kuhn_box(n, 0.164);
   const rumble::fem::TrackRegion centre{0.082 * n, 0.082 * n, 0.082 * n, 0.082 * n};
-  ExplicitSolver op(
+  auto soil = std::make_unique<rumble::fem::CsrOperator>(
       rumble::fem::assemble_stiffness(mesh, s), rumble::fem::lumped_mass(mesh, s),
       rumble::fem::absorbing_boundary(mesh, s, centre), true,
-      std::vector<char>(mesh.node_count(), 0), s.damping.mass_coefficient(),
-      s.damping.stiffness_coefficient(), static_cast<unsigned>(threads),
+      std::vector<char>(mesh.node_count(), 0), static_cast<unsigned>(threads),
       single ? rumble::fem::StepPrecision::kSingle : rumble::fem::StepPrecision::kDouble);
+  soil->set_block_kernel(simd ? rumble::fem::BlockKernel::kSimd
+                              : rumble::fem::BlockKernel::kPortable);
+  ExplicitSolver op(std::move(soil), s.damping.mass_coefficient(),
+                    s.damping.stiffness_coefficient());
   if (mechanisms > 0) op.set_maxwell_damping(s.damping.maxwell_mechanisms());
   const Eigen::Index dofs = op.dofs();
   ExplicitState st{Eigen::VectorXd::Random(dofs) * 1e-6,
@@ -81,40 +97,44 @@ void BM_ExplicitStep(benchmark::State& state) {
                    {}};
   const Eigen::VectorXd f = Eigen::VectorXd::Zero(dofs);
   const double dt = 0.8 * op.stable_step();
-  // K's upper blocks once (the diagonal ones and half of the others: values, a node index per
-  // block, a start per node), the product's scratch read and written, w v a y read and w v a y
-  // written: 10 vectors; each mechanism's memory (float) read and written.
-  const auto nnz = static_cast<double>(op.stiffness().nonzeros());
-  const auto nodes = static_cast<double>(dofs) / 3.0;
-  const double upper_blocks = (nnz / 9.0 - nodes) / 2.0 + nodes;
-  const double bytes = (single ? 4.0 : 8.0) * 9.0 * upper_blocks + 4.0 * upper_blocks +
-                       8.0 * nodes + (80.0 + 8.0 * mechanisms) * static_cast<double>(dofs);
-  const double bandwidth = triad_bandwidth(std::max<std::int64_t>(dofs * 8, 1 << 24), threads);
+  const StepCost cost = step_cost(op, single, mechanisms);
+  const double bandwidth =
+      rumble::bench::triad_bandwidth(std::max<std::int64_t>(dofs * 8, 1 << 24), threads);
+  const double peak = rumble::bench::peak_flops(threads);
   const double seconds = timed_steps(state, op, st, f, dt);
   const double steps = static_cast<double>(state.iterations());
+  const double memory_bound = cost.bytes / bandwidth, flop_bound = cost.flops / peak;
   state.counters["DOFs"] = static_cast<double>(dofs);
-  state.counters["nnz_per_row"] = static_cast<double>(op.stiffness().nonzeros()) / dofs;
   state.counters["MDOF/s"] =
       benchmark::Counter(steps * static_cast<double>(dofs) * 1e-6, benchmark::Counter::kIsRate);
-  state.counters["step_GB/s"] =
-      benchmark::Counter(steps * bytes * 1e-9, benchmark::Counter::kIsRate);
+  state.counters["ms_per_step"] = seconds / steps * 1e3;
   state.counters["triad_GB/s"] = bandwidth * 1e-9;
+  state.counters["peak_GFLOP/s"] = peak * 1e-9;
+  state.counters["mem_bound_ms"] = memory_bound * 1e3;
+  state.counters["flop_bound_ms"] = flop_bound * 1e3;
+  state.counters["roofline_fraction"] = steps * memory_bound / seconds;
+  state.counters["bound_fraction"] = steps * std::max(memory_bound, flop_bound) / seconds;
   state.counters["B_per_DOF"] = static_cast<double>(op.bytes()) / static_cast<double>(dofs);
-  state.counters["roofline_fraction"] = steps * bytes / seconds / bandwidth;
 }
 BENCHMARK(BM_ExplicitStep)
-    ->ArgNames({"n", "threads", "single", "mechanisms"})
-    ->Args({20, 1, 0, 0})
-    ->Args({20, 2, 0, 0})
-    ->Args({32, 1, 0, 0})
-    ->Args({32, 2, 0, 0})
-    ->Args({46, 2, 0, 0})
-    ->Args({20, 2, 1, 0})
-    ->Args({32, 1, 1, 0})
-    ->Args({32, 2, 1, 0})
-    ->Args({46, 2, 1, 0})
-    ->Args({32, 2, 1, 3})
-    ->Args({46, 2, 1, 3})
+    ->ArgNames({"n", "threads", "single", "mechanisms", "simd"})
+    ->Args({20, 1, 0, 0, 1})
+    ->Args({20, 2, 0, 0, 1})
+    ->Args({32, 1, 0, 0, 1})
+    ->Args({32, 2, 0, 0, 1})
+    ->Args({46, 1, 0, 0, 1})
+    ->Args({46, 2, 0, 0, 1})
+    ->Args({20, 2, 1, 0, 1})
+    ->Args({32, 1, 1, 0, 1})
+    ->Args({32, 2, 1, 0, 1})
+    ->Args({46, 1, 1, 0, 1})
+    ->Args({46, 2, 1, 0, 1})
+    ->Args({32, 2, 1, 3, 1})
+    ->Args({46, 2, 1, 3, 1})
+    ->Args({46, 1, 0, 0, 0})
+    ->Args({46, 2, 0, 0, 0})
+    ->Args({46, 1, 1, 0, 0})
+    ->Args({46, 2, 1, 0, 0})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 

@@ -1,6 +1,7 @@
-// The explicit step's product over K's upper blocks (symmetric_blocks.hpp) against the full
-// rows' product, for any number of parts and any team size (a team smaller than the parts takes
-// several each), with its scratch left zero.
+// The explicit step's product over K's upper blocks (symmetric_blocks.hpp), both kernels (the
+// portable one and, where the processor runs it, the SIMD one: block_kernel_avx2.hpp), against
+// the full rows' product in double, for any number of parts and any team size (a team smaller
+// than the parts takes several each), with its scratch left zero.
 #include "operator/symmetric_blocks.hpp"
 
 #include <gtest/gtest.h>
@@ -9,6 +10,8 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
+#include <numeric>
+#include <random>
 #include <vector>
 
 #include "mesh/kuhn_box.hpp"
@@ -21,7 +24,7 @@ namespace {
 /// K x by the blocks, with `team` threads; checks that every node is handed over once.
 template <class Value>
 Eigen::VectorXd blocks_times(const SymmetricBlocks<Value>& blocks, const Eigen::VectorXd& x,
-                             int team, std::vector<double>& scratch) {
+                             int team, std::vector<NodeSum>& scratch) {
   Eigen::VectorXd y = Eigen::VectorXd::Constant(x.size(), std::nan(""));
   std::vector<int> handed(static_cast<std::size_t>(blocks.nodes()), 0);
 #pragma omp parallel num_threads(team)
@@ -33,37 +36,112 @@ Eigen::VectorXd blocks_times(const SymmetricBlocks<Value>& blocks, const Eigen::
   return y;
 }
 
-// Double blocks: the same sums as the rows' in another order, and K's lower triangle replaced
-// by its upper one mirrored (K is symmetric to 1e-12 of its largest entry: FemElasticity), so
-// each DOF agrees to 1e-12 of the sum of its terms' magnitudes. Float blocks: each entry moves by
-// at most 2^-24 (6e-8) of itself.
-TEST(SymmetricBlocks, ProductIsTheFullRowsProductForAnyPartsAndTeam) {
-  const TetMesh m = kuhn_box(4, 0.5);
-  FemSettings s = rumble::test::soil_settings(155e6, 0.3, 1800.0);
-  const CsrMatrix K = assemble_stiffness(m, s);
-  const Eigen::VectorXd x = Eigen::VectorXd::Random(K.rows());
-  Eigen::VectorXd expected(K.rows()), magnitude = Eigen::VectorXd::Zero(K.rows());
-  for (std::int64_t r = 0; r < K.rows(); ++r) {
-    expected[r] = K.row_dot(r, x.data());
-    for (std::int64_t k = K.row_start()[r]; k < K.row_start()[r + 1]; ++k)
-      magnitude[r] += std::abs(K.value()[k] * x[K.column()[k]]);
+/// A Kuhn box of 5 x 4 x 6 cubes with its nodes moved by up to 0.1 h and numbered at random,
+/// two soils: K's blocks all different, each node with anything from 0 to 14 later neighbours,
+/// and many blocks across parts.
+TetMesh random_mesh() {
+  TetMesh m = kuhn_box(5, 4, 6, 0.5);
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> shift(-0.05, 0.05);
+  for (Eigen::Index i = 0; i < m.node_count(); ++i)
+    for (int c = 0; c < 3; ++c) m.nodes(c, i) += shift(random);
+  std::vector<std::int32_t> order(static_cast<std::size_t>(m.node_count()));
+  std::iota(order.begin(), order.end(), 0);
+  std::shuffle(order.begin(), order.end(), random);
+  Eigen::Matrix3Xd moved(3, m.node_count());
+  for (std::size_t i = 0; i < order.size(); ++i) moved.col(order[i]) = m.nodes.col(i);
+  m.nodes = moved;
+  for (std::size_t e = 0; e < m.tets.size(); ++e) {
+    for (std::int32_t& node : m.tets[e]) node = order[node];
+    m.layer[e] = e % 3 == 0 ? 1 : 0;
   }
-  std::vector<double> scratch(static_cast<std::size_t>(K.rows()), 0.0);
-  for (const unsigned parts : {1u, 2u, 3u, 7u}) {
-    SymmetricBlocks<double> twin(K, 1);
-    twin.set_parts(parts);
-    SymmetricBlocks<float> single(K, parts);
-    ASSERT_EQ(twin.parts(), parts);
-    for (const int team : {1, 2}) {
-      const Eigen::VectorXd y = blocks_times(twin, x, team, scratch);
-      const Eigen::VectorXd z = blocks_times(single, x, team, scratch);
-      for (Eigen::Index r = 0; r < x.size(); ++r) {
-        EXPECT_NEAR(y[r], expected[r], 1e-12 * magnitude[r]) << "parts " << parts << ", DOF " << r;
-        EXPECT_NEAR(z[r], expected[r], 1e-7 * magnitude[r]) << "parts " << parts << ", DOF " << r;
-      }
-      EXPECT_TRUE(std::all_of(scratch.begin(), scratch.end(), [](double v) { return v == 0.0; }));
+  for (auto* faces : {&m.ground, &m.truncation})
+    for (Triangle& f : *faces)
+      for (std::int32_t& node : f) node = order[node];
+  return m;
+}
+
+/// The reference: K's rows in double, and per DOF the sum of its terms' magnitudes.
+struct Reference {
+  Eigen::VectorXd product, magnitude;
+};
+Reference full_rows(const CsrMatrix& K, const Eigen::VectorXd& x) {
+  Reference r{Eigen::VectorXd(K.rows()), Eigen::VectorXd::Zero(K.rows())};
+  for (std::int64_t row = 0; row < K.rows(); ++row) {
+    r.product[row] = K.row_dot(row, x.data());
+    for (std::int64_t k = K.row_start()[row]; k < K.row_start()[row + 1]; ++k)
+      r.magnitude[row] += std::abs(K.value()[k] * x[K.column()[k]]);
+  }
+  return r;
+}
+
+std::vector<BlockKernel> kernels() {
+  std::vector<BlockKernel> k{BlockKernel::kPortable};
+  if (block_simd_available()) k.push_back(BlockKernel::kSimd);
+  return k;
+}
+
+// Double blocks: the same sums as the rows' in another order (fused or not), and K's lower
+// triangle replaced by its upper one mirrored (K is symmetric to 1e-12 of its largest entry:
+// FemElasticity), so each DOF agrees to 1e-12 of the sum of its terms' magnitudes. Float blocks:
+// each entry moves by at most 2^-24 (6e-8) of itself, the sums in double. On any parts and team
+// the same numbers to the bit (the order of every sum is fixed by the blocks).
+template <class Value>
+void check_product(const TetMesh& m, double bound) {
+  FemSettings s = rumble::test::soil_settings(155e6, 0.3, 1800.0);
+  s.layers = {{1.0, rumble::soils::SoilProperties{387.5e6, 0.25, 1900.0}}};
+  const CsrMatrix K = assemble_stiffness(m, s);
+  std::srand(3);
+  const Eigen::VectorXd x = Eigen::VectorXd::Random(K.rows());
+  const Reference ref = full_rows(K, x);
+  std::vector<NodeSum> scratch(static_cast<std::size_t>(m.node_count()), NodeSum{});
+  for (const auto kernel : kernels()) {
+    SymmetricBlocks<Value> blocks(K, 1);
+    blocks.set_kernel(kernel);
+    const Eigen::VectorXd one = blocks_times(blocks, x, 1, scratch);
+    for (Eigen::Index r = 0; r < x.size(); ++r)
+      ASSERT_NEAR(one[r], ref.product[r], bound * ref.magnitude[r]) << "DOF " << r;
+    for (const unsigned parts : {2u, 3u, 7u}) {
+      blocks.set_parts(parts);
+      ASSERT_EQ(blocks.parts(), parts);
+      for (const int team : {1, 2})
+        EXPECT_TRUE(blocks_times(blocks, x, team, scratch) == one) << parts << " parts";
+      EXPECT_TRUE(std::all_of(scratch.begin(), scratch.end(), [](const NodeSum& n) {
+        return n.v[0] == 0.0 && n.v[1] == 0.0 && n.v[2] == 0.0;
+      }));
     }
   }
+}
+
+TEST(SymmetricBlocks, ProductIsTheFullRowsProductForAnyPartsAndTeam) {
+  check_product<double>(kuhn_box(4, 0.5), 1e-12);
+  check_product<float>(kuhn_box(4, 0.5), 1e-7);
+}
+
+TEST(SymmetricBlocks, ProductOnARandomMeshIsTheFullRowsProduct) {
+  const TetMesh m = random_mesh();
+  for (const Tetrahedron& t : m.tets) ASSERT_GT(tet_volume(m, t), 0.0);
+  check_product<double>(m, 1e-12);
+  check_product<float>(m, 1e-7);
+}
+
+// The SIMD kernel (fused multiply-adds, another order) against the portable one: the same
+// product to 1e-15 of each DOF's terms' magnitudes (a few roundings of 1.1e-16).
+TEST(SymmetricBlocks, KernelsAgreeToRounding) {
+  if (!block_simd_available()) GTEST_SKIP() << "no AVX2 and FMA here";
+  const TetMesh m = random_mesh();
+  const CsrMatrix K = assemble_stiffness(m, rumble::test::soil_settings(155e6, 0.3, 1800.0));
+  std::srand(5);
+  const Eigen::VectorXd x = Eigen::VectorXd::Random(K.rows());
+  const Reference ref = full_rows(K, x);
+  std::vector<NodeSum> scratch(static_cast<std::size_t>(m.node_count()), NodeSum{});
+  SymmetricBlocks<float> simd(K, 2), portable(K, 2);
+  portable.set_kernel(BlockKernel::kPortable);
+  ASSERT_EQ(simd.kernel(), BlockKernel::kSimd);
+  const Eigen::VectorXd a = blocks_times(simd, x, 2, scratch);
+  const Eigen::VectorXd b = blocks_times(portable, x, 2, scratch);
+  for (Eigen::Index r = 0; r < x.size(); ++r)
+    EXPECT_NEAR(a[r], b[r], 1e-15 * ref.magnitude[r]) << "DOF " << r;
 }
 
 // Half of K's off-diagonal blocks, all of its diagonal ones: the bytes the step streams.

@@ -14,7 +14,7 @@ CsrOperator::CsrOperator(CsrMatrix K, Eigen::VectorXd mass, std::vector<Boundary
     single_blocks_.emplace(K_, threads_);
   else
     double_blocks_.emplace(K_, threads_);
-  product_scratch_.assign(3 * static_cast<std::size_t>(mass_.size()), 0.0);
+  product_scratch_.assign(static_cast<std::size_t>(mass_.size()), NodeSum{});
 }
 
 void CsrOperator::set_threads(unsigned threads) {
@@ -23,9 +23,14 @@ void CsrOperator::set_threads(unsigned threads) {
   if (double_blocks_) double_blocks_->set_parts(threads_);
 }
 
+void CsrOperator::set_block_kernel(BlockKernel kernel) {
+  if (single_blocks_) single_blocks_->set_kernel(kernel);
+  if (double_blocks_) double_blocks_->set_kernel(kernel);
+}
+
 std::size_t CsrOperator::bytes() const {
   return K_.bytes() + (single_blocks_ ? single_blocks_->bytes() : double_blocks_->bytes()) +
-         product_scratch_.size() * 8 + node_bytes();
+         product_scratch_.size() * sizeof(NodeSum) + node_bytes();
 }
 
 void CsrOperator::times(const Eigen::VectorXd& x, Eigen::VectorXd& y, bool with_springs,

@@ -38,6 +38,12 @@ class CsrOperator final : public SoilOperator {
   }
   const CsrMatrix& stiffness() const override { return K_; }
   std::size_t bytes() const override;
+  /// The kernel of the step's product (symmetric_blocks.hpp): by default the SIMD one where the
+  /// processor runs it; the portable one on request (benchmarks, tests).
+  BlockKernel block_kernel() const {
+    return single_blocks_ ? single_blocks_->kernel() : double_blocks_->kernel();
+  }
+  void set_block_kernel(BlockKernel kernel);
 
   /// stepped_product with the caller's finish inlined, for an integrator that knows this back
   /// end (ExplicitSolver): for each node i, finish(i, out) with out = (K x) at node i, K as the
@@ -59,7 +65,7 @@ class CsrOperator final : public SoilOperator {
   // K's upper blocks as the step reads them: rounded to float, or in double (one of the two).
   std::optional<SymmetricBlocks<float>> single_blocks_;
   std::optional<SymmetricBlocks<double>> double_blocks_;
-  mutable std::vector<double> product_scratch_;  // the blocks' product's; zero between products
+  mutable std::vector<NodeSum> product_scratch_;  // the blocks' product's; zero between products
 };
 
 }  // namespace rumble::fem

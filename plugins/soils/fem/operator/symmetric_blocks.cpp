@@ -4,6 +4,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "operator/block_kernel_avx2.hpp"
+
 namespace rumble::fem {
 
 template <class Value>
@@ -18,7 +20,7 @@ SymmetricBlocks<Value>::SymmetricBlocks(const CsrMatrix& K, unsigned parts) {
     block_start_[i + 1] = block_start_[i] + upper;  // (the diagonal and the nodes after i)
   }
   column_.resize(static_cast<std::size_t>(block_start_.back()));
-  value_.resize(9 * column_.size());
+  value_.assign(9 * column_.size() + 3, Value{0});
   for (std::int64_t i = 0; i < n; ++i) {
     const auto node = static_cast<std::int32_t>(i);
     const std::int32_t* nb = K.neighbours(node);
@@ -36,6 +38,22 @@ SymmetricBlocks<Value>::SymmetricBlocks(const CsrMatrix& K, unsigned parts) {
     }
   }
   set_parts(parts);
+  if (block_simd_available()) kernel_ = BlockKernel::kSimd;
+}
+
+template <class Value>
+void SymmetricBlocks<Value>::set_kernel(BlockKernel kernel) {
+  if (kernel == BlockKernel::kSimd && !block_simd_available())
+    throw std::invalid_argument(
+        "SymmetricBlocks: the SIMD kernel needs AVX2 and FMA, which this processor lacks");
+  kernel_ = kernel;
+}
+
+template <class Value>
+BlockView<Value> SymmetricBlocks<Value>::view(std::int64_t part) const {
+  return {part_start_[part],      part_start_[part + 1], cross_start_[part],
+          cross_start_[part + 1], block_start_.data(),   column_.data(),
+          value_.data(),          cross_from_.data(),    cross_block_.data()};
 }
 
 template <class Value>
@@ -74,6 +92,63 @@ std::size_t SymmetricBlocks<Value>::bytes() const {
   return block_start_.size() * 8 + column_.size() * 4 + value_.size() * sizeof(Value) +
          part_start_.size() * 8 + cross_start_.size() * 8 + cross_from_.size() * 4 +
          cross_block_.size() * 8;
+}
+
+template <class Value>
+void SymmetricBlocks<Value>::gather_cross(const BlockView<Value>& v, const double* x,
+                                          NodeSum* scratch) const {
+#if RUMBLE_BLOCK_KERNEL_AVX2
+  if (kernel_ == BlockKernel::kSimd) return block_kernel_avx2::gather_cross(v, x, scratch);
+#endif
+  for (std::int64_t c = v.cross_begin; c < v.cross_end; ++c) {
+    const Value* b = v.value + 9 * v.cross_block[c];
+    const double* xk = x + 3 * static_cast<std::int64_t>(v.cross_from[c]);
+    double* sj = scratch[v.column[v.cross_block[c]]].v;
+    for (int d = 0; d < 3; ++d)
+      sj[d] += double(b[d]) * xk[0] + double(b[3 + d]) * xk[1] + double(b[6 + d]) * xk[2];
+  }
+}
+
+template <class Value>
+void SymmetricBlocks<Value>::sweep(const BlockView<Value>& v, std::int64_t first, std::int64_t last,
+                                   const double* x, NodeSum* scratch, double* out) const {
+#if RUMBLE_BLOCK_KERNEL_AVX2
+  if (kernel_ == BlockKernel::kSimd)
+    return block_kernel_avx2::sweep(v, first, last, x, scratch, out);
+#endif
+  for (std::int64_t i = first; i < last; ++i) {
+    const double* xi = x + 3 * i;
+    double* si = scratch[i].v;
+    const Value* b = v.value + 9 * v.block_start[i];  // the diagonal block
+    double o[3];
+    for (int c = 0; c < 3; ++c) {
+      o[c] = si[c] + double(b[3 * c]) * xi[0] + double(b[3 * c + 1]) * xi[1] +
+             double(b[3 * c + 2]) * xi[2];
+      si[c] = 0.0;
+    }
+    for (std::int64_t q = v.block_start[i] + 1; q < v.block_start[i + 1]; ++q) {
+      b += 9;
+      const std::int64_t j = v.column[q];
+      const double* xj = x + 3 * j;
+      for (int c = 0; c < 3; ++c)
+        o[c] +=
+            double(b[3 * c]) * xj[0] + double(b[3 * c + 1]) * xj[1] + double(b[3 * c + 2]) * xj[2];
+      if (j >= v.end) continue;  // (a later part gathers its own)
+      double* sj = scratch[j].v;
+      for (int d = 0; d < 3; ++d)
+        sj[d] += double(b[d]) * xi[0] + double(b[3 + d]) * xi[1] + double(b[6 + d]) * xi[2];
+    }
+    std::copy_n(o, 3, out + 4 * (i - first));
+  }
+}
+
+bool block_simd_available() {
+#if RUMBLE_BLOCK_KERNEL_AVX2
+  // (GCC's and Clang's checks include the operating system's saving of the AVX registers)
+  return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+#else
+  return false;
+#endif
 }
 
 template class SymmetricBlocks<float>;

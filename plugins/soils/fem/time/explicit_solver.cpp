@@ -219,10 +219,67 @@ MechanismUpdate mechanism_update(const MaxwellDamping& maxwell, double dt) {
   return u;
 }
 
+/// Node i's new velocity and acceleration where only its mass and the a0 damping act (no
+/// boundary block, not in the matched layer, not at the local steps' halo):
+///   m (1 + dt/2 a0) v' = m v+ + dt/2 (f - K y),   a = (v' - v+) / (dt/2),
+/// by the reciprocals: one division per node, where six were half of the step's time on an
+/// AVX-512 machine (docs/fem-soil.md §4.3). product: K y at the node; f, v, a: its 3 DOFs.
+struct VelocityUpdate {
+  double half, per_half, factor;  // dt/2 [s], 2/dt [1/s], 1 + dt/2 a0
+  void operator()(double m, const double* product, const double* f, double* v, double* a) const {
+    const double inverse = 1.0 / (m * factor);
+    for (int c = 0; c < 3; ++c) {
+      const double v_new = (m * v[c] + half * (f[c] - product[c])) * inverse;
+      a[c] = (v_new - v[c]) * per_half;
+      v[c] = v_new;
+    }
+  }
+};
+
 }  // namespace
 
-void ExplicitSolver::step(ExplicitState& s, const Eigen::VectorXd& f, double dt) const {
+void ExplicitSolver::predict(ExplicitState& s, double dt) const {
   const std::int64_t n = op_->nodes();
+  double* w = s.w.data();
+  double* v = s.v.data();
+  const double* a = s.a.data();
+  double* y = y_.data();
+  const double half = 0.5 * dt;
+  const int mechanisms = maxwell_.mechanisms();
+  if (mechanisms == 0) {
+#pragma omp for schedule(static)
+    for (std::int64_t i = 0; i < n; ++i) {
+      if (fixed_[i]) continue;
+      for (std::int64_t k = 3 * i; k < 3 * i + 3; ++k) {
+        v[k] += half * a[k];
+        w[k] += dt * v[k];
+        y[k] = w[k] + a1_ * v[k];
+      }
+    }
+    return;
+  }
+  float* z = s.maxwell.data();
+  const MechanismUpdate update = mechanism_update(maxwell_, dt);
+  const auto &decay = update.decay, &gain = update.gain, &weight = update.weight;
+#pragma omp for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) {
+    if (fixed_[i]) continue;
+    for (std::int64_t k = 3 * i; k < 3 * i + 3; ++k) {
+      v[k] += half * a[k];
+      const double dw = dt * v[k];
+      w[k] += dw;
+      double memory_force = 0.0;  // sum_l c_l z_l
+      float* zk = z + mechanisms * k;
+      for (int l = 0; l < mechanisms; ++l) {
+        zk[l] = static_cast<float>(decay[l] * zk[l] + gain[l] * dw);
+        memory_force += weight[l] * zk[l];  // (the value kept, so restarts repeat it)
+      }
+      y[k] = w[k] + memory_force;
+    }
+  }
+}
+
+void ExplicitSolver::step(ExplicitState& s, const Eigen::VectorXd& f, double dt) const {
   double* w = s.w.data();
   double* v = s.v.data();
   double* a = s.a.data();
@@ -237,45 +294,20 @@ void ExplicitSolver::step(ExplicitState& s, const Eigen::VectorXd& f, double dt)
   const int mechanisms = maxwell_.mechanisms();
   if (mechanisms > 0 && s.maxwell.size() != mechanisms * dofs())
     s.maxwell = Eigen::VectorXf::Zero(mechanisms * dofs());
-  float* z = s.maxwell.data();
-  const MechanismUpdate update = mechanism_update(maxwell_, dt);
-  const auto &decay = update.decay, &gain = update.gain, &weight = update.weight;
+  const VelocityUpdate plain{half, 2.0 / dt, 1.0 + half * a0_};
 #pragma omp parallel num_threads(op_->threads())
   {
-    if (mechanisms == 0) {
-#pragma omp for schedule(static)
-      for (std::int64_t i = 0; i < n; ++i) {
-        if (fixed_[i]) continue;
-        for (std::int64_t k = 3 * i; k < 3 * i + 3; ++k) {
-          v[k] += half * a[k];
-          w[k] += dt * v[k];
-          y[k] = w[k] + a1_ * v[k];
-        }
-      }
-    } else {
-#pragma omp for schedule(static)
-      for (std::int64_t i = 0; i < n; ++i) {
-        if (fixed_[i]) continue;
-        for (std::int64_t k = 3 * i; k < 3 * i + 3; ++k) {
-          v[k] += half * a[k];
-          const double dw = dt * v[k];
-          w[k] += dw;
-          double memory_force = 0.0;  // sum_l c_l z_l
-          float* zk = z + mechanisms * k;
-          for (int l = 0; l < mechanisms; ++l) {
-            zk[l] = static_cast<float>(decay[l] * zk[l] + gain[l] * dw);
-            memory_force += weight[l] * zk[l];  // (the value kept, so restarts repeat it)
-          }
-          y[k] = w[k] + memory_force;
-        }
-      }
-    }
+    predict(s, dt);
     // (the implicit barrier of omp for: every w and y is updated before K reads them)
     if (pml_) pml_->update_tetrahedra(w, dt, memory, pml_forces_.data());  // (omp for: barrier)
     // Each node once the product has handed over its K y: the residual, then the node's velocity
     // and acceleration, or at the halo under local steps the residual kept for the filter below.
-    const auto finish = [&](std::int64_t i, const double* product) {
+    // (always inlined into the product's loop: a call per node costs more than the update)
+    const auto finish = [&](std::int64_t i, const double* product) __attribute__((always_inline)) {
       if (fixed_[i]) return;
+      if (boundary_of_[i] < 0 && !(local && halo_of_[i] >= 0) &&
+          !(pml_ && pml_->layer_node(i) >= 0))
+        return plain(mass_[i], product, f.data() + 3 * i, v + 3 * i, a + 3 * i);
       double r[3] = {product[0], product[1], product[2]};
       residual(i, w, f, r);
       if (local && halo_of_[i] >= 0)

@@ -176,6 +176,10 @@ class ExplicitSolver {
   /// threads and hands each halo node's filtered force to take(node, force).
   template <class Take>
   void filter_halo(const double* forces, Take&& take) const;
+  /// The step's first half, on the team (an orphaned omp for, with its barrier):
+  /// v+ = v + dt/2 a, w += dt v+ and y = w + a1 v+ (with the Maxwell mechanisms, their memories
+  /// stepped and y = w + sum_l c_l z_l), at every free node.
+  void predict(ExplicitState& s, double dt) const;
   /// Node i's residual force K y + S w - f [N] (y = w + a1 v+) from its K y in `out`.
   void residual(std::int64_t i, const double* w, const Eigen::VectorXd& f, double out[3]) const;
   /// Node i's velocity and acceleration update from its residual (filtered by the local steps

@@ -1,0 +1,35 @@
+// The kernels of the symmetric blocks' product (symmetric_blocks.hpp): which there are, what one
+// reads of a part, and the sums it keeps per node.
+#pragma once
+
+#include <cstdint>
+
+namespace rumble::fem {
+
+/// The symmetric blocks' product's kernels: one value at a time, or a block's row per SIMD
+/// register (AVX2 and FMA: block_kernel_avx2.hpp).
+enum class BlockKernel { kPortable, kSimd };
+
+/// Whether this processor (and its operating system) runs the SIMD kernel.
+bool block_simd_available();
+
+/// A node's pending sum (K_ki^T x_k from the nodes k before it): its 3 DOFs, padded to one
+/// 32-B line of 4 doubles, so that the SIMD kernel adds a block's 3 values with one load and one
+/// store and never touches a neighbour's (block_kernel_avx2.hpp).
+struct alignas(32) NodeSum {
+  double v[4];
+};
+
+/// One part of the blocks: its nodes [begin, end), its cross blocks [cross_begin, cross_end)
+/// and the arrays they index (symmetric_blocks.hpp has their layout).
+template <class Value>
+struct BlockView {
+  std::int64_t begin, end, cross_begin, cross_end;
+  const std::int64_t* block_start;
+  const std::int32_t* column;
+  const Value* value;
+  const std::int32_t* cross_from;
+  const std::int64_t* cross_block;
+};
+
+}  // namespace rumble::fem
