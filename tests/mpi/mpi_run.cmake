@@ -20,6 +20,8 @@
 #                                the fields to 1e-10
 #   fem_rank_failure_stops_every_rank  the FEM soil failing on rank 1 at 10 ms (the test's
 #                                RUMBLE_FEM_FAIL_RANK_AT): every rank stops, exit 3, its message
+#   fem_interrupt_stops_every_rank  mpirun stopped mid-run on 2 ranks: "interrupted", results
+#                                on disk
 #   fem_too_many_ranks_is_refused  a mesh too small for 3 ranks: a clear error before meshing
 #                                (the run's validation lays the soil out: exit 1)
 #   fem_one_process_settings_refused_on_ranks  local steps, the implicit scheme, the matched
@@ -118,6 +120,23 @@ function(fem_case)
       message(FATAL_ERROR "expected exit code 3 (run failed), got ${code}:\n${out}")
     endif()
     expect_match("${out}" "advance failed: fem: on rank 1: failed on purpose at t = 0.01 s on rank 1")
+  elseif(CASE STREQUAL "fem_interrupt_stops_every_rank")
+    # As interrupt_stops_every_rank, once the FEM soil steps: the ranks agree at each sub-step.
+    string(JOIN " " launch ${mpirun} -n 2 ${RUMBLE} run ${fem} --output ${WORK_DIR}/stopped
+           --no-plots --set /time/end=0.35 --set /time/macro_step=0.0001)
+    rumble_run(out code sh -c "${launch} & pid=$!\nsleep 12\nkill -TERM $pid\nwait $pid")
+    file(READ ${WORK_DIR}/stopped/summary.json summary)
+    string(JSON status GET "${summary}" status)
+    if(NOT status STREQUAL "interrupted")
+      message(FATAL_ERROR "summary.json status '${status}', expected 'interrupted':\n${out}")
+    endif()
+    expect_match("${out}" "the mesh split over 2 ranks")
+    expect_match("${out}" "interrupted at t = [0-9.e-]+ s")
+    file(STRINGS ${WORK_DIR}/stopped/footprint_displacement.csv rows)
+    list(LENGTH rows n)
+    if(n LESS 10)
+      message(FATAL_ERROR "the results up to the interrupt are not on disk (${n} rows)")
+    endif()
   elseif(CASE STREQUAL "fem_too_many_ranks_is_refused")
     # (refused as the run's validation lays the soil out: exit 1, before meshing)
     rumble_run(out code ${mpirun} -n 3 ${RUMBLE} run ${fem} --output ${WORK_DIR}/small
