@@ -1,8 +1,8 @@
 // The FEM soil's plugin class, declared once for the files that define its members by concern
-// (fem_soil.cpp, fem_layout.cpp, fem_stepping.cpp, fem_outputs.cpp, fem_frequency.cpp): the class
-// maps the host's calls onto the rooms (docs/decisions/0006-fem-soil.md), and in one file that
-// mapping was too long to read or review one concern at a time. Private to the plugin: no room
-// includes it.
+// (fem_soil.cpp, fem_layout.cpp, fem_stepping.cpp, fem_outputs.cpp, fem_frequency.cpp,
+// fem_distributed.cpp): the class maps the host's calls onto the rooms
+// (docs/decisions/0006-fem-soil.md), and in one file that mapping was too long to read or review
+// one concern at a time. Private to the plugin: no room includes it.
 #pragma once
 
 #include <Eigen/Core>
