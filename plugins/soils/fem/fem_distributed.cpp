@@ -6,8 +6,10 @@
 // the explicit steps run on the shares, their halos exchanged by PETSc. Rank 0 reads the
 // footprints' motion and the receivers' samples, gathered in rank order.
 //
-// What does not run on many ranks yet is refused when the soil is made, before any work: the
-// matched layer, the local steps and the implicit scheme (each names its parameter and the fix).
+// With statics.solver gamg the static state is solved on the ranks instead (PETSc's GAMG over
+// the ranks' parts). What does not run on many ranks yet is refused when the soil is made,
+// before any work: the matched layer, the local steps and the implicit scheme (each names its
+// parameter and the fix).
 #define OMPI_SKIP_MPICXX 1
 #include <mpi.h>
 
@@ -108,11 +110,20 @@ void FemSoil::accept_layout_distributed(const std::vector<rumble::Footprint>& fo
 
 void FemSoil::initialize_distributed(double t0, const double* static_force, double* static_u) {
   rumble::fem::DistributedSoil& d = *distributed_;
-  rumble::fem::on_root(d.comm(), [&] { initialize_here(t0, static_force, static_u); });
   force_static_.assign(static_force, static_force + footprints_.size());
   force_last_ = force_static_;
-  d.set_far_field(d.root() && far_field_ ? &*far_field_ : nullptr);
-  d.set_static(d.root() ? &u_static_ : nullptr);
+  static_average_.assign(footprints_.size(), 0.0);
+  if (settings_.gamg_statics) {
+    solve_static_on_ranks(static_force, static_u);
+  } else {  // rank 0 solves on the whole mesh as one process does, the ranks take their share
+    rumble::fem::on_root(d.comm(), [&] {
+      initialize_here(t0, static_force, static_u);
+      for (std::size_t j = 0; j < footprints_.size(); ++j)
+        static_average_[j] = average(j, u_static_);
+    });
+    d.set_far_field(d.root() && far_field_ ? &*far_field_ : nullptr);
+    d.set_static(d.root() ? &u_static_ : nullptr);
+  }
   ExplicitState& s = d.state();
   s.w.setZero();
   s.v.setZero();
@@ -123,6 +134,30 @@ void FemSoil::initialize_distributed(double t0, const double* static_force, doub
   far_lag_.lagged.assign(footprints_.size(), 0.0);
   far_change_.assign(footprints_.size(), 0.0);
   far_step_.assign(footprints_.size(), 0.0);
+}
+
+void FemSoil::solve_static_on_ranks(const double* static_force, double* static_u) {
+  rumble::fem::DistributedSoil& d = *distributed_;
+  rumble::fem::on_root(d.comm(), [&] {
+    export_if_due();
+    far_field();  // (rank 0's, on the whole mesh: each rank takes its nodes' rows)
+  });
+  d.set_far_field(d.root() && far_field_ ? &*far_field_ : nullptr);
+  const auto start = std::chrono::steady_clock::now();
+  const bool first = d.solve_static(static_force, static_average_.data());
+  if (!d.root()) return;
+  for (std::size_t j = 0; j < footprints_.size(); ++j) static_u[j] = static_average_[j];
+  const rumble::fem::DistributedStatics& statics = *d.statics();
+  const std::string solved = "in " + format(seconds_since(start), 2) + " s, " +
+                             std::to_string(statics.last_iterations()) + " CG iterations";
+  if (first)
+    host_.info("fem: static solves by PETSc's CG with GAMG on " + std::to_string(d.ranks()) +
+               " ranks (to " + format(statics.kTolerance) +
+               " of the load): " + std::to_string(statics.levels()) + " levels, set up in " +
+               format(statics.setup_seconds(), 2) + " s; the first solve, set-up included, " +
+               solved);
+  else
+    host_.log(RUMBLE_LOG_DEBUG, "fem: static solve (GAMG on the ranks) " + solved);
 }
 
 void FemSoil::distributed_forces(const rumble::Waveform& force, double tau, Eigen::VectorXd& out,
@@ -212,7 +247,7 @@ void FemSoil::motion_distributed(double* u, double* v) const {
   std::vector<double> w(footprints_.size());
   distributed_->footprint_motion(w.data(), v);
   if (!distributed_->root()) return;
-  for (std::size_t j = 0; j < footprints_.size(); ++j) u[j] = average(j, u_static_) + w[j];
+  for (std::size_t j = 0; j < footprints_.size(); ++j) u[j] = static_average_[j] + w[j];
 }
 
 void FemSoil::set_probes_distributed(const std::vector<rumble::Probe>& probes,
@@ -229,12 +264,13 @@ void FemSoil::set_probes_distributed(const std::vector<rumble::Probe>& probes,
 void FemSoil::write_fields_distributed(double t, const std::string& path) {
   rumble::fem::DistributedSoil& d = *distributed_;
   const Eigen::Index n = d.root() ? mesh_.dof_count() : 0;
-  Eigen::VectorXd w = Eigen::VectorXd::Zero(n), v = Eigen::VectorXd::Zero(n);
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(n), w = u, v = u;
+  d.gather(d.static_state(), d.root() ? &u : nullptr);
   d.gather(d.state().w, d.root() ? &w : nullptr);
   d.gather(d.state().v, d.root() ? &v : nullptr);
   if (!d.root()) return;
   export_if_due();
-  rumble::fem::write_vtu(path, t, mesh_, u_static_ + w, v);
+  rumble::fem::write_vtu(path, t, mesh_, u + w, v);
 }
 
 }  // namespace rumble::fem

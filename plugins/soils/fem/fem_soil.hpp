@@ -106,6 +106,8 @@ class FemSoil final : public rumble::Soil {
   void refuse_on_many_ranks() const;
   void accept_layout_distributed(const std::vector<rumble::Footprint>& footprints);
   void initialize_distributed(double t0, const double* static_force, double* static_u);
+  /// The static state solved on the ranks (statics.solver gamg: distributed_statics.hpp).
+  void solve_static_on_ranks(const double* static_force, double* static_u);
   void advance_distributed(double t, double H, const rumble::Waveform& force);
   /// The footprints' forces on this rank's nodes (as footprint_forces).
   void distributed_forces(const rumble::Waveform& force, double tau, Eigen::VectorXd& out,
@@ -211,6 +213,7 @@ class FemSoil final : public rumble::Soil {
   std::array<Checkpoint, RUMBLE_CHECKPOINT_SLOTS> checkpoints_;
   // On many ranks: this rank's share of the soil; null on one process.
   std::unique_ptr<rumble::fem::DistributedSoil> distributed_;
+  std::vector<double> static_average_;  // [m] per footprint, on rank 0: the static state's
   // RUMBLE_FEM_FAIL_RANK_AT ("rank:seconds", a test's): the rank whose steps fail from then on.
   int fail_rank_ = -1;
   double fail_at_ = 0.0;

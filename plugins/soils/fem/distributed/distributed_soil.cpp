@@ -75,7 +75,8 @@ std::vector<char> DistributedSoil::local_fixed(const ExplicitSolver* whole) cons
 
 void DistributedSoil::lay_out(const TetMesh* mesh, const ExplicitSolver* whole,
                               const FemSettings& settings, unsigned threads) {
-  step_.reset();  // (its operator refers to the old partition's halo)
+  statics_.reset();  // (they refer to the old partition)
+  step_.reset();
   part_ = partition_mesh(comm_, mesh);
   double eigen[2] = {whole ? whole->largest_eigenvalue() : 0.0,
                      whole ? static_cast<double>(whole->eigen_iterations()) : 0.0};
@@ -180,6 +181,25 @@ void DistributedSoil::set_far_field_force(const double* F, Eigen::VectorXd& f) c
         far_.g.segment<3>(3 * static_cast<Eigen::Index>(k));
 }
 
+bool DistributedSoil::solve_static(const double* F, double* averages) {
+  const bool built = !statics_;
+  if (built) statics_ = std::make_unique<DistributedStatics>(part_, step_->soil(), comm_);
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(step_->dofs());
+  for (std::size_t j = 0; j < weights_.size(); ++j)  // (as FemSoil::spread, on this rank's nodes)
+    for (const NodalWeight& w : weights_[j]) f[3 * w.node + 2] += w.weight * F[j];
+  if (has_far_field()) {
+    far_.g.resize(far_.loads.rows());
+    far_.g.noalias() = far_.loads * Eigen::Map<const Eigen::VectorXd>(F, far_.loads.cols());
+    for (std::size_t k = 0; k < far_.nodes.size(); ++k)
+      f.segment<3>(3 * static_cast<Eigen::Index>(far_.nodes[k])) +=
+          far_.g.segment<3>(3 * static_cast<Eigen::Index>(k));
+  }
+  u_static_ = statics_->solve(f);
+  std::vector<double> unused(weights_.size());
+  footprint_averages(u_static_, u_static_, averages, unused.data());
+  return built;
+}
+
 void DistributedSoil::set_static(const Eigen::VectorXd* whole) {
   part_.from_root->to_leaves(whole ? whole->data() : nullptr, u_static_.data(), 3);
 }
@@ -211,12 +231,13 @@ void DistributedSoil::set_probes(const std::vector<ProbePoint>* whole) {
     if (lowest[p] == rank_) probes_.push_back({p, local[p]});
 }
 
-void DistributedSoil::footprint_motion(double* w_average, double* v_average) const {
+void DistributedSoil::footprint_averages(const Eigen::VectorXd& x, const Eigen::VectorXd& y,
+                                         double* w_average, double* v_average) const {
   const std::size_t n = owned_weights_.size();
   std::vector<double> mine(2 * n), all(root() ? 2 * n * static_cast<std::size_t>(ranks_) : 0);
   for (std::size_t j = 0; j < n; ++j) {
-    mine[j] = footprint_average(owned_weights_[j], state_.w.data());
-    mine[n + j] = footprint_average(owned_weights_[j], state_.v.data());
+    mine[j] = footprint_average(owned_weights_[j], x.data());
+    mine[n + j] = footprint_average(owned_weights_[j], y.data());
   }
   MPI_Gather(mine.data(), static_cast<int>(2 * n), MPI_DOUBLE, all.data(), static_cast<int>(2 * n),
              MPI_DOUBLE, 0, comm_);

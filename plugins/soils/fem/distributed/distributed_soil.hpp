@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "boundary/static_far_field.hpp"
+#include "distributed/distributed_statics.hpp"
 #include "distributed/mesh_partition.hpp"
 #include "fem_settings.hpp"
 #include "operator/footprint_loads.hpp"
@@ -52,6 +53,13 @@ class DistributedSoil {
   bool has_far_field() const { return far_.loads.cols() > 0; }
   /// The static state [m] on this rank's nodes.
   void set_static(const Eigen::VectorXd* whole);
+  /// The static state solved on the ranks (distributed_statics.hpp, built at the first call)
+  /// under the footprint forces F [N] and the far field's traction; on rank 0 each footprint's
+  /// average of it [m] in `averages` (sized by the caller). Returns whether this call built the
+  /// solver.
+  bool solve_static(const double* F, double* averages);
+  const DistributedStatics* statics() const { return statics_.get(); }
+  const Eigen::VectorXd& static_state() const { return u_static_; }
   /// The receivers, each sampled by the lowest rank that holds its tetrahedron's nodes.
   void set_probes(const std::vector<ProbePoint>* whole);
 
@@ -66,7 +74,9 @@ class DistributedSoil {
 
   /// Rank 0: each footprint's average of the displacement from the static state and of the
   /// velocity, summed over the ranks' owned nodes in rank order. Collective.
-  void footprint_motion(double* w_average, double* v_average) const;
+  void footprint_motion(double* w_average, double* v_average) const {
+    footprint_averages(state_.w, state_.v, w_average, v_average);
+  }
   /// Rank 0: the receivers' rows (RUMBLE_PROBE_VALUES each, as one process records them; on
   /// the other ranks `rows` is scratch). Collective.
   void sample_probes(double* rows) const;
@@ -92,6 +102,9 @@ class DistributedSoil {
   std::vector<BoundaryNode> local_boundary(const ExplicitSolver* whole) const;
   std::vector<char> local_fixed(const ExplicitSolver* whole) const;
   void set_loaded_nodes();
+  /// Rank 0: each footprint's averages of x and y (3 per node), summed in rank order.
+  void footprint_averages(const Eigen::VectorXd& x, const Eigen::VectorXd& y, double* x_average,
+                          double* y_average) const;
 
   std::shared_ptr<PetscSession> petsc_;  // (outlives the partition's PETSc objects)
   MPI_Comm comm_;
@@ -104,6 +117,7 @@ class DistributedSoil {
   FootprintWeights owned_weights_;  // local nodes this rank owns
   LocalFarField far_;
   bool far_field_set_ = false;
+  std::unique_ptr<DistributedStatics> statics_;  // at the first solve_static of a layout
   std::vector<LocalProbe> probes_;
   std::size_t probe_count_ = 0;
 };
