@@ -12,6 +12,26 @@
 #   study_spreads_runs_over_ranks  a study's runs shared out over the ranks, all completed
 #   idle_ranks_are_named         a soil that is not distributed, run under mpirun -n 3: it runs,
 #                                and the log says once that the other 2 ranks wait idle
+#   fem_same_on_N_ranks          fem_small.json (the FEM soil, about 2e4 DOFs) without mpirun and
+#                                on N ranks: the soil says it is split over N ranks; the field
+#                                snapshots every 10 ms (the whole displacement and velocity, every
+#                                digit, gathered on rank 0) agree to 1e-12 of their largest value,
+#                                the CSV histories (9 digits) as printed (csv_agree)
+#   fem_gamg_statics_on_3_ranks  statics.solver gamg: the static state solved on the 3 ranks by
+#                                GAMG (one process factors it): the fields within 1e-10, GAMG's
+#                                levels and iterations said
+#   fem_implicit_coupler_on_2_ranks  the same with the implicit coupler, which iterates each
+#                                macro step from the soil's checkpoints: the same iterations,
+#                                the fields to 1e-10
+#   fem_rank_failure_stops_every_rank  the FEM soil failing on rank 1 at 10 ms (the test's
+#                                RUMBLE_FEM_FAIL_RANK_AT): every rank stops, exit 3, its message
+#   fem_interrupt_stops_every_rank  mpirun stopped mid-run on 2 ranks: "interrupted", results
+#                                on disk
+#   fem_too_many_ranks_is_refused  a mesh too small for 3 ranks: a clear error before meshing
+#                                (the run's validation lays the soil out: exit 1)
+#   fem_one_process_settings_refused_on_ranks  local steps, the implicit scheme, the matched
+#                                layer under mpirun: each refused with the params (exit 1),
+#                                naming its parameter
 set(mpirun ${MPIEXEC} --oversubscribe)
 set(scenario ${SOURCE_DIR}/split_dashpot.json)
 file(REMOVE_RECURSE ${WORK_DIR})
@@ -26,6 +46,138 @@ endfunction()
 function(expect_match text regex)
   if(NOT text MATCHES "${regex}")
     message(FATAL_ERROR "expected output matching '${regex}', got:\n${text}")
+  endif()
+endfunction()
+
+# The FEM soil's cases (fem_small.json): one process's run against a run on `ranks` ranks.
+# fields_tolerance: the fields' (csv_agree); the CSVs compared are ${fem_csvs}.
+function(fem_runs ranks fields_tolerance)
+  set(fem ${SOURCE_DIR}/fem_small.json)
+  rumble_run(out code ${RUMBLE} run ${fem} --output ${WORK_DIR}/one --no-plots
+             --set /outputs/fields/interval=0.01 ${ARGN})
+  if(NOT code EQUAL 0)
+    message(FATAL_ERROR "the FEM run on one process failed (${code}):\n${out}")
+  endif()
+  rumble_run(out code ${mpirun} -n ${ranks} ${RUMBLE} run ${fem} --output ${WORK_DIR}/many
+             --no-plots --set /outputs/fields/interval=0.01 ${ARGN})
+  if(NOT code EQUAL 0)
+    message(FATAL_ERROR "the FEM run on ${ranks} ranks failed (${code}):\n${out}")
+  endif()
+  expect_match("${out}" "the mesh split over ${ranks} ranks")
+  set(fem_many_out "${out}" PARENT_SCOPE)
+  # The CSVs carry 9 significant digits: they agree as printed (a last digit may flip on a
+  # difference far below it); the fields below carry every digit.
+  foreach(csv ${fem_csvs})
+    execute_process(COMMAND ${CSV_AGREE} ${WORK_DIR}/many/${csv}.csv ${WORK_DIR}/one/${csv}.csv
+                            1e-8 OUTPUT_VARIABLE said RESULT_VARIABLE differ)
+    message(STATUS "${said}")
+    if(NOT differ EQUAL 0)
+      message(FATAL_ERROR "${csv}.csv on ${ranks} ranks differs from one process's:\n${said}")
+    endif()
+  endforeach()
+  fem_fields(${ranks} ${fields_tolerance})
+endfunction()
+
+# The field snapshots (fields/*.vtu, every 10 ms) of both runs: the whole displacement and
+# velocity, every digit, agree to 1e-12 of their largest value (csv_agree).
+function(fem_fields ranks tolerance)
+  file(GLOB snapshots RELATIVE ${WORK_DIR}/one ${WORK_DIR}/one/fields/*.vtu)
+  list(LENGTH snapshots n)
+  if(n LESS 2)
+    message(FATAL_ERROR "expected at least 2 field snapshots, got ${n}")
+  endif()
+  foreach(vtu ${snapshots})
+    execute_process(COMMAND ${CSV_AGREE} ${WORK_DIR}/many/${vtu} ${WORK_DIR}/one/${vtu}
+                            ${tolerance} OUTPUT_VARIABLE said RESULT_VARIABLE differ)
+    message(STATUS "${said}")
+    if(NOT differ EQUAL 0)
+      message(FATAL_ERROR "${vtu} on ${ranks} ranks differs from one process's:\n${said}")
+    endif()
+  endforeach()
+endfunction()
+
+function(fem_case)
+  set(fem ${SOURCE_DIR}/fem_small.json)
+  set(ENV{RUMBLE_MESH_CACHE} ${WORK_DIR}/mesh_cache)  # (the second run reads the first's mesh)
+  set(fem_csvs footprint_displacement footprint_velocity footprint_force contact receivers)
+  if(CASE MATCHES "^fem_same_on_([0-9])_ranks$")
+    list(APPEND fem_csvs interface)
+    fem_runs(${CMAKE_MATCH_1} 1e-12)
+  elseif(CASE STREQUAL "fem_gamg_statics_on_3_ranks")
+    # statics.solver gamg: one process factors (below the factor limit), the ranks solve by
+    # GAMG over their parts to 1e-12 of the load: whole runs within 1e-10 (the issue's bound).
+    list(APPEND fem_csvs interface)
+    fem_runs(3 1e-10 --set /soil/params/statics/solver=gamg)
+    expect_match("${fem_many_out}" "static solves by PETSc's CG with GAMG on 3 ranks \\(to 1e-12 of the load\\): [0-9]+ levels.* [0-9]+ CG iterations")
+  elseif(CASE STREQUAL "fem_implicit_coupler_on_2_ranks")
+    # Its iterations stop at a tolerance: the rounding of the sums grows to some 2e-12 in the
+    # fields (1e-10 asked, the issue's bound for whole runs); the same iterations each step.
+    fem_runs(2 1e-10 --set /coupling/type=implicit --set /time/end=0.01)
+    foreach(run one many)
+      file(STRINGS ${WORK_DIR}/${run}/interface.csv rows)
+      set(iterations_${run} "")
+      foreach(row ${rows})
+        string(REPLACE "," ";" cells "${row}")
+        list(GET cells 4 n)
+        string(APPEND iterations_${run} "${n} ")
+      endforeach()
+    endforeach()
+    if(NOT iterations_one STREQUAL iterations_many)
+      message(FATAL_ERROR "iterations differ:\n${iterations_one}\n${iterations_many}")
+    endif()
+  elseif(CASE STREQUAL "fem_rank_failure_stops_every_rank")
+    set(ENV{RUMBLE_FEM_FAIL_RANK_AT} "1:0.01")
+    rumble_run(out code ${mpirun} -n 2 ${RUMBLE} run ${fem} --output ${WORK_DIR}/failed)
+    if(NOT code EQUAL 3)
+      message(FATAL_ERROR "expected exit code 3 (run failed), got ${code}:\n${out}")
+    endif()
+    expect_match("${out}" "advance failed: fem: on rank 1: failed on purpose at t = 0.01 s on rank 1")
+  elseif(CASE STREQUAL "fem_interrupt_stops_every_rank")
+    # As interrupt_stops_every_rank, once the FEM soil steps: the ranks agree at each sub-step.
+    string(JOIN " " launch ${mpirun} -n 2 ${RUMBLE} run ${fem} --output ${WORK_DIR}/stopped
+           --no-plots --set /time/end=0.35 --set /time/macro_step=0.00001)
+    # (stopped 1 s after the soil's first step is logged, whatever the machine's load; lines,
+    # not ';', as above)
+    set(log ${WORK_DIR}/log)
+    rumble_run(out code sh -c "${launch} > ${log} 2>&1 & pid=$!\nwhile kill -0 $pid && ! grep -q 'explicit sub-step' ${log}\ndo sleep 0.2\ndone\nsleep 1\nkill -TERM $pid\nwait $pid\ncat ${log}")
+    file(READ ${WORK_DIR}/stopped/summary.json summary)
+    string(JSON status GET "${summary}" status)
+    if(NOT status STREQUAL "interrupted")
+      message(FATAL_ERROR "summary.json status '${status}', expected 'interrupted':\n${out}")
+    endif()
+    expect_match("${out}" "the mesh split over 2 ranks")
+    # ("interrupted at t = ..." between macro steps, "... inside the step after t = ..." in one)
+    expect_match("${out}" "interrupted [^\n]*t = [0-9.e-]+ s")
+    file(STRINGS ${WORK_DIR}/stopped/footprint_displacement.csv rows)
+    list(LENGTH rows n)
+    if(n LESS 10)
+      message(FATAL_ERROR "the results up to the interrupt are not on disk (${n} rows)")
+    endif()
+  elseif(CASE STREQUAL "fem_too_many_ranks_is_refused")
+    # (refused as the run's validation lays the soil out: exit 1, before meshing)
+    rumble_run(out code ${mpirun} -n 3 ${RUMBLE} run ${fem} --output ${WORK_DIR}/small
+               --set /soil/params/mesh/f_max=10)
+    if(NOT code EQUAL 1 OR out MATCHES "fem: a mesh of about [0-9.e+]+ DOFs")
+      message(FATAL_ERROR "expected exit code 1 before meshing, got ${code}:\n${out}")
+    endif()
+    expect_match("${out}" "fem: a mesh of about [0-9.e+]+ nodes \\(planned\\) cannot use 3 ranks: .*run it without mpirun")
+  elseif(CASE STREQUAL "fem_one_process_settings_refused_on_ranks")
+    # Each refused when the soil is made on the ranks, naming its parameter.
+    foreach(refused "integrator/local_steps=2|params/integrator/local_steps: local time stepping"
+                    "integrator/scheme=implicit|params/integrator/scheme: the implicit scheme"
+                    "boundary/type=pml|params/boundary/type: the perfectly matched layer")
+      string(REPLACE "|" ";" refused "${refused}")
+      list(GET refused 0 setting)
+      list(GET refused 1 said)
+      rumble_run(out code ${mpirun} -n 2 ${RUMBLE} run ${fem} --output ${WORK_DIR}/refused
+                 --set /soil/params/mesh/shape=box --set /soil/params/${setting})
+      if(NOT code EQUAL 1 OR out MATCHES "fem: a mesh of about")
+        message(FATAL_ERROR "expected exit code 1 (params refused), got ${code}:\n${out}")
+      endif()
+      expect_match("${out}" "${said} runs on one process|${said} factors the whole mesh")
+    endforeach()
+  else()
+    message(FATAL_ERROR "unknown case ${CASE}")
   endif()
 endfunction()
 
@@ -142,6 +294,8 @@ elseif(CASE STREQUAL "idle_ranks_are_named")
   if(NOT n EQUAL 1)
     message(FATAL_ERROR "said ${n} times, expected once:\n${out}")
   endif()
+elseif(CASE MATCHES "^fem_")
+  fem_case()
 else()
   message(FATAL_ERROR "unknown case ${CASE}")
 endif()

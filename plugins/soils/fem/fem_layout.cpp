@@ -25,6 +25,11 @@
 namespace rumble::fem {
 
 void FemSoil::accept_layout(const std::vector<rumble::Footprint>& footprints) {
+  if (distributed_) return accept_layout_distributed(footprints);
+  lay_out_here(footprints);
+}
+
+void FemSoil::lay_out_here(const std::vector<rumble::Footprint>& footprints) {
   using namespace rumble::fem;
   const auto start = std::chrono::steady_clock::now();
   receptance_.reset();  // it refers to the operators of the previous layout

@@ -25,6 +25,11 @@ namespace rumble::fem {
 
 void FemSoil::set_probes(const std::vector<rumble::Probe>& probes, double sample_interval) {
   require_layout("set_probes");
+  if (distributed_) return set_probes_distributed(probes, sample_interval);
+  set_probes_here(probes, sample_interval);
+}
+
+void FemSoil::set_probes_here(const std::vector<rumble::Probe>& probes, double sample_interval) {
   probes_.clear();
   for (const rumble::Probe& p : probes) {
     if (op_->pml() && !pml_profile().inside_physical_box({p.x, p.y, p.depth})) {
@@ -65,6 +70,11 @@ void FemSoil::record_probes(double t) {
     next_sample_ +=
         sample_interval_ * std::max(1.0, std::floor((t - next_sample_) / sample_interval_) + 1.0);
   }
+  if (distributed_) {  // (each receiver sampled on a rank that holds it, gathered on rank 0)
+    distributed_->sample_probes(row_.data());
+    if (distributed_->root()) samples().push(t, row_.data());
+    return;
+  }
   for (std::size_t p = 0; p < probes_.size(); ++p) {
     double* out = row_.data() + p * RUMBLE_PROBE_VALUES;
     for (int c = 0; c < 6; ++c) out[c] = 0.0;
@@ -82,6 +92,7 @@ void FemSoil::record_probes(double t) {
 
 void FemSoil::write_fields(double t, const std::string& path) {
   require_layout("write_fields");
+  if (distributed_) return write_fields_distributed(t, path);
   export_if_due();  // `rumble mesh` gives a directory, then asks for the fields only
   rumble::fem::write_vtu(path, t, mesh_, u_static_ + state_.w, state_.v);
 }
@@ -110,6 +121,7 @@ void FemSoil::export_if_due() {
 
 void FemSoil::linear_matrix(rumble_matrix which, rumble::CscMatrix& out) {
   require_layout("linear_matrix");
+  if (distributed_ && !distributed_->root()) return;  // (rank 0's, from its whole mesh)
   refuse_with_pml("its matrices (the monolithic coupler, rumble stability)");
   if (settings_.damping.maxwell)
     throw std::invalid_argument(

@@ -125,7 +125,7 @@ std::string statics_schema() {
       "type": "object", "additionalProperties": false, "default": {},
       "description": "the static state each run starts from (docs/fem-soil.md section 7.1)",
       "properties": {
-        "solver": {"enum": ["multigrid", "gamg"], "default": "multigrid", "description": "above 4e5 DOFs, where a CHOLMOD factor would take several GB (below, the factor solves whatever this says): multigrid: conjugate gradients preconditioned by the soil's own smoothed-aggregation multigrid, on the host's threads; gamg: PETSc's conjugate gradients with its algebraic multigrid GAMG, on one thread (PETSc and MPI start then): 25 iterations at 9.4e5 DOFs against 62 and faster solves, but a slower set-up, so a static start of five solves took 1.1-1.25x as long on an idle 2-core machine and 0.5-0.8x on a busy one"}
+        "solver": {"enum": ["multigrid", "gamg"], "default": "multigrid", "description": "above 4e5 DOFs, where a CHOLMOD factor would take several GB (below, the factor solves whatever this says): multigrid: conjugate gradients preconditioned by the soil's own smoothed-aggregation multigrid, on the host's threads; gamg: PETSc's conjugate gradients with its algebraic multigrid GAMG, on one thread (PETSc and MPI start then): 25 iterations at 9.4e5 DOFs against 62 and faster solves, but a slower set-up, so a static start of five solves took 1.1-1.25x as long on an idle 2-core machine and 0.5-0.8x on a busy one; under mpirun -n N (N > 1) gamg solves on the N ranks at any size and the other choice on rank 0 alone (docs/fem-soil.md section 8)"}
       }
     })schema";
 }

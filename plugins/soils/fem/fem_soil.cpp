@@ -46,6 +46,7 @@ FemSoil::FemSoil(const std::string& params_json, const rumble::Host& host)
             .lexically_normal()
             .string();
   }
+  join_ranks();  // (under mpirun -n N, N > 1: this rank's share of the mesh, fem_distributed.cpp)
 }
 
 void FemSoil::wave_speeds(double& c_s_min, double& c_r_min) const {

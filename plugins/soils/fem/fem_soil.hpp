@@ -1,8 +1,8 @@
 // The FEM soil's plugin class, declared once for the files that define its members by concern
-// (fem_soil.cpp, fem_layout.cpp, fem_stepping.cpp, fem_outputs.cpp, fem_frequency.cpp): the class
-// maps the host's calls onto the rooms (docs/decisions/0006-fem-soil.md), and in one file that
-// mapping was too long to read or review one concern at a time. Private to the plugin: no room
-// includes it.
+// (fem_soil.cpp, fem_layout.cpp, fem_stepping.cpp, fem_outputs.cpp, fem_frequency.cpp,
+// fem_distributed.cpp): the class maps the host's calls onto the rooms
+// (docs/decisions/0006-fem-soil.md), and in one file that mapping was too long to read or review
+// one concern at a time. Private to the plugin: no room includes it.
 #pragma once
 
 #include <Eigen/Core>
@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "boundary/static_far_field.hpp"
+#include "distributed/distributed_soil.hpp"
 #include "fem_settings.hpp"
 #include "frequency/impulse_receptance.hpp"
 #include "frequency/receptance.hpp"
@@ -42,8 +43,10 @@ class FemSoil final : public rumble::Soil {
       "3D finite-element half-space meshed with gmsh (linear tetrahedra, Lysmer-Kuhlemeyer "
       "viscous-spring boundary, explicit sub-cycled steps, receivers at any depth, VTU fields)";
   /// Its matrices make it a soil for the monolithic reference (small meshes: the engine holds
-  /// them banded) and for `rumble stability`.
-  static constexpr std::uint64_t kCapabilities = rumble::kCapThreads | rumble::kCapLinearMatrices;
+  /// them banded) and for `rumble stability`. Under `mpirun -n N` its mesh is split over the N
+  /// ranks (fem_distributed.cpp; docs/fem-soil.md, "On many ranks").
+  static constexpr std::uint64_t kCapabilities =
+      rumble::kCapThreads | rumble::kCapLinearMatrices | rumble::kCapDistributed;
   static const char* params_schema() { return rumble::fem::settings_schema(); }
 
   FemSoil(const std::string& params_json, const rumble::Host& host);
@@ -86,8 +89,35 @@ class FemSoil final : public rumble::Soil {
   }
 
   void require_layout(const char* call) const {
-    if (!op_) throw std::logic_error(std::string("fem: ") + call + "() before accept_layout()");
+    if (!op_ && !(distributed_ && distributed_->laid_out()))
+      throw std::logic_error(std::string("fem: ") + call + "() before accept_layout()");
   }
+
+  // One process's work, which on many ranks rank 0 does on the whole mesh
+  // (fem_distributed.cpp).
+  void lay_out_here(const std::vector<rumble::Footprint>& footprints);
+  void initialize_here(double t0, const double* static_force, double* static_u);
+  void set_probes_here(const std::vector<rumble::Probe>& probes, double sample_interval);
+
+  // On many ranks (fem_distributed.cpp): the same calls on every rank's share.
+  /// Under a launcher of more than one rank: this rank's share (distributed_), after refusing
+  /// what does not run on many ranks yet.
+  void join_ranks();
+  void refuse_on_many_ranks() const;
+  void accept_layout_distributed(const std::vector<rumble::Footprint>& footprints);
+  void initialize_distributed(double t0, const double* static_force, double* static_u);
+  /// The static state solved on the ranks (statics.solver gamg: distributed_statics.hpp).
+  void solve_static_on_ranks(const double* static_force, double* static_u);
+  void advance_distributed(double t, double H, const rumble::Waveform& force);
+  /// The footprints' forces on this rank's nodes (as footprint_forces).
+  void distributed_forces(const rumble::Waveform& force, double tau, Eigen::VectorXd& out,
+                          const double* reference) const;
+  void follow_far_field_distributed(const rumble::Waveform& force, double H);
+  void motion_distributed(double* u, double* v) const;
+  void set_probes_distributed(const std::vector<rumble::Probe>& probes, double sample_interval);
+  void write_fields_distributed(double t, const std::string& path);
+  /// The state the steps advance: this rank's share on many ranks.
+  ExplicitState& stepped_state() { return distributed_ ? distributed_->state() : state_; }
 
   /// One explicit run per footprint (impulse_receptance.hpp), with progress and Ctrl-C.
   std::unique_ptr<rumble::fem::ImpulseReceptance> impulse_responses();
@@ -181,6 +211,12 @@ class FemSoil final : public rumble::Soil {
   bool local_steps_chosen_ = false;                    // integrator.local_steps: at the first H
   rumble::fem::ThreadTuner tuner_;                     // the explicit step's team size
   std::array<Checkpoint, RUMBLE_CHECKPOINT_SLOTS> checkpoints_;
+  // On many ranks: this rank's share of the soil; null on one process.
+  std::unique_ptr<rumble::fem::DistributedSoil> distributed_;
+  std::vector<double> static_average_;  // [m] per footprint, on rank 0: the static state's
+  // RUMBLE_FEM_FAIL_RANK_AT ("rank:seconds", a test's): the rank whose steps fail from then on.
+  int fail_rank_ = -1;
+  double fail_at_ = 0.0;
 };
 
 }  // namespace rumble::fem

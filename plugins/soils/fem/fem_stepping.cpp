@@ -27,8 +27,13 @@ constexpr double kMaxSubSteps = 1e9;
 
 }  // namespace
 
-void FemSoil::initialize(double /*t0*/, const double* static_force, double* static_u) {
+void FemSoil::initialize(double t0, const double* static_force, double* static_u) {
   require_layout("initialize");
+  if (distributed_) return initialize_distributed(t0, static_force, static_u);
+  initialize_here(t0, static_force, static_u);
+}
+
+void FemSoil::initialize_here(double /*t0*/, const double* static_force, double* static_u) {
   export_if_due();  // a run's soil was laid out by its validation, before it had a directory
   op_->set_threads(host_.threads());  // the statics' products and multigrid set-up use them
   force_static_.assign(static_force, static_force + footprints_.size());
@@ -69,6 +74,7 @@ void FemSoil::finalize() {
 
 void FemSoil::advance(double t, double H, const rumble::Waveform& force) {
   require_layout("advance");
+  if (distributed_) return advance_distributed(t, H, force);
   // Granted with the run context, after the layout; the explicit step uses what the tuner finds
   // fastest on this machine now (time/thread_tuner.hpp).
   tuner_.grant(host_.threads());
@@ -133,6 +139,7 @@ void FemSoil::advance(double t, double H, const rumble::Waveform& force) {
 }
 
 void FemSoil::motion(double* u, double* v) const {
+  if (distributed_) return motion_distributed(u, v);
   for (std::size_t j = 0; j < footprints_.size(); ++j) {
     u[j] = average(j, u_static_) + average(j, state_.w);
     v[j] = average(j, state_.v);
@@ -142,7 +149,7 @@ void FemSoil::motion(double* u, double* v) const {
 void FemSoil::checkpoint_save(std::uint32_t slot) {
   require_layout("checkpoint_save");
   Checkpoint& c = checkpoints_.at(slot);
-  c.state = state_;
+  c.state = stepped_state();
   c.force_last = force_last_;
   c.far_lagged = far_lag_.lagged;
   c.next_sample = next_sample_;
@@ -153,7 +160,7 @@ void FemSoil::checkpoint_restore(std::uint32_t slot) {
   const Checkpoint& c = checkpoints_.at(slot);
   if (!c.valid)
     throw std::logic_error("fem: checkpoint slot " + std::to_string(slot) + " is empty");
-  state_ = c.state;
+  stepped_state() = c.state;
   force_last_ = c.force_last;
   far_lag_.lagged = c.far_lagged;
   next_sample_ = c.next_sample;

@@ -60,6 +60,9 @@ class StaticFarField {
   /// rhs(:, j) += factor g_j (the receptance's right-hand sides, one column per footprint).
   void add_columns(std::complex<double> factor, Eigen::MatrixXcd& rhs) const;
   const std::vector<std::int32_t>& nodes() const { return nodes_; }
+  /// g_j per footprint j (columns), 3 rows per node of nodes(): what a rank of a distributed
+  /// soil takes its nodes' rows from.
+  const Eigen::MatrixXd& loads() const { return loads_; }
   /// Mean distance [m] of the boundary nodes from the footprints' centre.
   double mean_distance() const { return mean_distance_; }
   /// Bytes held.

@@ -35,6 +35,24 @@ ExplicitSolver::ExplicitSolver(std::unique_ptr<SoilOperator> op, double a0, doub
   estimate_stable_step();
 }
 
+ExplicitSolver::ExplicitSolver(std::unique_ptr<SoilOperator> op, double a0, double a1,
+                               double largest_eigenvalue, int iterations)
+    : op_(std::move(op)),
+      csr_(dynamic_cast<const CsrOperator*>(op_.get())),
+      mass_(op_->mass().data()),
+      boundary_(op_->boundary().data()),
+      boundary_of_(op_->boundary_of().data()),
+      fixed_(op_->fixed().data()),
+      springs_(op_->springs_act()),
+      a0_(a0),
+      a1_(a1),
+      lambda_max_(largest_eigenvalue),
+      eigen_iterations_(iterations),
+      y_(Eigen::VectorXd::Zero(op_->dofs())) {
+  omega_max_ = std::sqrt(lambda_max_ * maxwell_.unrelaxed());
+  single_rate_step_ = step_limit(lambda_max_ / 1.02);
+}
+
 std::size_t ExplicitSolver::bytes() const {
   const auto nodes = static_cast<std::size_t>(op_->nodes());
   return op_->bytes() + static_cast<std::size_t>(maxwell_.mechanisms()) * 3 * nodes * 4 +

@@ -57,6 +57,11 @@ class ExplicitSolver {
                  StepPrecision precision = StepPrecision::kDouble);
   /// The step on any back end of the soil operator.
   ExplicitSolver(std::unique_ptr<SoilOperator> op, double a0, double a1);
+  /// The same with the largest eigenvalue of M^-1 (K + S) known (largest_eigenvalue() of a
+  /// solver on the same soil, with the iterations it took): a distributed back end's ranks take
+  /// rank 0's, from its whole mesh, so that every rank steps alike (issue #33).
+  ExplicitSolver(std::unique_ptr<SoilOperator> op, double a0, double a1, double largest_eigenvalue,
+                 int iterations);
 
   /// The soil operator (K, M, S, D, fixed nodes) the step reads: what the statics, the implicit
   /// step's matrix and the exported matrices take.
@@ -76,6 +81,8 @@ class ExplicitSolver {
   /// Maxwell mechanisms' unrelaxed stiffness).
   double omega_max() const { return omega_max_; }
   int eigen_iterations() const { return eigen_iterations_; }
+  /// The largest eigenvalue of M^-1 (K + S) with its 2 % margin [1/s^2].
+  double largest_eigenvalue() const { return lambda_max_; }
 
   /// Local time stepping (local_time_stepping.hpp): the stiffest nodes take `substeps` steps
   /// per soil step. Chooses them from each node's Gershgorin bound, the soil step for the least

@@ -1,0 +1,125 @@
+// One rank's share of the FEM soil under `mpirun -n N rumble run` (issue #33;
+// docs/decisions/0012-distributed-soil.md; docs/fem-soil.md, "On many ranks"): its part of the
+// mesh, its operator and explicit step, its state, the footprints' weights, the far field's
+// rows and the receivers on its nodes. The plugin makes every call on every rank with the same
+// inputs (the host mirrors them); rank 0 alone holds the whole mesh and what is built on it
+// (the static state, the stable step, the receivers' places), and each set-up call below takes
+// rank 0's whole object there (nullptr on the other ranks) and gives every rank its share.
+// Every call is collective.
+#pragma once
+
+#define OMPI_SKIP_MPICXX 1
+#include <mpi.h>
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "boundary/static_far_field.hpp"
+#include "distributed/distributed_statics.hpp"
+#include "distributed/mesh_partition.hpp"
+#include "fem_settings.hpp"
+#include "operator/footprint_loads.hpp"
+#include "output/probe_locator.hpp"
+#include "statics/petsc_session.hpp"
+#include "time/explicit_solver.hpp"
+
+namespace rumble::fem {
+
+class DistributedSoil {
+ public:
+  /// comm: the host's communicator for the soil (a duplicate of MPI_COMM_WORLD). Starts PETSc
+  /// (statics/petsc_session.hpp) on every rank at once: its start is collective.
+  explicit DistributedSoil(MPI_Comm comm);
+
+  MPI_Comm comm() const { return comm_; }
+  int rank() const { return rank_; }
+  int ranks() const { return ranks_; }
+  bool root() const { return rank_ == 0; }
+  bool laid_out() const { return step_.has_value(); }
+
+  /// Splits rank 0's mesh (mesh_partition.hpp) and builds this rank's operator and explicit step
+  /// (distributed_operator.hpp) with the boundary blocks, fixed nodes and largest eigenvalue of
+  /// rank 0's step on the whole mesh (`whole`). threads: the products'.
+  void lay_out(const TetMesh* mesh, const ExplicitSolver* whole, const FemSettings& settings,
+               unsigned threads);
+  /// The footprints' weights on this rank's nodes (rank 0's `whole`), where their forces act.
+  void set_footprints(const FootprintWeights* whole);
+  /// The far field's rows of this rank's nodes; its nodes take force jumps too. Once per layout.
+  void set_far_field(const StaticFarField* whole);
+  bool has_far_field() const { return far_.loads.cols() > 0; }
+  /// The static state [m] on this rank's nodes.
+  void set_static(const Eigen::VectorXd* whole);
+  /// The static state solved on the ranks (distributed_statics.hpp, built at the first call)
+  /// under the footprint forces F [N] and the far field's traction; on rank 0 each footprint's
+  /// average of it [m] in `averages` (sized by the caller). Returns whether this call built the
+  /// solver.
+  bool solve_static(const double* F, double* averages);
+  const DistributedStatics* statics() const { return statics_.get(); }
+  const Eigen::VectorXd& static_state() const { return u_static_; }
+  /// The receivers, each sampled by the lowest rank that holds its tetrahedron's nodes.
+  void set_probes(const std::vector<ProbePoint>* whole);
+
+  ExplicitSolver& step() { return *step_; }
+  const ExplicitSolver& step() const { return *step_; }
+  ExplicitState& state() { return state_; }
+  Eigen::VectorXd& force() { return f_; }        // [N] this rank's nodes' force
+  Eigen::VectorXd& force_jump() { return df_; }  // [N] its change at a macro step's start
+  const FootprintWeights& weights() const { return weights_; }
+  /// f = G F at this rank's far-field nodes (StaticFarField::set).
+  void set_far_field_force(const double* F, Eigen::VectorXd& f) const;
+
+  /// Rank 0: each footprint's average of the displacement from the static state and of the
+  /// velocity, summed over the ranks' owned nodes in rank order. Collective.
+  void footprint_motion(double* w_average, double* v_average) const {
+    footprint_averages(state_.w, state_.v, w_average, v_average);
+  }
+  /// Rank 0: the receivers' rows (RUMBLE_PROBE_VALUES each, as one process records them; on
+  /// the other ranks `rows` is scratch). Collective.
+  void sample_probes(double* rows) const;
+  /// Rank 0: the whole nodal vector (3 per node of rank 0's mesh) of a vector on every rank's
+  /// nodes. Collective.
+  void gather(const Eigen::VectorXd& local, Eigen::VectorXd* whole) const;
+
+  /// Rank 0: one line on the partition (tetrahedra, nodes, halo and memory per rank). Collective.
+  std::string summary() const;
+
+ private:
+  struct LocalFarField {
+    std::vector<std::int32_t> nodes;  // local
+    Eigen::MatrixXd loads;            // 3 rows per node, a column per footprint
+    mutable Eigen::VectorXd g;        // scratch
+  };
+  struct LocalProbe {
+    std::size_t index = 0;  // among the receivers
+    ProbePoint point;       // local nodes
+  };
+
+  /// rank 0's boundary blocks, in local nodes (those this rank holds).
+  std::vector<BoundaryNode> local_boundary(const ExplicitSolver* whole) const;
+  std::vector<char> local_fixed(const ExplicitSolver* whole) const;
+  void set_loaded_nodes();
+  /// Rank 0: each footprint's averages of x and y (3 per node), summed in rank order.
+  void footprint_averages(const Eigen::VectorXd& x, const Eigen::VectorXd& y, double* x_average,
+                          double* y_average) const;
+
+  std::shared_ptr<PetscSession> petsc_;  // (outlives the partition's PETSc objects)
+  MPI_Comm comm_;
+  int rank_ = 0, ranks_ = 1;
+  MeshPartition part_;
+  std::optional<ExplicitSolver> step_;
+  ExplicitState state_;
+  Eigen::VectorXd u_static_, f_, df_;
+  FootprintWeights weights_;        // local nodes, owned and ghost
+  FootprintWeights owned_weights_;  // local nodes this rank owns
+  LocalFarField far_;
+  bool far_field_set_ = false;
+  std::unique_ptr<DistributedStatics> statics_;  // at the first solve_static of a layout
+  std::vector<LocalProbe> probes_;
+  std::size_t probe_count_ = 0;
+};
+
+}  // namespace rumble::fem

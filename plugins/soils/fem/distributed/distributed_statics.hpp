@@ -1,0 +1,55 @@
+// The static state on many ranks (issue #33; docs/fem-soil.md §8, §7.1): (K + S) u = f solved by
+// PETSc's conjugate gradients with its algebraic multigrid GAMG over the ranks, each rank's part
+// of K (part_stiffness.hpp) assembled into one matrix whose rows are the ranks' owned nodes
+// (MATAIJ, block size 3, preallocated by MATPREALLOCATOR: a shared node's row gathers the pieces
+// of every rank that holds it), S on the owned boundary nodes, fixed DOFs as identity rows and
+// columns with a zero load. GAMG's near-null space is the six rigid-body modes from the owned
+// nodes' coordinates, as on one process (statics/petsc_static_solver.hpp); PETSC_OPTIONS with
+// the prefix "fem_statics_" tunes both.
+//
+// CG stops at 1e-12 of the load (one process's factor is exact; the ranks' states then agree
+// to some 1e-10, the issue's bound for whole runs) and starts from the last solution. Every call
+// is collective.
+#pragma once
+
+#define OMPI_SKIP_MPICXX 1
+#include <mpi.h>
+
+#include <Eigen/Core>
+#include <memory>
+
+#include "distributed/mesh_partition.hpp"
+#include "operator/soil_operator.hpp"
+
+namespace rumble::fem {
+
+class DistributedStatics {
+ public:
+  /// K + S of each rank's part (op: its operator on part's nodes), and GAMG's hierarchy.
+  /// Throws std::runtime_error on every rank when PETSc fails.
+  DistributedStatics(const MeshPartition& part, const SoilOperator& op, MPI_Comm comm);
+  ~DistributedStatics();
+  DistributedStatics(const DistributedStatics&) = delete;
+  DistributedStatics& operator=(const DistributedStatics&) = delete;
+
+  /// u on every node of the part, owned and ghost: (K + S) u = f on the free DOFs, 0 on fixed
+  /// ones; f: each owned node's whole load [N] (the ghosts' are not read). Throws on every rank
+  /// when CG does not converge.
+  Eigen::VectorXd solve(const Eigen::VectorXd& f);
+  int last_iterations() const { return iterations_; }
+  int levels() const { return levels_; }
+  double setup_seconds() const { return setup_seconds_; }
+  static constexpr double kTolerance = 1e-12;
+
+ private:
+  struct Petsc;
+  void assemble(const SoilOperator& op);
+  void build_solver();
+
+  const MeshPartition& part_;
+  std::unique_ptr<Petsc> petsc_;
+  int iterations_ = 0, levels_ = 0;
+  double setup_seconds_ = 0.0;
+};
+
+}  // namespace rumble::fem

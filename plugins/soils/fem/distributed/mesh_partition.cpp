@@ -1,0 +1,264 @@
+#include "distributed/mesh_partition.hpp"
+
+#include <petscdmplex.h>
+#include <petscsf.h>
+#include <scotch.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdlib>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include "statics/petsc_session.hpp"
+
+namespace rumble::fem {
+
+namespace {
+
+// What travels with each point of the DMPlex from rank 0 to the rank that receives it: its
+// number in rank 0's DMPlex and, for a tetrahedron, its nodes in rank 0's mesh and its layer.
+// The DMPlex of rank 0's mesh numbers its tetrahedra first (0 .. T - 1), then its nodes (T + g).
+constexpr int kPointInts = 6;  // point, 4 nodes, layer
+
+struct PlexPoints {
+  std::vector<int> ints;       // kPointInts per point of the distributed DMPlex
+  std::vector<double> coords;  // 3 per point (a node's coordinates, 0 for a tetrahedron)
+};
+
+// Rank 0's mesh as a DMPlex on comm, every point on rank 0 (not interpolated: tetrahedra and
+// nodes alone, which is what the partition needs).
+DM whole_plex(MPI_Comm comm, const TetMesh* whole) {
+  std::vector<PetscInt> cells;
+  PetscInt tets = 0, nodes = 0;
+  if (whole != nullptr) {
+    tets = static_cast<PetscInt>(whole->tets.size());
+    nodes = static_cast<PetscInt>(whole->node_count());
+    cells.reserve(4 * whole->tets.size());
+    for (const Tetrahedron& t : whole->tets) cells.insert(cells.end(), t.begin(), t.end());
+  }
+  DM dm = nullptr;
+  petsc_check(DMPlexCreateFromCellListPetsc(comm, 3, tets, nodes, 4, PETSC_FALSE,
+                                            whole ? cells.data() : nullptr, 3,
+                                            whole ? whole->nodes.data() : nullptr, &dm),
+              "DMPlexCreateFromCellListPetsc");
+  return dm;
+}
+
+// Each point's data on rank 0, sent along the migration star forest to where DMPlex put it.
+PlexPoints migrate_points(PetscSF migration, const TetMesh* whole, PetscInt points) {
+  std::vector<int> root_ints;
+  std::vector<double> root_coords;
+  if (whole != nullptr) {
+    const auto tets = static_cast<std::int64_t>(whole->tets.size());
+    const std::int64_t all = tets + whole->node_count();
+    root_ints.assign(static_cast<std::size_t>(kPointInts * all), -1);
+    root_coords.assign(static_cast<std::size_t>(3 * all), 0.0);
+    for (std::int64_t p = 0; p < all; ++p) root_ints[kPointInts * p] = static_cast<int>(p);
+    for (std::int64_t e = 0; e < tets; ++e) {
+      for (int a = 0; a < 4; ++a) root_ints[kPointInts * e + 1 + a] = whole->tets[e][a];
+      root_ints[kPointInts * e + 5] = whole->layer[e];
+    }
+    for (std::int64_t g = 0; g < whole->node_count(); ++g)
+      for (int c = 0; c < 3; ++c) root_coords[3 * (tets + g) + c] = whole->nodes(c, g);
+  }
+  PlexPoints out{std::vector<int>(static_cast<std::size_t>(kPointInts * points), -1),
+                 std::vector<double>(static_cast<std::size_t>(3 * points), 0.0)};
+  MPI_Datatype ints = MPI_DATATYPE_NULL, coords = MPI_DATATYPE_NULL;
+  MPI_Type_contiguous(kPointInts, MPI_INT, &ints);
+  MPI_Type_contiguous(3, MPI_DOUBLE, &coords);
+  MPI_Type_commit(&ints);
+  MPI_Type_commit(&coords);
+  petsc_check(PetscSFBcastBegin(migration, ints, root_ints.data(), out.ints.data(), MPI_REPLACE),
+              "PetscSFBcastBegin");
+  petsc_check(PetscSFBcastEnd(migration, ints, root_ints.data(), out.ints.data(), MPI_REPLACE),
+              "PetscSFBcastEnd");
+  petsc_check(
+      PetscSFBcastBegin(migration, coords, root_coords.data(), out.coords.data(), MPI_REPLACE),
+      "PetscSFBcastBegin");
+  petsc_check(
+      PetscSFBcastEnd(migration, coords, root_coords.data(), out.coords.data(), MPI_REPLACE),
+      "PetscSFBcastEnd");
+  MPI_Type_free(&ints);
+  MPI_Type_free(&coords);
+  return out;
+}
+
+// A node of this rank's part: its DMPlex point, its node in rank 0's mesh, and its owner.
+struct PartNode {
+  PetscInt point = 0;
+  std::int32_t global = 0;
+  int owner = 0;
+  PetscInt owner_point = 0;  // its point on the owner's DMPlex
+  bool shared = false;
+};
+
+// The part's nodes from the distributed DMPlex's point star forest (leaves: points owned
+// elsewhere; roots with leaves: owned points other ranks copy), shared ones first, each group
+// in rank 0's node order.
+std::vector<PartNode> part_nodes(DM dist, const PlexPoints& data, std::int64_t tets, int rank) {
+  PetscInt start = 0, end = 0;
+  petsc_check(DMPlexGetChart(dist, &start, &end), "DMPlexGetChart");
+  std::vector<PartNode> nodes;
+  std::vector<std::int32_t> node_of(static_cast<std::size_t>(end - start), -1);
+  for (PetscInt p = start; p < end; ++p) {
+    const int original = data.ints[kPointInts * (p - start)];
+    if (original < tets) continue;  // a tetrahedron
+    node_of[p - start] = static_cast<std::int32_t>(nodes.size());
+    nodes.push_back({p, static_cast<std::int32_t>(original - tets), rank, p, false});
+  }
+  PetscSF points = nullptr;
+  petsc_check(DMGetPointSF(dist, &points), "DMGetPointSF");
+  PetscInt roots = 0, leaves = 0;
+  const PetscInt* local = nullptr;
+  const PetscSFNode* remote = nullptr;
+  petsc_check(PetscSFGetGraph(points, &roots, &leaves, &local, &remote), "PetscSFGetGraph");
+  for (PetscInt k = 0; k < leaves; ++k) {
+    const PetscInt p = local ? local[k] : k;
+    if (const std::int32_t n = node_of[p - start]; n >= 0) {
+      nodes[n].owner = static_cast<int>(remote[k].rank);
+      nodes[n].owner_point = remote[k].index;
+      nodes[n].shared = true;
+    }
+  }
+  const PetscInt* degree = nullptr;  // (collective: every rank asks)
+  petsc_check(PetscSFComputeDegreeBegin(points, &degree), "PetscSFComputeDegreeBegin");
+  petsc_check(PetscSFComputeDegreeEnd(points, &degree), "PetscSFComputeDegreeEnd");
+  for (PartNode& n : nodes)
+    if (n.point - start < roots && degree[n.point - start] > 0) n.shared = true;
+  std::stable_sort(nodes.begin(), nodes.end(), [](const PartNode& a, const PartNode& b) {
+    return a.shared != b.shared ? a.shared : a.global < b.global;
+  });
+  return nodes;
+}
+
+// The halo's leaves: each ghost and its owner's local number of it, which the owner sends along
+// the DMPlex's point star forest.
+std::vector<ForestLeaf> halo_leaves(DM dist, const std::vector<PartNode>& nodes, int rank) {
+  PetscInt start = 0, end = 0;
+  petsc_check(DMPlexGetChart(dist, &start, &end), "DMPlexGetChart");
+  std::vector<PetscInt> mine(static_cast<std::size_t>(end - start), -1),
+      theirs(static_cast<std::size_t>(end - start), -1);
+  for (std::size_t k = 0; k < nodes.size(); ++k)
+    if (nodes[k].owner == rank) mine[nodes[k].point - start] = static_cast<PetscInt>(k);
+  PetscSF points = nullptr;
+  petsc_check(DMGetPointSF(dist, &points), "DMGetPointSF");
+  petsc_check(PetscSFBcastBegin(points, MPIU_INT, mine.data(), theirs.data(), MPI_REPLACE),
+              "PetscSFBcastBegin");
+  petsc_check(PetscSFBcastEnd(points, MPIU_INT, mine.data(), theirs.data(), MPI_REPLACE),
+              "PetscSFBcastEnd");
+  std::vector<ForestLeaf> leaves;
+  for (std::size_t k = 0; k < nodes.size(); ++k)
+    if (nodes[k].owner != rank)
+      leaves.push_back({static_cast<std::int32_t>(k), nodes[k].owner,
+                        static_cast<std::int32_t>(theirs[nodes[k].point - start])});
+  return leaves;
+}
+
+// The part's tetrahedra in rank 0's order, in local node numbers, and its nodes' coordinates.
+void part_mesh(const PlexPoints& data, std::int64_t tets, MeshPartition& part,
+               const std::vector<PartNode>& nodes, const std::vector<std::int32_t>& node_of_point) {
+  std::vector<std::array<int, kPointInts>> cells;
+  for (std::size_t p = 0; p < data.ints.size() / kPointInts; ++p)
+    if (data.ints[kPointInts * p] < tets) {
+      std::array<int, kPointInts> c{};
+      std::copy_n(data.ints.data() + kPointInts * p, kPointInts, c.begin());
+      cells.push_back(c);
+    }
+  std::sort(cells.begin(), cells.end());
+  part.mesh.nodes.resize(3, static_cast<Eigen::Index>(nodes.size()));
+  for (std::size_t k = 0; k < nodes.size(); ++k)
+    for (int c = 0; c < 3; ++c)
+      part.mesh.nodes(c, static_cast<Eigen::Index>(k)) = data.coords[3 * node_of_point[k] + c];
+  for (const auto& c : cells) {
+    Tetrahedron t{};
+    for (int a = 0; a < 4; ++a) t[a] = part.local_of(c[1 + a]);
+    if (*std::min_element(t.begin(), t.end()) < 0)
+      throw std::logic_error("fem: a tetrahedron's node did not come with it to its rank");
+    part.mesh.tets.push_back(t);
+    part.mesh.layer.push_back(static_cast<std::uint16_t>(c[5]));
+  }
+}
+
+void refuse_empty_part(MPI_Comm comm, const MeshPartition& part) {
+  int size = 1;
+  MPI_Comm_size(comm, &size);
+  long long mine = static_cast<long long>(part.mesh.tets.size()), fewest = 0;
+  MPI_Allreduce(&mine, &fewest, 1, MPI_LONG_LONG, MPI_MIN, comm);
+  if (fewest > 0) return;
+  throw std::runtime_error(
+      "fem: the partition of the mesh's " + std::to_string(part.global_tetrahedra) +
+      " tetrahedra over " + std::to_string(size) + " ranks left a rank without any (" +
+      partitioner_name() +
+      "); run on fewer ranks (mpirun -n with a smaller count) or refine the mesh");
+}
+
+}  // namespace
+
+std::int32_t MeshPartition::local_of(std::int32_t g) const {
+  const auto at = std::lower_bound(
+      by_global.begin(), by_global.end(), g,
+      [&](std::int32_t local, std::int32_t value) { return global[local] < value; });
+  return at != by_global.end() && global[*at] == g ? *at : -1;
+}
+
+const char* partitioner_name() {
+  return "PT-Scotch through PETSc's DMPlexDistribute";
+}
+
+MeshPartition partition_mesh(MPI_Comm comm, const TetMesh* whole) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  MeshPartition part;
+  long long counts[2] = {whole ? static_cast<long long>(whole->node_count()) : 0,
+                         whole ? static_cast<long long>(whole->tets.size()) : 0};
+  MPI_Bcast(counts, 2, MPI_LONG_LONG, 0, comm);
+  part.global_nodes = counts[0];
+  part.global_tetrahedra = counts[1];
+  DM dm = whole_plex(comm, whole);
+  PetscPartitioner partitioner = nullptr;
+  petsc_check(DMPlexGetPartitioner(dm, &partitioner), "DMPlexGetPartitioner");
+  petsc_check(PetscPartitionerSetType(partitioner, PETSCPARTITIONERPTSCOTCH),
+              "PetscPartitionerSetType");
+  // Scotch splits a graph on threads of its own, and its random generator starts from a seed
+  // of its own on each process (Debian builds it so): the same mesh was split differently run
+  // after run (3 ranks: 486-499 nodes on rank 0 in 6 runs). On one thread from a fixed seed
+  // every run on N ranks splits it alike, so that a run repeats bit for bit.
+  setenv("SCOTCH_PTHREAD_NUMBER", "1", 1);
+  SCOTCH_randomSeed(1);
+  SCOTCH_randomReset();
+  DM dist = nullptr;
+  PetscSF migration = nullptr;
+  petsc_check(DMPlexDistribute(dm, 0, &migration, &dist), "DMPlexDistribute");
+  if (dist == nullptr) throw std::logic_error("fem: partition_mesh on one rank");
+  DMDestroy(&dm);
+  PetscInt start = 0, end = 0;
+  petsc_check(DMPlexGetChart(dist, &start, &end), "DMPlexGetChart");
+  const PlexPoints data = migrate_points(migration, whole, end - start);
+  PetscSFDestroy(&migration);
+  const std::vector<PartNode> nodes = part_nodes(dist, data, part.global_tetrahedra, rank);
+  std::vector<std::int32_t> node_of_point(nodes.size());
+  for (std::size_t k = 0; k < nodes.size(); ++k) {
+    part.global.push_back(nodes[k].global);
+    part.owner.push_back(nodes[k].owner);
+    node_of_point[k] = static_cast<std::int32_t>(nodes[k].point - start);
+    if (nodes[k].shared) part.shared = static_cast<std::int32_t>(k + 1);
+  }
+  part.by_global.resize(nodes.size());
+  for (std::size_t k = 0; k < nodes.size(); ++k) part.by_global[k] = static_cast<std::int32_t>(k);
+  std::sort(part.by_global.begin(), part.by_global.end(),
+            [&](std::int32_t a, std::int32_t b) { return part.global[a] < part.global[b]; });
+  part_mesh(data, part.global_tetrahedra, part, nodes, node_of_point);
+  part.halo = std::make_unique<StarForest>(comm, part.shared, halo_leaves(dist, nodes, rank));
+  DMDestroy(&dist);
+  std::vector<ForestLeaf> from_root(nodes.size());
+  for (std::size_t k = 0; k < nodes.size(); ++k)
+    from_root[k] = {static_cast<std::int32_t>(k), 0, nodes[k].global};
+  part.from_root = std::make_unique<StarForest>(
+      comm, whole ? static_cast<std::int32_t>(part.global_nodes) : 0, from_root);
+  refuse_empty_part(comm, part);
+  return part;
+}
+
+}  // namespace rumble::fem

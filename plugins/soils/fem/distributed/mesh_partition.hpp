@@ -1,0 +1,55 @@
+// The soil's mesh split over the ranks by PETSc's DMPlex (docs/decisions/0012-distributed-soil.md
+// §4; docs/fem-soil.md, "On many ranks"): rank 0's whole mesh becomes a DMPlex (its tetrahedra
+// and nodes only, not interpolated), PT-Scotch partitions its tetrahedra (DMPlexDistribute, no
+// overlap), and each rank receives its tetrahedra and every node they touch. A node on tetrahedra
+// of several ranks is shared: one of them owns it (DMPlex's point star forest), the others hold
+// a ghost copy. The explicit step updates owned and ghost nodes alike from the same complete
+// product, so that every copy of a node holds the same value (distributed_operator.hpp).
+//
+// The local numbering puts the shared nodes first (the halo, whose products are summed over the
+// ranks while the interior's are computed) and each group in the order of rank 0's mesh (its
+// node order keeps neighbours close, mesh/node_order.hpp); the tetrahedra keep rank 0's order,
+// so that each entry of K on a rank's interior sums its elements in the order of one process.
+#pragma once
+
+#define OMPI_SKIP_MPICXX 1
+#include <mpi.h>
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "distributed/star_forest.hpp"
+#include "mesh/tet_mesh.hpp"
+
+namespace rumble::fem {
+
+struct MeshPartition {
+  TetMesh mesh;                      // this rank's tetrahedra and nodes (no surface faces)
+  std::vector<std::int32_t> global;  // per local node: its node in rank 0's mesh
+  std::vector<int> owner;            // per local node: the rank that owns it
+  std::int32_t shared = 0;           // local nodes [0, shared) are shared with other ranks
+  std::int64_t global_nodes = 0;     // rank 0's mesh
+  std::int64_t global_tetrahedra = 0;
+  /// The halo over the shared nodes [0, shared): each ghost is a leaf of its owner's node.
+  std::unique_ptr<StarForest> halo;
+  /// From rank 0's nodes (the roots, on rank 0 alone) to every rank's local nodes (leaves).
+  std::unique_ptr<StarForest> from_root;
+
+  std::int32_t nodes() const { return static_cast<std::int32_t>(global.size()); }
+  bool owns(std::int32_t local, int rank) const { return owner[local] == rank; }
+  /// The local node of rank 0's node g, or -1 when this rank does not hold it.
+  std::int32_t local_of(std::int32_t g) const;
+
+  std::vector<std::int32_t> by_global;  // the local nodes sorted by their global number
+};
+
+/// The partition's name in the log: which partitioner DMPlex used.
+const char* partitioner_name();
+
+/// Splits `whole` (rank 0's mesh; nullptr on the other ranks) over comm's ranks. Collective.
+/// Throws std::runtime_error on every rank when a rank gets no tetrahedra (naming the counts and
+/// the fix), and when PETSc fails.
+MeshPartition partition_mesh(MPI_Comm comm, const TetMesh* whole);
+
+}  // namespace rumble::fem

@@ -1,0 +1,276 @@
+// The FEM soil under `mpirun -n N rumble run`, N > 1 (issue #33; docs/fem-soil.md, "On many
+// ranks"; docs/decisions/0012-distributed-soil.md): the host makes each call on every rank with
+// the same inputs. Rank 0 does what one process does on the whole mesh (meshing, the operators
+// and the stable step, the static state, the receivers' places, the receptance and the linear
+// matrices), then every rank takes its share of the mesh (distributed/distributed_soil.hpp) and
+// the explicit steps run on the shares, their halos exchanged by PETSc. Rank 0 reads the
+// footprints' motion and the receivers' samples, gathered in rank order.
+//
+// With statics.solver gamg the static state is solved on the ranks instead (PETSc's GAMG over
+// the ranks' parts). What does not run on many ranks yet is refused when the soil is made,
+// before any work: the matched layer, the local steps and the implicit scheme (each names its
+// parameter and the fix).
+#define OMPI_SKIP_MPICXX 1
+#include <mpi.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "distributed/rank_agreement.hpp"
+#include "fem_soil.hpp"
+#include "mesh/mesh_generator.hpp"
+#include "output/vtu_writer.hpp"
+
+namespace rumble::fem {
+
+namespace {
+
+/// The fewest nodes a rank may take [-]: below, its halo is a large share of its nodes and the
+/// exchange costs more than the rank saves (the medium soil's mesh at 1e4 nodes per rank: a
+/// halo of some 15 % of them, docs/fem-soil.md "On many ranks").
+constexpr double kFewestNodesPerRank = 1000.0;
+
+/// Sub-steps in one macro step, at most (fem_stepping.cpp's bound).
+constexpr double kMostSubStepsOnRanks = 1e9;
+
+}  // namespace
+
+void FemSoil::join_ranks() {
+  int started = 0;
+  MPI_Initialized(&started);  // (MPI runs under a launcher before any instance is made)
+  if (!started) return;       // one process: never starts MPI here
+  const std::optional<rumble::HostCommunicator> c = host_.communicator();
+  if (!c || c->size < 2) return;
+  refuse_on_many_ranks();
+  distributed_ = std::make_unique<rumble::fem::DistributedSoil>(
+      MPI_Comm_f2c(static_cast<MPI_Fint>(c->fortran_handle)));
+  if (const char* hook = std::getenv("RUMBLE_FEM_FAIL_RANK_AT")) {
+    std::istringstream in(hook);
+    char colon = 0;
+    in >> fail_rank_ >> colon >> fail_at_;
+  }
+}
+
+void FemSoil::refuse_on_many_ranks() const {
+  const auto refuse = [](const std::string& key, const std::string& why) {
+    throw std::invalid_argument("fem: params/" + key + ": " + why +
+                                " (docs/fem-soil.md, \"On many ranks\")");
+  };
+  if (settings_.boundary.kind == rumble::fem::BoundaryKind::kPml)
+    refuse("boundary/type",
+           "the perfectly matched layer runs on one process only for now (its tetrahedra's "
+           "forces are not yet summed over the ranks); use boundary.type \"viscous_spring\" "
+           "under mpirun, or run without mpirun, got \"pml\"");
+  if (settings_.implicit)
+    refuse("integrator/scheme",
+           "the implicit scheme factors the whole mesh on one process; use integrator.scheme "
+           "\"explicit\" under mpirun, or run without mpirun, got \"implicit\"");
+  if (settings_.local_steps > 1)
+    refuse("integrator/local_steps",
+           "local time stepping runs on one process only for now; set local_steps 1 under "
+           "mpirun, or run without mpirun, got " +
+               std::to_string(settings_.local_steps));
+}
+
+void FemSoil::accept_layout_distributed(const std::vector<rumble::Footprint>& footprints) {
+  rumble::fem::DistributedSoil& d = *distributed_;
+  footprints_ = footprints;
+  rumble::fem::on_root(d.comm(), [&] {
+    const auto refuse_count = [&](double nodes, const char* what, const char* planned) {
+      if (nodes >= kFewestNodesPerRank * d.ranks()) return;
+      const int most = static_cast<int>(nodes / kFewestNodesPerRank);
+      std::ostringstream m;
+      m << "fem: " << what << " " << format(nodes) << " nodes" << planned << " cannot use "
+        << d.ranks() << " ranks: each would hold under " << kFewestNodesPerRank
+        << " nodes, where the halo exchange costs more than a rank saves; "
+        << (most < 2 ? std::string("run it without mpirun")
+                     : "run on at most " + std::to_string(most) + " ranks (mpirun -n " +
+                           std::to_string(most) + ")")
+        << ", or refine the mesh (mesh.f_max, mesh.h_near)";
+      throw std::invalid_argument(m.str());
+    };
+    if (settings_.mesh.file.empty())  // (before meshing: the plan's estimate)
+      refuse_count(rumble::fem::plan_mesh(settings_, footprints).estimated_nodes, "a mesh of about",
+                   " (planned)");
+    lay_out_here(footprints);
+    refuse_count(static_cast<double>(mesh_.node_count()), "the mesh's", "");
+  });
+  d.lay_out(d.root() ? &mesh_ : nullptr, d.root() ? &*op_ : nullptr, settings_, host_.threads());
+  d.set_footprints(d.root() ? &weights_ : nullptr);
+  force_static_.assign(footprints.size(), 0.0);
+  force_last_.assign(footprints.size(), 0.0);
+  const std::string summary = d.summary();
+  if (d.root()) host_.info(summary);
+}
+
+void FemSoil::initialize_distributed(double t0, const double* static_force, double* static_u) {
+  rumble::fem::DistributedSoil& d = *distributed_;
+  force_static_.assign(static_force, static_force + footprints_.size());
+  force_last_ = force_static_;
+  static_average_.assign(footprints_.size(), 0.0);
+  if (settings_.gamg_statics) {
+    solve_static_on_ranks(static_force, static_u);
+  } else {  // rank 0 solves on the whole mesh as one process does, the ranks take their share
+    rumble::fem::on_root(d.comm(), [&] {
+      initialize_here(t0, static_force, static_u);
+      for (std::size_t j = 0; j < footprints_.size(); ++j)
+        static_average_[j] = average(j, u_static_);
+    });
+    d.set_far_field(d.root() && far_field_ ? &*far_field_ : nullptr);
+    d.set_static(d.root() ? &u_static_ : nullptr);
+  }
+  ExplicitState& s = d.state();
+  s.w.setZero();
+  s.v.setZero();
+  s.a.setZero();
+  s.pml.setZero();
+  s.maxwell.setZero();
+  MPI_Bcast(&far_lag_.tau, 1, MPI_DOUBLE, 0, d.comm());
+  far_lag_.lagged.assign(footprints_.size(), 0.0);
+  far_change_.assign(footprints_.size(), 0.0);
+  far_step_.assign(footprints_.size(), 0.0);
+}
+
+void FemSoil::solve_static_on_ranks(const double* static_force, double* static_u) {
+  rumble::fem::DistributedSoil& d = *distributed_;
+  rumble::fem::on_root(d.comm(), [&] {
+    export_if_due();
+    far_field();  // (rank 0's, on the whole mesh: each rank takes its nodes' rows)
+  });
+  d.set_far_field(d.root() && far_field_ ? &*far_field_ : nullptr);
+  const auto start = std::chrono::steady_clock::now();
+  const bool first = d.solve_static(static_force, static_average_.data());
+  if (!d.root()) return;
+  for (std::size_t j = 0; j < footprints_.size(); ++j) static_u[j] = static_average_[j];
+  const rumble::fem::DistributedStatics& statics = *d.statics();
+  const std::string solved = "in " + format(seconds_since(start), 2) + " s, " +
+                             std::to_string(statics.last_iterations()) + " CG iterations";
+  if (first)
+    host_.info("fem: static solves by PETSc's CG with GAMG on " + std::to_string(d.ranks()) +
+               " ranks (to " + format(statics.kTolerance) +
+               " of the load): " + std::to_string(statics.levels()) + " levels, set up in " +
+               format(statics.setup_seconds(), 2) + " s; the first solve, set-up included, " +
+               solved);
+  else
+    host_.log(RUMBLE_LOG_DEBUG, "fem: static solve (GAMG on the ranks) " + solved);
+}
+
+void FemSoil::distributed_forces(const rumble::Waveform& force, double tau, Eigen::VectorXd& out,
+                                 const double* reference) const {
+  const rumble::fem::FootprintWeights& weights = distributed_->weights();
+  for (const auto& footprint : weights)
+    for (const rumble::fem::NodalWeight& w : footprint) out[3 * w.node + 2] = 0.0;
+  for (std::size_t j = 0; j < weights.size(); ++j) {
+    const double F = force.at(j, tau) - reference[j];
+    for (const rumble::fem::NodalWeight& w : weights[j]) out[3 * w.node + 2] += w.weight * F;
+  }
+}
+
+void FemSoil::follow_far_field_distributed(const rumble::Waveform& force, double H) {
+  for (std::size_t j = 0; j < footprints_.size(); ++j) {
+    far_change_[j] = force.at(j, 0.5) - force_static_[j];
+    far_step_[j] = far_lag_.lagged[j];
+  }
+  far_lag_.advance(far_change_, H);
+  for (std::size_t j = 0; j < footprints_.size(); ++j)
+    far_step_[j] = far_lag_.lagged[j] - far_step_[j];
+  distributed_->set_far_field_force(far_step_.data(), distributed_->force_jump());
+  distributed_->set_far_field_force(far_lag_.lagged.data(), distributed_->force());
+}
+
+void FemSoil::advance_distributed(double t, double H, const rumble::Waveform& force) {
+  rumble::fem::DistributedSoil& d = *distributed_;
+  rumble::fem::ExplicitSolver& step = d.step();
+  tuner_.grant(host_.threads());
+  step.set_threads(tuner_.threads());
+  // (every rank holds rank 0's stable step: the same sub-steps everywhere)
+  const double count = std::ceil(H / (settings_.courant * step.stable_step()) - 1e-9);
+  if (!(count <= kMostSubStepsOnRanks))
+    throw std::invalid_argument("fem: a macro step of " + format(H) + " s is " + format(count) +
+                                " explicit sub-steps, more than " + format(kMostSubStepsOnRanks) +
+                                "; lower /time/macro_step");
+  const int sub_steps = std::max(1, static_cast<int>(count));
+  const double dt = H / sub_steps;
+  if (H != reported_macro_step_ && d.root())
+    host_.log(reported_macro_step_ < 0.0 ? RUMBLE_LOG_INFO : RUMBLE_LOG_DEBUG,
+              "fem: " + std::to_string(sub_steps) + " explicit sub-step(s) of " + format(dt) +
+                  " s per macro step of " + format(H) + " s on each of " +
+                  std::to_string(d.ranks()) + " ranks, " + std::to_string(step.threads()) +
+                  " thread(s) on rank 0");
+  reported_macro_step_ = H;
+  distributed_forces(force, 0.0, d.force_jump(), force_last_.data());
+  if (d.has_far_field() && settings_.boundary.far_field_follows)
+    follow_far_field_distributed(force, H);
+  step.force_jump(d.state(), d.force_jump());
+  auto last_check = std::chrono::steady_clock::now();
+  for (int k = 1; k <= sub_steps; ++k) {
+    const double tau = static_cast<double>(k) / sub_steps;
+    distributed_forces(force, tau, d.force(), force_static_.data());
+    const auto start = std::chrono::steady_clock::now();
+    step.step(d.state(), d.force(), dt);
+    tuner_.record(seconds_since(start));
+    if (tuner_.threads() != step.threads()) step.set_threads(tuner_.threads());
+    record_probes(t + tau * H);
+    // Every rank learns at the same sub-step whether rank 0 is asked to stop (Ctrl-C, checked
+    // every 0.1 s) or a rank failed: each stops there, none waits in the next exchange.
+    bool stop = false;
+    if (d.root() &&
+        std::chrono::steady_clock::now() - last_check > std::chrono::milliseconds(100)) {
+      stop = host_.stop_requested(tau);
+      last_check = std::chrono::steady_clock::now();
+    }
+    std::exception_ptr failure;
+    if (d.rank() == fail_rank_ && t + tau * H >= fail_at_)
+      failure = std::make_exception_ptr(std::runtime_error(
+          "fem: failed on purpose at t = " + format(t + tau * H, 6) + " s on rank " +
+          std::to_string(d.rank()) + " (RUMBLE_FEM_FAIL_RANK_AT, a test's)"));
+    rumble::fem::agree(d.comm(), failure, stop);
+  }
+  for (std::size_t j = 0; j < footprints_.size(); ++j) force_last_[j] = force.at(j, 1.0);
+  std::vector<double> w(footprints_.size()), v(footprints_.size());
+  d.footprint_motion(w.data(), v.data());
+  if (!d.root()) return;  // (rank 0 checks the sums: the last collective call is behind)
+  for (std::size_t j = 0; j < footprints_.size(); ++j)
+    if (!std::isfinite(w[j]) || !std::isfinite(v[j]))
+      throw std::runtime_error("fem: the motion of footprint " + std::to_string(j) +
+                               " is not finite at t = " + format(t + H) + " s: the explicit step " +
+                               format(dt) + " s is unstable (lower params/courant, now " +
+                               format(settings_.courant) + ") or the forces are not finite");
+}
+
+void FemSoil::motion_distributed(double* u, double* v) const {
+  std::vector<double> w(footprints_.size());
+  distributed_->footprint_motion(w.data(), v);
+  if (!distributed_->root()) return;
+  for (std::size_t j = 0; j < footprints_.size(); ++j) u[j] = static_average_[j] + w[j];
+}
+
+void FemSoil::set_probes_distributed(const std::vector<rumble::Probe>& probes,
+                                     double sample_interval) {
+  rumble::fem::DistributedSoil& d = *distributed_;
+  rumble::fem::on_root(d.comm(), [&] { set_probes_here(probes, sample_interval); });
+  d.set_probes(d.root() ? &probes_ : nullptr);
+  if (!d.root()) probes_.resize(probes.size());  // (their places are rank 0's; d samples them)
+  row_.assign(probes.size() * RUMBLE_PROBE_VALUES, 0.0);
+  sample_interval_ = sample_interval;
+  next_sample_ = -1.0;
+}
+
+void FemSoil::write_fields_distributed(double t, const std::string& path) {
+  rumble::fem::DistributedSoil& d = *distributed_;
+  const Eigen::Index n = d.root() ? mesh_.dof_count() : 0;
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(n), w = u, v = u;
+  d.gather(d.static_state(), d.root() ? &u : nullptr);
+  d.gather(d.state().w, d.root() ? &w : nullptr);
+  d.gather(d.state().v, d.root() ? &v : nullptr);
+  if (!d.root()) return;
+  export_if_due();
+  rumble::fem::write_vtu(path, t, mesh_, u + w, v);
+}
+
+}  // namespace rumble::fem
