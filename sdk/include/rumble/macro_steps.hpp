@@ -63,9 +63,9 @@ struct AdaptiveStep {
   std::map<std::string, double> absolute;     // group -> floor of the tolerance [its unit]
   double safety = 0.0;                        // -
   double min_change = 0.2, max_change = 1.5;  // per step [-]; not params
+  bool retake = false;  // take a step above the tolerance again when the scheme can restore
   double relaxation_time = 0.0;  // s: over which the footprints forget a change of step (SDK 1.3,
                                  // appended; StepChangeLimit); 0: no limit
-  bool retake = false;  // take a step above the tolerance again when the scheme can restore
   bool enabled() const { return max_step > 0.0; }
 };
 
