@@ -18,6 +18,8 @@
 #include "operator/effective_matrix.hpp"
 #include "operator/elasticity.hpp"
 #include "settings_from_params.hpp"
+#include "statics/amg_preconditioner.hpp"
+#include "statics/mesh_matrix.hpp"
 #include "statics/petsc_session.hpp"
 #include "time/explicit_solver.hpp"
 
@@ -130,6 +132,74 @@ TEST(FemStatics, MultigridHandlesFixedNodes) {
 TEST(FemStatics, MultigridWithTheSinglePrecisionStepProductAgreesToo) {
   expect_multigrid_agrees_and_beats_jacobi(false, StepPrecision::kSingle);
   expect_multigrid_agrees_and_beats_jacobi(true, StepPrecision::kSingle);
+}
+
+// Multigrid set up from the mesh's matrix in K's own blocks, a chunk of aggregates at a time
+// (mesh_matrix.hpp, mesh_coarsening.hpp, and the restriction from P's rows, transposed_product.hpp)
+// is the hierarchy that the whole products make from full_combination, to the bit: its V-cycle
+// gives the same vector, with the box's springs and with held nodes, on 1 and 2 threads, in one
+// chunk and in chunks of 100 nodes (rows formed on both sides of the chunks' borders). It keeps
+// no restriction beside the prolongator, so less memory.
+TEST(FemStatics, MultigridFromKsBlocksInChunksIsTheWholeProductsHierarchyToTheBit) {
+  for (const bool fixed_bottom : {false, true}) {
+    const Box box(12, fixed_bottom, StepPrecision::kSingle);  // 6591 DOFs: two levels
+    const ExplicitSolver& op = *box.op;
+    const auto fine = [&op](const Eigen::VectorXd& x, Eigen::VectorXd& y) {
+      op.stepped_stiffness_times(x, y, true);
+    };
+    Eigen::VectorXd r(op.dofs());
+    for (Eigen::Index k = 0; k < r.size(); ++k) r[k] = std::sin(0.7 * static_cast<double>(k));
+    for (const unsigned threads : {1u, 2u})
+      for (const std::int64_t chunk : {kMeshChunkNodes, std::int64_t{100}}) {
+        const AmgPreconditioner whole(
+            full_combination(op.soil(), {.stiffness = 1.0, .springs = true}), box.mesh.nodes, fine,
+            threads);
+        const AmgPreconditioner chunked(MeshMatrix(op.soil().take_stiffness(), op.soil()),
+                                        box.mesh.nodes, fine, threads, chunk);
+        ASSERT_EQ(chunked.levels(), whole.levels());
+        ASSERT_GE(chunked.levels(), 2);
+        for (int l = 0; l < whole.levels(); ++l) EXPECT_EQ(chunked.dofs(l), whole.dofs(l));
+        EXPECT_EQ(chunked.operator_complexity(), whole.operator_complexity());
+        Eigen::VectorXd z_whole, z_chunked;
+        whole.apply(r, z_whole);
+        chunked.apply(r, z_chunked);
+        ASSERT_EQ(z_chunked.size(), z_whole.size());
+        EXPECT_EQ((z_chunked - z_whole).cwiseAbs().maxCoeff(), 0.0)
+            << "fixed_bottom " << fixed_bottom << ", " << threads << " thread(s), chunks of "
+            << chunk << " nodes";
+        EXPECT_LT(chunked.bytes(), whole.bytes());
+      }
+  }
+}
+
+// What the statics keep is freed once they are done (the plugin does it when the host's static
+// iteration is over) and built again, the same, when a solve asks again: the factor (CHOLMOD's
+// count of its memory), the multigrid hierarchy, and K's rows, which multigrid takes over and
+// the operator assembles again to the bit. (docs/fem-soil.md section 7.2: the stepping phase's
+// memory.)
+TEST(FemStatics, WhatTheStaticsKeepIsFreedAndBuiltAgainTheSame) {
+  Box box(12, true, StepPrecision::kSingle);
+  ExplicitSolver& op = *box.op;
+  op.set_stiffness_source([&box] { return assemble_stiffness(box.mesh, box.settings); });
+  const CsrMatrix K = op.stiffness();  // (a copy)
+  const Eigen::VectorXd f = Eigen::VectorXd::Constant(op.dofs(), 1e3);
+  const auto dofs = static_cast<std::size_t>(op.dofs());
+  for (const Eigen::Index limit : {StaticSolver::kFactorLimit, Eigen::Index{0}}) {
+    StaticSolver kept(op.soil(), box.mesh.nodes, limit), released(op.soil(), box.mesh.nodes, limit);
+    const Eigen::VectorXd u = kept.solve(f);
+    EXPECT_EQ(released.solve(f), u);
+    EXPECT_GT(released.bytes(), 16 * dofs) << "limit " << limit;  // a factor or a hierarchy
+    EXPECT_EQ(op.soil().holds_stiffness(), limit > 0);            // (multigrid took K's rows)
+    released.release();
+    op.release_stiffness();
+    EXPECT_LE(released.bytes(), 8 * dofs);  // CG's last solution, its start next time
+    EXPECT_FALSE(op.soil().holds_stiffness());
+    EXPECT_EQ(released.solve(1.01 * f), kept.solve(1.01 * f)) << "limit " << limit;
+    const CsrMatrix& again = op.stiffness();
+    EXPECT_EQ(again.value(), K.value());
+    EXPECT_EQ(again.column(), K.column());
+    EXPECT_EQ(again.row_start(), K.row_start());
+  }
 }
 
 // Multigrid takes the whole matrix in rows (full_combination), CHOLMOD its lower triangle

@@ -3,6 +3,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "core/malloc_policy.hpp"
+
 namespace rumble {
 
 std::uint64_t peak_resident_bytes() {
@@ -27,6 +29,7 @@ bool restart_peak_resident() {
 
 void PhasePeaks::end(const std::string& phase) {
   peaks_.emplace_back(phase, peak_resident_bytes());
+  trim_freed_memory();  // the next phase starts from what is in use (core/malloc_policy.hpp)
   separate_ = restart_peak_resident() && separate_;
 }
 

@@ -11,6 +11,7 @@
 #include "core/errors.hpp"
 #include "core/input_file.hpp"
 #include "core/logging.hpp"
+#include "core/malloc_policy.hpp"
 #include "plugin/abi_adapter.hpp"
 #include "plugin/function_table.hpp"
 
@@ -74,6 +75,8 @@ std::shared_ptr<dll::shared_library> open_plugin_library(const fs::path& path) {
     // rtld_now: an unresolved symbol is a load error here, not a crash later
     // (docs/toolchain.md §3).
     library->load(dll::fs::path(path), dll::load_mode::rtld_now | dll::load_mode::rtld_local);
+    // Its libraries may have told malloc to keep what is freed (core/malloc_policy.hpp).
+    return_freed_memory();
   } catch (const std::exception& e) {
     throw PluginLoadError("plugin " + quoted(path) +
                           ": cannot be loaded: " + clean_load_error(e.what()));

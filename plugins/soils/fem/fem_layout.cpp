@@ -66,6 +66,8 @@ void FemSoil::lay_out_here(const std::vector<rumble::Footprint>& footprints) {
               host_.threads(),
               settings_.single_precision_step ? StepPrecision::kSingle : StepPrecision::kDouble);
   op_->set_loaded_nodes(loaded_nodes(weights_));  // (the footprints' forces act there only)
+  // K's rows may go once the statics are done, and are built again if a later call needs them.
+  op_->set_stiffness_source([this] { return assemble_stiffness(mesh_, settings_); });
   // Ctrl-C inside the static solves and the local steps' choice, checked every 0.1 s at most.
   op_->set_stop_check([this, last = std::chrono::steady_clock::now()]() mutable {
     const auto now = std::chrono::steady_clock::now();

@@ -177,6 +177,11 @@ class FemSoil final : public rumble::Soil {
 
   void report(double mesh_seconds, double setup_seconds) const;
 
+  /// What only the statics need, freed at the first step after them: the static solver's
+  /// factor or multigrid hierarchy, and K's rows when the step reads its own copy
+  /// (docs/fem-soil.md section 7.2: the stepping phase's memory).
+  void free_statics();
+
   // The explicit step just taken lasted `took`: the tuner may move the next to another team.
   void tune_threads(std::chrono::steady_clock::duration took);
 
@@ -209,6 +214,7 @@ class FemSoil final : public rumble::Soil {
   double sample_interval_ = 0.0, next_sample_ = -1.0;  // s
   double reported_macro_step_ = -1.0;                  // s: the stepping is logged per H
   bool local_steps_chosen_ = false;                    // integrator.local_steps: at the first H
+  bool statics_to_free_ = false;                       // a static solve since the last step
   rumble::fem::ThreadTuner tuner_;                     // the explicit step's team size
   std::array<Checkpoint, RUMBLE_CHECKPOINT_SLOTS> checkpoints_;
   // On many ranks: this rank's share of the soil; null on one process.

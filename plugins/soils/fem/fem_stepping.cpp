@@ -62,6 +62,13 @@ void FemSoil::initialize_here(double /*t0*/, const double* static_force, double*
   state_.maxwell.setZero();                         // the mechanisms relaxed
   far_lag_.lagged.assign(footprints_.size(), 0.0);  // the boundary holds the static traction
   for (std::size_t j = 0; j < footprints_.size(); ++j) static_u[j] = average(j, u_static_);
+  statics_to_free_ = true;
+}
+
+void FemSoil::free_statics() {
+  statics_->release();
+  if (!implicit_) op_->release_stiffness();  // (the explicit step reads its own copy of K)
+  statics_to_free_ = false;
 }
 
 void FemSoil::finalize() {
@@ -83,6 +90,8 @@ void FemSoil::advance(double t, double H, const rumble::Waveform& force) {
     enable_local_steps(H);
     local_steps_chosen_ = true;
   }
+  // The statics are done once the steps begin (a later static solve builds again what it needs).
+  if (statics_to_free_) free_statics();
   // Counted in floating point first: a macro step far beyond the soil's step must not overflow
   // the count (any H is cut into equal sub-steps; only their number is bounded).
   const double count = std::ceil(H / max_step() - 1e-9);

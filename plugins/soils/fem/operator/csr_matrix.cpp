@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <utility>
 
 namespace rumble::fem {
 
@@ -50,6 +51,14 @@ double* CsrMatrix::block_row(std::int32_t i, std::int32_t j, int c) {
   const auto it = std::lower_bound(first, last, j);
   if (it == last || *it != j) throw std::out_of_range("CsrMatrix: nodes are not neighbours");
   return value_.data() + row_start_[3 * static_cast<std::int64_t>(i) + c] + 3 * (it - first);
+}
+
+CsrMatrix::Blocks CsrMatrix::release_blocks() && {
+  Blocks b{std::move(neighbour_start_), std::move(neighbour_), std::move(value_)};
+  std::vector<std::int64_t>().swap(row_start_);
+  std::vector<std::int32_t>().swap(column_);
+  row_start_.assign(1, 0);  // (an empty matrix: rows() 0)
+  return b;
 }
 
 void CsrMatrix::multiply_rows(const double* x, double* y, std::int64_t begin,

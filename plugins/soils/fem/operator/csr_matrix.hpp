@@ -86,6 +86,18 @@ class CsrMatrix {
            neighbour_start_.size() * 8 + neighbour_.size() * 4;
   }
 
+  /// The node graph and the values (node i's three rows of 3 deg(i) values each, as
+  /// block_entry reads them), without the column index per value.
+  struct Blocks {
+    std::vector<std::int64_t> neighbour_start;  // nodes + 1
+    std::vector<std::int32_t> neighbour;
+    std::vector<double> value;
+  };
+  /// Hands over the graph and values and frees the rest, the matrix left empty: for a reader of
+  /// K by 3 x 3 blocks (multigrid's mesh level, statics/mesh_matrix.hpp), 4 B per nonzero less
+  /// than the rows and no copy.
+  Blocks release_blocks() &&;
+
  private:
   std::vector<std::int64_t> neighbour_start_;  // node graph (node i: its sorted neighbours)
   std::vector<std::int32_t> neighbour_;

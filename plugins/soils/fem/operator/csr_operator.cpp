@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <utility>
 
 namespace rumble::fem {
 
@@ -11,9 +12,9 @@ CsrOperator::CsrOperator(CsrMatrix K, Eigen::VectorXd mass, std::vector<Boundary
     : SoilOperator(std::move(mass), std::move(boundary), springs, std::move(fixed), threads),
       K_(std::move(K)) {
   if (precision == StepPrecision::kSingle)
-    single_blocks_.emplace(K_, threads_);
+    single_blocks_.emplace(*K_, threads_);
   else
-    double_blocks_.emplace(K_, threads_);
+    double_blocks_.emplace(*K_, threads_);
   product_scratch_.assign(static_cast<std::size_t>(mass_.size()), NodeSum{});
 }
 
@@ -29,8 +30,40 @@ void CsrOperator::set_block_kernel(BlockKernel kernel) {
 }
 
 std::size_t CsrOperator::bytes() const {
-  return K_.bytes() + (single_blocks_ ? single_blocks_->bytes() : double_blocks_->bytes()) +
+  const std::lock_guard<std::mutex> lock(K_mutex_);
+  return (K_ ? K_->bytes() : 0) +
+         (single_blocks_ ? single_blocks_->bytes() : double_blocks_->bytes()) +
          product_scratch_.size() * sizeof(NodeSum) + node_bytes();
+}
+
+const CsrMatrix& CsrOperator::stiffness() const {
+  const std::lock_guard<std::mutex> lock(K_mutex_);
+  if (!K_) K_.emplace(assemble_());
+  return *K_;
+}
+
+void CsrOperator::set_stiffness_source(std::function<CsrMatrix()> assemble) {
+  const std::lock_guard<std::mutex> lock(K_mutex_);
+  assemble_ = std::move(assemble);
+}
+
+void CsrOperator::release_stiffness() const {
+  const std::lock_guard<std::mutex> lock(K_mutex_);
+  if (assemble_) K_.reset();
+}
+
+CsrMatrix CsrOperator::take_stiffness() const {
+  const std::lock_guard<std::mutex> lock(K_mutex_);
+  if (!assemble_) return *K_;
+  if (!K_) return assemble_();
+  CsrMatrix K = std::move(*K_);
+  K_.reset();
+  return K;
+}
+
+bool CsrOperator::holds_stiffness() const {
+  const std::lock_guard<std::mutex> lock(K_mutex_);
+  return K_.has_value();
 }
 
 void CsrOperator::times(const Eigen::VectorXd& x, Eigen::VectorXd& y, bool with_springs,
@@ -55,10 +88,11 @@ void CsrOperator::times(const Eigen::VectorXd& x, Eigen::VectorXd& y, bool with_
     fused_product(x.data(), finish);
     return;
   }
+  const CsrMatrix& K = stiffness();
 #pragma omp parallel for num_threads(threads_) schedule(static)
   for (std::int64_t i = 0; i < n; ++i) {
     double product[3];
-    K_.node_rows_dot(static_cast<std::int32_t>(i), x.data(), product);
+    K.node_rows_dot(static_cast<std::int32_t>(i), x.data(), product);
     finish(i, product);
   }
 }

@@ -6,6 +6,8 @@
 
 #include <Eigen/Core>
 #include <cstddef>
+#include <functional>
+#include <mutex>
 #include <optional>
 #include <vector>
 
@@ -36,7 +38,7 @@ class CsrOperator final : public SoilOperator {
   StepPrecision precision() const override {
     return single_blocks_ ? StepPrecision::kSingle : StepPrecision::kDouble;
   }
-  const CsrMatrix& stiffness() const override { return K_; }
+  const CsrMatrix& stiffness() const override;
   std::size_t bytes() const override;
   /// The kernel of the step's product (symmetric_blocks.hpp): by default the SIMD one where the
   /// processor runs it; the portable one on request (benchmarks, tests).
@@ -44,6 +46,10 @@ class CsrOperator final : public SoilOperator {
     return single_blocks_ ? single_blocks_->kernel() : double_blocks_->kernel();
   }
   void set_block_kernel(BlockKernel kernel);
+  void set_stiffness_source(std::function<CsrMatrix()> assemble) override;
+  void release_stiffness() const override;
+  CsrMatrix take_stiffness() const override;
+  bool holds_stiffness() const override;
 
   /// stepped_product with the caller's finish inlined, for an integrator that knows this back
   /// end (ExplicitSolver): for each node i, finish(i, out) with out = (K x) at node i, K as the
@@ -61,7 +67,11 @@ class CsrOperator final : public SoilOperator {
   /// y = K x + S x with K read as the step reads it (stepped) or in double.
   void times(const Eigen::VectorXd& x, Eigen::VectorXd& y, bool with_springs, bool stepped) const;
 
-  CsrMatrix K_;
+  // K's rows: held from construction, freed by release/take when a source can build them again
+  // (mutable: a cache of the same K, which stiffness() refills; the mutex guards the refill).
+  mutable std::optional<CsrMatrix> K_;
+  std::function<CsrMatrix()> assemble_;
+  mutable std::mutex K_mutex_;
   // K's upper blocks as the step reads them: rounded to float, or in double (one of the two).
   std::optional<SymmetricBlocks<float>> single_blocks_;
   std::optional<SymmetricBlocks<double>> double_blocks_;

@@ -13,20 +13,7 @@ namespace {
 template <class Visit>
 void for_each_entry(const SoilOperator& op, const Combination& c, Visit visit) {
   const CsrMatrix& K = op.stiffness();
-  // The boundary blocks per node, row-major 3 x 3: c.springs S + c.dashpots D.
-  std::vector<double> block(9 * op.mass().size(), 0.0);
-  for (const BoundaryNode& b : op.boundary())
-    for (int d = 0; d < 3; ++d) {
-      double unit[3] = {0.0, 0.0, 0.0}, column[3] = {0.0, 0.0, 0.0};
-      unit[d] = 1.0;
-      if (c.springs) b.apply_spring(unit, column);
-      b.apply_dashpot(unit, column, c.dashpots);
-      for (int r = 0; r < 3; ++r) block[9 * b.node + 3 * r + d] += column[r];
-    }
-  // Symmetric to the bit (n_r n_d and n_d n_r may round apart): the upper part copies the lower.
-  for (const BoundaryNode& b : op.boundary())
-    for (int r = 0; r < 3; ++r)
-      for (int d = r + 1; d < 3; ++d) block[9 * b.node + 3 * r + d] = block[9 * b.node + 3 * d + r];
+  const std::vector<double> block = boundary_blocks(op, c);
   const auto& fixed = op.fixed();
   for (std::int64_t row = 0; row < K.rows(); ++row) {
     const std::int64_t node = row / 3;
@@ -46,6 +33,23 @@ void for_each_entry(const SoilOperator& op, const Combination& c, Visit visit) {
 }
 
 }  // namespace
+
+std::vector<double> boundary_blocks(const SoilOperator& op, const Combination& c) {
+  std::vector<double> block(9 * op.mass().size(), 0.0);
+  for (const BoundaryNode& b : op.boundary())
+    for (int d = 0; d < 3; ++d) {
+      double unit[3] = {0.0, 0.0, 0.0}, column[3] = {0.0, 0.0, 0.0};
+      unit[d] = 1.0;
+      if (c.springs) b.apply_spring(unit, column);
+      b.apply_dashpot(unit, column, c.dashpots);
+      for (int r = 0; r < 3; ++r) block[9 * b.node + 3 * r + d] += column[r];
+    }
+  // Symmetric to the bit (n_r n_d and n_d n_r may round apart): the upper part copies the lower.
+  for (const BoundaryNode& b : op.boundary())
+    for (int r = 0; r < 3; ++r)
+      for (int d = r + 1; d < 3; ++d) block[9 * b.node + 3 * r + d] = block[9 * b.node + 3 * d + r];
+  return block;
+}
 
 LongSparse lower_combination(const SoilOperator& op, const Combination& c) {
   const CsrMatrix& K = op.stiffness();

@@ -14,6 +14,8 @@
 #pragma GCC diagnostic pop
 #include <SuiteSparse_config.h>
 
+#include <vector>
+
 #include "operator/soil_operator.hpp"
 #include "operator/sparse_product.hpp"
 
@@ -28,6 +30,10 @@ struct Combination {
   bool springs = false;    // + S
   double dashpots = 0.0;   // d [1/s]
 };
+
+/// The boundary's blocks of the combination per node, row-major 3 x 3 (9 per node, zero off the
+/// truncation surface): c.springs S + c.dashpots D, symmetric to the bit.
+std::vector<double> boundary_blocks(const SoilOperator& op, const Combination& c);
 
 /// The lower triangle of the combination, CSC (for CHOLMOD).
 LongSparse lower_combination(const SoilOperator& op, const Combination& c);

@@ -99,6 +99,20 @@ class SoilOperator {
   /// Memory held [bytes], the node data included.
   virtual std::size_t bytes() const = 0;
 
+  // K's assembled rows when the step reads its own copy (issue #33: memory per DOF). A back end
+  // that can build them again frees them between uses; by default it keeps them.
+  /// `assemble` builds K's rows, the same to the bit as those given (the assembly is
+  /// deterministic): from then on they may be freed and are built again when next asked for.
+  virtual void set_stiffness_source(std::function<CsrMatrix()> assemble) { (void)assemble; }
+  /// Frees K's rows until stiffness() is next called (not while a caller reads them); nothing
+  /// without a source.
+  virtual void release_stiffness() const {}
+  /// K's rows handed over to a caller that would otherwise copy them (the statics' multigrid):
+  /// with a source the operator's are moved out (built again when next asked for), else copied.
+  virtual CsrMatrix take_stiffness() const { return stiffness(); }
+  /// Whether K's rows are held now (bytes() counts them then).
+  virtual bool holds_stiffness() const { return true; }
+
  protected:
   SoilOperator(Eigen::VectorXd mass, std::vector<BoundaryNode> boundary, bool springs,
                std::vector<char> fixed, unsigned threads)

@@ -18,12 +18,17 @@
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <vector>
 
 #include "operator/effective_matrix.hpp"
 #include "operator/sparse_product.hpp"
+#include "statics/mesh_coarsening.hpp"
+#include "statics/mesh_matrix.hpp"
+#include "statics/transposed_product.hpp"
 
 namespace rumble::fem {
 
@@ -44,6 +49,14 @@ class AmgPreconditioner {
   /// (sparse_product.hpp) share them.
   AmgPreconditioner(RowSparse a, const Eigen::Matrix3Xd& nodes, Product fine_product = {},
                     unsigned threads = 1);
+  /// The same hierarchy and V-cycle, to the bit, from the mesh's matrix in K's own blocks
+  /// (mesh_matrix.hpp), taken and freed on the way: the mesh's level is coarsened a chunk of
+  /// aggregates at a time (mesh_coarsening.hpp), without A P, P and R whole in double, and its
+  /// restriction runs on P's rows (transposed_product.hpp); docs/fem-soil.md section 7.2 has
+  /// the memory this saves. fine_product is needed. chunk_nodes: the mesh's nodes per chunk
+  /// (a test makes it small).
+  AmgPreconditioner(MeshMatrix a, const Eigen::Matrix3Xd& nodes, Product fine_product,
+                    unsigned threads = 1, std::int64_t chunk_nodes = kMeshChunkNodes);
   ~AmgPreconditioner();
   AmgPreconditioner(const AmgPreconditioner&) = delete;
   AmgPreconditioner& operator=(const AmgPreconditioner&) = delete;
@@ -52,6 +65,8 @@ class AmgPreconditioner {
   void apply(const Eigen::VectorXd& r, Eigen::VectorXd& z) const;
 
   int levels() const { return static_cast<int>(levels_.size()); }
+  /// Memory the V-cycle keeps [bytes]: its float matrices, vectors and the coarsest factor.
+  std::size_t bytes() const;
   /// DOFs of level l (0 = the mesh).
   Eigen::Index dofs(int level) const;
   /// Nonzeros of all levels' matrices over the mesh's: the V-cycle's work per fine SpMV.
@@ -63,9 +78,10 @@ class AmgPreconditioner {
     // What the V-cycle streams, in float: the matrix (none on the mesh's level when the fine
     // product takes it), the prolongator from the next level and its transpose.
     RowSparseFloat cycle_A, P, R;
+    TransposedProduct restriction;  // R's product from P's rows where R is not stored (the mesh's)
     Eigen::Index rows = 0, nonzeros = 0;
     Eigen::VectorXd scaled_inverse_diagonal;  // (4/3) / (lambda_max(D^-1 A) d_i)
-    mutable Eigen::VectorXd x, b, r;          // scratch of the V-cycle
+    mutable Eigen::VectorXd x, b, r;          // scratch of the V-cycle (sized at its first)
   };
   struct Coarse;
   void cycle(std::size_t l) const;
@@ -73,8 +89,13 @@ class AmgPreconditioner {
   /// false (nothing changed) when aggregation no longer coarsens enough.
   bool coarsen(Level& L, RowSparse& A, Eigen::MatrixXd& B, std::vector<Eigen::Index>& start,
                unsigned threads);
-  void factor_coarsest();      // the coarsest level's Cholesky factor (throws when indefinite)
-  void keep_cycle_matrices();  // the V-cycle's float matrices; the set-up's freed
+  /// The same from the mesh's matrix (taken when it coarsens; left as it was when not).
+  bool coarsen_mesh(Level& L, MeshMatrix& a, RowSparse& A, Eigen::MatrixXd& B,
+                    std::vector<Eigen::Index>& start, std::int64_t chunk_nodes);
+  /// Levels from A down (A, B and start as coarsen leaves them), factored and kept.
+  void build_levels(RowSparse& A, Eigen::MatrixXd& B, std::vector<Eigen::Index>& start);
+  void factor_coarsest();  // the coarsest level's Cholesky factor (throws when indefinite)
+  void keep_cycle_matrix(std::size_t level);  // its V-cycle's float matrix; the double freed
 
   std::vector<Level> levels_;
   std::unique_ptr<Coarse> coarse_;

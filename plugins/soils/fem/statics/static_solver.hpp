@@ -9,6 +9,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstddef>
 #include <memory>
 
 #include "operator/soil_operator.hpp"
@@ -40,6 +41,13 @@ class StaticSolver {
   /// the last solution (the engine's static iteration asks again with a slightly changed load).
   Eigen::VectorXd solve(const Eigen::VectorXd& f);
   bool factored() const { return factor_ != nullptr; }
+  /// Frees what the solves keep (the factor, the multigrid hierarchy, PETSc's solver), which the
+  /// plugin does once the statics are done (at the first step: docs/fem-soil.md section 7.2); a
+  /// later solve builds them again, the same, and still starts CG from the last solution.
+  void release();
+  /// Memory the solves keep now [bytes]: the factor (CHOLMOD's count of its memory in use), the
+  /// multigrid hierarchy, CG's last solution and diagonal; PETSc's solver is not counted.
+  std::size_t bytes() const;
   int last_cg_iterations() const { return cg_iterations_; }
   /// Seconds the multigrid hierarchy took to build (0 before, or with the factor or Jacobi).
   double multigrid_setup_seconds() const { return multigrid_seconds_; }
@@ -53,6 +61,9 @@ class StaticSolver {
  private:
   struct Factor;
   Eigen::VectorXd conjugate_gradients(const Eigen::VectorXd& f);
+  /// CG's preconditioner for n DOFs, built when missing, and its start (the last solution).
+  void prepare_preconditioner(Eigen::Index n);
+  void build_multigrid();
 
   void precondition(const Eigen::VectorXd& r, Eigen::VectorXd& z) const;
 

@@ -133,6 +133,12 @@ class ExplicitSolver {
   }
   StepPrecision precision() const { return op_->precision(); }
   const CsrMatrix& stiffness() const { return op_->stiffness(); }
+  /// K's rows may be freed between uses and built again by `assemble` (soil_operator.hpp): the
+  /// step reads its own copy of K.
+  void set_stiffness_source(std::function<CsrMatrix()> assemble) {
+    op_->set_stiffness_source(std::move(assemble));
+  }
+  void release_stiffness() const { op_->release_stiffness(); }
   const std::vector<BoundaryNode>& boundary() const { return op_->boundary(); }
   const std::vector<char>& fixed() const { return op_->fixed(); }
   bool springs_act() const { return op_->springs_act(); }
