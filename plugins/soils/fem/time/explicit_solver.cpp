@@ -381,11 +381,13 @@ void ExplicitSolver::finish_node(std::int64_t i, const double residual[3], doubl
     inertia += half * pml_->damping(p);
   }
   const std::int32_t b = boundary_of_[i];
+  const double per_half = 2.0 / dt;  // (multiplies, not divisions: VelocityUpdate)
   if (b < 0) {
+    const double inverse = 1.0 / inertia;
     for (int c = 0; c < 3; ++c) {
       const std::int64_t k = 3 * i + c;
-      const double v_new = (m * v[k] + half * r[c]) / inertia;
-      a[k] = (v_new - v[k]) / half;
+      const double v_new = (m * v[k] + half * r[c]) * inverse;
+      a[k] = (v_new - v[k]) * per_half;
       v[k] = v_new;
     }
     return;
@@ -400,7 +402,7 @@ void ExplicitSolver::finish_node(std::int64_t i, const double residual[3], doubl
   for (int c = 0; c < 3; ++c) {
     const std::int64_t k = 3 * i + c;
     const double v_new = inv_t * (rhs[c] - along * nrm[c]) + inv_n * along * nrm[c];
-    a[k] = (v_new - v[k]) / half;
+    a[k] = (v_new - v[k]) * per_half;
     v[k] = v_new;
   }
 }
