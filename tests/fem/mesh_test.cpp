@@ -70,7 +70,8 @@ TEST(FemMesh, PlanRefusesTooLargeAMeshWithTheEstimateAndTheFix) {
 
 // Within mesh.max_dofs, a mesh that would not fit in the memory available now was meshed until
 // gmsh or the statics died of it (issue #30 item 2): the plan holds the estimate's peak (about
-// 4 kB per DOF) against the machine's available memory and refuses it before meshing. 30 m at
+// 1.5 kB per DOF above the factor's limit, memory_model.hpp) against the machine's available
+// memory and refuses it before meshing. 30 m at
 // 2000 Hz (the schema's highest f_max) is several 1e8 DOFs, terabytes: more than any machine
 // this runs on.
 TEST(FemMesh, PlanRefusesAMeshTheMachinesMemoryCannotHold) {
@@ -79,7 +80,8 @@ TEST(FemMesh, PlanRefusesAMeshTheMachinesMemoryCannotHold) {
   test::expect_invalid_argument_containing(
       [&] { plan_mesh(s, sleepers(10)); },
       {"fem: params/mesh: a mesh of about", "degrees of freedom needs about",
-       "GB at a run's peak (about 4 kB per DOF", "this machine has available now",
+       "GB at a run's peak (", "kB per DOF: the statics' multigrid set-up",
+       "this machine has available now",
        "lower mesh.f_max or mesh.radius, raise mesh.h_near, or free memory and run again"});
 }
 

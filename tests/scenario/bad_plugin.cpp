@@ -28,7 +28,9 @@ const rumble_soil_api kApi = {.struct_size = sizeof(rumble_soil_api),
                               .write_fields = nullptr,
                               .wave_speeds = nullptr,
                               .linear_matrix = nullptr,
-                              .probe_resolution = nullptr};
+                              .probe_resolution = nullptr,
+                              .size = nullptr,
+                              .statics_done = nullptr};
 
 const rumble_factory kFactories[] = {
     {sizeof(rumble_factory), RUMBLE_KIND_SOIL, "no_schema_soil", "test: declares no schema",

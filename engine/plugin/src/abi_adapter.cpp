@@ -48,7 +48,8 @@ std::size_t table_size(rumble_kind kind, std::uint32_t abi_minor) {
       return abi_minor >= 1 ? RUMBLE_ADAPTER_END_OF(rumble_vehicle_api, outputs2)
                             : RUMBLE_ADAPTER_END_OF(rumble_vehicle_api, outputs);
     case RUMBLE_KIND_SOIL:
-      return abi_minor >= 3   ? RUMBLE_ADAPTER_END_OF(rumble_soil_api, probe_resolution)
+      return abi_minor >= 5   ? RUMBLE_ADAPTER_END_OF(rumble_soil_api, statics_done)
+             : abi_minor >= 3 ? RUMBLE_ADAPTER_END_OF(rumble_soil_api, probe_resolution)
              : abi_minor >= 1 ? RUMBLE_ADAPTER_END_OF(rumble_soil_api, linear_matrix)
                               : RUMBLE_ADAPTER_END_OF(rumble_soil_api, receiver_velocity);
     case RUMBLE_KIND_COUPLER:

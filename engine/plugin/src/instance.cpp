@@ -565,6 +565,27 @@ std::optional<SoilInstance::ProbeResolution> SoilInstance::probe_resolution() co
   r.rule = rule;
   return r;
 }
+std::optional<SoilInstance::Size> SoilInstance::size() const {
+  if (api_.size == nullptr) return std::nullopt;
+  Size size;
+  mirrored(
+      mirror::Call::kSize, [](mirror::Writer&) {},
+      [&] { call("size", [&] { return api_.size(handle(), &size.dofs, &size.peak_bytes); }); });
+  if (!std::isfinite(size.peak_bytes)) throw_not_finite("size", "peak memory", 0, size.peak_bytes);
+  if (size.peak_bytes < 0.0)
+    throw RunError(who() + ": size returned a peak memory of " + std::to_string(size.peak_bytes) +
+                   " bytes, below 0 (0 says the soil cannot tell): a defect of the plugin " +
+                   type().library->path.string());
+  return size;
+}
+
+void SoilInstance::statics_done() {
+  if (api_.statics_done == nullptr) return;
+  mirrored(
+      mirror::Call::kStaticsDone, [](mirror::Writer&) {},
+      [&] { call("statics_done", [&] { return api_.statics_done(handle()); }); });
+}
+
 bool SoilInstance::offers_fields() const {
   return api_.write_fields != nullptr && capabilities().has(RUMBLE_CAP_FIELD_OUTPUT);
 }

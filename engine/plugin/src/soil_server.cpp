@@ -94,6 +94,9 @@ void outputs(SoilInstance& soil, Call call, Reader& r) {
       soil.linear_matrix(r.get<rumble_matrix>(), m);
       return;
     }
+    case Call::kSize:
+      soil.size();
+      return;
     default: {
       double c_s = 0.0, c_r = 0.0;
       soil.wave_speeds(c_s, c_r);
@@ -159,6 +162,8 @@ void SoilServer::make(Call call, std::uint64_t id, Reader& r) {
       soil.write_fields(t, r.get_text());
       return;
     }
+    case Call::kStaticsDone:
+      return soil.statics_done();
     default:
       return outputs(soil, call, r);
   }

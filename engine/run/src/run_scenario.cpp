@@ -18,6 +18,7 @@
 #include "run/cosim_host.hpp"
 #include "run/crash_record.hpp"
 #include "run/field_writer.hpp"
+#include "run/memory_account.hpp"
 #include "run/participant.hpp"
 #include "run/probe_recorder.hpp"
 #include "run/run_components.hpp"
@@ -290,21 +291,8 @@ struct RunSoFar {
   bool integrated = false;
   const StaticState& statics;
   PhasePeaks& memory;
+  const std::optional<SoilInstance::Size>& soil_size;  // ABI 1.5: DOFs and estimate
 };
-
-/// summary.json's "memory": each phase's peak resident memory (core/peak_memory.hpp).
-nlohmann::json memory_summary(const PhasePeaks& memory) {
-  nlohmann::json peaks = nlohmann::json::object();
-  for (const auto& [phase, bytes] : memory.peaks()) peaks[phase] = bytes;
-  return {{"peak_resident_bytes", peaks},
-          {"definition",
-           memory.separate()
-               ? "each phase's own peak of the process's resident memory (VmHWM, restarted at "
-                 "the phase's start); build: everything before the statics, validation and the "
-                 "soil's meshing and assembly included"
-               : "the process's peak resident memory from its start to each phase's end (this "
-                 "system does not let a process restart its peak)"}};
-}
 
 /// The soils' threads for the steps to come (run/core_share.hpp).
 void grant_soils(RunComponents& c, unsigned threads) {
@@ -362,7 +350,8 @@ void co_simulate(const scenario::RunSpec& spec, const RunOptions& options, RunCo
               wall_times(so_far.start, so_far.statics.seconds, recording_seconds, sides));
   summary.set("static", {{"wheel_loads_N", so_far.statics.wheel_loads},
                          {"iterations", so_far.statics.iterations}});
-  summary.set("memory", memory_summary(so_far.memory));
+  summary.set("memory", memory_summary(so_far.memory, so_far.soil_size));
+  log_memory(so_far.memory, so_far.soil_size);
   summarize_coupling(summary, observer, host, rec.recorder, sides.soil);
   summarize_outputs(summary, c.receivers, rec);
   summary.finish(outcome.status, outcome.message);
@@ -391,10 +380,11 @@ RunOutcome run_scenario(const scenario::RunSpec& spec, const PluginRegistry& reg
   // Anything failing from here on leaves summary.json saying so, then propagates.
   try {
     const bool integrated = integrate_soil_if_asked(c);
+    const std::optional<SoilInstance::Size> soil_size = announce_soil_size(*c.soil);
     const StaticState statics = static_equilibrium(c, outcome.results_dir);
     memory.end("statics");
-    co_simulate(spec, options, c, results, summary, {run_start, integrated, statics, memory},
-                outcome);
+    co_simulate(spec, options, c, results, summary,
+                {run_start, integrated, statics, memory, soil_size}, outcome);
   } catch (const Interrupted& e) {
     summary.fail(e.what(), RunStatus::kInterrupted);
     throw;

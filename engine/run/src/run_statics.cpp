@@ -100,6 +100,9 @@ StaticState static_equilibrium(RunComponents& c, const std::filesystem::path& re
   const auto start = std::chrono::steady_clock::now();
   StaticState s;
   s.iterations = solve_statics_unless_stopped(c, results_dir);
+  // The soils free what only their statics needed before the steps (ABI 1.5).
+  c.soil->statics_done();
+  for (auto& [name, extra] : c.extras) extra->statics_done();
   s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const TrackParticipant& track = *c.track;
   for (std::size_t w = 0; w < track.vehicles().wheel_count(); ++w)

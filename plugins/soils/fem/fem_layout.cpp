@@ -14,9 +14,11 @@
 #include "boundary/absorbing_boundary.hpp"
 #include "boundary/pml.hpp"
 #include "fem_soil.hpp"
+#include "memory_model.hpp"
 #include "mesh/gmsh_model.hpp"
 #include "mesh/mesh_cache.hpp"
 #include "mesh/mesh_generator.hpp"
+#include "mesh/mesh_memory.hpp"
 #include "operator/elasticity.hpp"
 #include "operator/footprint_loads.hpp"
 #include "statics/static_solver.hpp"
@@ -104,7 +106,20 @@ void FemSoil::lay_out_here(const std::vector<rumble::Footprint>& footprints) {
   df_ = Eigen::VectorXd::Zero(n);
   force_static_.assign(footprints.size(), 0.0);
   force_last_.assign(footprints.size(), 0.0);
+  peak_estimate_ = estimate_peak();
   report(mesh_seconds, seconds_since(start));
+}
+
+double FemSoil::estimate_peak() const {
+  const ResidentMemory resident = resident_memory();
+  if (resident.now == 0.0) return 0.0;  // (no /proc: nothing to start from)
+  const auto dofs = static_cast<double>(op_->dofs());
+  const auto nonzeros = static_cast<double>(op_->stiffness().nonzeros());
+  double peak = std::max(resident.peak, resident.now + memory::statics_bytes(dofs, nonzeros));
+  if (implicit_)  // (the step factors K's combination as the statics' factor does)
+    peak = std::max(peak,
+                    resident.now + memory::kFactorBytesPerNonzero * memory::factor_nonzeros(dofs));
+  return peak;
 }
 
 rumble::fem::TetMesh FemSoil::cached_or_new_mesh() const {
@@ -150,7 +165,9 @@ void FemSoil::report(double mesh_seconds, double setup_seconds) const {
     << " boundary nodes; shortest edge " << format(shortest_edge) << " m; meshed in "
     << format(mesh_seconds, 2) << " s, ready in " << format(setup_seconds, 2) << " s; "
     << format(op_->bytes() / 1048576.0) << " MiB ("
-    << format(static_cast<double>(op_->bytes()) / op_->dofs(), 3) << " B per DOF); stable step "
+    << format(static_cast<double>(op_->bytes()) / op_->dofs(), 3) << " B per DOF; a run's peak "
+    << "about " << format(peak_estimate_ / 1e9) << " GB, "
+    << std::lround(peak_estimate_ / static_cast<double>(op_->dofs())) << " B per DOF); stable step "
     << format(op_->stable_step()) << " s (" << op_->eigen_iterations() << " Lanczos iterations), "
     << (implicit_ ? "implicit" : "explicit") << " step " << format(max_step()) << " s"
     << (op_->precision() == StepPrecision::kSingle ? " (K read in single precision)" : "");

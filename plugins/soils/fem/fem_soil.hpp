@@ -62,6 +62,13 @@ class FemSoil final : public rumble::Soil {
   bool frequency_response(double f_hz, std::complex<double>* receptance) override;
   void linear_matrix(rumble_matrix which, rumble::CscMatrix& out) override;
   void wave_speeds(double& c_s_min, double& c_r_min) const override;
+  /// DOFs and the estimate of a run's peak memory made at the layout (memory_model.hpp).
+  Size size() const override {
+    return {op_ ? static_cast<std::uint64_t>(op_->dofs()) : 0, peak_estimate_};
+  }
+  void statics_done() override {
+    if (statics_) free_statics();
+  }
 
   /// [m/s] the slowest layer's Rayleigh speed: the mesh's sizes follow its wavelength.
   double rayleigh_speed() const {
@@ -176,6 +183,10 @@ class FemSoil final : public rumble::Soil {
   void enable_local_steps(double H);
 
   void report(double mesh_seconds, double setup_seconds) const;
+  /// The run's peak resident memory [bytes], estimated from what is resident now, the peak so far
+  /// (the meshing's) and the statics' path on this matrix (memory_model.hpp), for size() and
+  /// the report.
+  double estimate_peak() const;
 
   /// What only the statics need, freed at the first step after them: the static solver's
   /// factor or multigrid hierarchy, and K's rows when the step reads its own copy
@@ -215,6 +226,7 @@ class FemSoil final : public rumble::Soil {
   double reported_macro_step_ = -1.0;                  // s: the stepping is logged per H
   bool local_steps_chosen_ = false;                    // integrator.local_steps: at the first H
   bool statics_to_free_ = false;                       // a static solve since the last step
+  double peak_estimate_ = 0.0;                         // bytes: estimate_peak() at the layout
   rumble::fem::ThreadTuner tuner_;                     // the explicit step's team size
   std::array<Checkpoint, RUMBLE_CHECKPOINT_SLOTS> checkpoints_;
   // On many ranks: this rank's share of the soil; null on one process.

@@ -48,7 +48,8 @@ void FemSoil::initialize_here(double /*t0*/, const double* static_force, double*
                              std::to_string(statics_->last_cg_iterations()) + " CG iterations";
   if (first_multigrid && statics_->multigrid_levels() > 0)  // (once: the hierarchy is kept)
     host_.info("fem: static solves by " + std::string(statics_->method()) + ": " +
-               std::to_string(statics_->multigrid_levels()) + " levels, set up in " +
+               std::to_string(statics_->multigrid_levels()) + " levels (" +
+               format(static_cast<double>(statics_->bytes()) / 1048576.0) + " MiB), set up in " +
                format(statics_->multigrid_setup_seconds(), 2) +
                " s; the first solve, set-up included, " + solved);
   else if (!statics_->factored() && statics_->last_cg_iterations() > 0)
@@ -66,9 +67,14 @@ void FemSoil::initialize_here(double /*t0*/, const double* static_force, double*
 }
 
 void FemSoil::free_statics() {
+  const std::size_t before = statics_->bytes() + op_->bytes();
   statics_->release();
   if (!implicit_) op_->release_stiffness();  // (the explicit step reads its own copy of K)
   statics_to_free_ = false;
+  host_.log(RUMBLE_LOG_DEBUG,
+            "fem: the statics done, " +
+                format(static_cast<double>(before - statics_->bytes() - op_->bytes()) / 1048576.0) +
+                " MiB freed (their factor or multigrid hierarchy, K's compressed rows)");
 }
 
 void FemSoil::finalize() {

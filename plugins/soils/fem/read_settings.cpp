@@ -112,7 +112,7 @@ void check_pml_size(const BoundaryRequest& b, const MeshRequest& m) {
        << " m needs at least " << dofs
        << " degrees of freedom, more than mesh.max_dofs = " << m.max_dofs
        << "; thicken the layer (about mesh.radius / 2), use fewer pml.elements, a smaller "
-          "mesh.radius, or raise mesh.max_dofs (about 4 GB per million DOFs at a run's peak)";
+          "mesh.radius, or raise mesh.max_dofs (about 1.5 GB per million DOFs at a run's peak)";
   refuse("boundary/pml/thickness", rule.str(), b.pml_thickness);
 }
 

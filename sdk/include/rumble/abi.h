@@ -51,6 +51,10 @@
  *       rumble_cosim_host (docs/decisions/0013-coupler-contract.md): footprint_layout, the
  *       footprints' positions and sizes, for a coupler that applies loads of its own
  *       (docs/couplers.md, "The coupler contract").
+ *   1.5 (2026-12-05) appended to the soil's table (docs/decisions/0014-abi-1-5.md): size, the
+ *       soil's degrees of freedom and its estimate of a run's peak memory, for the host's account
+ *       of memory per DOF; statics_done, the end of the host's static iteration, after which a
+ *       soil frees what only its statics needed.
  */
 #ifndef RUMBLE_ABI_H
 #define RUMBLE_ABI_H
@@ -63,7 +67,7 @@ extern "C" {
 #endif
 
 #define RUMBLE_ABI_MAJOR 1
-#define RUMBLE_ABI_MINOR 4
+#define RUMBLE_ABI_MINOR 5
 
 /** Name of the one symbol every plugin library exports (see rumble_plugin_entry_fn). */
 #define RUMBLE_PLUGIN_ENTRY_SYMBOL "rumble_plugin_entry"
@@ -392,6 +396,16 @@ typedef struct rumble_soil_api {
    *  call; may be left null). */
   rumble_status (*probe_resolution)(rumble_instance* self, double* f_hz, uint64_t n,
                                     const char** rule);
+  /* ---- 1.5 */
+  /** Optional (may be null), after accept_layout: the soil's degrees of freedom (*n_dof; 0 when
+   *  it has none to speak of) and its estimate of the process's peak resident memory over a run
+   *  on this layout [bytes] (*peak_bytes, made before the statics spend it; 0 when it cannot
+   *  say). The host writes memory per DOF and the estimate beside what it measured. */
+  rumble_status (*size)(rumble_instance* self, uint64_t* n_dof, double* peak_bytes);
+  /** Optional (may be null): the host's static iteration is over and the steps come next; the
+   *  soil may free what only its statics needed (a factor, a multigrid hierarchy). A later
+   *  initialize is still allowed: the soil builds again what it needs. */
+  rumble_status (*statics_done)(rumble_instance* self);
 } rumble_soil_api;
 
 /* ------------------------------------------------------------------ couplers ------------- */

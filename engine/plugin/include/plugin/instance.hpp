@@ -234,6 +234,16 @@ class SoilInstance final : public Instance {
     std::string rule;
   };
   std::optional<ProbeResolution> probe_resolution() const;
+  /// ABI 1.5, after accept_layout: the soil's degrees of freedom and its estimate of a run's
+  /// peak resident memory [bytes] (0: it cannot say); nothing when the soil does not say.
+  /// RunError for an estimate that is negative or not finite.
+  struct Size {
+    std::uint64_t dofs = 0;
+    double peak_bytes = 0.0;
+  };
+  std::optional<Size> size() const;
+  /// ABI 1.5: the static iteration is over (the soil may free what only its statics needed).
+  void statics_done();
   /// ABI 1.1 field output: whether write_fields writes anything.
   bool offers_fields() const;
   /// ABI 1.1 field output; false when not offered.

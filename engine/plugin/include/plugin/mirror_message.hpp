@@ -43,7 +43,9 @@ enum class Call : std::uint8_t {
   kProbeResolution,
   kWriteFields,
   kLinearMatrix,
-  kWaveSpeeds
+  kWaveSpeeds,
+  kSize,
+  kStaticsDone
 };
 
 class Writer {

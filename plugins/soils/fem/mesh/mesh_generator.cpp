@@ -125,7 +125,7 @@ MeshPlan plan_mesh(const FemSettings& s, const std::vector<Footprint>& footprint
       << " degrees of freedom (h_near " << p.h_near << " m, h_max " << p.h_max << " m, radius "
       << p.radius << " m), more than mesh.max_dofs = " << s.mesh.max_dofs
       << "; lower mesh.f_max or mesh.radius, raise mesh.h_near, or raise mesh.max_dofs (about "
-      << kPeakBytesPerDof * 1e-3 << " GB per million DOFs at a run's peak)";
+      << peak_bytes_per_million_dofs() * 1e-9 << " GB per million DOFs at a run's peak)";
     throw std::invalid_argument(m.str());
   }
   check_memory_for(3.0 * p.estimated_nodes, "fem: params/mesh",

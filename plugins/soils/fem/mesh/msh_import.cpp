@@ -174,8 +174,8 @@ void check_mesh_size(const FemSettings& s, const TetMesh& mesh, const std::strin
     std::ostringstream m;
     m << where << " has " << mesh.dof_count()
       << " degrees of freedom, more than mesh.max_dofs = " << s.mesh.max_dofs
-      << "; give a coarser mesh or raise mesh.max_dofs (about " << kPeakBytesPerDof * 1e-3
-      << " GB per million DOFs at a run's peak)";
+      << "; give a coarser mesh or raise mesh.max_dofs (about "
+      << peak_bytes_per_million_dofs() * 1e-9 << " GB per million DOFs at a run's peak)";
     throw std::invalid_argument(m.str());
   }
   check_memory_for(static_cast<double>(mesh.dof_count()), where, "give a coarser mesh");

@@ -7,7 +7,8 @@
 // transpose: transposed_product.hpp). Every entry is
 // summed in the same order as sparse_product (sparse_product.hpp) sums it on the whole matrices,
 // so the hierarchy is the same to the bit (tests/fem/static_solver_test.cpp); the rows near a
-// chunk's border are formed twice, which costs about a third more arithmetic.
+// chunk's border are formed again for the next chunk (docs/fem-soil.md section 7.2 has the
+// set-up's time against the whole products').
 #pragma once
 
 #include <Eigen/Core>
@@ -19,10 +20,12 @@
 
 namespace rumble::fem {
 
-/// Nodes per chunk of aggregates: with its two rings of neighbours about 1.6 times as many rows
-/// of P and 1.3 times as many of A P (some 90 nonzeros each at 1e6 DOFs), some 30 MB however
-/// large the mesh.
-inline constexpr std::int64_t kMeshChunkNodes = 1 << 14;
+/// Nodes per chunk of aggregates: its rows of P (two rings of neighbours, about twice its nodes)
+/// and of A P (one ring, 1.4 times) take some 25 MB at about 90 nonzeros per row of A P, twice
+/// that while they are formed, however large the mesh; chunks of 16384 nodes took 0.13 GB more
+/// at the statics' peak on a box of 2.1e5 DOFs (the rows near a chunk's border are formed for
+/// each chunk that reaches them: the smaller the chunk, the more often).
+inline constexpr std::int64_t kMeshChunkNodes = 1 << 12;
 
 /// The mesh's nodes in aggregates: each node's aggregate, and each aggregate's first coarse DOF
 /// (then the coarse DOFs' count): aggregate a owns coarse DOFs [start[a], start[a + 1]).

@@ -12,6 +12,7 @@
 #include <cstddef>
 #include <memory>
 
+#include "memory_model.hpp"
 #include "operator/soil_operator.hpp"
 #include "statics/amg_preconditioner.hpp"
 #include "statics/petsc_static_solver.hpp"
@@ -24,7 +25,8 @@ enum class CgPreconditioner { kMultigrid, kJacobi, kGamg };
 
 class StaticSolver {
  public:
-  static constexpr Eigen::Index kFactorLimit = 400000;  // DOFs: a factor of about 5 GB
+  /// DOFs (memory_model.hpp: the factor's memory grows as n^1.45, 4.3 GB at 2.9e5 DOFs).
+  static constexpr auto kFactorLimit = static_cast<Eigen::Index>(memory::kFactorLimitDofs);
 
   /// Uses the operator's K, boundary springs (always: they carry the static load) and fixed
   /// nodes; nodes: the mesh's coordinates [m] (multigrid's rigid-body modes). Factors on first

@@ -113,6 +113,16 @@ void soil_functions_1_1(rumble_soil_api& a) {
       if (rule != nullptr) *rule = f.empty() ? nullptr : b->resolution_rule.c_str();
     });
   };
+  a.size = [](rumble_instance* s, std::uint64_t* n_dof, double* peak_bytes) {
+    return guard(s, [&] {
+      const Soil::Size size = object<T>(s).size();
+      *n_dof = size.dofs;
+      *peak_bytes = size.peak_bytes;
+    });
+  };
+  a.statics_done = [](rumble_instance* s) {
+    return guard(s, [&] { object<T>(s).statics_done(); });
+  };
 }
 
 template <class T>

@@ -126,6 +126,16 @@ class Soil : public Component {
   /// footprints to each probe (one per probe; 0 where it cannot say), with how it is found in
   /// `rule`. Empty (the default): the soil does not say.
   virtual std::vector<double> probe_resolution(std::string& /*rule*/) const { return {}; }
+  /// ABI 1.5, after accept_layout(): the soil's degrees of freedom and its estimate of a run's
+  /// peak resident memory [bytes] (0: it cannot say), for the host's account of memory.
+  struct Size {
+    std::uint64_t dofs = 0;
+    double peak_bytes = 0.0;
+  };
+  virtual Size size() const { return {}; }
+  /// ABI 1.5: the host's static iteration is over; free what only the statics needed (a later
+  /// initialize() may still come). Nothing by default.
+  virtual void statics_done() {}
   /// Where advance() records probe samples (sized by the boundary at set_probes()).
   ProbeSamples& samples() { return samples_; }
 

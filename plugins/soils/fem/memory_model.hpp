@@ -1,0 +1,69 @@
+// What the FEM soil costs in memory, as measured (docs/fem-soil.md section 7.2 has the
+// measurements and the commands): the model behind its two estimates of a run's peak resident
+// memory, before meshing from the estimated DOFs (mesh/mesh_memory.hpp: a mesh that cannot run
+// is refused then) and after the assembly from the matrix itself (size(), which the host writes
+// beside what it measured). Every size is estimated before it is spent.
+#pragma once
+
+#include <cmath>
+
+namespace rumble::fem::memory {
+
+/// DOFs up to which the statics factor K + S (CHOLMOD); above, CG with multigrid
+/// (statics/static_solver.hpp).
+inline constexpr double kFactorLimitDofs = 4e5;
+
+/// The process without the soil [bytes]: the engine, its plugins and their libraries (gmsh,
+/// PETSc, OpenMPI); 60-90 MB measured with the smallest meshes.
+inline constexpr double kProcessBytes = 1.0e8;
+
+/// What the soil holds from its assembly into the statics, per DOF [bytes]: K in compressed rows
+/// with its node graph (about 42 nonzeros per row, 12 B each), K's upper blocks in float, the
+/// mesh, the lumped mass, the state and its scratch vectors (780 B per DOF at 1.0e6 DOFs).
+inline constexpr double kHeldBytesPerDof = 800.0;
+
+/// L's nonzeros of the factor of K + S for n DOFs: 4.7 n^1.45, fitted to the stiff example's
+/// graded hemispheres (5.7e6, 9.8e7, 3.9e8 at 1.7e4, 1.1e5, 2.9e5 DOFs; within 8 %).
+inline double factor_nonzeros(double dofs) {
+  return 4.7 * std::pow(dofs, 1.45);
+}
+
+/// CHOLMOD's peak while it factors [bytes per nonzero of L]: its supernodal L and workspace
+/// (its own count, memory_usage: 10.9-12.9 B at those three sizes), and the lower triangle it
+/// is given.
+inline constexpr double kFactorBytesPerNonzero = 11.5;
+
+/// The statics' multigrid set-up at its peak, beyond what the soil holds into them, per nonzero
+/// of K [bytes]: the first coarse level in double (0.66 nonzeros per nonzero of K, 12 B each)
+/// and the prolongator in float (0.60, 8 B), less K's column indices (4 B) that the mesh level
+/// drops, with the tentative prolongator and the chunks' rows; 12.1 B measured both on the
+/// stiff example at 1.0e6 DOFs and on a Kuhn box of 2.1e5 (tests/fem/static_solver_test.cpp).
+inline constexpr double kMultigridBytesPerNonzero = 12.2;
+
+/// Nonzeros of K per DOF on the meshes measured (about 14 neighbours per node, 3 x 3 blocks).
+inline constexpr double kNonzerosPerDof = 45.0;
+
+/// What factoring K + S adds at its peak [bytes], for n DOFs.
+inline double factor_bytes(double dofs) {
+  return kFactorBytesPerNonzero * factor_nonzeros(dofs);
+}
+
+/// What multigrid's set-up adds at its peak to what the soil holds [bytes], for K's nonzeros.
+inline double multigrid_bytes(double nonzeros) {
+  return kMultigridBytesPerNonzero * nonzeros;
+}
+
+/// What the first static solve adds to what the soil holds [bytes], by its path, for n DOFs and
+/// K's nonzeros.
+inline double statics_bytes(double dofs, double nonzeros) {
+  return dofs <= kFactorLimitDofs ? factor_bytes(dofs) : multigrid_bytes(nonzeros);
+}
+
+/// A run's peak resident memory for a mesh of n DOFs [bytes], before meshing: the process, what
+/// the soil holds, and the statics' peak on top of it (the steps need less: the statics' factor
+/// or hierarchy and K's compressed rows are freed before them).
+inline double run_peak_bytes(double dofs) {
+  return kProcessBytes + kHeldBytesPerDof * dofs + statics_bytes(dofs, kNonzerosPerDof * dofs);
+}
+
+}  // namespace rumble::fem::memory
