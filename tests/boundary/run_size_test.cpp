@@ -14,26 +14,12 @@
 #include <string>
 
 #include "boundary_support.hpp"
+#include "sanitizer.hpp"
 
 namespace rumble::testing {
 namespace {
 
 namespace fs = std::filesystem;
-
-// The asan preset builds the tests and the rumble they run with AddressSanitizer, whose shadow
-// memory and quarantine count in the resident memory: GCC says so by __SANITIZE_ADDRESS__,
-// Clang (the preset's compiler) by __has_feature.
-#if defined(__SANITIZE_ADDRESS__)
-constexpr bool kUnderAddressSanitizer = true;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-constexpr bool kUnderAddressSanitizer = true;
-#else
-constexpr bool kUnderAddressSanitizer = false;
-#endif
-#else
-constexpr bool kUnderAddressSanitizer = false;
-#endif
 
 /// The number in the run's log line "<what>: about <n> bytes projected".
 double projected_bytes(const std::string& log, const std::string& what) {
@@ -88,7 +74,7 @@ TEST(RunSize, EstimatesAreWithinTwiceWhatTheRunWrites) {
 // memory back. (Not under AddressSanitizer, whose shadow memory and quarantine are not the
 // run's.)
 TEST(RunSize, TheStaticsMemoryIsWithinTwiceTheEstimate) {
-  if (kUnderAddressSanitizer)
+  if (test::kUnderAddressSanitizer)
     GTEST_SKIP() << "resident memory under AddressSanitizer is not the run's";
   nlohmann::json s = small_scenario();
   s["track"]["sleepers"]["count"] = 3000;

@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "cli_runner.hpp"
+#include "sanitizer.hpp"
 
 namespace rumble::testing {
 namespace {
@@ -38,19 +39,6 @@ TEST(CliRun, GaussSeidelRunWritesResultsAndSummary) {
     EXPECT_EQ(csv_rows(results / f), 51u) << f;  // t = 0 and 50 macro steps
 }
 
-// AddressSanitizer's shadow memory and quarantine are not the run's.
-#if defined(__SANITIZE_ADDRESS__)
-constexpr bool kUnderAddressSanitizer = true;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-constexpr bool kUnderAddressSanitizer = true;
-#else
-constexpr bool kUnderAddressSanitizer = false;
-#endif
-#else
-constexpr bool kUnderAddressSanitizer = false;
-#endif
-
 // Memory per DOF (issue #33): the FEM soil states its DOFs and its estimate of the run's peak
 // (ABI 1.5 size), summary.json divides each phase's peak by them, and the soil frees its statics'
 // factor when the engine says the statics are done (statics_done), so that the steps hold about
@@ -75,7 +63,7 @@ TEST(CliRun, AFemRunAccountsItsMemoryPerDofAndFreesItsStaticsBeforeTheSteps) {
     EXPECT_NEAR(memory["bytes_per_dof"][phase].get<double>(),
                 memory["peak_resident_bytes"][phase].get<double>() / dofs, 1e-6)
         << phase;
-  if (kUnderAddressSanitizer) GTEST_SKIP() << "resident memory under AddressSanitizer";
+  if (test::kUnderAddressSanitizer) GTEST_SKIP() << "resident memory under AddressSanitizer";
   // The soil's estimate (memory_model.hpp): 0.87 times the peak here.
   EXPECT_GT(memory["estimate_over_peak"].get<double>(), 0.7);
   EXPECT_LT(memory["estimate_over_peak"].get<double>(), 1.3);

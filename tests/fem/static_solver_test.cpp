@@ -25,6 +25,7 @@
 #include "mesh/kuhn_box.hpp"
 #include "operator/effective_matrix.hpp"
 #include "operator/elasticity.hpp"
+#include "sanitizer.hpp"
 #include "settings_from_params.hpp"
 #include "statics/amg_preconditioner.hpp"
 #include "statics/mesh_matrix.hpp"
@@ -33,20 +34,6 @@
 
 namespace rumble::fem {
 namespace {
-
-// The sanitizers' allocators keep freed blocks in quarantine and ignore mallopt: no memory
-// measurement under them.
-#if defined(__SANITIZE_ADDRESS__)
-constexpr bool kUnderSanitizer = true;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-constexpr bool kUnderSanitizer = true;
-#else
-constexpr bool kUnderSanitizer = false;
-#endif
-#else
-constexpr bool kUnderSanitizer = false;
-#endif
 
 TEST(FemStatics, ConjugateGradientsAgreeWithTheFactorAndStartFromTheLastSolution) {
   const TetMesh m = kuhn_box(4, 0.5);
@@ -246,7 +233,8 @@ bool restart_peak() {
 // docs/fem-soil.md section 7.2). Copying K for the set-up (0.6 times the estimate more), forming
 // A P whole again (1.3 times), or chunks of 16384 nodes (measured: 2.1 times) fail it.
 TEST(FemStatics, MultigridAddsTheMemoryTheModelEstimates) {
-  if (kUnderSanitizer) GTEST_SKIP() << "a sanitizer's allocator keeps freed blocks";
+  if (rumble::test::kUnderAddressSanitizer)
+    GTEST_SKIP() << "a sanitizer's allocator keeps freed blocks";
 #if defined(__GLIBC__)
   // As the engine does after loading plugins (core/malloc_policy.hpp): this process links
   // PETSc, whose SuperLU_DIST turns malloc's return of freed memory off.

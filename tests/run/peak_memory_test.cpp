@@ -13,6 +13,7 @@
 #include <fstream>
 
 #include "core/malloc_policy.hpp"
+#include "sanitizer.hpp"
 
 #if defined(__GLIBC__)
 #include <malloc.h>
@@ -44,19 +45,6 @@ TEST(PeakMemory, EachPhaseHasItsOwnPeak) {
   EXPECT_LT(p[2].second + 48 * kMiB, p[1].second) << "the phase after the block shows it";
 }
 
-// The sanitizers' allocators keep freed blocks in quarantine, and ignore mallopt.
-#if defined(__SANITIZE_ADDRESS__)
-constexpr bool kSanitizerAllocator = true;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-constexpr bool kSanitizerAllocator = true;
-#else
-constexpr bool kSanitizerAllocator = false;
-#endif
-#else
-constexpr bool kSanitizerAllocator = false;
-#endif
-
 /// The process's resident memory now [bytes] (/proc/self/statm, in pages).
 std::size_t resident_bytes() {
   std::ifstream statm("/proc/self/statm");
@@ -83,7 +71,8 @@ TEST(PeakMemory, FreedMemoryGoesBackAfterALibraryToldMallocToKeepIt) {
 #if !defined(__GLIBC__)
   GTEST_SKIP() << "the malloc options are glibc's";
 #else
-  if (kSanitizerAllocator) GTEST_SKIP() << "a sanitizer's allocator keeps freed blocks";
+  if (rumble::test::kUnderAddressSanitizer)
+    GTEST_SKIP() << "a sanitizer's allocator keeps freed blocks";
   // What SuperLU_DIST's initialiser does when the FEM plugin loads it (with PETSc).
   ::mallopt(M_MMAP_MAX, 0);
   ::mallopt(M_TRIM_THRESHOLD, -1);
