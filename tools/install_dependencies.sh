@@ -10,7 +10,8 @@ PKGS=(cmake ninja-build g++ pkg-config clang-format
       chromium-headless-shell  # the study report's test renders it in a headless browser
       graphviz  # dot: tools/architecture_graph.sh draws docs/architecture.svg
       universal-ctags  # tools/check_function_length.py finds the functions
-      libpetsc-real-dev libopenmpi-dev openmpi-bin)  # the FEM soil's distributed back end (docs/toolchain.md section 9)
+      libpetsc-real-dev libopenmpi-dev openmpi-bin  # the FEM soil's distributed back end (docs/toolchain.md section 9)
+      python3-vtk9)  # tests/mpi/pvtu_agrees.py opens the ranks' .pvtu snapshots with VTK's reader
 missing=()
 for p in "${PKGS[@]}"; do
   dpkg-query -W -f='${db:Status-Status}' "$p" 2>/dev/null | grep -qx installed || missing+=("$p")

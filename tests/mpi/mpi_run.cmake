@@ -14,8 +14,10 @@
 #                                and the log says once that the other 2 ranks wait idle
 #   fem_same_on_N_ranks          fem_small.json (the FEM soil, about 2e4 DOFs) without mpirun and
 #                                on N ranks: the soil says it is split over N ranks; the field
-#                                snapshots every 10 ms (the whole displacement and velocity, every
-#                                digit, gathered on rank 0) agree to 1e-12 of their largest value,
+#                                snapshots every 10 ms (on N ranks a .pvtu and a piece per rank,
+#                                read by VTK's reader: pvtu_agrees.py) have one process's points
+#                                and agree to 1e-12 of their largest value; `rumble mesh --ranks N`
+#                                estimates the halo within 1.5 of the split's,
 #                                the CSV histories (9 digits) as printed (csv_agree); a second
 #                                run on N ranks writes the same files byte for byte
 #   fem_gamg_statics_on_3_ranks  statics.solver gamg: the static state solved on the 3 ranks by
@@ -28,6 +30,8 @@
 #                                RUMBLE_FEM_FAIL_RANK_AT): every rank stops, exit 3, its message
 #   fem_interrupt_stops_every_rank  mpirun stopped mid-run on 2 ranks: "interrupted", results
 #                                on disk
+#   fem_node_memory_is_refused   the estimate per rank above this machine's memory (made 0.1 GB
+#                                by RUMBLE_FEM_NODE_MEMORY): a clear error before meshing (exit 1)
 #   fem_too_many_ranks_is_refused  a mesh too small for 3 ranks: a clear error before meshing
 #                                (the run's validation lays the soil out: exit 1)
 #   fem_one_process_settings_refused_on_ranks  local steps, the implicit scheme, the matched
@@ -79,22 +83,70 @@ function(fem_runs ranks fields_tolerance)
   fem_fields(${ranks} ${fields_tolerance})
 endfunction()
 
-# The field snapshots (fields/*.vtu, every 10 ms) of both runs: the whole displacement and
-# velocity, every digit, agree to 1e-12 of their largest value (csv_agree).
+# The field snapshots (every 10 ms) of both runs: one process's fields/soil_<k>.vtu, the
+# ranks' fields/soil_<k>.pvtu and its pieces soil_<k>_<r>.vtu, one per rank, which soil.pvd
+# lists. VTK's vtkXMLPUnstructuredGridReader opens each .pvtu (pvtu_agrees.py): as many points
+# not marked as ghosts as one process's, and the whole displacement and velocity, every digit,
+# within `tolerance` of their largest value.
 function(fem_fields ranks tolerance)
   file(GLOB snapshots RELATIVE ${WORK_DIR}/one ${WORK_DIR}/one/fields/*.vtu)
   list(LENGTH snapshots n)
   if(n LESS 2)
     message(FATAL_ERROR "expected at least 2 field snapshots, got ${n}")
   endif()
+  file(READ ${WORK_DIR}/many/soil.pvd index)
+  math(EXPR last "${ranks} - 1")
   foreach(vtu ${snapshots})
-    execute_process(COMMAND ${CSV_AGREE} ${WORK_DIR}/many/${vtu} ${WORK_DIR}/one/${vtu}
-                            ${tolerance} OUTPUT_VARIABLE said RESULT_VARIABLE differ)
-    message(STATUS "${said}")
+    string(REGEX REPLACE "\\.vtu$" "" stem "${vtu}")
+    expect_match("${index}" "file=\"${stem}\\.pvtu\"")
+    foreach(rank RANGE ${last})
+      if(NOT EXISTS ${WORK_DIR}/many/${stem}_${rank}.vtu)
+        message(FATAL_ERROR "${stem}_${rank}.vtu, rank ${rank}'s piece, is missing")
+      endif()
+    endforeach()
+    if(EXISTS ${WORK_DIR}/many/${stem}_${ranks}.vtu OR EXISTS ${WORK_DIR}/many/${vtu})
+      message(FATAL_ERROR "more than ${ranks} pieces, or a whole ${vtu}, on ${ranks} ranks")
+    endif()
+    execute_process(COMMAND ${PYTHON} ${SOURCE_DIR}/pvtu_agrees.py ${WORK_DIR}/many/${stem}.pvtu
+                            ${WORK_DIR}/one/${vtu} ${tolerance}
+                    OUTPUT_VARIABLE said ERROR_VARIABLE err RESULT_VARIABLE differ)
+    message(STATUS "${said}${err}")
     if(NOT differ EQUAL 0)
-      message(FATAL_ERROR "${vtu} on ${ranks} ranks differs from one process's:\n${said}")
+      message(FATAL_ERROR "${stem}.pvtu on ${ranks} ranks differs from one process's ${vtu}:\n"
+                          "${said}${err}")
     endif()
   endforeach()
+endfunction()
+
+# `rumble mesh --ranks N` (one process) estimates the halo of a run on N ranks: within a factor
+# 1.5 of the split the run on N ranks made (fem_many_out: "halo X KiB exchanged per step").
+function(fem_plan_against_split ranks)
+  string(REGEX MATCH "halo ([0-9.e+]+) KiB exchanged per step" split "${fem_many_out}")
+  set(actual ${CMAKE_MATCH_1})
+  rumble_run(out code ${RUMBLE} mesh ${SOURCE_DIR}/fem_small.json --ranks ${ranks}
+             --output ${WORK_DIR}/plan)
+  if(NOT code EQUAL 0 OR NOT split)
+    message(FATAL_ERROR "rumble mesh --ranks ${ranks} failed (${code}) or no split said:\n${out}")
+  endif()
+  rumble_run(said code ${RUMBLE} mesh ${SOURCE_DIR}/fem_small.json --ranks 0)  # (a usage error)
+  if(NOT code EQUAL 1)
+    message(FATAL_ERROR "rumble mesh --ranks 0: expected exit code 1, got ${code}:\n${said}")
+  endif()
+  expect_match("${said}" "--ranks=0 is not a number of MPI ranks; give an integer from 1")
+  foreach(source "the plan's estimate" "the mesh")
+    string(REGEX MATCH "on ${ranks} ranks, from ${source} \\([^\n]*, ([0-9.e+]+) KiB exchanged" said
+           "${out}")
+    if(NOT said)
+      message(FATAL_ERROR "no estimate from ${source} for ${ranks} ranks:\n${out}")
+    endif()
+    set(estimate ${CMAKE_MATCH_1})
+    message(STATUS "${ranks} ranks, from ${source}: halo ${estimate} KiB estimated, ${actual} KiB split")
+  endforeach()
+  # (math() is integer: the comparison in Python's floats)
+  execute_process(COMMAND ${PYTHON} -c "import sys; e, a = float(sys.argv[1]), float(sys.argv[2]); sys.exit(0 if a / 1.3 <= e <= 1.3 * a else 1)" ${estimate} ${actual} RESULT_VARIABLE off)
+  if(NOT off EQUAL 0)
+    message(FATAL_ERROR "the halo from the mesh, ${estimate} KiB, is not within 1.3 of the split's ${actual} KiB")
+  endif()
 endfunction()
 
 function(fem_case)
@@ -105,12 +157,13 @@ function(fem_case)
     set(ranks ${CMAKE_MATCH_1})
     list(APPEND fem_csvs interface)
     fem_runs(${ranks} 1e-12)
+    fem_plan_against_split(${ranks})
     # Run again on as many ranks: every file the same byte for byte (the split repeats, and
     # every sum over the ranks is taken in one fixed order).
     rumble_run(out code ${mpirun} -n ${ranks} ${RUMBLE} run ${fem} --output ${WORK_DIR}/again
                --no-plots --set /outputs/fields/interval=0.01)
     file(GLOB_RECURSE written RELATIVE ${WORK_DIR}/many ${WORK_DIR}/many/*.csv
-         ${WORK_DIR}/many/fields/*.vtu)
+         ${WORK_DIR}/many/fields/*.vtu ${WORK_DIR}/many/fields/*.pvtu)
     foreach(f ${written})
       execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files ${WORK_DIR}/many/${f}
                               ${WORK_DIR}/again/${f} RESULT_VARIABLE differ)
@@ -176,6 +229,15 @@ function(fem_case)
       message(FATAL_ERROR "expected exit code 1 before meshing, got ${code}:\n${out}")
     endif()
     expect_match("${out}" "fem: a mesh of about [0-9.e+]+ nodes \\(planned\\) cannot use 3 ranks: .*run it without mpirun")
+  elseif(CASE STREQUAL "fem_node_memory_is_refused")
+    # The estimate per rank (rank_plan.hpp) for the 2 ranks on this machine against its memory,
+    # made 0.1 GB for the test (RUMBLE_FEM_NODE_MEMORY): refused at validation, before meshing.
+    set(ENV{RUMBLE_FEM_NODE_MEMORY} 1e8)
+    rumble_run(out code ${mpirun} -n 2 ${RUMBLE} run ${fem} --output ${WORK_DIR}/memory)
+    if(NOT code EQUAL 1 OR out MATCHES "fem: a mesh of about [0-9.e+]+ DOFs")
+      message(FATAL_ERROR "expected exit code 1 before meshing, got ${code}:\n${out}")
+    endif()
+    expect_match("${out}" "fem: params/mesh: on 2 ranks a mesh of about [0-9.e+]+ nodes \\(mesh.f_max 50 Hz\\) needs about [0-9.e+-]+ GB at its peak on rank 0 .* for the 2 rank\\(s\\) on rank 0's machine, more than the 0.1 GB it has available .*start fewer ranks on each machine")
   elseif(CASE STREQUAL "fem_one_process_settings_refused_on_ranks")
     # Each refused when the soil is made on the ranks, naming its parameter.
     foreach(refused "integrator/local_steps=2|params/integrator/local_steps: local time stepping"

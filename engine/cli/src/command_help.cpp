@@ -86,6 +86,10 @@ mesh in DIR/mesh.vtu (soils with field output, e.g. fem).
 
 options:
   --output DIR              (default: the scenario's outputs.directory)
+  --ranks N                 plan a run on N MPI ranks (mpirun -n N rumble run): the FEM soil
+                            reports the largest rank's nodes and DOFs, the halo and the memory
+                            per rank, estimated before and after meshing (docs/fem-soil.md,
+                            "Planning the ranks"); it still meshes on this one process
   --allow-outside-results   accept an outputs.directory that is absolute or leads out of the
                             scenario's folder (default: refuse; --output DIR also consents)
   --set POINTER=VALUE       replace the value at a JSON pointer first; repeatable, e.g.

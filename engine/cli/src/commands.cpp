@@ -41,7 +41,7 @@ commands:
   plugins [--format text|json]      list plugin libraries and the types they provide
   schema [TYPE] [--json]            the parameters of a type: units, defaults, ranges; without
                                     TYPE, the known types
-  mesh FILE [--output DIR] [--allow-outside-results]
+  mesh FILE [--output DIR] [--ranks N] [--allow-outside-results]
                                     build the scenario's soil on its footprints without running:
                                     its report in the log, its mesh in DIR/mesh.vtu (FEM soil)
   soil-frf FILE [options]           receptance of the scenario's soil at its footprints (CSV)

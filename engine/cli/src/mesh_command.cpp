@@ -3,11 +3,16 @@
 // discretisation in the log (a FEM soil: nodes, DOFs, smallest element, stable step, frequency
 // resolved at each distance) and, when it offers field output, writes it to DIR/mesh.vtu to look at
 // in ParaView before spending a run on it. DIR is the soil's results directory meanwhile: a FEM
-// soil's mesh.export goes there (docs/fem-soil.md §2.1).
+// soil's mesh.export goes there (docs/fem-soil.md §2.1). --ranks N: the soil is built on one
+// process as ever, told through RUMBLE_MESH_RANKS that a run on N ranks is planned; a FEM soil
+// then reports its estimate per rank (docs/fem-soil.md, "Planning the ranks").
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <cstdlib>
 #include <iostream>
+#include <optional>
+#include <string>
 
 #include "cli/arguments.hpp"
 #include "cli/commands.hpp"
@@ -34,15 +39,34 @@ void new_mesh_file(const std::filesystem::path& path) {
   ::close(open_new_file(path));  // whatever stood there removed, the file made anew
 }
 
+/// --ranks N: an integer from 1 to 1e6, set as RUMBLE_MESH_RANKS for the soil.
+void set_planned_ranks(const std::optional<std::string>& text) {
+  ::unsetenv("RUMBLE_MESH_RANKS");
+  if (!text) return;
+  std::size_t used = 0;
+  long n = 0;
+  try {
+    n = std::stol(*text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != text->size() || n < 1 || n > 1000000)
+    throw UsageError("--ranks=" + *text +
+                     " is not a number of MPI ranks; give an integer from 1 to 1000000, the N "
+                     "of the planned `mpirun -n N rumble run`");
+  ::setenv("RUMBLE_MESH_RANKS", std::to_string(n).c_str(), 1);
+}
+
 }  // namespace
 
 int mesh_command(const std::vector<std::string>& args) {
-  const Arguments a(args, {"allow-outside-results"}, {"output"}, {"set"});
+  const Arguments a(args, {"allow-outside-results"}, {"output", "ranks"}, {"set"});
   if (a.positional().size() != 1) {
     throw UsageError(
-        "usage: rumble mesh FILE [--output DIR] [--allow-outside-results] [--set POINTER=VALUE "
-        "...]");
+        "usage: rumble mesh FILE [--output DIR] [--ranks N] [--allow-outside-results] [--set "
+        "POINTER=VALUE ...]");
   }
+  set_planned_ranks(a.value("ranks"));                    // (before the soil is built)
   const auto output = a.directory("output", "mesh.vtu");  // before a mesh is built
   std::vector<scenario::Override> overrides;
   for (const std::string& set : a.values("set"))

@@ -590,6 +590,10 @@ bool SoilInstance::offers_fields() const {
   return api_.write_fields != nullptr && capabilities().has(RUMBLE_CAP_FIELD_OUTPUT);
 }
 
+int SoilInstance::field_pieces() const {
+  return mirror_id() != 0 ? parallel::world_size() : 1;
+}
+
 bool SoilInstance::write_fields(double t, const std::filesystem::path& path) {
   if (!offers_fields()) return false;
   mirrored(

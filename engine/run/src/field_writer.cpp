@@ -33,29 +33,38 @@ void FieldWriter::at(double t) {
   // Snapshot k is due at k * interval; a step ending within 1e-9 interval of it counts.
   const double due = static_cast<double>(times_.size()) * interval_;
   if (t < due - 1e-9 * interval_) return;
-  char name[48];
-  std::snprintf(name, sizeof name, "fields/soil_%06zu.vtu", times_.size());
-  // The soil opens the file itself: what stands at the name (a link) is removed first.
-  const fs::path path = results_.file(name);
-  if (::unlink(path.c_str()) != 0 && errno != ENOENT) {
-    const int err = errno;
-    throw RunError(write_error(path, err));
-  }
-  soil_.write_fields(t, path);
+  char stem[48];
+  std::snprintf(stem, sizeof stem, "fields/soil_%06zu", times_.size());
+  // On N ranks the snapshot is a parallel index and a piece per rank (rumble/abi.h,
+  // write_fields); the soil opens each file itself: what stands at a name (a link) is removed.
+  const int pieces = soil_.field_pieces();
+  const std::string name = std::string(stem) + (pieces > 1 ? ".pvtu" : ".vtu");
+  std::vector<fs::path> written = {results_.file(name)};
+  for (int r = 0; pieces > 1 && r < pieces; ++r)
+    written.push_back(results_.file(std::string(stem) + "_" + std::to_string(r) + ".vtu"));
+  for (const fs::path& path : written)
+    if (::unlink(path.c_str()) != 0 && errno != ENOENT) {
+      const int err = errno;
+      throw RunError(write_error(path, err));
+    }
+  soil_.write_fields(t, written.front());
   times_.push_back(t);
-  files_.emplace_back(name);
+  files_.push_back(name);
   write_index();
-  if (times_.size() == 1) check_projected_size(path);
+  if (times_.size() == 1) check_projected_size(written);
 }
 
-void FieldWriter::check_projected_size(const fs::path& first) const {
-  std::error_code ec;
-  const auto bytes = static_cast<double>(fs::file_size(first, ec));
-  if (ec) return;
+void FieldWriter::check_projected_size(const std::vector<fs::path>& first) const {
+  double bytes = 0.0;  // (the index and its pieces)
+  for (const fs::path& file : first) {
+    std::error_code ec;
+    bytes += static_cast<double>(fs::file_size(file, ec));
+    if (ec) return;
+  }
   const double snapshots = std::floor(t_end_ / interval_ + 1e-9) + 1.0;
   // The snapshots still to come must fit the disk, --yes or not.
   const double to_come = bytes * (snapshots - 1.0);
-  const std::string dir = first.parent_path().string();
+  const std::string dir = first.front().parent_path().string();
   const double free = free_disk_bytes(dir);
   logger("engine")->info(
       "fields: about {} bytes projected ({} snapshots of {} bytes; {} bytes free "

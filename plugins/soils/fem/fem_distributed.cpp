@@ -4,12 +4,13 @@
 // and the stable step, the static state, the receivers' places, the receptance and the linear
 // matrices), then every rank takes its share of the mesh (distributed/distributed_soil.hpp) and
 // the explicit steps run on the shares, their halos exchanged by PETSc. Rank 0 reads the
-// footprints' motion and the receivers' samples, gathered in rank order.
+// footprints' motion and the receivers' samples, gathered in rank order; each rank writes its
+// piece of a field snapshot (distributed/field_pieces.hpp).
 //
 // With statics.solver gamg the static state is solved on the ranks instead (PETSc's GAMG over
 // the ranks' parts). What does not run on many ranks yet is refused when the soil is made,
 // before any work: the matched layer, the local steps and the implicit scheme (each names its
-// parameter and the fix).
+// parameter and the fix), and so is a mesh whose estimate per rank outgrows a machine's memory.
 #define OMPI_SKIP_MPICXX 1
 #include <mpi.h>
 
@@ -21,6 +22,8 @@
 #include <string>
 #include <vector>
 
+#include "distributed/field_pieces.hpp"
+#include "distributed/node_memory.hpp"
 #include "distributed/rank_agreement.hpp"
 #include "fem_soil.hpp"
 #include "mesh/mesh_generator.hpp"
@@ -80,6 +83,7 @@ void FemSoil::refuse_on_many_ranks() const {
 void FemSoil::accept_layout_distributed(const std::vector<rumble::Footprint>& footprints) {
   rumble::fem::DistributedSoil& d = *distributed_;
   footprints_ = footprints;
+  const std::vector<rumble::fem::NodeShare> machines = rumble::fem::node_shares(d.comm());
   rumble::fem::on_root(d.comm(), [&] {
     const auto refuse_count = [&](double nodes, const char* what, const char* planned) {
       if (nodes >= kFewestNodesPerRank * d.ranks()) return;
@@ -94,11 +98,22 @@ void FemSoil::accept_layout_distributed(const std::vector<rumble::Footprint>& fo
         << ", or refine the mesh (mesh.f_max, mesh.h_near)";
       throw std::invalid_argument(m.str());
     };
-    if (settings_.mesh.file.empty())  // (before meshing: the plan's estimate)
-      refuse_count(rumble::fem::plan_mesh(settings_, footprints).estimated_nodes, "a mesh of about",
-                   " (planned)");
+    // Each machine's memory for its ranks, against the estimate per rank (distributed/
+    // rank_plan.hpp): before meshing from the plan, again from the mesh.
+    const auto check_memory = [&](double nodes, const char* source) {
+      const rumble::fem::RankPlan plan =
+          rumble::fem::plan_ranks(nodes, d.ranks(), settings_.gamg_statics);
+      host_.info(rumble::fem::describe(plan, source));
+      rumble::fem::check_node_memory(plan, machines, settings_.mesh.f_max);
+    };
+    if (settings_.mesh.file.empty()) {  // (before meshing: the plan's estimate)
+      const double planned = rumble::fem::plan_mesh(settings_, footprints).estimated_nodes;
+      refuse_count(planned, "a mesh of about", " (planned)");
+      check_memory(planned, "the plan's estimate");
+    }
     lay_out_here(footprints);
     refuse_count(static_cast<double>(mesh_.node_count()), "the mesh's", "");
+    check_memory(static_cast<double>(mesh_.node_count()), "the mesh");
   });
   d.lay_out(d.root() ? &mesh_ : nullptr, d.root() ? &*op_ : nullptr, settings_, host_.threads());
   d.set_footprints(d.root() ? &weights_ : nullptr);
@@ -263,6 +278,11 @@ void FemSoil::set_probes_distributed(const std::vector<rumble::Probe>& probes,
 
 void FemSoil::write_fields_distributed(double t, const std::string& path) {
   rumble::fem::DistributedSoil& d = *distributed_;
+  if (path.size() > 5 && path.compare(path.size() - 5, 5, ".pvtu") == 0) {  // (rumble/abi.h)
+    rumble::fem::on_root(d.comm(), [&] { export_if_due(); });
+    return rumble::fem::write_field_pieces(d, t, path);
+  }
+  // A .vtu asked of many ranks (`rumble mesh` under mpirun): gathered on rank 0, as one file.
   const Eigen::Index n = d.root() ? mesh_.dof_count() : 0;
   Eigen::VectorXd u = Eigen::VectorXd::Zero(n), w = u, v = u;
   d.gather(d.static_state(), d.root() ? &u : nullptr);

@@ -13,6 +13,7 @@
 
 #include "boundary/absorbing_boundary.hpp"
 #include "boundary/pml.hpp"
+#include "distributed/rank_plan.hpp"
 #include "fem_soil.hpp"
 #include "memory_model.hpp"
 #include "mesh/gmsh_model.hpp"
@@ -43,6 +44,7 @@ void FemSoil::lay_out_here(const std::vector<rumble::Footprint>& footprints) {
     host_.info("fem: a mesh of about " + format(3.0 * plan_.estimated_nodes) + " DOFs (h_near " +
                format(plan_.h_near) + " m, h_max " + format(plan_.h_max) + " m, radius " +
                format(plan_.radius) + " m)");
+    report_ranks(plan_.estimated_nodes, "the plan's estimate");
     mesh_ = cached_or_new_mesh();
     export_due_ = !settings_.mesh.export_file.empty();
     export_if_due();
@@ -53,6 +55,7 @@ void FemSoil::lay_out_here(const std::vector<rumble::Footprint>& footprints) {
     plan_ = {.region = TrackRegion::of(footprints)};  // sizes unknown: radius 0
     host_.info("fem: mesh read from " + mesh_file_);
   }
+  report_ranks(static_cast<double>(mesh_.node_count()), "the mesh");
   const double mesh_seconds = seconds_since(start);
   weights_ = footprint_weights(mesh_, footprints);
   std::vector<BoundaryNode> boundary = absorbing_boundary(mesh_, settings_, footprints);
@@ -140,6 +143,13 @@ rumble::fem::TetMesh FemSoil::cached_or_new_mesh() const {
     host_.warn("fem: could not keep the mesh in " + path.string() +
                " (set RUMBLE_MESH_CACHE to a writable directory, or to off)");
   return mesh;
+}
+
+void FemSoil::report_ranks(double nodes, const char* source) const {
+  const int ranks = rumble::fem::planned_ranks();  // (`rumble mesh --ranks N` on one process)
+  if (ranks > 1 && !distributed_)
+    host_.info(rumble::fem::describe(rumble::fem::plan_ranks(nodes, ranks, settings_.gamg_statics),
+                                     source));
 }
 
 void FemSoil::hint_fast_meshing() const {

@@ -143,6 +143,8 @@ class FemSoil final : public rumble::Soil {
   /// Before a large Delaunay meshing: the faster algorithm exists. Measured on the stiff example
   /// at about 1e6 DOFs (docs/fem-soil.md section 7): Delaunay 62-95 s on one thread, HXT with 2
   /// threads 4.4 s (and about 20 % fewer tetrahedra for the same sizes).
+  /// `rumble mesh --ranks N` (distributed/rank_plan.hpp): the estimate per rank in the log.
+  void report_ranks(double nodes, const char* source) const;
   void hint_fast_meshing() const;
 
   rumble::fem::TetMesh cached_or_new_mesh() const;

@@ -378,7 +378,12 @@ typedef struct rumble_soil_api {
   rumble_status (*probe_samples)(rumble_instance* self, double* times, double* values,
                                  uint64_t capacity, uint64_t* n_samples);
   /** Optional (RUMBLE_CAP_FIELD_OUTPUT): write the soil's fields at the current time to path
-   *  (a VTK XML unstructured grid, .vtu); the host names the files and writes the .pvd index. */
+   *  (a VTK XML unstructured grid, .vtu); the host names the files and writes the .pvd index.
+   *  A RUMBLE_CAP_DISTRIBUTED soil on N > 1 ranks (1.4) is given, on every rank, a path ending
+   *  in .pvtu: each rank r writes its piece, a .vtu at that path with ".pvtu" replaced by
+   *  "_<r>.vtu" (r in decimal: soil_000002_0.vtu), its shared points marked in the point array
+   *  vtkGhostType (1 on the copies a rank does not own), and rank 0 writes the parallel index
+   *  (.pvtu) naming the pieces by their file names (docs/fem-soil.md, "On many ranks"). */
   rumble_status (*write_fields)(rumble_instance* self, double t, const char* path);
   /** Optional (RUMBLE_CAP_WAVE_SPEEDS): the slowest shear and Rayleigh wave speeds [m/s] of
    *  any layer, for the host's critical-speed check (the host never reads a soil's params);

@@ -248,6 +248,10 @@ class SoilInstance final : public Instance {
   bool offers_fields() const;
   /// ABI 1.1 field output; false when not offered.
   bool write_fields(double t, const std::filesystem::path& path);
+  /// How many pieces a field snapshot has: the ranks of an MPI launch for a distributed soil
+  /// (its snapshot is a parallel .pvtu, one .vtu piece per rank: rumble/abi.h, write_fields),
+  /// else 1 (one .vtu).
+  int field_pieces() const;
   /// ABI 1.1: slowest shear and Rayleigh speeds [m/s]; false when not offered.
   bool wave_speeds(double& c_s_min, double& c_r_min) const;
   /// ABI 1.1, after accept_layout: one matrix of M x'' + C x' + K x = B F (u = B^T x); false

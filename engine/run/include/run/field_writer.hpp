@@ -1,5 +1,6 @@
 // Soil field snapshots (ABI 1.1 write_fields) at the cadence of /outputs/fields: the soil writes
-// each fields/soil_<k>.vtu itself; the engine names the files and keeps the ParaView index
+// each fields/soil_<k>.vtu itself (on N ranks soil_<k>.pvtu and its pieces soil_<k>_<r>.vtu, one
+// per rank: rumble/abi.h, write_fields); the engine names the files and keeps the ParaView index
 // soil.pvd (time of each snapshot) valid after every one, so a run that stops early still opens.
 // No write goes through a symbolic link: fields/ is a real directory, whatever stands at a
 // snapshot's name is removed before the soil writes it, and soil.pvd is a new file each time.
@@ -35,8 +36,9 @@ class FieldWriter {
 
  private:
   void write_index();
-  /// Throws RunError when the snapshots would outgrow kMaxFieldBytes at the first one's size.
-  void check_projected_size(const std::filesystem::path& first) const;
+  /// Throws RunError when the snapshots would outgrow kMaxFieldBytes at the first one's size
+  /// (its files: the .vtu, or the .pvtu and its pieces).
+  void check_projected_size(const std::vector<std::filesystem::path>& first) const;
   ResultsDirectory& results_;
   SoilInstance& soil_;
   double interval_;

@@ -66,9 +66,11 @@ class DistributedSoil {
   ExplicitSolver& step() { return *step_; }
   const ExplicitSolver& step() const { return *step_; }
   ExplicitState& state() { return state_; }
+  const ExplicitState& state() const { return state_; }
   Eigen::VectorXd& force() { return f_; }        // [N] this rank's nodes' force
   Eigen::VectorXd& force_jump() { return df_; }  // [N] its change at a macro step's start
   const FootprintWeights& weights() const { return weights_; }
+  const MeshPartition& partition() const { return part_; }
   /// f = G F at this rank's far-field nodes (StaticFarField::set).
   void set_far_field_force(const double* F, Eigen::VectorXd& f) const;
 

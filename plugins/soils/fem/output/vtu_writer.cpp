@@ -33,7 +33,8 @@ std::vector<double> as_vector(const Eigen::VectorXd& x) {
 }  // namespace
 
 void write_vtu(const std::string& path, double t, const TetMesh& mesh,
-               const Eigen::VectorXd& displacement, const Eigen::VectorXd& velocity) {
+               const Eigen::VectorXd& displacement, const Eigen::VectorXd& velocity,
+               const std::vector<std::uint8_t>* ghosts) {
   const std::size_t n_cells = mesh.tets.size();
   std::vector<double> points(mesh.nodes.data(), mesh.nodes.data() + mesh.nodes.size());
   std::vector<std::int64_t> connectivity, offsets(n_cells);
@@ -43,9 +44,9 @@ void write_vtu(const std::string& path, double t, const TetMesh& mesh,
     offsets[e] = static_cast<std::int64_t>(4 * (e + 1));
   }
   const std::vector<std::uint8_t> types(n_cells, 10);  // VTK_TETRA
-  const std::vector<Block> point_data = {
-      block("Float64", "displacement", 3, as_vector(displacement)),
-      block("Float64", "velocity", 3, as_vector(velocity))};
+  std::vector<Block> point_data = {block("Float64", "displacement", 3, as_vector(displacement)),
+                                   block("Float64", "velocity", 3, as_vector(velocity))};
+  if (ghosts != nullptr) point_data.push_back(block("UInt8", "vtkGhostType", 1, *ghosts));
   const Block point_block = block("Float64", "Points", 3, points);
   const std::vector<Block> cell_blocks = {block("Int64", "connectivity", 1, connectivity),
                                           block("Int64", "offsets", 1, offsets),

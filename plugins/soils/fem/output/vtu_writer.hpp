@@ -4,15 +4,20 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <string>
+#include <vector>
 
 #include "mesh/tet_mesh.hpp"
 
 namespace rumble::fem {
 
 /// Writes displacement [m] and velocity [m/s] (3 per node) at time t [s] to path; throws
-/// std::runtime_error naming the path when it cannot.
+/// std::runtime_error naming the path when it cannot. ghosts (a piece of a parallel snapshot,
+/// pvtu_writer.hpp): per node, VTK's vtkGhostType (0 a node the piece owns, 1 a copy of another
+/// piece's node: VTK's DUPLICATEPOINT), written as that point array; null: none written.
 void write_vtu(const std::string& path, double t, const TetMesh& mesh,
-               const Eigen::VectorXd& displacement, const Eigen::VectorXd& velocity);
+               const Eigen::VectorXd& displacement, const Eigen::VectorXd& velocity,
+               const std::vector<std::uint8_t>* ghosts = nullptr);
 
 }  // namespace rumble::fem

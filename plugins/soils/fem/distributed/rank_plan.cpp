@@ -1,0 +1,76 @@
+#include "distributed/rank_plan.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+#include <stdexcept>
+
+#include "memory_model.hpp"
+
+namespace rumble::fem {
+
+RankPlan plan_ranks(double nodes, int ranks, bool gamg) {
+  RankPlan p;
+  p.ranks = std::max(1, ranks);
+  p.nodes = nodes;
+  if (p.ranks > 1) {
+    const double levels = (std::cbrt(p.ranks) - 1.0) / (std::cbrt(2.0) - 1.0);  // g(N)
+    p.ghosts = std::min(nodes, kHaloSurface * std::pow(nodes, 2.0 / 3.0) * levels);
+  }
+  p.largest_nodes = (nodes + p.ghosts) / p.ranks;
+  p.halo_bytes = kHaloBytesPerGhost * p.ghosts;
+  const double share = memory::kHeldBytesPerDof * 3.0 * p.largest_nodes;
+  const double share_statics =
+      gamg ? memory::multigrid_bytes(memory::kNonzerosPerDof * 3.0 * p.largest_nodes) : 0.0;
+  p.rank_bytes = memory::kProcessBytes + share + share_statics;
+  if (p.ranks == 1) {
+    p.root_bytes = memory::run_peak_bytes(3.0 * nodes);
+    p.rank_bytes = 0.0;
+  } else {  // (rank 0: the whole mesh and operator as one process holds them, and its share)
+    const double whole_statics =
+        gamg ? 0.0 : memory::statics_bytes(3.0 * nodes, memory::kNonzerosPerDof * 3.0 * nodes);
+    p.root_bytes = memory::kProcessBytes + memory::kHeldBytesPerDof * 3.0 * nodes +
+                   std::max(whole_statics, share_statics) + share;
+  }
+  return p;
+}
+
+int planned_ranks() {
+  const char* n = std::getenv("RUMBLE_MESH_RANKS");
+  return n != nullptr ? std::max(0, std::atoi(n)) : 0;
+}
+
+std::string describe(const RankPlan& p, const std::string& source) {
+  std::ostringstream m;
+  m.precision(3);
+  m << "fem: on " << p.ranks << " ranks, from " << source << " (" << p.nodes
+    << " nodes): the largest rank about " << p.largest_nodes << " nodes (" << 3.0 * p.largest_nodes
+    << " DOFs, ghosts included); a halo of about " << p.ghosts << " ghost nodes, "
+    << p.halo_bytes / 1024.0 << " KiB exchanged per step (" << kHaloBytesPerGhost
+    << " B per ghost; a surface-to-volume estimate, not a split); memory at the peak about "
+    << p.root_bytes / 1e9 << " GB on rank 0 (it holds the whole mesh) and " << p.rank_bytes / 1e9
+    << " GB on each other rank (estimates: docs/fem-soil.md, \"Planning the ranks\")";
+  return m.str();
+}
+
+void check_node_memory(const RankPlan& p, const std::vector<NodeShare>& nodes, double f_max) {
+  for (const NodeShare& node : nodes) {
+    const double need =
+        node.root ? p.root_bytes + (node.ranks - 1) * p.rank_bytes : node.ranks * p.rank_bytes;
+    if (need <= node.available) continue;
+    std::ostringstream m;
+    m.precision(3);
+    m << "fem: params/mesh: on " << p.ranks << " ranks a mesh of about " << p.nodes
+      << " nodes (mesh.f_max " << f_max << " Hz) needs about " << p.root_bytes / 1e9
+      << " GB at its peak on rank 0 and " << p.rank_bytes / 1e9
+      << " GB on each other rank (estimates: docs/fem-soil.md, \"Planning the ranks\"): "
+      << need / 1e9 << " GB for the " << node.ranks << " rank(s) on "
+      << (node.root ? "rank 0's" : "one") << " machine, more than the " << node.available / 1e9
+      << " GB it has available (MemAvailable, or the cgroup's limit); start fewer ranks on each "
+         "machine (mpirun --map-by), lower mesh.f_max or mesh.radius, or raise mesh.h_near";
+    throw std::invalid_argument(m.str());
+  }
+}
+
+}  // namespace rumble::fem

@@ -1,0 +1,64 @@
+// What a run on N ranks will cost each rank, estimated before it is split (issue #33;
+// docs/fem-soil.md, "On many ranks", "Planning the ranks"): for `rumble mesh FILE --ranks N`,
+// which meshes on one process, and for the check of each node's memory before a run on the
+// ranks meshes. The halo is a surface-to-volume estimate, not a split: N parts cut a mesh of n
+// nodes on surfaces through about kHaloSurface n^(2/3) g(N) nodes in all (recursive bisection:
+// the first cut through n^(2/3) nodes, each later level of cuts through 2^(1/3) times the
+// previous level's; g(N) = (N^(1/3) - 1) / (2^(1/3) - 1)), each such node a ghost on one rank.
+// The memory per rank is the soil's one-process model (memory_model.hpp) applied to what each
+// rank holds today: rank 0 the whole mesh, its operator and the statics (as one process) beside
+// its share; every other rank its share of nodes, owned and ghost.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace rumble::fem {
+
+/// Ghosts per n^(2/3) of a 2-way cut [-]: PT-Scotch's splits gave 0.79 (2 ranks) and 0.91 (3)
+/// on the graded mesh of tests/mpi/fem_small.json, 0.89 and 0.91 on a Kuhn box of 3315 nodes
+/// (docs/fem-soil.md, "Planning the ranks"); a plane through a box of k^3 nodes holds k^2.
+inline constexpr double kHaloSurface = 0.9;
+
+/// Bytes a ghost costs each explicit sub-step: its row of the product to its owner and back,
+/// 3 doubles each way (docs/fem-soil.md, "The step").
+inline constexpr double kHaloBytesPerGhost = 48.0;
+
+struct RankPlan {
+  int ranks = 1;
+  double nodes = 0.0;          // the whole mesh's
+  double ghosts = 0.0;         // over all ranks (the halo)
+  double largest_nodes = 0.0;  // the largest rank's, owned and ghost
+  double halo_bytes = 0.0;     // exchanged per explicit sub-step, all ranks [bytes]
+  double root_bytes = 0.0;     // rank 0's peak resident memory [bytes]
+  double rank_bytes = 0.0;     // any other rank's [bytes]
+};
+
+/// The plan for a mesh of `nodes` nodes on `ranks` >= 1 ranks; gamg: the statics solved on the
+/// ranks (statics.solver gamg) rather than by rank 0 alone.
+RankPlan plan_ranks(double nodes, int ranks, bool gamg);
+
+/// The ranks `rumble mesh FILE --ranks N` plans for: N from RUMBLE_MESH_RANKS, which that
+/// command sets for the soil it builds on one process (docs/fem-soil.md, "Planning the
+/// ranks"); 0 when unset.
+int planned_ranks();
+
+/// One line for the log: nodes and DOFs on the largest rank, the halo (ghosts, bytes per
+/// sub-step), the memory of rank 0 and of each other rank; `source` says where the node count
+/// comes from ("the plan's estimate", "the mesh").
+std::string describe(const RankPlan& plan, const std::string& source);
+
+/// One machine's ranks: how many of a run's ranks it runs (rank 0 among them or not) and the
+/// memory it has available [bytes].
+struct NodeShare {
+  int ranks = 0;
+  bool root = false;
+  double available = 0.0;
+};
+
+/// Throws std::invalid_argument (naming params/mesh, the estimate, the node and the fixes) when
+/// the ranks on some node would together need more memory at their peak than it has available.
+/// f_max: mesh.f_max [Hz], quoted in the message.
+void check_node_memory(const RankPlan& plan, const std::vector<NodeShare>& nodes, double f_max);
+
+}  // namespace rumble::fem

@@ -1,0 +1,70 @@
+// What `rumble mesh --ranks N` and a run on ranks estimate before any split
+// (plugins/soils/fem/distributed/rank_plan.hpp; docs/fem-soil.md, "Planning the ranks"), and the
+// names of a field snapshot's pieces (output/pvtu_writer.hpp; rumble/abi.h, write_fields). The
+// estimate against actual splits is tests/mpi's (fem_rank_plan_check, fem_same_on_N_ranks).
+#include "distributed/rank_plan.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "memory_model.hpp"
+#include "output/pvtu_writer.hpp"
+
+namespace {
+
+using rumble::fem::NodeShare;
+using rumble::fem::plan_ranks;
+using rumble::fem::RankPlan;
+
+TEST(FieldPieces, ArePathsBesideTheIndexNumberedByRank) {
+  EXPECT_EQ(rumble::fem::piece_path("out/fields/soil_000003.pvtu", 0),
+            "out/fields/soil_000003_0.vtu");
+  EXPECT_EQ(rumble::fem::piece_path("soil_000003.pvtu", 12), "soil_000003_12.vtu");
+  EXPECT_THROW(rumble::fem::piece_path("soil_000003.vtu", 0), std::invalid_argument);
+  EXPECT_THROW(rumble::fem::piece_path(".pvtu", 0), std::invalid_argument);
+}
+
+TEST(RankPlan, OneRankIsOneProcessWithoutHalo) {
+  const RankPlan p = plan_ranks(1e5, 1, false);
+  EXPECT_EQ(p.ghosts, 0.0);
+  EXPECT_EQ(p.largest_nodes, 1e5);
+  EXPECT_DOUBLE_EQ(p.root_bytes, rumble::fem::memory::run_peak_bytes(3e5));
+}
+
+TEST(RankPlan, HaloGrowsAsTheSurfacesOfRecursiveBisection) {
+  const double n = 1e6;  // (n^(2/3) = 1e4)
+  const RankPlan two = plan_ranks(n, 2, false), eight = plan_ranks(n, 8, false);
+  EXPECT_NEAR(two.ghosts, rumble::fem::kHaloSurface * 1e4, 1e-6);
+  // 8 parts: the cuts of 1, 2 and 4 parts of n, n/2, n/4 nodes: 1 + 2^(1/3) + 2^(2/3) planes.
+  EXPECT_NEAR(eight.ghosts / two.ghosts, 1.0 + std::cbrt(2.0) + std::cbrt(4.0), 1e-12);
+  EXPECT_DOUBLE_EQ(two.halo_bytes, 48.0 * two.ghosts);
+  EXPECT_DOUBLE_EQ(eight.largest_nodes, (n + eight.ghosts) / 8.0);
+  EXPECT_GT(eight.root_bytes, eight.rank_bytes);  // (rank 0 holds the whole mesh today)
+}
+
+TEST(RankPlan, AMachineTooSmallForItsRanksIsRefusedWithTheNumbers) {
+  const RankPlan p = plan_ranks(1e6, 4, false);
+  const double root_machine = p.root_bytes + p.rank_bytes;  // rank 0 and one more
+  EXPECT_NO_THROW(rumble::fem::check_node_memory(
+      p, {{2, true, 1.01 * root_machine}, {2, false, 2.01 * p.rank_bytes}}, 50.0));
+  try {
+    rumble::fem::check_node_memory(
+        p, {{2, true, 1.01 * root_machine}, {2, false, 1.99 * p.rank_bytes}}, 50.0);
+    FAIL() << "a machine of too little memory for its 2 ranks was accepted";
+  } catch (const std::invalid_argument& e) {
+    const std::string said = e.what();
+    EXPECT_NE(said.find("fem: params/mesh: on 4 ranks a mesh of about 1e+06 nodes (mesh.f_max "
+                        "50 Hz)"),
+              std::string::npos)
+        << said;
+    EXPECT_NE(said.find("for the 2 rank(s) on one machine"), std::string::npos) << said;
+    EXPECT_NE(said.find("start fewer ranks on each machine"), std::string::npos) << said;
+  }
+  EXPECT_THROW(rumble::fem::check_node_memory(p, {{2, true, 0.99 * root_machine}}, 50.0),
+               std::invalid_argument);
+}
+
+}  // namespace
