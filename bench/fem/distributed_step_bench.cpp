@@ -81,7 +81,7 @@ int main(int argc, char** argv) {
           std::make_unique<DistributedOperator>(
               std::move(K), std::move(mass), std::vector<BoundaryNode>{}, false,
               std::vector<char>(part->nodes(), 0), static_cast<unsigned>(omp_get_max_threads()),
-              precision, part->shared, *part->halo),
+              precision, *part, MPI_COMM_WORLD),
           0.0, 0.0, 1.0, 0);
     }
     ExplicitState state = solver->rest_state();

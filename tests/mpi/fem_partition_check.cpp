@@ -10,22 +10,37 @@
 //     differences near 6e-8);
 //   - the step's product (stepped_product, on 2 threads) hands every node over once, with the
 //     same value as the product above, and every ghost holds its owner's value bit for bit;
-//   - the same mesh is split alike twice (and so run after run).
+//   - the same mesh is split alike twice (and so run after run);
+//   - what each rank builds from its own part (distributed/part_pieces.hpp) equals what one
+//     process builds on the whole mesh: the boundary blocks (area, normal, dashpots, springs)
+//     at every node a rank holds, the far field's rows and mean distance, to 1e-14 (a shared
+//     node's faces summed in another order); the footprints' weights (their faces weighed in the
+//     whole mesh's order) and the receivers' tetrahedra and weights (the same tetrahedron chosen,
+//     ties included) bit for bit;
+//   - the stable step's largest eigenvalue by Lanczos over the ranks (sums in rank order) equals
+//     one process's to 1e-9, its own tolerance, and is the same on every rank.
 // usage: mpirun -n N fem_partition_check   (exit code 0: all held; 1: a check failed)
 #include <omp.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <map>
+#include <memory>
 #include <vector>
 
+#include "boundary/absorbing_boundary.hpp"
+#include "boundary/static_far_field.hpp"
 #include "distributed/distributed_operator.hpp"
 #include "distributed/mesh_partition.hpp"
+#include "distributed/part_pieces.hpp"
 #include "distributed/part_stiffness.hpp"
 #include "fem_settings.hpp"
 #include "mesh/kuhn_box.hpp"
 #include "operator/csr_operator.hpp"
 #include "operator/elasticity.hpp"
 #include "statics/petsc_session.hpp"
+#include "time/explicit_solver.hpp"
 
 namespace {
 
@@ -105,7 +120,7 @@ int check(MPI_Comm comm, StepPrecision precision, std::vector<std::int32_t>& nod
   for (std::int32_t i = 0; i < part.nodes(); ++i)
     for (int c = 0; c < 3; ++c) x[3 * i + c] = value_at(part.global[i], c);
   const DistributedOperator op(std::move(K), mass, {}, false, std::vector<char>(part.nodes(), 0), 2,
-                               precision, part.shared, *part.halo);
+                               precision, part, comm);
   Eigen::VectorXd y;
   op.stepped_stiffness_times(x, y, false);
   int twice = 0;
@@ -142,6 +157,216 @@ int check(MPI_Comm comm, StepPrecision precision, std::vector<std::int32_t>& nod
   return failed;
 }
 
+// The pieces' test case: two sleepers' footprints on the box's ground, cell-aligned (the box's
+// cells are 0.5 m), and receivers inside, on the ground at a node, and on an edge.
+std::vector<rumble::Footprint> box_footprints() {
+  return {{2.5, 2.5, 2.0, 1.0}, {4.0, 2.5, 2.0, 1.0}};
+}
+std::vector<rumble::Probe> box_probes() {
+  return {{"inside", 1.3, 1.7, 2.2}, {"on a node", 3.0, 2.5, 0.0}, {"on an edge", 3.0, 2.5, 1.25}};
+}
+
+// Every rank's rows (`width` doubles each) on rank 0, in rank order.
+std::vector<double> gather_rows(MPI_Comm comm, const std::vector<double>& mine) {
+  int ranks = 1;
+  MPI_Comm_size(comm, &ranks);
+  const int count = static_cast<int>(mine.size());
+  std::vector<int> counts(static_cast<std::size_t>(ranks)), starts(counts.size(), 0);
+  MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm);
+  for (int r = 1; r < ranks; ++r) starts[r] = starts[r - 1] + counts[r - 1];
+  std::vector<double> all(rank_of(comm) == 0 ? starts.back() + counts.back() : 0);
+  MPI_Gatherv(mine.data(), count, MPI_DOUBLE, all.data(), counts.data(), starts.data(), MPI_DOUBLE,
+              0, comm);
+  return all;
+}
+
+// A boundary node's values: area, normal (3), dashpots (2), spring (9).
+constexpr int kBoundaryValues = 15;
+void boundary_values(const BoundaryNode& b, double* out) {
+  out[0] = b.area;
+  for (int c = 0; c < 3; ++c) out[1 + c] = b.normal[c];
+  out[4] = b.dashpot_normal;
+  out[5] = b.dashpot_tangential;
+  for (int k = 0; k < 9; ++k) out[6 + k] = b.spring.data()[k];
+}
+
+// Rows keyed by their first value (a whole node, or footprint and node): the largest difference
+// of the rest from `whole`'s, relative to each column's largest value; -1 when a key is missing.
+double rows_differ(const std::vector<double>& rows,
+                   const std::map<double, std::vector<double>>& whole, std::size_t width) {
+  std::vector<double> scale(width, 0.0);
+  for (const auto& [key, row] : whole)
+    for (std::size_t c = 0; c < width; ++c) scale[c] = std::max(scale[c], std::abs(row[c]));
+  double worst = 0.0;
+  for (std::size_t k = 0; k < rows.size(); k += width + 1) {
+    const auto it = whole.find(rows[k]);
+    if (it == whole.end()) return -1.0;
+    for (std::size_t c = 0; c < width; ++c)
+      if (scale[c] > 0.0)
+        worst = std::max(worst, std::abs(rows[k + 1 + c] - it->second[c]) / scale[c]);
+  }
+  return worst;
+}
+
+// The boundary blocks each rank built from its part against one process's, at every node a
+// rank holds (owned and ghost); every whole boundary node owned once.
+void check_boundary(MPI_Comm comm, const MeshPartition& part, const TetMesh& whole,
+                    const FemSettings& settings, const std::vector<BoundaryNode>& mine,
+                    Checks& checks) {
+  std::vector<double> rows;
+  long long owned = 0;
+  for (const BoundaryNode& b : mine) {
+    rows.push_back(part.global[b.node]);
+    rows.resize(rows.size() + kBoundaryValues);
+    boundary_values(b, rows.data() + rows.size() - kBoundaryValues);
+    owned += part.owns(b.node, rank_of(comm)) ? 1 : 0;
+  }
+  long long all_owned = 0;
+  MPI_Reduce(&owned, &all_owned, 1, MPI_LONG_LONG, MPI_SUM, 0, comm);
+  const std::vector<double> all = gather_rows(comm, rows);
+  if (rank_of(comm) != 0) return;
+  std::map<double, std::vector<double>> one;
+  for (const BoundaryNode& b : absorbing_boundary(whole, settings, box_footprints())) {
+    one[b.node].resize(kBoundaryValues);
+    boundary_values(b, one[b.node].data());
+  }
+  const double differ = rows_differ(all, one, kBoundaryValues);
+  checks.expect(all_owned == static_cast<long long>(one.size()),
+                "every boundary node owned by one rank", static_cast<double>(all_owned));
+  checks.expect(differ >= 0.0 && differ <= 1e-14, "boundary blocks as one process's", differ);
+  std::printf("fem_partition_check: %zu boundary nodes, blocks within %.2g of one process's\n",
+              one.size(), differ);
+}
+
+// The footprints' weights each rank built against one process's, keyed by footprint and node.
+void check_weights(MPI_Comm comm, const MeshPartition& part, const TetMesh& whole, Checks& checks) {
+  const FootprintWeights mine = part_footprint_weights(comm, part, box_footprints());
+  std::vector<double> rows;
+  for (std::size_t j = 0; j < mine.size(); ++j)
+    for (const NodalWeight& w : mine[j])
+      rows.insert(rows.end(), {1e9 * j + part.global[w.node], w.weight});
+  const std::vector<double> all = gather_rows(comm, rows);
+  if (rank_of(comm) != 0) return;
+  std::map<double, std::vector<double>> one;
+  const FootprintWeights weights = footprint_weights(whole, box_footprints());
+  for (std::size_t j = 0; j < weights.size(); ++j)
+    for (const NodalWeight& w : weights[j]) one[1e9 * j + w.node] = {w.weight};
+  std::map<double, int> seen;
+  for (std::size_t k = 0; k < all.size(); k += 2) seen[all[k]] = 1;
+  const double differ = rows_differ(all, one, 1);
+  checks.expect(seen.size() == one.size(), "every footprint node on a rank",
+                static_cast<double>(seen.size()));
+  checks.expect(differ == 0.0, "footprint weights as one process's (bit for bit)", differ);
+  std::printf("fem_partition_check: %zu footprint weights within %.2g of one process's\n",
+              one.size(), differ);
+}
+
+// The far field's rows (per footprint, 3 per node) and mean distance against one process's.
+void check_far_field(MPI_Comm comm, const MeshPartition& part, const TetMesh& whole,
+                     const FemSettings& settings, const std::vector<BoundaryNode>& mine,
+                     Checks& checks) {
+  const StaticFarField far(part.mesh, settings, box_footprints(), mine);
+  const double distance = boundary_mean_distance(comm, part, mine, box_footprints());
+  const auto width = static_cast<std::size_t>(far.loads().cols()) * 3;
+  std::vector<double> rows;
+  for (std::size_t k = 0; k < far.nodes().size(); ++k) {
+    rows.push_back(part.global[far.nodes()[k]]);
+    for (Eigen::Index j = 0; j < far.loads().cols(); ++j)
+      for (int c = 0; c < 3; ++c)
+        rows.push_back(far.loads()(3 * static_cast<Eigen::Index>(k) + c, j));
+  }
+  const std::vector<double> all = gather_rows(comm, rows);
+  if (rank_of(comm) != 0) return;
+  const StaticFarField one(whole, settings, box_footprints(),
+                           absorbing_boundary(whole, settings, box_footprints()));
+  std::map<double, std::vector<double>> by_node;
+  for (std::size_t k = 0; k < one.nodes().size(); ++k)
+    for (Eigen::Index j = 0; j < one.loads().cols(); ++j)
+      for (int c = 0; c < 3; ++c)
+        by_node[one.nodes()[k]].push_back(one.loads()(3 * static_cast<Eigen::Index>(k) + c, j));
+  const double differ = rows_differ(all, by_node, width);
+  const double mean = std::abs(distance - one.mean_distance()) / one.mean_distance();
+  checks.expect(differ >= 0.0 && differ <= 1e-14, "far field's rows as one process's", differ);
+  checks.expect(mean <= 1e-14, "far field's mean distance as one process's", mean);
+  std::printf("fem_partition_check: far field's rows within %.2g, mean distance within %.2g\n",
+              differ, mean);
+}
+
+// Each receiver's tetrahedron (whole nodes) and weights, from the rank that samples it, against
+// locate_probe's on the whole mesh: bit for bit; every receiver sampled once.
+void check_probes(MPI_Comm comm, const MeshPartition& part, const TetMesh& whole, Checks& checks) {
+  std::vector<double> rows;  // per receiver sampled here: index, 4 nodes, 4 weights
+  for (const PartProbe& p : part_probes(comm, part, box_probes())) {
+    rows.push_back(static_cast<double>(p.index));
+    for (int a = 0; a < 4; ++a) rows.push_back(part.global[p.point.nodes[a]]);
+    rows.insert(rows.end(), p.point.weights.begin(), p.point.weights.end());
+  }
+  const std::vector<double> all = gather_rows(comm, rows);
+  if (rank_of(comm) != 0) return;
+  std::map<double, std::vector<double>> one;
+  const std::vector<rumble::Probe> probes = box_probes();
+  for (std::size_t p = 0; p < probes.size(); ++p) {
+    const rumble::Probe& q = probes[p];
+    const ProbePoint point = locate_probe(whole, q.x, q.y, q.depth, q.name);
+    one[static_cast<double>(p)].assign(point.nodes.begin(), point.nodes.end());
+    one[static_cast<double>(p)].insert(one[static_cast<double>(p)].end(), point.weights.begin(),
+                                       point.weights.end());
+  }
+  const double differ = rows_differ(all, one, 8);
+  checks.expect(all.size() == 9 * one.size(), "every receiver sampled by one rank",
+                static_cast<double>(all.size()));
+  checks.expect(differ == 0.0, "receivers' places as one process's (bit for bit)", differ);
+  std::printf("fem_partition_check: %zu receivers' places within %.2g of one process's\n",
+              one.size(), differ);
+}
+
+// The largest eigenvalue of M^-1 (K + S) by Lanczos over the ranks against one process's.
+void check_stable_step(MPI_Comm comm, MeshPartition& part, const TetMesh& whole,
+                       const FemSettings& settings, std::vector<BoundaryNode> mine,
+                       Checks& checks) {
+  CsrMatrix K = assemble_stiffness(part.mesh, settings);
+  complete_shared_entries(part, K, comm);
+  Eigen::VectorXd mass = lumped_mass(part.mesh, settings);
+  complete_mass(part, mass);
+  const ExplicitSolver ranks(
+      std::make_unique<DistributedOperator>(std::move(K), std::move(mass), std::move(mine), true,
+                                            std::vector<char>(part.nodes(), 0), 1,
+                                            StepPrecision::kDouble, part, comm),
+      0.0, 0.0);
+  const double lambda = ranks.largest_eigenvalue();
+  double lowest = 0.0, highest = 0.0;
+  MPI_Allreduce(&lambda, &lowest, 1, MPI_DOUBLE, MPI_MIN, comm);
+  MPI_Allreduce(&lambda, &highest, 1, MPI_DOUBLE, MPI_MAX, comm);
+  if (rank_of(comm) != 0) return;
+  const ExplicitSolver one(assemble_stiffness(whole, settings), lumped_mass(whole, settings),
+                           absorbing_boundary(whole, settings, box_footprints()), true,
+                           std::vector<char>(whole.node_count(), 0), 0.0, 0.0, 1);
+  const double differ = std::abs(lambda - one.largest_eigenvalue()) / one.largest_eigenvalue();
+  checks.expect(lowest == highest, "the same eigenvalue on every rank", highest - lowest);
+  checks.expect(differ <= 1e-9, "largest eigenvalue as one process's (to 1e-9)", differ);
+  std::printf(
+      "fem_partition_check: largest eigenvalue %.12g on the ranks (%d Lanczos iterations), "
+      "%.12g on one process (%d), within %.2g\n",
+      lambda, ranks.eigen_iterations(), one.largest_eigenvalue(), one.eigen_iterations(), differ);
+}
+
+// What each rank builds from its part (part_pieces.hpp) against one process's on the whole mesh.
+int check_pieces(MPI_Comm comm) {
+  Checks checks;
+  const FemSettings settings = read_settings(R"({"E": 155e6, "nu": 0.3, "rho": 1800})");
+  const TetMesh whole = kuhn_box(12, 10, 8, 0.5);
+  MeshPartition part = partition_mesh(comm, rank_of(comm) == 0 ? &whole : nullptr);
+  const std::vector<BoundaryNode> mine = part_boundary(part, settings, box_footprints());
+  check_boundary(comm, part, whole, settings, mine, checks);
+  check_weights(comm, part, whole, checks);
+  check_far_field(comm, part, whole, settings, mine, checks);
+  check_probes(comm, part, whole, checks);
+  check_stable_step(comm, part, whole, settings, mine, checks);
+  int failed = 0;
+  MPI_Allreduce(&checks.failed, &failed, 1, MPI_INT, MPI_MAX, comm);
+  return failed;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -161,6 +386,7 @@ int main(int argc, char** argv) {
     if (any != 0 && rank_of(MPI_COMM_WORLD) == 0)
       std::printf("fem_partition_check: FAILED the same mesh split twice alike\n");
     failed += any;
+    failed += check_pieces(MPI_COMM_WORLD);
   }
   MPI_Finalize();  // (the session's PETSc is left to the process's end: petsc_session.hpp)
   return failed == 0 ? 0 : 1;

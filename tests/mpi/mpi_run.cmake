@@ -37,6 +37,8 @@
 #   fem_one_process_settings_refused_on_ranks  local steps, the implicit scheme, the matched
 #                                layer under mpirun: each refused with the params (exit 1),
 #                                naming its parameter
+#   fem_whole_operator_refused_on_ranks  the monolithic coupler on 2 ranks: its linear matrices
+#                                need the whole operator, refused naming the call and the fix
 set(mpirun ${MPIEXEC} --oversubscribe)
 set(scenario ${SOURCE_DIR}/split_dashpot.json)
 file(REMOVE_RECURSE ${WORK_DIR})
@@ -253,6 +255,15 @@ function(fem_case)
       endif()
       expect_match("${out}" "${said} runs on one process|${said} factors the whole mesh")
     endforeach()
+  elseif(CASE STREQUAL "fem_whole_operator_refused_on_ranks")
+    # The monolithic coupler asks for the linear matrices, which need the whole operator that no
+    # rank holds: refused with the call and the fix, every rank stopped (exit 3: the run failed).
+    rumble_run(out code ${mpirun} -n 2 ${RUMBLE} run ${fem} --output ${WORK_DIR}/refused
+               --no-plots --set /coupling={\"type\":\"monolithic\"})
+    if(NOT code EQUAL 3)
+      message(FATAL_ERROR "expected exit code 3 (run failed), got ${code}:\n${out}")
+    endif()
+    expect_match("${out}" "fem: linear_matrix \\(the monolithic coupler, rumble stability\\) needs the soil's whole operator, which no rank holds under mpirun -n 2 .*run it without mpirun")
   else()
     message(FATAL_ERROR "unknown case ${CASE}")
   endif()

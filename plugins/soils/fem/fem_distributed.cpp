@@ -1,16 +1,20 @@
-// The FEM soil under `mpirun -n N rumble run`, N > 1 (issue #33; docs/fem-soil.md, "On many
+// The FEM soil under `mpirun -n N rumble run`, N > 1 (issue #33; docs/fem-soil.md §8, "On many
 // ranks"; docs/decisions/0012-distributed-soil.md): the host makes each call on every rank with
-// the same inputs. Rank 0 does what one process does on the whole mesh (meshing, the operators
-// and the stable step, the static state, the receivers' places, the receptance and the linear
-// matrices), then every rank takes its share of the mesh (distributed/distributed_soil.hpp) and
-// the explicit steps run on the shares, their halos exchanged by PETSc. Rank 0 reads the
-// footprints' motion and the receivers' samples, gathered in rank order; each rank writes its
-// piece of a field snapshot (distributed/field_pieces.hpp).
+// the same inputs. Rank 0 meshes the whole mesh and hands each rank its part; every rank then
+// builds its share from its part alone (distributed/distributed_soil.hpp: its operator, boundary
+// blocks, footprint weights, far field rows, receivers, and the stable step by Lanczos over the
+// ranks), and the explicit steps run on the shares, their halos exchanged by PETSc. Rank 0 reads
+// the footprints' motion and the receivers' samples, gathered in rank order, and keeps the whole
+// mesh (for the receivers' resolution), not the whole operator; each rank writes its piece of a
+// field snapshot (distributed/field_pieces.hpp).
 //
-// With statics.solver gamg the static state is solved on the ranks instead (PETSc's GAMG over
-// the ranks' parts). What does not run on many ranks yet is refused when the soil is made,
-// before any work: the matched layer, the local steps and the implicit scheme (each names its
-// parameter and the fix), and so is a mesh whose estimate per rank outgrows a machine's memory.
+// The static state: GAMG on the ranks (distributed_statics.hpp) above the factor limit or with
+// statics.solver gamg; below the limit rank 0 factors the whole (small) operator as one process
+// does, then frees it. What needs the whole operator (the receptance, the linear matrices) is
+// refused on many ranks, and what does not run on many ranks yet is refused when the soil is
+// made, before any work: the matched layer, the local steps and the implicit scheme (each names
+// its parameter and the fix), and so is a mesh whose estimate per rank outgrows a machine's
+// memory.
 #define OMPI_SKIP_MPICXX 1
 #include <mpi.h>
 
@@ -26,7 +30,10 @@
 #include "distributed/node_memory.hpp"
 #include "distributed/rank_agreement.hpp"
 #include "fem_soil.hpp"
+#include "frequency/resolved_band.hpp"
 #include "mesh/mesh_generator.hpp"
+#include "mesh/mesh_memory.hpp"
+#include "mesh/track_region.hpp"
 #include "output/vtu_writer.hpp"
 
 namespace rumble::fem {
@@ -82,8 +89,11 @@ void FemSoil::refuse_on_many_ranks() const {
 
 void FemSoil::accept_layout_distributed(const std::vector<rumble::Footprint>& footprints) {
   rumble::fem::DistributedSoil& d = *distributed_;
+  const auto start = std::chrono::steady_clock::now();
   footprints_ = footprints;
   const std::vector<rumble::fem::NodeShare> machines = rumble::fem::node_shares(d.comm());
+  free_whole_on_root();  // (a previous layout's)
+  peak_estimate_ = 0.0;
   rumble::fem::on_root(d.comm(), [&] {
     const auto refuse_count = [&](double nodes, const char* what, const char* planned) {
       if (nodes >= kFewestNodesPerRank * d.ranks()) return;
@@ -111,16 +121,37 @@ void FemSoil::accept_layout_distributed(const std::vector<rumble::Footprint>& fo
       refuse_count(planned, "a mesh of about", " (planned)");
       check_memory(planned, "the plan's estimate");
     }
-    lay_out_here(footprints);
+    mesh_here(footprints);
     refuse_count(static_cast<double>(mesh_.node_count()), "the mesh's", "");
     check_memory(static_cast<double>(mesh_.node_count()), "the mesh");
   });
-  d.lay_out(d.root() ? &mesh_ : nullptr, d.root() ? &*op_ : nullptr, settings_, host_.threads());
-  d.set_footprints(d.root() ? &weights_ : nullptr);
+  d.lay_out(d.root() ? &mesh_ : nullptr, settings_, footprints, host_.threads());
+  statics_on_root_ =
+      !settings_.gamg_statics && d.whole_dofs() <= rumble::fem::StaticSolver::kFactorLimit;
+  if (statics_on_root_)  // (the whole operator for the factor: small below its limit)
+    rumble::fem::on_root(d.comm(), [&] { build_here(footprints, 0.0, start); });
+  peak_estimate_ = std::max(peak_estimate_, d.peak_estimate());
   force_static_.assign(footprints.size(), 0.0);
   force_last_.assign(footprints.size(), 0.0);
   const std::string summary = d.summary();
   if (d.root()) host_.info(summary);
+}
+
+void FemSoil::free_whole_on_root() {
+  op_.reset();
+  statics_.reset();
+  far_field_.reset();
+  implicit_.reset();
+  weights_ = {};
+  state_ = {};
+  u_static_ = f_ = df_ = Eigen::VectorXd();
+}
+
+void FemSoil::refuse_whole_operator(const std::string& what) const {
+  throw std::invalid_argument(
+      "fem: " + what + " needs the soil's whole operator, which no rank holds under mpirun -n " +
+      std::to_string(distributed_->ranks()) +
+      " (each holds its part); run it without mpirun, on one process (docs/fem-soil.md §8)");
 }
 
 void FemSoil::initialize_distributed(double t0, const double* static_force, double* static_u) {
@@ -128,15 +159,19 @@ void FemSoil::initialize_distributed(double t0, const double* static_force, doub
   force_static_.assign(static_force, static_force + footprints_.size());
   force_last_ = force_static_;
   static_average_.assign(footprints_.size(), 0.0);
-  if (settings_.gamg_statics) {
+  const double distance = d.set_far_field(settings_, footprints_);
+  far_lag_.tau =  // (as one process's far_field(), from the ranks' boundary nodes)
+      distance / rumble::soils::slowest_wave_speeds(settings_.layers, settings_.half_space).shear;
+  if (!statics_on_root_) {
     solve_static_on_ranks(static_force, static_u);
-  } else {  // rank 0 solves on the whole mesh as one process does, the ranks take their share
+  } else {  // rank 0 factors the whole mesh as one process does, the ranks take their share
     rumble::fem::on_root(d.comm(), [&] {
+      if (!op_)  // (freed by statics_done: built again from the whole mesh)
+        build_here(footprints_, 0.0, std::chrono::steady_clock::now());
       initialize_here(t0, static_force, static_u);
       for (std::size_t j = 0; j < footprints_.size(); ++j)
         static_average_[j] = average(j, u_static_);
     });
-    d.set_far_field(d.root() && far_field_ ? &*far_field_ : nullptr);
     d.set_static(d.root() ? &u_static_ : nullptr);
   }
   ExplicitState& s = d.state();
@@ -145,7 +180,6 @@ void FemSoil::initialize_distributed(double t0, const double* static_force, doub
   s.a.setZero();
   s.pml.setZero();
   s.maxwell.setZero();
-  MPI_Bcast(&far_lag_.tau, 1, MPI_DOUBLE, 0, d.comm());
   far_lag_.lagged.assign(footprints_.size(), 0.0);
   far_change_.assign(footprints_.size(), 0.0);
   far_step_.assign(footprints_.size(), 0.0);
@@ -153,11 +187,7 @@ void FemSoil::initialize_distributed(double t0, const double* static_force, doub
 
 void FemSoil::solve_static_on_ranks(const double* static_force, double* static_u) {
   rumble::fem::DistributedSoil& d = *distributed_;
-  rumble::fem::on_root(d.comm(), [&] {
-    export_if_due();
-    far_field();  // (rank 0's, on the whole mesh: each rank takes its nodes' rows)
-  });
-  d.set_far_field(d.root() && far_field_ ? &*far_field_ : nullptr);
+  rumble::fem::on_root(d.comm(), [&] { export_if_due(); });
   const auto start = std::chrono::steady_clock::now();
   const bool first = d.solve_static(static_force, static_average_.data());
   if (!d.root()) return;
@@ -203,7 +233,7 @@ void FemSoil::advance_distributed(double t, double H, const rumble::Waveform& fo
   rumble::fem::ExplicitSolver& step = d.step();
   tuner_.grant(host_.threads());
   step.set_threads(tuner_.threads());
-  // (every rank holds rank 0's stable step: the same sub-steps everywhere)
+  // (every rank has the same stable step, from Lanczos over the ranks: the same sub-steps)
   const double count = std::ceil(H / (settings_.courant * step.stable_step()) - 1e-9);
   if (!(count <= kMostSubStepsOnRanks))
     throw std::invalid_argument("fem: a macro step of " + format(H) + " s is " + format(count) +
@@ -268,12 +298,34 @@ void FemSoil::motion_distributed(double* u, double* v) const {
 void FemSoil::set_probes_distributed(const std::vector<rumble::Probe>& probes,
                                      double sample_interval) {
   rumble::fem::DistributedSoil& d = *distributed_;
-  rumble::fem::on_root(d.comm(), [&] { set_probes_here(probes, sample_interval); });
-  d.set_probes(d.root() ? &probes_ : nullptr);
-  if (!d.root()) probes_.resize(probes.size());  // (their places are rank 0's; d samples them)
+  rumble::fem::on_root(d.comm(), [&] {  // (the resolution along the path: the whole mesh's)
+    std::vector<Eigen::Vector3d> points;
+    for (const rumble::Probe& p : probes) points.emplace_back(p.x, p.y, p.depth);
+    probe_resolution_ = rumble::fem::path_resolved_frequency(
+        mesh_, rumble::fem::TrackRegion::of(footprints_), points, rayleigh_speed(),
+        settings_.mesh.elements_per_wavelength);
+  });
+  d.set_probes(probes);  // (each receiver placed and sampled by the rank whose part holds it)
+  probes_.assign(probes.size(), {});
   row_.assign(probes.size() * RUMBLE_PROBE_VALUES, 0.0);
   sample_interval_ = sample_interval;
   next_sample_ = -1.0;
+}
+
+void FemSoil::log_peak_per_rank() const {
+  const rumble::fem::DistributedSoil& d = *distributed_;
+  const double mine = rumble::fem::resident_memory().peak;
+  std::vector<double> all(d.root() ? static_cast<std::size_t>(d.ranks()) : 0);
+  MPI_Gather(&mine, 1, MPI_DOUBLE, all.data(), 1, MPI_DOUBLE, 0, d.comm());
+  if (!d.root() || mine == 0.0) return;  // (no /proc: nothing measured)
+  std::ostringstream m;
+  m << "fem: peak resident memory per rank (VmHWM; rank 0's since the engine's last phase "
+       "began, the others' over the run):";
+  const double dofs = static_cast<double>(d.whole_dofs());
+  for (int r = 0; r < d.ranks(); ++r)
+    m << " rank " << r << " " << format(all[r] / 1e9) << " GB ("
+      << std::lround(all[r] * d.ranks() / dofs) << " B per DOF of its share)";
+  host_.info(m.str());
 }
 
 void FemSoil::write_fields_distributed(double t, const std::string& path) {

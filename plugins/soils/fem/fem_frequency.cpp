@@ -20,7 +20,8 @@ namespace rumble::fem {
 
 bool FemSoil::frequency_response(double f_hz, std::complex<double>* receptance) {
   require_layout("frequency_response");
-  if (distributed_ && !distributed_->root()) return true;  // (rank 0's, on its whole mesh)
+  if (distributed_)
+    refuse_whole_operator("frequency_response (the receptance: rumble soil-frf, calibrate)");
   using namespace rumble::fem;
   const auto dir = mesh_cache_directory();
   std::filesystem::path cached;

@@ -33,8 +33,13 @@ void FemSoil::accept_layout(const std::vector<rumble::Footprint>& footprints) {
 }
 
 void FemSoil::lay_out_here(const std::vector<rumble::Footprint>& footprints) {
-  using namespace rumble::fem;
   const auto start = std::chrono::steady_clock::now();
+  mesh_here(footprints);
+  build_here(footprints, seconds_since(start), start);
+}
+
+void FemSoil::mesh_here(const std::vector<rumble::Footprint>& footprints) {
+  using namespace rumble::fem;
   receptance_.reset();  // it refers to the operators of the previous layout
   impulse_.reset();
   receptance_key_.reset();
@@ -56,7 +61,11 @@ void FemSoil::lay_out_here(const std::vector<rumble::Footprint>& footprints) {
     host_.info("fem: mesh read from " + mesh_file_);
   }
   report_ranks(static_cast<double>(mesh_.node_count()), "the mesh");
-  const double mesh_seconds = seconds_since(start);
+}
+
+void FemSoil::build_here(const std::vector<rumble::Footprint>& footprints, double mesh_seconds,
+                         std::chrono::steady_clock::time_point start) {
+  using namespace rumble::fem;
   weights_ = footprint_weights(mesh_, footprints);
   std::vector<BoundaryNode> boundary = absorbing_boundary(mesh_, settings_, footprints);
   std::vector<char> fixed(mesh_.node_count(), 0);

@@ -121,7 +121,8 @@ void FemSoil::export_if_due() {
 
 void FemSoil::linear_matrix(rumble_matrix which, rumble::CscMatrix& out) {
   require_layout("linear_matrix");
-  if (distributed_ && !distributed_->root()) return;  // (rank 0's, from its whole mesh)
+  if (distributed_)
+    refuse_whole_operator("linear_matrix (the monolithic coupler, rumble stability)");
   refuse_with_pml("its matrices (the monolithic coupler, rumble stability)");
   if (settings_.damping.maxwell)
     throw std::invalid_argument(

@@ -63,10 +63,19 @@ class FemSoil final : public rumble::Soil {
   void linear_matrix(rumble_matrix which, rumble::CscMatrix& out) override;
   void wave_speeds(double& c_s_min, double& c_r_min) const override;
   /// DOFs and the estimate of a run's peak memory made at the layout (memory_model.hpp).
+  /// On many ranks: the whole mesh's DOFs and the largest rank's estimate of its peak
+  /// (docs/fem-soil.md §8).
   Size size() const override {
+    if (distributed_)
+      return {distributed_->laid_out() ? static_cast<std::uint64_t>(distributed_->whole_dofs()) : 0,
+              peak_estimate_};
     return {op_ ? static_cast<std::uint64_t>(op_->dofs()) : 0, peak_estimate_};
   }
   void statics_done() override {
+    if (distributed_) {  // GAMG's matrix and hierarchy; rank 0's whole operator and factor
+      distributed_->free_statics();
+      return free_whole_on_root();
+    }
     if (statics_) free_statics();
   }
 
@@ -103,6 +112,11 @@ class FemSoil final : public rumble::Soil {
   // One process's work, which on many ranks rank 0 does on the whole mesh
   // (fem_distributed.cpp).
   void lay_out_here(const std::vector<rumble::Footprint>& footprints);
+  /// lay_out_here's halves: the mesh (generated, cached or read), then the operators on it
+  /// (mesh_seconds: the first's time; start: the layout's).
+  void mesh_here(const std::vector<rumble::Footprint>& footprints);
+  void build_here(const std::vector<rumble::Footprint>& footprints, double mesh_seconds,
+                  std::chrono::steady_clock::time_point start);
   void initialize_here(double t0, const double* static_force, double* static_u);
   void set_probes_here(const std::vector<rumble::Probe>& probes, double sample_interval);
 
@@ -123,6 +137,13 @@ class FemSoil final : public rumble::Soil {
   void motion_distributed(double* u, double* v) const;
   void set_probes_distributed(const std::vector<rumble::Probe>& probes, double sample_interval);
   void write_fields_distributed(double t, const std::string& path);
+  /// Rank 0's whole operator and what was built on it for its statics, freed once the ranks
+  /// hold the static state (the whole mesh stays: the fields and the receivers' resolution).
+  void free_whole_on_root();
+  /// What needs the whole operator, refused on many ranks: `what` names the call.
+  void refuse_whole_operator(const std::string& what) const;
+  /// Every rank's peak resident memory (VmHWM) gathered on rank 0 and logged. Collective.
+  void log_peak_per_rank() const;
   /// The state the steps advance: this rank's share on many ranks.
   ExplicitState& stepped_state() { return distributed_ ? distributed_->state() : state_; }
 
@@ -234,6 +255,9 @@ class FemSoil final : public rumble::Soil {
   // On many ranks: this rank's share of the soil; null on one process.
   std::unique_ptr<rumble::fem::DistributedSoil> distributed_;
   std::vector<double> static_average_;  // [m] per footprint, on rank 0: the static state's
+  // The statics on rank 0's whole mesh (a CHOLMOD factor, below its limit without statics.solver
+  // gamg, as one process solves them); else GAMG on the ranks.
+  bool statics_on_root_ = false;
   // RUMBLE_FEM_FAIL_RANK_AT ("rank:seconds", a test's): the rank whose steps fail from then on.
   int fail_rank_ = -1;
   double fail_at_ = 0.0;

@@ -40,6 +40,13 @@ inline constexpr double kFactorBytesPerNonzero = 11.5;
 /// stiff example at 1.0e6 DOFs and on a Kuhn box of 2.1e5 (tests/fem/static_solver_test.cpp).
 inline constexpr double kMultigridBytesPerNonzero = 12.2;
 
+/// PETSc's GAMG on many ranks at its peak, beyond what a rank holds after its layout, per nonzero
+/// of the rank's part of K [bytes]: its matrix (AIJ, 12 B per nonzero), the smoothed aggregation's
+/// prolongators and Galerkin products. Fitted to the stiff example at 1.0e6 DOFs on 2 ranks
+/// (docs/fem-soil.md §8: 2.24 GB per rank at the statics; 53 B gave 0.86 of it); unsmoothed
+/// aggregation (PETSC_OPTIONS -fem_statics_pc_gamg_agg_nsmooths 0) needed 1.38 GB there.
+inline constexpr double kGamgBytesPerNonzero = 65.0;
+
 /// Nonzeros of K per DOF on the meshes measured (about 14 neighbours per node, 3 x 3 blocks).
 inline constexpr double kNonzerosPerDof = 45.0;
 

@@ -36,12 +36,9 @@ Eigen::Matrix3d liu_spring(const Eigen::Vector3d& n, const BoundaryRequest& b, d
 
 }  // namespace
 
-std::vector<BoundaryNode> absorbing_boundary(const TetMesh& mesh, const FemSettings& settings,
-                                             const std::vector<Footprint>& footprints) {
-  const TrackRegion region = TrackRegion::of(footprints);
+SurfaceShares truncation_shares(const TetMesh& mesh, const TrackRegion& region) {
   std::vector<std::int32_t> index(mesh.node_count(), -1);
-  std::vector<BoundaryNode> nodes;
-  std::vector<Eigen::Vector3d> weighted_normal;
+  SurfaceShares shares;
   // The domain is convex and contains the ground point above the footprints' centre: every
   // outward normal points away from it.
   const Eigen::Vector3d inside(region.centre_x(), region.centre_y(), 0.0);
@@ -52,14 +49,22 @@ std::vector<BoundaryNode> absorbing_boundary(const TetMesh& mesh, const FemSetti
     if (n.dot(centroid - inside) < 0.0) n = -n;
     for (std::int32_t v : f) {
       if (index[v] < 0) {
-        index[v] = static_cast<std::int32_t>(nodes.size());
-        nodes.push_back({.node = v});
-        weighted_normal.emplace_back(Eigen::Vector3d::Zero());
+        index[v] = static_cast<std::int32_t>(shares.nodes.size());
+        shares.nodes.push_back(v);
+        shares.area.push_back(0.0);
+        shares.weighted_normal.emplace_back(Eigen::Vector3d::Zero());
       }
-      nodes[index[v]].area += area / 3.0;
-      weighted_normal[index[v]] += area * n;
+      shares.area[index[v]] += area / 3.0;
+      shares.weighted_normal[index[v]] += area * n;
     }
   }
+  return shares;
+}
+
+std::vector<BoundaryNode> fitted_boundary(const TetMesh& mesh, const FemSettings& settings,
+                                          const std::vector<Footprint>& footprints,
+                                          const SurfaceShares& shares) {
+  const TrackRegion region = TrackRegion::of(footprints);
   // The springs are fitted to a uniform pressure on every footprint.
   double total_area = 0.0;
   for (const Footprint& f : footprints) total_area += f.length * f.width;
@@ -68,9 +73,12 @@ std::vector<BoundaryNode> absorbing_boundary(const TetMesh& mesh, const FemSetti
     add_load_points(f, total_area > 0.0 ? f.length * f.width / total_area : 1.0, loads);
   const bool half_space = settings.boundary.spring_model == SpringModel::kHalfSpace;
   const double floor_distance = 1e-3 * settings.mesh.radius;
+  std::vector<BoundaryNode> nodes(shares.nodes.size());
   for (std::size_t k = 0; k < nodes.size(); ++k) {
     BoundaryNode& b = nodes[k];
-    b.normal = weighted_normal[k].normalized();
+    b.node = shares.nodes[k];
+    b.area = shares.area[k];
+    b.normal = shares.weighted_normal[k].normalized();
     const Eigen::Vector3d x = mesh.node(b.node);
     const soils::SoilProperties& p = settings.properties_at(std::max(x[2], 0.0));
     const soils::WaveSpeeds c = soils::wave_speeds(p.E, p.nu, p.rho);
@@ -86,6 +94,12 @@ std::vector<BoundaryNode> absorbing_boundary(const TetMesh& mesh, const FemSetti
     b.spring = b.area * spring;
   }
   return nodes;
+}
+
+std::vector<BoundaryNode> absorbing_boundary(const TetMesh& mesh, const FemSettings& settings,
+                                             const std::vector<Footprint>& footprints) {
+  return fitted_boundary(mesh, settings, footprints,
+                         truncation_shares(mesh, TrackRegion::of(footprints)));
 }
 
 std::vector<BoundaryNode> absorbing_boundary(const TetMesh& mesh, const FemSettings& settings,

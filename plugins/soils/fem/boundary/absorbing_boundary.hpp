@@ -29,4 +29,19 @@ std::vector<BoundaryNode> absorbing_boundary(const TetMesh& mesh, const FemSetti
 std::vector<BoundaryNode> absorbing_boundary(const TetMesh& mesh, const FemSettings& settings,
                                              const TrackRegion& region);
 
+// The two halves of absorbing_boundary, for a mesh split over ranks (distributed/part_pieces.hpp):
+// a node's share of the surface sums the faces around it, which may lie on several ranks.
+/// The truncation surface's nodes of `mesh`, each with its share of the faces' area [m^2] and
+/// their area-weighted outward normal [m^2] (not yet a unit vector): sums over its faces.
+struct SurfaceShares {
+  std::vector<std::int32_t> nodes;
+  std::vector<double> area;
+  std::vector<Eigen::Vector3d> weighted_normal;
+};
+SurfaceShares truncation_shares(const TetMesh& mesh, const TrackRegion& region);
+/// The boundary nodes with their blocks from the complete shares of the surface.
+std::vector<BoundaryNode> fitted_boundary(const TetMesh& mesh, const FemSettings& settings,
+                                          const std::vector<Footprint>& footprints,
+                                          const SurfaceShares& shares);
+
 }  // namespace rumble::fem

@@ -42,19 +42,43 @@ void share(std::int64_t begin, std::int64_t end, std::int64_t& lo, std::int64_t&
 DistributedOperator::DistributedOperator(CsrMatrix K, Eigen::VectorXd mass,
                                          std::vector<BoundaryNode> boundary, bool springs,
                                          std::vector<char> fixed, unsigned threads,
-                                         StepPrecision precision, std::int32_t shared,
-                                         const StarForest& halo)
+                                         StepPrecision precision, const MeshPartition& part,
+                                         MPI_Comm comm)
     : SoilOperator(std::move(mass), std::move(boundary), springs, std::move(fixed), threads),
       K_(std::move(K)),
-      shared_(shared),
-      halo_(halo),
-      shared_products_(3 * static_cast<std::size_t>(shared), 0.0) {
+      shared_(part.shared),
+      halo_(*part.halo),
+      global_(part.global),
+      owned_(static_cast<std::size_t>(part.nodes()), 0),
+      comm_(comm),
+      shared_products_(3 * static_cast<std::size_t>(part.shared), 0.0) {
+  int rank = 0;
+  MPI_Comm_rank(comm_, &rank);
+  for (std::int32_t i = 0; i < part.nodes(); ++i) owned_[i] = part.owns(i, rank) ? 1 : 0;
   if (precision == StepPrecision::kSingle)
     single_.assign(K_.value().begin(), K_.value().end());  // (rounded to nearest)
 }
 
 std::size_t DistributedOperator::bytes() const {
-  return K_.bytes() + single_.size() * 4 + shared_products_.size() * 8 + node_bytes();
+  return K_.bytes() + single_.size() * 4 + shared_products_.size() * 8 + owned_.size() +
+         node_bytes();
+}
+
+double DistributedOperator::dot(const Eigen::VectorXd& x, const Eigen::VectorXd& y,
+                                const double* node_weight) const {
+  double mine = 0.0;  // (one thread, in node order: the same sum on every run)
+  for (std::int64_t i = 0; i < nodes(); ++i) {
+    if (!owned_[i]) continue;
+    const double w = node_weight ? node_weight[i] : 1.0;
+    for (std::int64_t k = 3 * i; k < 3 * i + 3; ++k) mine += w * x[k] * y[k];
+  }
+  int ranks = 1;
+  MPI_Comm_size(comm_, &ranks);
+  std::vector<double> all(static_cast<std::size_t>(ranks));
+  MPI_Allgather(&mine, 1, MPI_DOUBLE, all.data(), 1, MPI_DOUBLE, comm_);
+  double sum = 0.0;
+  for (double s : all) sum += s;
+  return sum;
 }
 
 void DistributedOperator::rows_times(std::int32_t i, const double* x, double out[3],

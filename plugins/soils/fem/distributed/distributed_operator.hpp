@@ -20,6 +20,7 @@
 #include <memory>
 #include <vector>
 
+#include "distributed/mesh_partition.hpp"
 #include "distributed/star_forest.hpp"
 #include "operator/boundary_blocks.hpp"
 #include "operator/csr_matrix.hpp"
@@ -30,10 +31,11 @@ namespace rumble::fem {
 class DistributedOperator final : public SoilOperator {
  public:
   /// K: the part's rows (part_stiffness.hpp); mass, boundary, fixed: per local node, whole;
-  /// shared: the nodes [0, shared) in the halo; halo: the partition's (kept alive by the caller).
+  /// part: the partition (its halo over the nodes [0, part.shared), its owners and whole
+  /// numbers; kept alive by the caller); comm: its ranks.
   DistributedOperator(CsrMatrix K, Eigen::VectorXd mass, std::vector<BoundaryNode> boundary,
                       bool springs, std::vector<char> fixed, unsigned threads,
-                      StepPrecision precision, std::int32_t shared, const StarForest& halo);
+                      StepPrecision precision, const MeshPartition& part, MPI_Comm comm);
 
   void set_threads(unsigned threads) override { threads_ = threads < 1 ? 1 : threads; }
   void stiffness_times(const Eigen::VectorXd& x, Eigen::VectorXd& y,
@@ -54,6 +56,12 @@ class DistributedOperator final : public SoilOperator {
 
   std::int32_t shared() const { return shared_; }
 
+  /// Over the nodes this rank owns, then the ranks' sums added in rank order (an all-gather):
+  /// every rank gets the same value, run after run.
+  double dot(const Eigen::VectorXd& x, const Eigen::VectorXd& y,
+             const double* node_weight) const override;
+  std::int64_t whole_node(std::int64_t i) const override { return global_[i]; }
+
  private:
   /// Node i's rows of the part's K times x (K as the step reads it when stepped).
   void rows_times(std::int32_t i, const double* x, double out[3], bool stepped) const;
@@ -64,6 +72,9 @@ class DistributedOperator final : public SoilOperator {
   std::vector<float> single_;  // K's values rounded to float (StepPrecision::kSingle), else empty
   std::int32_t shared_;
   const StarForest& halo_;
+  const std::vector<std::int32_t>& global_;  // per local node: its node in the whole mesh
+  std::vector<char> owned_;                  // per local node: this rank owns it
+  MPI_Comm comm_;
   mutable std::vector<double> shared_products_;  // 3 per shared node
 };
 

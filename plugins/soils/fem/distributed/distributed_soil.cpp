@@ -10,79 +10,49 @@
 #include "distributed/distributed_operator.hpp"
 #include "distributed/part_stiffness.hpp"
 #include "distributed/rank_agreement.hpp"
+#include "memory_model.hpp"
+#include "mesh/mesh_memory.hpp"
 #include "operator/elasticity.hpp"
 
 namespace rumble::fem {
-
-namespace {
-
-/// Rank 0's values on every rank (the size first).
-template <class T>
-void broadcast(MPI_Comm comm, std::vector<T>& values, MPI_Datatype type) {
-  long long n = static_cast<long long>(values.size());
-  MPI_Bcast(&n, 1, MPI_LONG_LONG, 0, comm);
-  values.resize(static_cast<std::size_t>(n));
-  if (n > 0) MPI_Bcast(values.data(), static_cast<int>(n), type, 0, comm);
-}
-
-constexpr int kBoundaryDoubles = 16;  // node, normal (3), area, two dashpots, spring (9)
-
-void pack(const BoundaryNode& b, std::vector<double>& out) {
-  out.push_back(b.node);
-  out.insert(out.end(), b.normal.data(), b.normal.data() + 3);
-  out.push_back(b.area);
-  out.push_back(b.dashpot_normal);
-  out.push_back(b.dashpot_tangential);
-  out.insert(out.end(), b.spring.data(), b.spring.data() + 9);
-}
-
-BoundaryNode unpack(const double* in, std::int32_t node) {
-  BoundaryNode b;
-  b.node = node;
-  b.normal = Eigen::Map<const Eigen::Vector3d>(in + 1);
-  b.area = in[4];
-  b.dashpot_normal = in[5];
-  b.dashpot_tangential = in[6];
-  b.spring = Eigen::Map<const Eigen::Matrix3d>(in + 7);
-  return b;
-}
-
-}  // namespace
 
 DistributedSoil::DistributedSoil(MPI_Comm comm) : petsc_(PetscSession::get()), comm_(comm) {
   MPI_Comm_rank(comm_, &rank_);
   MPI_Comm_size(comm_, &ranks_);
 }
 
-std::vector<BoundaryNode> DistributedSoil::local_boundary(const ExplicitSolver* whole) const {
-  std::vector<double> packed;
-  if (whole != nullptr)
-    for (const BoundaryNode& b : whole->boundary()) pack(b, packed);
-  broadcast(comm_, packed, MPI_DOUBLE);
-  std::vector<BoundaryNode> mine;
-  for (std::size_t k = 0; k < packed.size(); k += kBoundaryDoubles)
-    if (const std::int32_t local = part_.local_of(static_cast<std::int32_t>(packed[k])); local >= 0)
-      mine.push_back(unpack(packed.data() + k, local));
-  return mine;
-}
-
-std::vector<char> DistributedSoil::local_fixed(const ExplicitSolver* whole) const {
-  std::vector<int> root, leaves(static_cast<std::size_t>(part_.nodes()), 0);
-  if (whole != nullptr) root.assign(whole->fixed().begin(), whole->fixed().end());
-  part_.from_root->to_leaves(root.data(), leaves.data(), 1);
-  return std::vector<char>(leaves.begin(), leaves.end());
-}
-
-void DistributedSoil::lay_out(const TetMesh* mesh, const ExplicitSolver* whole,
-                              const FemSettings& settings, unsigned threads) {
+void DistributedSoil::lay_out(const TetMesh* mesh, const FemSettings& settings,
+                              const std::vector<Footprint>& footprints, unsigned threads) {
   statics_.reset();  // (they refer to the old partition)
   step_.reset();
   part_ = partition_mesh(comm_, mesh);
-  double eigen[2] = {whole ? whole->largest_eigenvalue() : 0.0,
-                     whole ? static_cast<double>(whole->eigen_iterations()) : 0.0};
-  MPI_Bcast(eigen, 2, MPI_DOUBLE, 0, comm_);
-  std::vector<BoundaryNode> boundary = local_boundary(whole);
-  std::vector<char> fixed = local_fixed(whole);
+  build_step(settings, footprints, threads);
+  state_ = step_->rest_state();
+  const Eigen::Index n = step_->dofs();
+  u_static_ = Eigen::VectorXd::Zero(n);
+  f_ = Eigen::VectorXd::Zero(n);
+  df_ = Eigen::VectorXd::Zero(n);
+  far_ = {};
+  far_field_set_ = false;
+  probes_.clear();
+  probe_count_ = 0;
+  weights_ = part_footprint_weights(comm_, part_, footprints);
+  owned_weights_.clear();
+  for (const std::vector<NodalWeight>& footprint : weights_) {
+    owned_weights_.emplace_back();
+    for (const NodalWeight& w : footprint)
+      if (part_.owns(w.node, rank_)) owned_weights_.back().push_back(w);
+  }
+  set_loaded_nodes();
+  peak_estimate_ = estimate_peak();
+}
+
+void DistributedSoil::build_step(const FemSettings& settings,
+                                 const std::vector<Footprint>& footprints, unsigned threads) {
+  std::vector<BoundaryNode> boundary = part_boundary(part_, settings, footprints);
+  std::vector<char> fixed(static_cast<std::size_t>(part_.nodes()), 0);
+  if (settings.boundary.kind == BoundaryKind::kFixed)  // (the matched layer is refused here)
+    for (const BoundaryNode& b : boundary) fixed[b.node] = 1;
   std::optional<CsrMatrix> K;
   Eigen::VectorXd mass;
   on_every_rank(comm_, [&] {  // (a degenerate tetrahedron throws on its rank alone)
@@ -94,47 +64,25 @@ void DistributedSoil::lay_out(const TetMesh* mesh, const ExplicitSolver* whole,
   auto op = std::make_unique<DistributedOperator>(
       std::move(*K), std::move(mass), std::move(boundary), settings.boundary.springs(),
       std::move(fixed), threads,
-      settings.single_precision_step ? StepPrecision::kSingle : StepPrecision::kDouble,
-      part_.shared, *part_.halo);
+      settings.single_precision_step ? StepPrecision::kSingle : StepPrecision::kDouble, part_,
+      comm_);
+  // Lanczos on the ranks' operator (its sums over the ranks in rank order): every rank gets
+  // the same stable step, one process's to rounding (fem_partition_check.cpp).
   step_.emplace(std::move(op), settings.damping.mass_coefficient(),
-                settings.damping.stiffness_coefficient(), eigen[0], static_cast<int>(eigen[1]));
+                settings.damping.stiffness_coefficient());
   if (settings.damping.maxwell) step_->set_maxwell_damping(settings.damping.maxwell_mechanisms());
-  state_ = step_->rest_state();
-  const Eigen::Index n = step_->dofs();
-  u_static_ = Eigen::VectorXd::Zero(n);
-  f_ = Eigen::VectorXd::Zero(n);
-  df_ = Eigen::VectorXd::Zero(n);
-  far_ = {};
-  far_field_set_ = false;
-  probes_.clear();
-  probe_count_ = 0;
 }
 
-void DistributedSoil::set_footprints(const FootprintWeights* whole) {
-  std::vector<double> packed;  // per footprint: its count, then (node, weight) pairs
-  if (whole != nullptr)
-    for (const std::vector<NodalWeight>& footprint : *whole) {
-      packed.push_back(static_cast<double>(footprint.size()));
-      for (const NodalWeight& w : footprint) {
-        packed.push_back(w.node);
-        packed.push_back(w.weight);
-      }
-    }
-  broadcast(comm_, packed, MPI_DOUBLE);
-  weights_.clear();
-  owned_weights_.clear();
-  for (std::size_t k = 0; k < packed.size();) {
-    const auto count = static_cast<std::size_t>(packed[k++]);
-    weights_.emplace_back();
-    owned_weights_.emplace_back();
-    for (std::size_t i = 0; i < count; ++i, k += 2) {
-      const std::int32_t local = part_.local_of(static_cast<std::int32_t>(packed[k]));
-      if (local < 0) continue;
-      weights_.back().push_back({local, packed[k + 1]});
-      if (part_.owns(local, rank_)) owned_weights_.back().push_back({local, packed[k + 1]});
-    }
-  }
-  set_loaded_nodes();
+double DistributedSoil::estimate_peak() const {
+  const ResidentMemory resident = resident_memory();
+  // GAMG on the ranks copies this rank's rows into PETSc's matrix and builds its hierarchy
+  // (memory_model.hpp): the statics' peak on every rank above the factor limit.
+  const auto nonzeros = static_cast<double>(step_->stiffness().nonzeros());
+  double mine = std::max(resident.peak, resident.now + memory::kGamgBytesPerNonzero * nonzeros);
+  if (resident.now == 0.0) mine = 0.0;  // (no /proc: nothing to start from)
+  double most = 0.0;
+  MPI_Allreduce(&mine, &most, 1, MPI_DOUBLE, MPI_MAX, comm_);
+  return most;
 }
 
 void DistributedSoil::set_loaded_nodes() {
@@ -145,32 +93,17 @@ void DistributedSoil::set_loaded_nodes() {
   step_->set_loaded_nodes(std::move(loaded));
 }
 
-void DistributedSoil::set_far_field(const StaticFarField* whole) {
-  if (far_field_set_) return;
+double DistributedSoil::set_far_field(const FemSettings& settings,
+                                      const std::vector<Footprint>& footprints) {
+  if (far_field_set_ || !static_far_field_applies(settings)) return far_mean_distance_;
   far_field_set_ = true;
-  std::vector<int> nodes;
-  std::vector<double> loads;
-  long long columns = whole ? whole->loads().cols() : 0;
-  if (whole != nullptr) {
-    nodes = whole->nodes();
-    loads.assign(whole->loads().data(), whole->loads().data() + whole->loads().size());
-  }
-  MPI_Bcast(&columns, 1, MPI_LONG_LONG, 0, comm_);
-  broadcast(comm_, nodes, MPI_INT);
-  broadcast(comm_, loads, MPI_DOUBLE);
-  if (columns == 0) return;
-  const Eigen::Map<const Eigen::MatrixXd> all(loads.data(),
-                                              3 * static_cast<Eigen::Index>(nodes.size()), columns);
-  std::vector<Eigen::Index> rows;
-  for (std::size_t k = 0; k < nodes.size(); ++k)
-    if (const std::int32_t local = part_.local_of(nodes[k]); local >= 0) {
-      far_.nodes.push_back(local);
-      rows.push_back(static_cast<Eigen::Index>(k));
-    }
-  far_.loads.resize(3 * static_cast<Eigen::Index>(rows.size()), columns);
-  for (std::size_t r = 0; r < rows.size(); ++r)
-    far_.loads.middleRows<3>(3 * static_cast<Eigen::Index>(r)) = all.middleRows<3>(3 * rows[r]);
+  const std::vector<BoundaryNode>& boundary = step_->boundary();
+  StaticFarField far(part_.mesh, settings, footprints, boundary);  // (its rows: node by node)
+  far_.nodes = far.nodes();
+  far_.loads = far.loads();
+  far_mean_distance_ = boundary_mean_distance(comm_, part_, boundary, footprints);
   set_loaded_nodes();
+  return far_mean_distance_;
 }
 
 void DistributedSoil::set_far_field_force(const double* F, Eigen::VectorXd& f) const {
@@ -204,31 +137,9 @@ void DistributedSoil::set_static(const Eigen::VectorXd* whole) {
   part_.from_root->to_leaves(whole ? whole->data() : nullptr, u_static_.data(), 3);
 }
 
-void DistributedSoil::set_probes(const std::vector<ProbePoint>* whole) {
-  std::vector<double> packed;  // per receiver: 4 nodes, 4 weights
-  if (whole != nullptr)
-    for (const ProbePoint& p : *whole) {
-      packed.insert(packed.end(), p.nodes.begin(), p.nodes.end());
-      packed.insert(packed.end(), p.weights.begin(), p.weights.end());
-    }
-  broadcast(comm_, packed, MPI_DOUBLE);
-  probe_count_ = packed.size() / 8;
-  std::vector<int> sampler(probe_count_, ranks_), lowest(probe_count_, 0);
-  std::vector<ProbePoint> local(probe_count_);
-  for (std::size_t p = 0; p < probe_count_; ++p) {
-    bool holds = true;
-    for (int a = 0; a < 4; ++a) {
-      local[p].nodes[a] = part_.local_of(static_cast<std::int32_t>(packed[8 * p + a]));
-      local[p].weights[a] = packed[8 * p + 4 + a];
-      holds = holds && local[p].nodes[a] >= 0;
-    }
-    if (holds) sampler[p] = rank_;
-  }
-  MPI_Allreduce(sampler.data(), lowest.data(), static_cast<int>(probe_count_), MPI_INT, MPI_MIN,
-                comm_);
-  probes_.clear();
-  for (std::size_t p = 0; p < probe_count_; ++p)
-    if (lowest[p] == rank_) probes_.push_back({p, local[p]});
+void DistributedSoil::set_probes(const std::vector<Probe>& probes) {
+  probes_ = part_probes(comm_, part_, probes);
+  probe_count_ = probes.size();
 }
 
 void DistributedSoil::footprint_averages(const Eigen::VectorXd& x, const Eigen::VectorXd& y,
@@ -253,7 +164,7 @@ void DistributedSoil::footprint_averages(const Eigen::VectorXd& x, const Eigen::
 
 void DistributedSoil::sample_probes(double* rows) const {
   std::vector<double> mine(probe_count_ * RUMBLE_PROBE_VALUES, 0.0);
-  for (const LocalProbe& p : probes_) {
+  for (const PartProbe& p : probes_) {
     double* out = mine.data() + p.index * RUMBLE_PROBE_VALUES;
     for (int a = 0; a < 4; ++a) {  // (as one process samples it: fem_outputs.cpp)
       const std::int64_t node = p.point.nodes[a];
@@ -301,7 +212,10 @@ std::string DistributedSoil::summary() const {
     << static_cast<double>(range(3).second) * 48.0 / 1024.0
     << " KiB exchanged per step (each ghost's product summed to its owner and copied back); "
     << static_cast<double>(most_bytes) / 1048576.0
-    << " MiB of operator and step on the largest rank";
+    << " MiB of operator and step on the largest rank; each rank built its share from its part; "
+       "stable step "
+    << step_->stable_step() << " s (" << step_->eigen_iterations()
+    << " Lanczos iterations over the ranks)";
   return m.str();
 }
 

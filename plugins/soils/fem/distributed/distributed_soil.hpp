@@ -1,11 +1,10 @@
 // One rank's share of the FEM soil under `mpirun -n N rumble run` (issue #33;
-// docs/decisions/0012-distributed-soil.md; docs/fem-soil.md, "On many ranks"): its part of the
+// docs/decisions/0012-distributed-soil.md; docs/fem-soil.md §8, "On many ranks"): its part of the
 // mesh, its operator and explicit step, its state, the footprints' weights, the far field's
 // rows and the receivers on its nodes. The plugin makes every call on every rank with the same
-// inputs (the host mirrors them); rank 0 alone holds the whole mesh and what is built on it
-// (the static state, the stable step, the receivers' places), and each set-up call below takes
-// rank 0's whole object there (nullptr on the other ranks) and gives every rank its share.
-// Every call is collective.
+// inputs (the host mirrors them). Rank 0 alone holds the whole mesh, which it hands out at the
+// layout; every rank then builds its share from its own part (part_pieces.hpp), the stable step
+// by Lanczos over the ranks. Every call is collective.
 #pragma once
 
 #define OMPI_SKIP_MPICXX 1
@@ -21,6 +20,7 @@
 #include "boundary/static_far_field.hpp"
 #include "distributed/distributed_statics.hpp"
 #include "distributed/mesh_partition.hpp"
+#include "distributed/part_pieces.hpp"
 #include "fem_settings.hpp"
 #include "operator/footprint_loads.hpp"
 #include "output/probe_locator.hpp"
@@ -41,15 +41,18 @@ class DistributedSoil {
   bool root() const { return rank_ == 0; }
   bool laid_out() const { return step_.has_value(); }
 
-  /// Splits rank 0's mesh (mesh_partition.hpp) and builds this rank's operator and explicit step
-  /// (distributed_operator.hpp) with the boundary blocks, fixed nodes and largest eigenvalue of
-  /// rank 0's step on the whole mesh (`whole`). threads: the products'.
-  void lay_out(const TetMesh* mesh, const ExplicitSolver* whole, const FemSettings& settings,
-               unsigned threads);
-  /// The footprints' weights on this rank's nodes (rank 0's `whole`), where their forces act.
-  void set_footprints(const FootprintWeights* whole);
-  /// The far field's rows of this rank's nodes; its nodes take force jumps too. Once per layout.
-  void set_far_field(const StaticFarField* whole);
+  /// Splits rank 0's mesh (mesh_partition.hpp; nullptr on the other ranks) and builds this
+  /// rank's share from its part alone: its operator, boundary blocks and fixed nodes, the
+  /// explicit step with the stable step from Lanczos over the ranks (the same on every rank),
+  /// and the footprints' weights on its nodes. threads: the products'.
+  void lay_out(const TetMesh* mesh, const FemSettings& settings,
+               const std::vector<Footprint>& footprints, unsigned threads);
+  /// The whole mesh's DOFs.
+  std::int64_t whole_dofs() const { return 3 * part_.global_nodes; }
+  /// The far field's rows of this rank's boundary nodes (StaticFarField on its part), where the
+  /// settings take one; its nodes take force jumps too. Returns the boundary nodes' mean
+  /// distance from the footprints' centre over the whole mesh [m] (0: no far field).
+  double set_far_field(const FemSettings& settings, const std::vector<Footprint>& footprints);
   bool has_far_field() const { return far_.loads.cols() > 0; }
   /// The static state [m] on this rank's nodes.
   void set_static(const Eigen::VectorXd* whole);
@@ -60,8 +63,14 @@ class DistributedSoil {
   bool solve_static(const double* F, double* averages);
   const DistributedStatics* statics() const { return statics_.get(); }
   const Eigen::VectorXd& static_state() const { return u_static_; }
-  /// The receivers, each sampled by the lowest rank that holds its tetrahedron's nodes.
-  void set_probes(const std::vector<ProbePoint>* whole);
+  /// The receivers, each sampled by the rank whose part holds its tetrahedron (part_pieces.hpp).
+  void set_probes(const std::vector<Probe>& probes);
+  /// Frees the statics' matrix and GAMG's hierarchy (ABI 1.5's statics_done); the next
+  /// solve_static builds them again.
+  void free_statics() { statics_.reset(); }
+  /// The largest rank's estimate of its peak resident memory [bytes] over the run (memory_model
+  /// .hpp, from what each rank holds after its layout), for ABI 1.5's size.
+  double peak_estimate() const { return peak_estimate_; }
 
   ExplicitSolver& step() { return *step_; }
   const ExplicitSolver& step() const { return *step_; }
@@ -95,15 +104,12 @@ class DistributedSoil {
     Eigen::MatrixXd loads;            // 3 rows per node, a column per footprint
     mutable Eigen::VectorXd g;        // scratch
   };
-  struct LocalProbe {
-    std::size_t index = 0;  // among the receivers
-    ProbePoint point;       // local nodes
-  };
-
-  /// rank 0's boundary blocks, in local nodes (those this rank holds).
-  std::vector<BoundaryNode> local_boundary(const ExplicitSolver* whole) const;
-  std::vector<char> local_fixed(const ExplicitSolver* whole) const;
+  /// This rank's operator and explicit step on its part (lay_out's second half).
+  void build_step(const FemSettings& settings, const std::vector<Footprint>& footprints,
+                  unsigned threads);
   void set_loaded_nodes();
+  /// The largest rank's estimate of its run's peak [bytes] from what it holds now.
+  double estimate_peak() const;
   /// Rank 0: each footprint's averages of x and y (3 per node), summed in rank order.
   void footprint_averages(const Eigen::VectorXd& x, const Eigen::VectorXd& y, double* x_average,
                           double* y_average) const;
@@ -119,9 +125,11 @@ class DistributedSoil {
   FootprintWeights owned_weights_;  // local nodes this rank owns
   LocalFarField far_;
   bool far_field_set_ = false;
+  double far_mean_distance_ = 0.0;               // m, over the whole mesh
   std::unique_ptr<DistributedStatics> statics_;  // at the first solve_static of a layout
-  std::vector<LocalProbe> probes_;
+  std::vector<PartProbe> probes_;
   std::size_t probe_count_ = 0;
+  double peak_estimate_ = 0.0;  // bytes
 };
 
 }  // namespace rumble::fem

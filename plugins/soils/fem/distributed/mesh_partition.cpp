@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdlib>
+#include <map>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -18,9 +19,75 @@ namespace rumble::fem {
 namespace {
 
 // What travels with each point of the DMPlex from rank 0 to the rank that receives it: its
-// number in rank 0's DMPlex and, for a tetrahedron, its nodes in rank 0's mesh and its layer.
-// The DMPlex of rank 0's mesh numbers its tetrahedra first (0 .. T - 1), then its nodes (T + g).
-constexpr int kPointInts = 6;  // point, 4 nodes, layer
+// number in rank 0's DMPlex and, for a tetrahedron, its nodes in rank 0's mesh, its layer and
+// its faces on the surfaces (face_codes) with its ground face's index among rank 0's ground faces
+// (-1: none; a tetrahedron has at most one face on the plane z = 0). The DMPlex of rank 0's mesh
+// numbers its tetrahedra first (0 .. T - 1), then its nodes (T + g).
+constexpr int kPointInts = 8;  // point, 4 nodes, layer, surface faces, ground face
+
+// A tetrahedron's faces on the ground or the truncation surface in one int, a byte per face
+// (at most 4): the surface (1 ground, 2 truncation) in bits 6-7 and the face's three nodes as
+// positions 0-3 in the tetrahedron, in the face's own order (its normal's), in bits 4-5, 2-3
+// and 0-1; 0: no more faces.
+constexpr unsigned kGround = 1, kTruncation = 2;
+
+// Per tetrahedron: its packed surface faces, and the index of its ground face (-1: none).
+std::pair<std::vector<unsigned>, std::vector<int>> face_codes(const TetMesh& whole) {
+  std::vector<char> on_surface(static_cast<std::size_t>(whole.node_count()), 0);
+  struct Face {
+    unsigned kind;
+    Triangle nodes;
+    int index;  // in its list
+  };
+  std::map<std::array<std::int32_t, 3>, Face> faces;
+  for (const auto& [kind, list] :
+       {std::pair{kGround, &whole.ground}, std::pair{kTruncation, &whole.truncation}})
+    for (std::size_t k = 0; k < list->size(); ++k) {
+      const Triangle& f = (*list)[k];
+      for (std::int32_t v : f) on_surface[v] = 1;
+      std::array<std::int32_t, 3> key = f;
+      std::sort(key.begin(), key.end());
+      faces.emplace(key, Face{kind, f, static_cast<int>(k)});
+    }
+  std::vector<unsigned> codes(whole.tets.size(), 0);
+  std::vector<int> ground(whole.tets.size(), -1);
+  for (std::size_t e = 0; e < whole.tets.size(); ++e) {
+    const Tetrahedron& t = whole.tets[e];
+    int slot = 0;
+    for (int opposite = 0; opposite < 4; ++opposite) {
+      std::array<std::int32_t, 3> key{};
+      for (int a = 0, k = 0; a < 4; ++a)
+        if (a != opposite) key[k++] = t[a];
+      if (!on_surface[key[0]] || !on_surface[key[1]] || !on_surface[key[2]]) continue;
+      std::sort(key.begin(), key.end());
+      const auto it = faces.find(key);
+      if (it == faces.end()) continue;
+      unsigned code = it->second.kind << 6;
+      for (int m = 0; m < 3; ++m) {
+        const auto at = std::find(t.begin(), t.end(), it->second.nodes[m]) - t.begin();
+        code |= static_cast<unsigned>(at) << (4 - 2 * m);
+      }
+      codes[e] |= code << (8 * slot++);
+      if (it->second.kind == kGround) ground[e] = it->second.index;
+    }
+  }
+  return {codes, ground};
+}
+
+// The faces face_codes() packed for tetrahedron t (local nodes) added to the part's surfaces,
+// its ground face with its index among rank 0's.
+void add_faces(unsigned codes, int ground, const Tetrahedron& t, MeshPartition& part) {
+  for (; codes != 0; codes >>= 8) {
+    const unsigned code = codes & 0xFFu;
+    const Triangle f{t[(code >> 4) & 3u], t[(code >> 2) & 3u], t[code & 3u]};
+    if ((code >> 6) != kGround) {
+      part.mesh.truncation.push_back(f);
+      continue;
+    }
+    part.mesh.ground.push_back(f);
+    part.ground_global.push_back(ground);
+  }
+}
 
 struct PlexPoints {
   std::vector<int> ints;       // kPointInts per point of the distributed DMPlex
@@ -56,9 +123,12 @@ PlexPoints migrate_points(PetscSF migration, const TetMesh* whole, PetscInt poin
     root_ints.assign(static_cast<std::size_t>(kPointInts * all), -1);
     root_coords.assign(static_cast<std::size_t>(3 * all), 0.0);
     for (std::int64_t p = 0; p < all; ++p) root_ints[kPointInts * p] = static_cast<int>(p);
+    const auto [faces, ground] = face_codes(*whole);
     for (std::int64_t e = 0; e < tets; ++e) {
       for (int a = 0; a < 4; ++a) root_ints[kPointInts * e + 1 + a] = whole->tets[e][a];
       root_ints[kPointInts * e + 5] = whole->layer[e];
+      root_ints[kPointInts * e + 6] = static_cast<int>(faces[e]);
+      root_ints[kPointInts * e + 7] = ground[e];
     }
     for (std::int64_t g = 0; g < whole->node_count(); ++g)
       for (int c = 0; c < 3; ++c) root_coords[3 * (tets + g) + c] = whole->nodes(c, g);
@@ -178,6 +248,8 @@ void part_mesh(const PlexPoints& data, std::int64_t tets, MeshPartition& part,
       throw std::logic_error("fem: a tetrahedron's node did not come with it to its rank");
     part.mesh.tets.push_back(t);
     part.mesh.layer.push_back(static_cast<std::uint16_t>(c[5]));
+    part.tet_global.push_back(c[0]);
+    add_faces(static_cast<unsigned>(c[6]), c[7], t, part);
   }
 }
 

@@ -25,11 +25,16 @@
 namespace rumble::fem {
 
 struct MeshPartition {
-  TetMesh mesh;                      // this rank's tetrahedra and nodes (no surface faces)
-  std::vector<std::int32_t> global;  // per local node: its node in rank 0's mesh
-  std::vector<int> owner;            // per local node: the rank that owns it
-  std::int32_t shared = 0;           // local nodes [0, shared) are shared with other ranks
-  std::int64_t global_nodes = 0;     // rank 0's mesh
+  /// This rank's tetrahedra and nodes, and those of its tetrahedra's faces that lie on the
+  /// ground or the truncation surface (each such face is a face of one tetrahedron, so of one
+  /// rank: the surfaces are split with the tetrahedra), ordered by their tetrahedron.
+  TetMesh mesh;
+  std::vector<std::int32_t> global;         // per local node: its node in rank 0's mesh
+  std::vector<std::int32_t> tet_global;     // per local tetrahedron: its index in rank 0's mesh
+  std::vector<std::int32_t> ground_global;  // per face of mesh.ground: its index in rank 0's
+  std::vector<int> owner;                   // per local node: the rank that owns it
+  std::int32_t shared = 0;                  // local nodes [0, shared) are shared with other ranks
+  std::int64_t global_nodes = 0;            // rank 0's mesh
   std::int64_t global_tetrahedra = 0;
   /// The halo over the shared nodes [0, shared): each ghost is a leaf of its owner's node.
   std::unique_ptr<StarForest> halo;

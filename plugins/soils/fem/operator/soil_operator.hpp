@@ -113,6 +113,26 @@ class SoilOperator {
   /// Whether K's rows are held now (bytes() counts them then).
   virtual bool holds_stiffness() const { return true; }
 
+  // Sums over the whole soil, for the eigenvalue iterations that set the stable step (issue #33:
+  // on many ranks every rank must reach the same step). One process sums its own nodes.
+  /// sum over the DOFs of x_k y_k, each weighted by its node's `node_weight` when not null:
+  /// on many ranks each node counted once (by its owner), the ranks' sums added in one fixed
+  /// order, the same value on every rank. Collective there.
+  virtual double dot(const Eigen::VectorXd& x, const Eigen::VectorXd& y,
+                     const double* node_weight) const {
+    if (node_weight == nullptr) return x.dot(y);
+    const std::int64_t n = x.size();
+    double s = 0.0;
+#pragma omp parallel for num_threads(threads_) reduction(+ : s) schedule(static)
+    for (std::int64_t k = 0; k < n; ++k) s += node_weight[k / 3] * x[k] * y[k];
+    return s;
+  }
+  /// Node i's number in the whole mesh: the eigenvalue iterations' start follows it, so that
+  /// a split soil starts where one process does.
+  virtual std::int64_t whole_node(std::int64_t i) const {
+    return i;
+  }
+
  protected:
   SoilOperator(Eigen::VectorXd mass, std::vector<BoundaryNode> boundary, bool springs,
                std::vector<char> fixed, unsigned threads)

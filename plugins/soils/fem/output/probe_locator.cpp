@@ -8,14 +8,12 @@
 
 namespace rumble::fem {
 
-ProbePoint locate_probe(const TetMesh& mesh, double x, double y, double depth,
-                        const std::string& name) {
+ProbeCandidate best_tetrahedron(const TetMesh& mesh, const Eigen::Vector3d& p) {
   // The tetrahedron whose smallest barycentric coordinate is largest: the containing one, or on
   // a face shared by two, either gives the same interpolation.
-  const Eigen::Vector3d p(x, y, depth);
-  ProbePoint best;
-  double best_min = -std::numeric_limits<double>::infinity();
-  for (const Tetrahedron& t : mesh.tets) {
+  ProbeCandidate best;
+  for (std::size_t e = 0; e < mesh.tets.size(); ++e) {
+    const Tetrahedron& t = mesh.tets[e];
     const Eigen::Vector3d x0 = mesh.node(t[0]);
     // Cheap rejection: outside the bounding box.
     Eigen::Vector3d lo = x0, hi = x0;
@@ -30,18 +28,23 @@ ProbePoint locate_probe(const TetMesh& mesh, double x, double y, double depth,
     const Eigen::Vector3d xi = J.partialPivLu().solve(p - x0);
     const std::array<double, 4> w{1.0 - xi.sum(), xi[0], xi[1], xi[2]};
     const double smallest = *std::min_element(w.begin(), w.end());
-    if (smallest > best_min) {
-      best_min = smallest;
-      best = {t, w};
-    }
-  }
-  if (best_min < -1e-6) {
-    std::ostringstream m;
-    m << "fem: receiver '" << name << "' at x " << x << " m, y " << y << " m, depth " << depth
-      << " m lies outside the mesh; move it or enlarge params/mesh/radius";
-    throw std::invalid_argument(m.str());
+    if (smallest > best.smallest) best = {{t, w}, smallest, static_cast<std::int64_t>(e)};
   }
   return best;
+}
+
+void refuse_probe_outside(const std::string& name, double x, double y, double depth) {
+  std::ostringstream m;
+  m << "fem: receiver '" << name << "' at x " << x << " m, y " << y << " m, depth " << depth
+    << " m lies outside the mesh; move it or enlarge params/mesh/radius";
+  throw std::invalid_argument(m.str());
+}
+
+ProbePoint locate_probe(const TetMesh& mesh, double x, double y, double depth,
+                        const std::string& name) {
+  const ProbeCandidate best = best_tetrahedron(mesh, Eigen::Vector3d(x, y, depth));
+  if (!best.inside()) refuse_probe_outside(name, x, y, depth);
+  return best.point;
 }
 
 }  // namespace rumble::fem

@@ -91,6 +91,31 @@ double damped_step(double omega, double a1) {
 
 }  // namespace
 
+namespace {
+
+// The start of the eigenvalue iterations: x -> a x + c (mod 2^64) from a fixed seed, its k-th
+// state giving DOF k - 1 of the whole mesh.
+constexpr std::uint64_t kLcgSeed = 0x9E3779B97F4A7C15ull;
+constexpr std::uint64_t kLcgMultiplier = 6364136223846793005ull;
+constexpr std::uint64_t kLcgIncrement = 1442695040888963407ull;
+
+// The generator's state after `steps` steps from its seed, by repeated squaring of the affine
+// map (Brown's skip-ahead): O(log steps), so that each rank starts at its own nodes' DOFs.
+std::uint64_t start_seed(std::uint64_t steps) {
+  std::uint64_t mul = 1, add = 0, step_mul = kLcgMultiplier, step_add = kLcgIncrement;
+  for (; steps > 0; steps >>= 1) {
+    if (steps & 1u) {
+      mul *= step_mul;
+      add = add * step_mul + step_add;
+    }
+    step_add = (step_mul + 1) * step_add;
+    step_mul *= step_mul;
+  }
+  return mul * kLcgSeed + add;
+}
+
+}  // namespace
+
 double ExplicitSolver::largest_eigenvalue(
     const std::function<void(const Eigen::VectorXd&, Eigen::VectorXd&)>& op,
     int& iterations) const {
@@ -115,25 +140,22 @@ double ExplicitSolver::largest_eigenvalue(
   const std::int64_t n = op_->nodes();
   const unsigned threads = op_->threads();
   Eigen::VectorXd q(3 * n), q_prev = Eigen::VectorXd::Zero(3 * n), w;
-  std::uint64_t seed = 0x9E3779B97F4A7C15ull;  // fixed: the same step on every run
-  for (std::int64_t k = 0; k < 3 * n; ++k) {
-    seed = seed * 6364136223846793005ull + 1442695040888963407ull;
-    q[k] = fixed_[k / 3] ? 0.0 : static_cast<double>(seed >> 11) / 9007199254740992.0 - 0.5;
+  for (std::int64_t i = 0; i < n; ++i) {  // (fixed: the same step on every run and rank count)
+    std::uint64_t seed = start_seed(3 * static_cast<std::uint64_t>(op_->whole_node(i)));
+    for (int c = 0; c < 3; ++c) {
+      seed = seed * kLcgMultiplier + kLcgIncrement;
+      q[3 * i + c] = fixed_[i] ? 0.0 : static_cast<double>(seed >> 11) / 9007199254740992.0 - 0.5;
+    }
   }
-  const auto mass_norm = [&](const Eigen::VectorXd& z) {
-    double s = 0.0;
-#pragma omp parallel for num_threads(threads) reduction(+ : s) schedule(static)
-    for (std::int64_t k = 0; k < 3 * n; ++k) s += mass_[k / 3] * z[k] * z[k];
-    return std::sqrt(s);
-  };
+  const auto mass_norm = [&](const Eigen::VectorXd& z) { return std::sqrt(op_->dot(z, z, mass_)); };
   q /= mass_norm(q);
   std::vector<double> alpha, beta, history;
   double lambda = 0.0;
   constexpr int kMaxIterations = 3000;
   for (iterations = 1; iterations <= kMaxIterations; ++iterations) {
     check_stop();
-    op(q, w);                   // K q
-    const double a = q.dot(w);  // q^T K q, q M-normalized
+    op(q, w);                                  // K q
+    const double a = op_->dot(q, w, nullptr);  // q^T K q, q M-normalized
 #pragma omp parallel for num_threads(threads) schedule(static)
     for (std::int64_t k = 0; k < 3 * n; ++k)
       w[k] = w[k] / mass_[k / 3] - a * q[k] - (beta.empty() ? 0.0 : beta.back() * q_prev[k]);
