@@ -212,6 +212,30 @@ TEST(CliFailure, SigtermKeepsResultsAndSaysSigterm) {
   expect_interrupted_run("interrupt_sigterm", SIGTERM, "SIGTERM");
 }
 
+// SIGTERM while the FEM soil meshes in the validation (before the run, inside gmsh, which cannot
+// stop between its steps): the process ends at the grace deadline with a message naming the
+// phase, not by the signal's silent default (exit 143, nothing said) as before the handler was
+// installed ahead of the validation. 2.8e5 DOFs: 16 s of meshing here, ended after 1.5 s.
+TEST(CliFailure, SigtermWhileTheFemSoilMeshesSaysSo) {
+  const auto dir = scratch_directory("sigterm_meshing");
+  nlohmann::json s = small_fem_scenario();
+  s["soil"]["params"]["mesh"] = {
+      {"shape", "hemisphere"}, {"radius", 15.0}, {"f_max", 130.0}, {"near_distance", 5.0}};
+  const auto path = write_scenario(dir, s);
+  const auto output = dir / "output.txt";
+  ::setenv("RUMBLE_MESH_CACHE", "off", 1);  // (gmsh meshes, whatever a cache holds)
+  const pid_t pid = start_rumble({"run", path.string(), "--no-progress", "--no-plots"}, output);
+  for (int i = 0; i < 1200 && file_text(output).find("fem: a mesh of about") == std::string::npos;
+       ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  kill(pid, SIGTERM);
+  EXPECT_EQ(wait_rumble(pid), 130) << file_text(output);
+  EXPECT_THAT(file_text(output),
+              HasSubstr("rumble: error: stopped by SIGTERM: the scenario's validation (the soils "
+                        "built, a FEM soil meshed) did not stop within 1.5 s of the request"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "results" / "summary.json"));
+}
+
 // Ctrl-C inside a long receptance (the FEM soil's impulse runs, which look for it every 100 ms):
 // the command says where it stopped and what is kept, and exits 3 as an interrupted run does.
 TEST(CliFailure, InterruptedReceptanceSaysWhereItStopped) {

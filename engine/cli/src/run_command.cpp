@@ -16,6 +16,30 @@
 
 namespace rumble::cli {
 
+namespace {
+
+/// The scenario checked and its soils built (prepare_scenario: `doc` empty when it is refused).
+/// Ctrl-C and SIGTERM are answered from here on: the validation builds the soils, and a FEM soil
+/// meshes there (minutes for a large mesh, inside gmsh, which cannot be stopped between its
+/// steps), so a signal then ends the process at the grace deadline with a message naming the
+/// phase (core/interrupt.hpp) instead of the signal's silent default. False: a signal came and
+/// the validation ended within the grace; nothing was written.
+bool validated(const std::string& file, PluginRegistry& registry,
+               const std::vector<scenario::Override>& overrides,
+               const scenario::CheckOptions& check, std::optional<scenario::Document>& doc) {
+  install_interrupt_handler();
+  {
+    const StopPhase phase("the scenario's validation (the soils built, a FEM soil meshed)");
+    doc = prepare_scenario(file, registry, scenario::Format::kText, overrides, check);
+  }
+  if (!interrupt_requested()) return true;
+  std::cerr << "rumble: error: stopped by " << interrupt_cause()
+            << " during the scenario's validation, before the run began; nothing was written\n";
+  return false;
+}
+
+}  // namespace
+
 int run_command(const std::vector<std::string>& args) {
   const Arguments a(args, {"no-progress", "no-plots", "overwrite", "allow-outside-results", "yes"},
                     {"output"}, {"set"});
@@ -37,13 +61,12 @@ int run_command(const std::vector<std::string>& args) {
   if (output) check.output_directory = &output_directory;
   BuiltSoils built;  // the soils validation builds, for the run (a FEM soil is built once)
   check.keep_soils = &built;
-  auto doc =
-      prepare_scenario(a.positional()[0], registry, scenario::Format::kText, overrides, check);
+  std::optional<scenario::Document> doc;
+  if (!validated(a.positional()[0], registry, overrides, check, doc)) return kExitRunFailed;
   if (!doc) return kExitConfig;
   if (output)  // overrides outputs.directory: the user's choice
     doc->json["outputs"]["directory"] = std::filesystem::absolute(*output).string();
   if (a.flag("no-plots")) doc->json["outputs"]["plots"] = false;
-  install_interrupt_handler();
   RunOptions options;
   options.built_soils = &built;
   options.size_confirmed = check.size_confirmed;
