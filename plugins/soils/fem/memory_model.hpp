@@ -47,6 +47,11 @@ inline constexpr double kMultigridBytesPerNonzero = 12.2;
 /// aggregation (PETSC_OPTIONS -fem_statics_pc_gamg_agg_nsmooths 0) needed 1.38 GB there.
 inline constexpr double kGamgBytesPerNonzero = 65.0;
 
+/// The whole mesh's nodes and tetrahedra as rank 0 keeps them on many ranks, per DOF [bytes]:
+/// 24 B per node and 16 B per tetrahedron, about 5.5 tetrahedra per node (docs/fem-soil.md §8,
+/// "What rank 0 keeps").
+inline constexpr double kMeshBytesPerDof = 40.0;
+
 /// Nonzeros of K per DOF on the meshes measured (about 14 neighbours per node, 3 x 3 blocks).
 inline constexpr double kNonzerosPerDof = 45.0;
 

@@ -21,18 +21,22 @@ RankPlan plan_ranks(double nodes, int ranks, bool gamg) {
   p.largest_nodes = (nodes + p.ghosts) / p.ranks;
   p.halo_bytes = kHaloBytesPerGhost * p.ghosts;
   const double share = memory::kHeldBytesPerDof * 3.0 * p.largest_nodes;
-  const double share_statics =
-      gamg ? memory::multigrid_bytes(memory::kNonzerosPerDof * 3.0 * p.largest_nodes) : 0.0;
-  p.rank_bytes = memory::kProcessBytes + share + share_statics;
   if (p.ranks == 1) {
     p.root_bytes = memory::run_peak_bytes(3.0 * nodes);
-    p.rank_bytes = 0.0;
-  } else {  // (rank 0: the whole mesh and operator as one process holds them, and its share)
-    const double whole_statics =
-        gamg ? 0.0 : memory::statics_bytes(3.0 * nodes, memory::kNonzerosPerDof * 3.0 * nodes);
-    p.root_bytes = memory::kProcessBytes + memory::kHeldBytesPerDof * 3.0 * nodes +
-                   std::max(whole_statics, share_statics) + share;
+    return p;
   }
+  // On many ranks the statics run on the ranks by GAMG above the factor limit (or when asked):
+  // each rank its part's; below it rank 0 factors the whole (small) operator and frees it.
+  const double whole = 3.0 * nodes;
+  const bool on_ranks = gamg || whole > memory::kFactorLimitDofs;
+  const double share_statics =
+      on_ranks ? memory::kGamgBytesPerNonzero * memory::kNonzerosPerDof * 3.0 * p.largest_nodes
+               : 0.0;
+  p.rank_bytes = memory::kProcessBytes + share + share_statics;
+  // Rank 0: its share and the whole mesh (not the operator), or the factor's whole operator.
+  const double root_statics =
+      on_ranks ? share_statics : memory::kHeldBytesPerDof * whole + memory::factor_bytes(whole);
+  p.root_bytes = memory::kProcessBytes + share + memory::kMeshBytesPerDof * whole + root_statics;
   return p;
 }
 
