@@ -130,6 +130,11 @@ void FemSoil::accept_layout_distributed(const std::vector<rumble::Footprint>& fo
       !settings_.gamg_statics && d.whole_dofs() <= rumble::fem::StaticSolver::kFactorLimit;
   if (statics_on_root_)  // (the whole operator for the factor: small below its limit)
     rumble::fem::on_root(d.comm(), [&] { build_here(footprints, 0.0, start); });
+  else if (!settings_.gamg_statics && d.root())  // (the soil's multigrid runs on one process)
+    host_.info("fem: statics.solver \"multigrid\" runs on one process; on " +
+               std::to_string(d.ranks()) +
+               " ranks above the factor limit the static state is solved by GAMG on the ranks "
+               "(docs/fem-soil.md section 8)");
   peak_estimate_ = std::max(peak_estimate_, d.peak_estimate());
   force_static_.assign(footprints.size(), 0.0);
   force_last_.assign(footprints.size(), 0.0);
