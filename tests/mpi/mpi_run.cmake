@@ -17,7 +17,7 @@
 #                                snapshots every 10 ms (on N ranks a .pvtu and a piece per rank,
 #                                read by VTK's reader: pvtu_agrees.py) have one process's points
 #                                and agree to 1e-12 of their largest value; `rumble mesh --ranks N`
-#                                estimates the halo within 1.5 of the split's,
+#                                estimates the halo within 1.3 of the split's,
 #                                the CSV histories (9 digits) as printed (csv_agree); a second
 #                                run on N ranks writes the same files byte for byte
 #   fem_gamg_statics_on_3_ranks  statics.solver gamg: the static state solved on the 3 ranks by
@@ -121,7 +121,7 @@ function(fem_fields ranks tolerance)
 endfunction()
 
 # `rumble mesh --ranks N` (one process) estimates the halo of a run on N ranks: within a factor
-# 1.5 of the split the run on N ranks made (fem_many_out: "halo X KiB exchanged per step").
+# 1.3 of the split the run on N ranks made (fem_many_out: "halo X KiB exchanged per step").
 function(fem_plan_against_split ranks)
   string(REGEX MATCH "halo ([0-9.e+]+) KiB exchanged per step" split "${fem_many_out}")
   set(actual ${CMAKE_MATCH_1})

@@ -34,6 +34,7 @@
 #include "mesh/mesh_generator.hpp"
 #include "mesh/mesh_memory.hpp"
 #include "mesh/track_region.hpp"
+#include "output/pvtu_writer.hpp"
 #include "output/vtu_writer.hpp"
 
 namespace rumble::fem {
@@ -335,7 +336,7 @@ void FemSoil::log_peak_per_rank() const {
 
 void FemSoil::write_fields_distributed(double t, const std::string& path) {
   rumble::fem::DistributedSoil& d = *distributed_;
-  if (path.size() > 5 && path.compare(path.size() - 5, 5, ".pvtu") == 0) {  // (rumble/abi.h)
+  if (rumble::fem::is_parallel_snapshot(path)) {
     rumble::fem::on_root(d.comm(), [&] { export_if_due(); });
     return rumble::fem::write_field_pieces(d, t, path);
   }

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <utility>
 
+#include "distributed/rank_sum.hpp"
+
 namespace rumble::fem {
 
 namespace {
@@ -72,13 +74,7 @@ double DistributedOperator::dot(const Eigen::VectorXd& x, const Eigen::VectorXd&
     const double w = node_weight ? node_weight[i] : 1.0;
     for (std::int64_t k = 3 * i; k < 3 * i + 3; ++k) mine += w * x[k] * y[k];
   }
-  int ranks = 1;
-  MPI_Comm_size(comm_, &ranks);
-  std::vector<double> all(static_cast<std::size_t>(ranks));
-  MPI_Allgather(&mine, 1, MPI_DOUBLE, all.data(), 1, MPI_DOUBLE, comm_);
-  double sum = 0.0;
-  for (double s : all) sum += s;
-  return sum;
+  return sum_in_rank_order(comm_, mine);
 }
 
 void DistributedOperator::rows_times(std::int32_t i, const double* x, double out[3],

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "boundary/absorbing_boundary.hpp"
+#include "distributed/rank_sum.hpp"
 #include "mesh/track_region.hpp"
 
 namespace rumble::fem {
@@ -71,12 +72,6 @@ std::pair<TetMesh, std::vector<std::int32_t>> faces_mesh(std::vector<GatheredFac
 }
 
 }  // namespace
-
-double sum_in_rank_order(MPI_Comm comm, double mine) {
-  double sum = 0.0;
-  for (double s : gather_all(comm, {mine})) sum += s;
-  return sum;
-}
 
 std::vector<BoundaryNode> part_boundary(const MeshPartition& part, const FemSettings& settings,
                                         const std::vector<Footprint>& footprints) {

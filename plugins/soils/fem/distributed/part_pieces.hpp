@@ -56,7 +56,4 @@ double boundary_mean_distance(MPI_Comm comm, const MeshPartition& part,
                               const std::vector<BoundaryNode>& boundary,
                               const std::vector<Footprint>& footprints);
 
-/// sum over the ranks of `mine`, added in rank order: the same on every rank, run after run.
-double sum_in_rank_order(MPI_Comm comm, double mine);
-
 }  // namespace rumble::fem

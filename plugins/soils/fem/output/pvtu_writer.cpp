@@ -12,10 +12,15 @@ constexpr const char kParallelSuffix[] = ".pvtu";
 
 }  // namespace
 
+bool is_parallel_snapshot(const std::string& path) {
+  const std::string suffix = kParallelSuffix;
+  return path.size() > suffix.size() &&
+         path.compare(path.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
 std::string piece_path(const std::string& pvtu, int rank) {
   const std::string suffix = kParallelSuffix;
-  if (pvtu.size() <= suffix.size() ||
-      pvtu.compare(pvtu.size() - suffix.size(), suffix.size(), suffix) != 0)
+  if (!is_parallel_snapshot(pvtu))
     throw std::invalid_argument("fem: a snapshot in pieces needs a path ending in .pvtu, got " +
                                 pvtu);
   return pvtu.substr(0, pvtu.size() - suffix.size()) + "_" + std::to_string(rank) + ".vtu";

@@ -9,6 +9,10 @@
 
 namespace rumble::fem {
 
+/// Whether `path` names a snapshot in pieces (it ends in .pvtu: the host's convention on many
+/// ranks, rumble/abi.h, write_fields).
+bool is_parallel_snapshot(const std::string& path);
+
 /// The file name of piece `rank` of the snapshot at `pvtu` (a path ending in .pvtu): the same
 /// path with ".pvtu" replaced by "_<rank>.vtu", the host's convention (rumble/abi.h,
 /// write_fields). Throws std::invalid_argument when pvtu does not end in .pvtu.
