@@ -13,6 +13,7 @@
 
 #include "expect_message.hpp"
 #include "mesh/mesh_generator.hpp"
+#include "mesh/uniform_refinement.hpp"
 #include "operator/footprint_loads.hpp"
 #include "settings_from_params.hpp"
 
@@ -211,6 +212,47 @@ TEST(FemMesh, BoxShape) {
   // (3 m of footprints + 0.26 + 2 x 4) x (2.6 + 8) x 4
   EXPECT_NEAR(volume, (0.6 * 5 + 0.26 + 8.0) * (2.6 + 8.0) * 4.0, 1e-6 * volume);
   EXPECT_NO_THROW(footprint_weights(m, fp));
+}
+
+// mesh.refine (docs/fem-soil.md §2): the plan keeps the rule's sizes and estimate (the refined
+// mesh's), gmsh meshes at twice the sizes, and the refined mesh is about the rule's in nodes and
+// edge lengths, its footprints still meshed exactly and its volume the coarse mesh's.
+TEST(FemMesh, ARefinedCoarseMeshIsAboutTheRulesMesh) {
+  FemSettings s = stiff_soil(12.0, 80.0);
+  s.mesh.shape = MeshShape::kBox;
+  const std::vector<Footprint> fp = sleepers(5);
+  const MeshPlan rule = plan_mesh(s, fp);
+  s.mesh.refine = 1;
+  const MeshPlan plan = plan_mesh(s, fp);
+  EXPECT_EQ(plan.h_near, rule.h_near);
+  EXPECT_EQ(plan.estimated_nodes, rule.estimated_nodes);
+  EXPECT_EQ(plan.coarse_scale(), 2.0);
+  const TetMesh direct = generate_mesh(s, fp, rule);  // (generate_mesh reads the plan's refine)
+  const TetMesh coarse = generate_mesh(s, fp, plan);
+  const TetMesh fine = refine_uniformly(coarse);
+  const double near_coarse = mean_edge(coarse, plan.region, 0.0, 2.0);
+  const double near_fine = mean_edge(fine, plan.region, 0.0, 2.0);
+  const double near_direct = mean_edge(direct, plan.region, 0.0, 2.0);
+  std::cout << "[ measured ] estimated " << plan.estimated_nodes << " nodes; gmsh at the rule "
+            << direct.node_count() << ", coarse " << coarse.node_count() << ", refined "
+            << fine.node_count() << "; mean edge near the track " << near_direct << " / "
+            << near_coarse << " / " << near_fine << " m (h_near " << plan.h_near << " m)\n";
+  // Midpoints halve the coarse edges; the octahedra's diagonals are new edges, near half too.
+  EXPECT_NEAR(near_coarse / near_fine, 2.0, 0.2);
+  EXPECT_GT(near_fine, 0.7 * near_direct);
+  EXPECT_LT(near_fine, 1.3 * near_direct);
+  const auto fine_nodes = static_cast<double>(fine.node_count());
+  EXPECT_GT(fine_nodes, 0.8 * static_cast<double>(direct.node_count()));
+  EXPECT_LT(fine_nodes, 1.6 * static_cast<double>(direct.node_count()));
+  double v_coarse = 0.0, v_fine = 0.0;
+  for (const Tetrahedron& t : coarse.tets) v_coarse += tet_volume(coarse, t);
+  for (const Tetrahedron& t : fine.tets) v_fine += tet_volume(fine, t);
+  EXPECT_NEAR(v_fine, v_coarse, 1e-12 * v_coarse);
+  for (const auto& footprint : footprint_weights(fine, fp)) {
+    double sum = 0.0;
+    for (const NodalWeight& nw : footprint) sum += nw.weight;
+    EXPECT_NEAR(sum, 1.0, 1e-12);
+  }
 }
 
 // The nodes where the footprints' forces act, each once even where two footprints share it (a

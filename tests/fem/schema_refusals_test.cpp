@@ -45,6 +45,11 @@ TEST(FemSchema, RefusesTheRangesTheSettingsNoLongerCheck) {
   EXPECT_EQ(refusals(p),
             "params/mesh/f_max: must be in [1, 2000], got 0.0\n"
             "params/mesh/radius: must be in [1, 1000], got 0.0");
+  p = small_soil();
+  p["mesh"] = {{"refine", 4}};  // (512 tetrahedra per coarse one at 3 already)
+  EXPECT_EQ(refusals(p), "params/mesh/refine: must be in [0, 3], got 4");
+  p["mesh"] = {{"refine", 1.5}};
+  EXPECT_NE(refusals(p), "");
 }
 
 TEST(FemSchema, AMatchedLayersSettingsUnderAnotherBoundaryAreRefused) {

@@ -174,12 +174,15 @@ TEST(FemStaticFarField, ALoadChangeSettlesAsTheHalfSpace) {
   for (double ratio : ratios) EXPECT_NEAR(ratio, 1.0, 0.03);
 }
 
-double square_footing_settlement(double nu, double h_near) {
-  const nlohmann::json params = {
+/// Mean settlement [m] of a 1 m square footing under 100 kPa; `more` merged into params.mesh.
+double square_footing_settlement(double nu, double h_near,
+                                 const nlohmann::json& more = nlohmann::json::object()) {
+  nlohmann::json params = {
       {"E", kMediumE},
       {"nu", nu},
       {"rho", 1800.0},
       {"mesh", {{"radius", 12.0}, {"h_near", h_near}, {"near_distance", 2.0}}}};
+  params["mesh"].merge_patch(more);
   TestSoil soil("fem", params.dump());
   soil.accept_layout({{0.0, 0.0, 1.0, 1.0}});
   return soil.initialize(VectorXd::Constant(1, 1e5))[0];
@@ -197,6 +200,24 @@ TEST(FemStaticFarField, AFootingsSettlementConvergesFromBelowAtNuPointFour) {
   EXPECT_LT(coarse, fine);
   EXPECT_LT(fine, 1.0);
   EXPECT_GT(fine, 0.9);
+}
+
+// mesh.refine (docs/fem-soil.md §2): gmsh meshes at 0.5 m and the plugin refines once, which
+// settles as the mesh gmsh makes at 0.25 m does, not as the coarse one.
+TEST(FemStaticFarField, AFootingOnACoarseMeshRefinedOnceSettlesAsOnAFineMesh) {
+  const double nu = 0.4, exact = 0.946 * 1e5 * (1.0 - nu * nu) / kMediumE;
+  const nlohmann::json h_max = {{"h_max", 1.5}};  // (refined: gmsh's 3 m, R / 4)
+  const double coarse = square_footing_settlement(nu, 0.5, h_max) / exact;
+  const double refined =
+      square_footing_settlement(nu, 0.25, {{"h_max", 1.5}, {"refine", 1}}) / exact;
+  const double fine = square_footing_settlement(nu, 0.25, h_max) / exact;
+  std::printf(
+      "[ measured ] settlement / closed form: %.4f gmsh at 0.5 m, %.4f gmsh at 0.5 m "
+      "refined once, %.4f gmsh at 0.25 m\n",
+      coarse, refined, fine);
+  EXPECT_LT(coarse, refined);
+  EXPECT_LT(refined, 1.0);
+  EXPECT_LT(std::abs(refined - fine), 0.5 * std::abs(coarse - fine));
 }
 
 }  // namespace

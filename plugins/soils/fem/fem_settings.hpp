@@ -42,6 +42,9 @@ struct MeshRequest {
   bool fast_algorithm{};             // gmsh HXT (fast, not reproducible) instead of Delaunay
   /// gmsh optimizes the tetrahedra whose quality (gamma) is below this [-] (docs/fem-soil.md §2).
   double quality_threshold{};
+  /// Uniform refinements of the generated mesh (docs/fem-soil.md §2): gmsh meshes at 2^refine
+  /// times the rule's sizes, each tetrahedron is then cut into 8, refine times.
+  int refine{};
   std::string file;         // a user's .msh instead (as given: relative to the scenario)
   std::string export_file;  // where to write the generated mesh as .msh, inside the run's
                             // results directory ("" none; as given: relative, no "..")

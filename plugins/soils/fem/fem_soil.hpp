@@ -169,6 +169,7 @@ class FemSoil final : public rumble::Soil {
   void hint_fast_meshing() const;
 
   rumble::fem::TetMesh cached_or_new_mesh() const;
+  void refine_here();  // mesh.refine on this process
 
   /// out = B (F(tau) - reference): consistent nodal forces of the footprint pressures [N].
   void footprint_forces(const rumble::Waveform& force, double tau, Eigen::VectorXd& out,

@@ -95,6 +95,7 @@ MeshRequest read_mesh(const rumble::Params& mesh) {
   m.max_dofs = mesh.get<double>("max_dofs");
   m.fast_algorithm = mesh.get<std::string>("algorithm") == "hxt";
   m.quality_threshold = mesh.get<double>("quality_threshold");
+  m.refine = mesh.get<int>("refine");
   m.file = mesh.optional<std::string>("file").value_or("");
   m.export_file = mesh.optional<std::string>("export").value_or("");
   check_mesh(m);

@@ -46,6 +46,7 @@ std::string mesh_cache_name(const FemSettings& s, const std::vector<Footprint>& 
   if (s.mesh.quality_threshold != 0.3)  // (gmsh's default: the keys of older meshes still hold)
     key << " quality " << s.mesh.quality_threshold;
   if (p.pml > 0.0) key << " pml " << p.pml << ' ' << p.h_pml;  // (absent: older keys still hold)
+  if (p.refine > 0) key << " coarse for refine " << p.refine;  // (the mesh gmsh made, unrefined)
   key << " layers";
   for (const soils::SoilLayer& l : s.layers) key << ' ' << l.thickness;
   key << " footprints";

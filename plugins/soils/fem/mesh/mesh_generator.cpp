@@ -101,6 +101,7 @@ MeshPlan plan_mesh(const FemSettings& s, const std::vector<Footprint>& footprint
   p.shape = s.mesh.shape;
   p.radius = s.mesh.radius;
   p.near_distance = s.mesh.near_distance;
+  p.refine = s.mesh.refine;
   const double c_r = soils::slowest_wave_speeds(s.layers, s.half_space).rayleigh;
   p.h_near =
       s.mesh.h_near > 0.0 ? s.mesh.h_near : c_r / (s.mesh.f_max * s.mesh.elements_per_wavelength);
@@ -181,13 +182,16 @@ TetMesh generate_mesh(const FemSettings& s, const std::vector<Footprint>& footpr
     gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 0);
     gmsh::option::setNumber("Mesh.MeshSizeFromPoints", 0);
     gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
-    gmsh::option::setNumber("Mesh.MeshSizeMax", p.h_max);
+    // mesh.refine: gmsh meshes coarser by 2^refine, and the refinements bring the sizes back.
+    const double scale = p.coarse_scale();
+    gmsh::option::setNumber("Mesh.MeshSizeMax", scale * p.h_max);
     // Delaunay gives the same mesh for the same input; HXT is 2-5x faster but not reproducible
     // from run to run (measured with gmsh 4.8, even on one thread).
     gmsh::option::setNumber("Mesh.Algorithm3D", s.mesh.fast_algorithm ? 10 : 1);
     gmsh::option::setNumber("Mesh.OptimizeThreshold", s.mesh.quality_threshold);
-    gmsh::model::mesh::setSizeCallback(
-        [&p](int, int, double x, double y, double z) { return p.size_at(x, y, -z); });
+    gmsh::model::mesh::setSizeCallback([&p, scale](int, int, double x, double y, double z) {
+      return scale * p.size_at(x, y, -z);
+    });
     gmsh::model::mesh::generate(3);
     return 0;
   });

@@ -6,6 +6,7 @@
 // capped by h_max.
 #pragma once
 
+#include <cmath>
 #include <rumble/plugin.hpp>
 #include <string>
 #include <vector>
@@ -29,6 +30,10 @@ struct MeshPlan {
   double pml = 0.0;             // m: a matched layer's thickness beyond the box (sides, bottom)
   double h_pml = 0.0;           // m: the largest element size in the layer
   double footprint_area = 0.0;  // m^2: all footprints together
+  /// Uniform refinements after gmsh (mesh.refine): the sizes above and the estimate are the
+  /// refined mesh's; gmsh meshes at coarse_scale() times them.
+  int refine = 0;
+  double coarse_scale() const { return std::ldexp(1.0, refine); }
   double depth() const { return radius + pml; }
   /// The box without its matched layer (box shape only).
   PmlProfile physical_box(double reflection, double shift) const;
@@ -44,7 +49,9 @@ struct MeshPlan {
 /// not fit in the hemisphere or the estimate exceeds mesh.max_dofs, with the numbers and the fix.
 MeshPlan plan_mesh(const FemSettings& settings, const std::vector<Footprint>& footprints);
 
-/// Meshes the plan with gmsh. Throws std::runtime_error with gmsh's message on failure.
+/// Meshes the plan with gmsh, at coarse_scale() times its sizes (the mesh before mesh.refine's
+/// refinements: refine_uniformly, mesh/uniform_refinement.hpp). Throws std::runtime_error with
+/// gmsh's message on failure.
 TetMesh generate_mesh(const FemSettings& settings, const std::vector<Footprint>& footprints,
                       const MeshPlan& plan);
 
