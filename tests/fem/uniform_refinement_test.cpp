@@ -210,6 +210,90 @@ TEST(FemUniformRefinement, AFootingsSettlementConvergesAsTheMeshIsRefined) {
   EXPECT_LT(std::abs(s2 - reference), 0.5 * std::abs(s1 - reference));
 }
 
+/// The tetrahedra of `whole` listed in `tets` and their surface faces, numbered locally (nodes in
+/// the order first met); `global` receives each local node's node in `whole`, `ground` each
+/// local ground face's index in whole.ground.
+TetMesh part_of(const TetMesh& whole, const std::vector<std::size_t>& tets,
+                std::vector<std::int32_t>& global, std::vector<std::size_t>& ground) {
+  TetMesh part;
+  std::map<std::int32_t, std::int32_t> local;
+  const auto node = [&](std::int32_t g) {
+    const auto [it, added] = local.try_emplace(g, static_cast<std::int32_t>(global.size()));
+    if (added) global.push_back(g);
+    return it->second;
+  };
+  std::set<Triangle> faces;
+  for (const std::size_t e : tets) {
+    const Tetrahedron& t = whole.tets[e];
+    part.tets.push_back({node(t[0]), node(t[1]), node(t[2]), node(t[3])});
+    part.layer.push_back(whole.layer[e]);
+    for (int skip = 0; skip < 4; ++skip) {
+      Triangle f{};
+      for (int k = 0, j = 0; k < 4; ++k)
+        if (k != skip) f[j++] = t[k];
+      faces.insert(sorted(f));
+    }
+  }
+  part.nodes.resize(3, static_cast<Eigen::Index>(global.size()));
+  for (std::size_t i = 0; i < global.size(); ++i) part.nodes.col(i) = whole.node(global[i]);
+  const auto localised = [&](const Triangle& f) {
+    return Triangle{local.at(f[0]), local.at(f[1]), local.at(f[2])};
+  };
+  for (std::size_t f = 0; f < whole.ground.size(); ++f)
+    if (faces.count(sorted(whole.ground[f])) == 1) {
+      part.ground.push_back(localised(whole.ground[f]));
+      ground.push_back(f);
+    }
+  return part;
+}
+
+// The rule the ranks would refine their parts by (docs/fem-soil.md §8, "Not yet"): a part refined
+// alone, its new nodes named by their edges in the whole mesh, has exactly the children the whole
+// mesh's refinement has, to the bit: nodes, tetrahedra, layers and ground faces.
+TEST(FemUniformRefinement, APartRefinesIntoTheWholeRefinementsChildren) {
+  TetMesh whole = jittered_box(4, 0.5);
+  for (std::size_t e = 0; e < whole.tets.size(); ++e) whole.layer[e] = e % 2;
+  std::vector<std::array<std::int32_t, 2>> whole_ends;
+  const TetMesh fine = refine_uniformly(whole, &whole_ends);
+  std::map<std::pair<std::int32_t, std::int32_t>, std::int32_t> fine_node_of_edge;
+  for (std::size_t i = 0; i < whole_ends.size(); ++i)
+    fine_node_of_edge[std::minmax(whole_ends[i][0], whole_ends[i][1])] =
+        static_cast<std::int32_t>(whole.node_count() + static_cast<Eigen::Index>(i));
+  std::vector<std::size_t> tets;  // the tetrahedra whose centroid lies at x < 0.8 m
+  for (std::size_t e = 0; e < whole.tets.size(); ++e) {
+    double x = 0.0;
+    for (const auto v : whole.tets[e]) x += whole.nodes(0, v) / 4.0;
+    if (x < 0.8) tets.push_back(e);
+  }
+  std::vector<std::int32_t> global;
+  std::vector<std::size_t> ground;
+  const TetMesh part = part_of(whole, tets, global, ground);
+  ASSERT_GT(part.tets.size(), 50U);
+  ASSERT_LT(part.tets.size(), whole.tets.size() / 2);
+  std::vector<std::array<std::int32_t, 2>> ends;
+  const TetMesh refined = refine_uniformly(part, &ends);
+  std::vector<std::int32_t> fine_global = global;  // per node of the refined part
+  for (const auto& [a, b] : ends)
+    fine_global.push_back(fine_node_of_edge.at(std::minmax(global[a], global[b])));
+  for (Eigen::Index i = 0; i < refined.node_count(); ++i)
+    ASSERT_EQ(refined.nodes.col(i), fine.nodes.col(fine_global[i])) << "node " << i;
+  for (std::size_t e = 0; e < tets.size(); ++e)
+    for (std::size_t c = 0; c < 8; ++c) {
+      const Tetrahedron& t = refined.tets[8 * e + c];
+      const Tetrahedron mapped = {fine_global[t[0]], fine_global[t[1]], fine_global[t[2]],
+                                  fine_global[t[3]]};
+      ASSERT_EQ(mapped, fine.tets[8 * tets[e] + c]) << "child " << c << " of tetrahedron " << e;
+      ASSERT_EQ(refined.layer[8 * e + c], fine.layer[8 * tets[e] + c]);
+    }
+  ASSERT_FALSE(ground.empty());
+  for (std::size_t f = 0; f < ground.size(); ++f)
+    for (std::size_t c = 0; c < 4; ++c) {
+      const Triangle& t = refined.ground[4 * f + c];
+      const Triangle mapped = {fine_global[t[0]], fine_global[t[1]], fine_global[t[2]]};
+      ASSERT_EQ(mapped, fine.ground[4 * ground[f] + c]);
+    }
+}
+
 TEST(FemUniformRefinement, RefusesASurfaceTriangleThatIsNoFace) {
   TetMesh m = kuhn_box(2, 1.0);
   m.truncation.push_back({0, 2, 8});  // the corners of a side's diagonal: no edge 0-8

@@ -107,7 +107,8 @@ std::vector<Triangle> split_triangles(const std::vector<Triangle>& faces,
 
 }  // namespace
 
-TetMesh refine_uniformly(const TetMesh& coarse) {
+TetMesh refine_uniformly(const TetMesh& coarse,
+                         std::vector<std::array<std::int32_t, 2>>* midpoint_ends) {
   const auto first = static_cast<std::int32_t>(coarse.node_count());
   EdgeMidpoints midpoints(first);
   std::vector<std::array<std::int32_t, 6>> tet_midpoints(coarse.tets.size());
@@ -130,6 +131,10 @@ TetMesh refine_uniformly(const TetMesh& coarse) {
     split_tet(fine, coarse.tets[e], tet_midpoints[e], coarse.layer[e]);
   fine.ground = split_triangles(coarse.ground, midpoints, "ground");
   fine.truncation = split_triangles(coarse.truncation, midpoints, "truncation");
+  if (midpoint_ends != nullptr) {
+    midpoint_ends->clear();
+    for (const auto& [a, b] : midpoints.ends()) midpoint_ends->push_back({a, b});
+  }
   return fine;
 }
 
