@@ -14,6 +14,7 @@ namespace rumble::testing {
 namespace {
 
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 TEST(CliMesh, WritesTheMeshAndReusesItFromTheCache) {
   const auto dir = scratch_directory("mesh_fem");
@@ -115,6 +116,25 @@ TEST(CliMesh, SetChangesTheScenarioFirst) {
   EXPECT_THAT(refused.output, HasSubstr("(set by --set)"));
   ASSERT_EQ(coarser.exit_code, 0) << coarser.output;
   EXPECT_THAT(coarser.output, HasSubstr("20 Hz at 2.5 m"));  // the 40 Hz mesh resolves more
+}
+
+// mesh.refine keeps the coarse tetrahedra's shapes: where gmsh's coarse size near the track is
+// wider than a footprint, the flattened tetrahedra along its edges set the stable step, and the
+// log says so (docs/fem-soil.md §2); at the rule's sizes nothing is said.
+TEST(CliMesh, RefiningAMeshCoarserThanTheFootprintsWarns) {
+  const auto dir = scratch_directory("mesh_refine_warns");
+  ::setenv("RUMBLE_MESH_CACHE", (dir / "cache").c_str(), 1);
+  const auto path = write_scenario(dir, small_fem_scenario()).string();
+  const CliResult plain = run_rumble({"mesh", path});
+  const CliResult refined = run_rumble(
+      {"mesh", path, "--set", "/soil/params/mesh/refine=1", "--output", (dir / "r").string()});
+  ::unsetenv("RUMBLE_MESH_CACHE");
+  ASSERT_EQ(plain.exit_code, 0) << plain.output;
+  EXPECT_THAT(plain.output, Not(HasSubstr("params/mesh/refine")));
+  ASSERT_EQ(refined.exit_code, 0) << refined.output;
+  EXPECT_THAT(refined.output, HasSubstr("refined 1 times (mesh.refine)"));
+  EXPECT_THAT(refined.output, HasSubstr("params/mesh/refine 1: gmsh meshed at"));
+  EXPECT_THAT(refined.output, HasSubstr("wider than the narrowest footprint (0.26 m)"));
 }
 
 /// What `dir` holds, every level, as paths relative to it ("" when empty).

@@ -169,7 +169,7 @@ class FemSoil final : public rumble::Soil {
   void hint_fast_meshing() const;
 
   rumble::fem::TetMesh cached_or_new_mesh() const;
-  void refine_here();  // mesh.refine on this process
+  void refine_here(const std::vector<rumble::Footprint>& footprints);  // mesh.refine here
 
   /// out = B (F(tau) - reference): consistent nodal forces of the footprint pressures [N].
   void footprint_forces(const rumble::Waveform& force, double tau, Eigen::VectorXd& out,
