@@ -22,18 +22,7 @@ ExplicitSolver::ExplicitSolver(CsrMatrix K, Eigen::VectorXd mass,
           a0, a1) {}
 
 ExplicitSolver::ExplicitSolver(std::unique_ptr<SoilOperator> op, double a0, double a1)
-    : op_(std::move(op)),
-      csr_(dynamic_cast<const CsrOperator*>(op_.get())),
-      mass_(op_->mass().data()),
-      boundary_(op_->boundary().data()),
-      boundary_of_(op_->boundary_of().data()),
-      fixed_(op_->fixed().data()),
-      springs_(op_->springs_act()),
-      a0_(a0),
-      a1_(a1),
-      y_(Eigen::VectorXd::Zero(op_->dofs())) {
-  estimate_stable_step();
-}
+    : ExplicitSolver(std::move(op), a0, a1, 0.0, 0) {}
 
 ExplicitSolver::ExplicitSolver(std::unique_ptr<SoilOperator> op, double a0, double a1,
                                double largest_eigenvalue, int iterations)
@@ -49,6 +38,10 @@ ExplicitSolver::ExplicitSolver(std::unique_ptr<SoilOperator> op, double a0, doub
       lambda_max_(largest_eigenvalue),
       eigen_iterations_(iterations),
       y_(Eigen::VectorXd::Zero(op_->dofs())) {
+  if (largest_eigenvalue <= 0.0) {
+    estimate_stable_step();
+    return;
+  }
   omega_max_ = std::sqrt(lambda_max_ * maxwell_.unrelaxed());
   single_rate_step_ = step_limit(lambda_max_ / 1.02);
 }

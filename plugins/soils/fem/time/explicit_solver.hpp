@@ -55,11 +55,12 @@ class ExplicitSolver {
   ExplicitSolver(CsrMatrix K, Eigen::VectorXd mass, std::vector<BoundaryNode> boundary,
                  bool springs, std::vector<char> fixed, double a0, double a1, unsigned threads,
                  StepPrecision precision = StepPrecision::kDouble);
-  /// The step on any back end of the soil operator.
+  /// The step on any back end of the soil operator, its largest eigenvalue of M^-1 (K + S)
+  /// estimated here (Lanczos).
   ExplicitSolver(std::unique_ptr<SoilOperator> op, double a0, double a1);
-  /// The same with the largest eigenvalue of M^-1 (K + S) known (largest_eigenvalue() of a
-  /// solver on the same soil, with the iterations it took): a distributed back end's ranks take
-  /// rank 0's, from its whole mesh, so that every rank steps alike (issue #33).
+  /// The same with that eigenvalue known (largest_eigenvalue() of a solver on the same soil,
+  /// with the iterations it took; 0: estimated here): a distributed back end's ranks take the
+  /// one found over the ranks, so that every rank steps alike (issue #33).
   ExplicitSolver(std::unique_ptr<SoilOperator> op, double a0, double a1, double largest_eigenvalue,
                  int iterations);
 
