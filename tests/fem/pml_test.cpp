@@ -16,6 +16,7 @@
 #include "mesh/kuhn_box.hpp"
 #include "operator/elasticity.hpp"
 #include "operator/footprint_loads.hpp"
+#include "sanitizer.hpp"
 #include "settings_from_params.hpp"
 #include "time/explicit_solver.hpp"
 
@@ -118,7 +119,15 @@ TEST(FemPml, ALayerWithoutDampingIsTheElasticSoil) {
   EXPECT_LT(relative_error(a, b), 1e-12);
 }
 
+// The two long physics runs below skip under the sanitizers (548 s and 197 s there, the longest
+// of that suite, against 47 s and 12 s without): they read the layer's and the viscous-spring
+// boundary's code as the other tests here do, which run under ASan too.
+constexpr const char* kLongUnderSanitizer =
+    "a long physics run (12-16x slower instrumented); the layer runs under ASan in "
+    "FemPml.ALayerWithoutDampingIsTheElasticSoil and scenario.examples.stiff_soil_fem_pml";
+
 TEST(FemPml, ReflectsFarLessThanTheViscousSpringBoundary) {
+  if (rumble::test::kUnderAddressSanitizer) GTEST_SKIP() << kLongUnderSanitizer;
   // Inner box: 4 m either side of the footprint and 4 m deep (8 cells). Reference: the
   // viscous-spring boundary 12 m away; within 0.05 s nothing it reflects reaches the inner box
   // except P waves that left it at near-normal incidence (which that boundary absorbs), since
@@ -145,6 +154,7 @@ TEST(FemPml, ReflectsFarLessThanTheViscousSpringBoundary) {
 }
 
 TEST(FemPml, StaysBoundedAtItsStepAndGrowsBeyond) {
+  if (rumble::test::kUnderAddressSanitizer) GTEST_SKIP() << kLongUnderSanitizer;
   // The layer's step bound (PmlLayer::kStableDampingStep, measured): over 0.4 s at 0.8 of it the
   // kinetic energy decays to a millionth of the pulse's; at 1.8 times that step (still within
   // the mesh's own stable step, which is twice the layer's here) the discrete layer grows: its
