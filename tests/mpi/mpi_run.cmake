@@ -37,8 +37,9 @@
 #   fem_one_process_settings_refused_on_ranks  local steps, the implicit scheme, the matched
 #                                layer under mpirun: each refused with the params (exit 1),
 #                                naming its parameter
-#   fem_whole_operator_refused_on_ranks  the monolithic coupler on 2 ranks: its linear matrices
-#                                need the whole operator, refused naming the call and the fix
+#   fem_whole_operator_refused_on_ranks  the monolithic coupler and `rumble stability` on 2
+#                                ranks: the linear matrices need the whole operator, refused at
+#                                validation (exit 1, before meshing) naming the pointer and fix
 set(mpirun ${MPIEXEC} --oversubscribe)
 set(scenario ${SOURCE_DIR}/split_dashpot.json)
 file(REMOVE_RECURSE ${WORK_DIR})
@@ -72,6 +73,16 @@ function(fem_runs ranks fields_tolerance)
   endif()
   expect_match("${out}" "the mesh split over ${ranks} ranks")
   set(fem_many_out "${out}" PARENT_SCOPE)
+  # Every rank's peak per phase in summary.json, rank 0's as the engine's own, in the log, and
+  # the other ranks' against the soil's estimate per rank.
+  file(WRITE ${WORK_DIR}/many.log "${out}")
+  execute_process(COMMAND ${PYTHON} ${SOURCE_DIR}/rank_memory_agrees.py
+                          ${WORK_DIR}/many/summary.json ${WORK_DIR}/many.log ${ranks}
+                  OUTPUT_VARIABLE said ERROR_VARIABLE err RESULT_VARIABLE differ)
+  message(STATUS "${said}${err}")
+  if(NOT differ EQUAL 0)
+    message(FATAL_ERROR "each rank's memory in summary.json on ${ranks} ranks:\n${said}${err}")
+  endif()
   # The CSVs carry 9 significant digits: they agree as printed (a last digit may flip on a
   # difference far below it); the fields below carry every digit.
   foreach(csv ${fem_csvs})
@@ -256,14 +267,22 @@ function(fem_case)
       expect_match("${out}" "${said} runs on one process|${said} factors the whole mesh")
     endforeach()
   elseif(CASE STREQUAL "fem_whole_operator_refused_on_ranks")
-    # The monolithic coupler asks for the linear matrices, which need the whole operator that no
-    # rank holds: refused with the call and the fix, every rank stopped (exit 3: the run failed).
+    # The monolithic coupler and `rumble stability` read the soil's linear matrices, its whole
+    # operator, which no rank holds: refused at validation (exit 1, before meshing), naming the
+    # JSON pointer, the value and the fix.
     rumble_run(out code ${mpirun} -n 2 ${RUMBLE} run ${fem} --output ${WORK_DIR}/refused
                --no-plots --set /coupling={\"type\":\"monolithic\"})
-    if(NOT code EQUAL 3)
-      message(FATAL_ERROR "expected exit code 3 (run failed), got ${code}:\n${out}")
+    if(NOT code EQUAL 1 OR out MATCHES "fem: a mesh of about [0-9.e+]+ DOFs")
+      message(FATAL_ERROR "expected exit code 1 before meshing, got ${code}:\n${out}")
     endif()
-    expect_match("${out}" "fem: linear_matrix \\(the monolithic coupler, rumble stability\\) needs the soil's whole operator, which no rank holds under mpirun -n 2 .*run it without mpirun")
+    expect_match("${out}" "/coupling/type[^\n]*: coupler \"monolithic\" \\(it integrates the soil inside the track\\) needs the whole matrices of soil type \"fem\" \\(/soil, its linear_matrix\\), which no rank holds when it is split over the 2 MPI ranks")
+    expect_match("${out}" "run it without mpirun, on one process, or choose a coupler that steps the soil on its ranks \\(gauss_seidel, jacobi, implicit\\), got \"monolithic\"")
+    rumble_run(out code ${mpirun} -n 2 ${RUMBLE} stability ${fem} --macro-steps 1e-3)
+    if(NOT code EQUAL 1 OR out MATCHES "fem: a mesh of about [0-9.e+]+ DOFs")
+      message(FATAL_ERROR "rumble stability: expected exit code 1 before meshing, got ${code}:\n${out}")
+    endif()
+    expect_match("${out}" "/soil/type[^\n]*: rumble stability \\(it linearizes the track on the soil\\) needs the whole matrices of soil type \"fem\"[^\n]*split over the 2 MPI ranks")
+    expect_match("${out}" "run rumble stability without mpirun")
   else()
     message(FATAL_ERROR "unknown case ${CASE}")
   endif()

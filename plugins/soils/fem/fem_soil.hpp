@@ -142,8 +142,6 @@ class FemSoil final : public rumble::Soil {
   void free_whole_on_root();
   /// What needs the whole operator, refused on many ranks: `what` names the call.
   void refuse_whole_operator(const std::string& what) const;
-  /// Every rank's peak resident memory (VmHWM) gathered on rank 0 and logged. Collective.
-  void log_peak_per_rank() const;
   /// The state the steps advance: this rank's share on many ranks.
   ExplicitState& stepped_state() { return distributed_ ? distributed_->state() : state_; }
 
