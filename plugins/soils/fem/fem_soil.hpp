@@ -164,6 +164,9 @@ class FemSoil final : public rumble::Soil {
   /// threads 4.4 s (and about 20 % fewer tetrahedra for the same sizes).
   /// `rumble mesh --ranks N` (distributed/rank_plan.hpp): the estimate per rank in the log.
   void report_ranks(double nodes, const char* source) const;
+  /// `rumble mesh --ranks N` once meshed: the mesh split on this process, its counts and the
+  /// memory per rank from them in the log (distributed/split_plan.hpp).
+  void report_split() const;
   void hint_fast_meshing() const;
 
   rumble::fem::TetMesh cached_or_new_mesh() const;
