@@ -17,9 +17,15 @@
 #                                snapshots every 10 ms (on N ranks a .pvtu and a piece per rank,
 #                                read by VTK's reader: pvtu_agrees.py) have one process's points
 #                                and agree to 1e-12 of their largest value; `rumble mesh --ranks N`
-#                                estimates the halo within 1.3 of the split's,
+#                                estimates the halo within 1.3 of the split's before meshing,
+#                                and its split on one process is the run's (tetrahedra and
+#                                nodes per rank, the halo),
 #                                the CSV histories (9 digits) as printed (csv_agree); a second
-#                                run on N ranks writes the same files byte for byte
+#                                run on N ranks writes the same files byte for byte; every
+#                                fem_ run on N ranks: summary.json's memory.ranks has each rank's
+#                                peak per phase, positive, rank 0's the engine's own, each
+#                                rank's largest in the log, the other ranks' within 1.5 of the
+#                                soil's estimate per rank (rank_memory_agrees.py)
 #   fem_gamg_statics_on_3_ranks  statics.solver gamg: the static state solved on the 3 ranks by
 #                                GAMG (one process factors it): the fields within 1e-10, GAMG's
 #                                levels and iterations said
@@ -37,8 +43,9 @@
 #   fem_one_process_settings_refused_on_ranks  local steps, the implicit scheme, the matched
 #                                layer under mpirun: each refused with the params (exit 1),
 #                                naming its parameter
-#   fem_whole_operator_refused_on_ranks  the monolithic coupler on 2 ranks: its linear matrices
-#                                need the whole operator, refused naming the call and the fix
+#   fem_whole_operator_refused_on_ranks  the monolithic coupler and `rumble stability` on 2
+#                                ranks: the linear matrices need the whole operator, refused at
+#                                validation (exit 1, before meshing) naming the pointer and fix
 set(mpirun ${MPIEXEC} --oversubscribe)
 set(scenario ${SOURCE_DIR}/split_dashpot.json)
 file(REMOVE_RECURSE ${WORK_DIR})
@@ -72,6 +79,16 @@ function(fem_runs ranks fields_tolerance)
   endif()
   expect_match("${out}" "the mesh split over ${ranks} ranks")
   set(fem_many_out "${out}" PARENT_SCOPE)
+  # Every rank's peak per phase in summary.json, rank 0's as the engine's own, in the log, and
+  # the other ranks' against the soil's estimate per rank.
+  file(WRITE ${WORK_DIR}/many.log "${out}")
+  execute_process(COMMAND ${PYTHON} ${SOURCE_DIR}/rank_memory_agrees.py
+                          ${WORK_DIR}/many/summary.json ${WORK_DIR}/many.log ${ranks}
+                  OUTPUT_VARIABLE said ERROR_VARIABLE err RESULT_VARIABLE differ)
+  message(STATUS "${said}${err}")
+  if(NOT differ EQUAL 0)
+    message(FATAL_ERROR "each rank's memory in summary.json on ${ranks} ranks:\n${said}${err}")
+  endif()
   # The CSVs carry 9 significant digits: they agree as printed (a last digit may flip on a
   # difference far below it); the fields below carry every digit.
   foreach(csv ${fem_csvs})
@@ -120,11 +137,15 @@ function(fem_fields ranks tolerance)
   endforeach()
 endfunction()
 
-# `rumble mesh --ranks N` (one process) estimates the halo of a run on N ranks: within a factor
-# 1.3 of the split the run on N ranks made (fem_many_out: "halo X KiB exchanged per step").
+# `rumble mesh --ranks N` (one process) against the split the run on N ranks made (fem_many_out:
+# "tetrahedra per rank A-B, nodes C-D (owned ...), halo X KiB exchanged per step"): before
+# meshing its estimate of the halo within a factor 1.3; with the mesh, its own split on one
+# process by the same partitioner from the same seed, the same as the run's: the tetrahedra and
+# nodes per rank (fewest-most) and the halo as printed.
 function(fem_plan_against_split ranks)
-  string(REGEX MATCH "halo ([0-9.e+]+) KiB exchanged per step" split "${fem_many_out}")
-  set(actual ${CMAKE_MATCH_1})
+  string(REGEX MATCH "tetrahedra per rank ([0-9]+-[0-9]+), nodes ([0-9]+-[0-9]+) \\(owned[^\n]*halo ([0-9.e+]+) KiB exchanged per step" split "${fem_many_out}")
+  set(run_split "tetrahedra ${CMAKE_MATCH_1}, nodes ${CMAKE_MATCH_2}, halo ${CMAKE_MATCH_3} KiB")
+  set(actual ${CMAKE_MATCH_3})
   rumble_run(out code ${RUMBLE} mesh ${SOURCE_DIR}/fem_small.json --ranks ${ranks}
              --output ${WORK_DIR}/plan)
   if(NOT code EQUAL 0 OR NOT split)
@@ -135,19 +156,21 @@ function(fem_plan_against_split ranks)
     message(FATAL_ERROR "rumble mesh --ranks 0: expected exit code 1, got ${code}:\n${said}")
   endif()
   expect_match("${said}" "--ranks=0 is not a number of MPI ranks; give an integer from 1")
-  foreach(source "the plan's estimate" "the mesh")
-    string(REGEX MATCH "on ${ranks} ranks, from ${source} \\([^\n]*, ([0-9.e+]+) KiB exchanged" said
-           "${out}")
-    if(NOT said)
-      message(FATAL_ERROR "no estimate from ${source} for ${ranks} ranks:\n${out}")
-    endif()
-    set(estimate ${CMAKE_MATCH_1})
-    message(STATUS "${ranks} ranks, from ${source}: halo ${estimate} KiB estimated, ${actual} KiB split")
-  endforeach()
+  string(REGEX MATCH "on ${ranks} ranks, from the plan's estimate \\([^\n]*, ([0-9.e+]+) KiB exchanged" said "${out}")
+  set(estimate ${CMAKE_MATCH_1})
+  string(REGEX MATCH "on ${ranks} ranks, from the mesh split on one process \\([^\n]*tetrahedra per rank ([0-9]+-[0-9]+), nodes ([0-9]+-[0-9]+) \\(ghosts included[^\n]*a halo of [0-9]+ ghost nodes, ([0-9.e+]+) KiB exchanged" split "${out}")
+  set(one_split "tetrahedra ${CMAKE_MATCH_1}, nodes ${CMAKE_MATCH_2}, halo ${CMAKE_MATCH_3} KiB")
+  if(NOT said OR NOT split)
+    message(FATAL_ERROR "no estimate or no split on one process for ${ranks} ranks:\n${out}")
+  endif()
+  message(STATUS "${ranks} ranks: halo ${estimate} KiB estimated; split on one process: ${one_split}; by the run: ${run_split}")
+  if(NOT one_split STREQUAL run_split)
+    message(FATAL_ERROR "the split on one process (${one_split}) is not the run's (${run_split})")
+  endif()
   # (math() is integer: the comparison in Python's floats)
   execute_process(COMMAND ${PYTHON} -c "import sys; e, a = float(sys.argv[1]), float(sys.argv[2]); sys.exit(0 if a / 1.3 <= e <= 1.3 * a else 1)" ${estimate} ${actual} RESULT_VARIABLE off)
   if(NOT off EQUAL 0)
-    message(FATAL_ERROR "the halo from the mesh, ${estimate} KiB, is not within 1.3 of the split's ${actual} KiB")
+    message(FATAL_ERROR "the halo estimated before meshing, ${estimate} KiB, is not within 1.3 of the split's ${actual} KiB")
   endif()
 endfunction()
 
@@ -256,14 +279,22 @@ function(fem_case)
       expect_match("${out}" "${said} runs on one process|${said} factors the whole mesh")
     endforeach()
   elseif(CASE STREQUAL "fem_whole_operator_refused_on_ranks")
-    # The monolithic coupler asks for the linear matrices, which need the whole operator that no
-    # rank holds: refused with the call and the fix, every rank stopped (exit 3: the run failed).
+    # The monolithic coupler and `rumble stability` read the soil's linear matrices, its whole
+    # operator, which no rank holds: refused at validation (exit 1, before meshing), naming the
+    # JSON pointer, the value and the fix.
     rumble_run(out code ${mpirun} -n 2 ${RUMBLE} run ${fem} --output ${WORK_DIR}/refused
                --no-plots --set /coupling={\"type\":\"monolithic\"})
-    if(NOT code EQUAL 3)
-      message(FATAL_ERROR "expected exit code 3 (run failed), got ${code}:\n${out}")
+    if(NOT code EQUAL 1 OR out MATCHES "fem: a mesh of about [0-9.e+]+ DOFs")
+      message(FATAL_ERROR "expected exit code 1 before meshing, got ${code}:\n${out}")
     endif()
-    expect_match("${out}" "fem: linear_matrix \\(the monolithic coupler, rumble stability\\) needs the soil's whole operator, which no rank holds under mpirun -n 2 .*run it without mpirun")
+    expect_match("${out}" "/coupling/type[^\n]*: coupler \"monolithic\" \\(it integrates the soil inside the track\\) needs the whole matrices of soil type \"fem\" \\(/soil, its linear_matrix\\), which no rank holds when it is split over the 2 MPI ranks")
+    expect_match("${out}" "run it without mpirun, on one process, or choose a coupler that steps the soil on its ranks \\(gauss_seidel, jacobi, implicit\\), got \"monolithic\"")
+    rumble_run(out code ${mpirun} -n 2 ${RUMBLE} stability ${fem} --macro-steps 1e-3)
+    if(NOT code EQUAL 1 OR out MATCHES "fem: a mesh of about [0-9.e+]+ DOFs")
+      message(FATAL_ERROR "rumble stability: expected exit code 1 before meshing, got ${code}:\n${out}")
+    endif()
+    expect_match("${out}" "/soil/type[^\n]*: rumble stability \\(it linearizes the track on the soil\\) needs the whole matrices of soil type \"fem\"[^\n]*split over the 2 MPI ranks")
+    expect_match("${out}" "run rumble stability without mpirun")
   else()
     message(FATAL_ERROR "unknown case ${CASE}")
   endif()

@@ -88,8 +88,9 @@ options:
   --output DIR              (default: the scenario's outputs.directory)
   --ranks N                 plan a run on N MPI ranks (mpirun -n N rumble run): the FEM soil
                             reports the largest rank's nodes and DOFs, the halo and the memory
-                            per rank, estimated before and after meshing (docs/fem-soil.md,
-                            "Planning the ranks"); it still meshes on this one process
+                            per rank, estimated before meshing, then from the mesh split into N
+                            parts here by the runs' partitioner (docs/fem-soil.md, "Planning
+                            the ranks"); it still meshes on this one process
   --allow-outside-results   accept an outputs.directory that is absolute or leads out of the
                             scenario's folder (default: refuse; --output DIR also consents)
   --set POINTER=VALUE       replace the value at a JSON pointer first; repeatable, e.g.

@@ -6,6 +6,7 @@
 
 #include "parallel/mirror_transport.hpp"
 #include "plugin/mirror_message.hpp"
+#include "plugin/rank_memory.hpp"
 #include "plugin/soil_server.hpp"
 #include "study/rank_share.hpp"
 
@@ -17,8 +18,11 @@ void serve_rank_zero() {
   SoilServer soils;
   while (const std::optional<std::vector<char>> message = parallel::next_from_root()) {
     mirror::Reader r(*message);
-    if (r.get<mirror::Service>() == mirror::Service::kSoil) {
+    const mirror::Service service = r.get<mirror::Service>();
+    if (service == mirror::Service::kSoil) {
       soils.serve(r);
+    } else if (service == mirror::Service::kPhaseEnd) {
+      answer_phase_end();
     } else {
       study::run_share(*message);
     }

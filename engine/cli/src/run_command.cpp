@@ -10,6 +10,7 @@
 #include "cli/scenario_prepare.hpp"
 #include "core/interrupt.hpp"
 #include "core/logging.hpp"
+#include "parallel/mpi_session.hpp"
 #include "post/post_run.hpp"
 #include "run/run_scenario.hpp"
 #include "scenario/report.hpp"
@@ -61,6 +62,7 @@ int run_command(const std::vector<std::string>& args) {
   if (output) check.output_directory = &output_directory;
   BuiltSoils built;  // the soils validation builds, for the run (a FEM soil is built once)
   check.keep_soils = &built;
+  check.ranks = parallel::world_size();  // (under mpirun, MPI started before the command)
   std::optional<scenario::Document> doc;
   if (!validated(a.positional()[0], registry, overrides, check, doc)) return kExitRunFailed;
   if (!doc) return kExitConfig;

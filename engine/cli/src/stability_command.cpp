@@ -15,6 +15,7 @@
 #include "cli/exit_codes.hpp"
 #include "cli/scenario_prepare.hpp"
 #include "core/errors.hpp"
+#include "parallel/mpi_session.hpp"
 #include "results/new_file.hpp"
 
 namespace rumble::cli {
@@ -79,6 +80,8 @@ int stability_command(const std::vector<std::string>& args) {
   BuiltSoils built;  // the soil validation builds is the one analysed: built once
   scenario::CheckOptions check = kNotARun;
   check.keep_soils = &built;
+  check.ranks = parallel::world_size();  // a distributed soil split so has no whole matrices
+  check.linear_matrices = true;
   const auto doc =
       prepare_scenario(a.positional()[0], registry, scenario::Format::kText, {}, check);
   if (!doc) return kExitConfig;

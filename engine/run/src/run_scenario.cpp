@@ -290,7 +290,7 @@ struct RunSoFar {
   Clock::time_point start;
   bool integrated = false;
   const StaticState& statics;
-  PhasePeaks& memory;
+  RunMemory& memory;                                   // every rank's peaks per phase
   const std::optional<SoilInstance::Size>& soil_size;  // ABI 1.5: DOFs and estimate
 };
 
@@ -363,7 +363,7 @@ RunOutcome run_scenario(const scenario::RunSpec& spec, const PluginRegistry& reg
                         ResultsDirectory& results, const RunOptions& options) {
   const auto run_start = Clock::now();
   ExitGuard exit_guard;  // from the first plugin call: a constructor may call exit() too
-  PhasePeaks memory;
+  RunMemory memory;
   RunComponents c = build_components(spec, registry, options.built_soils);
   memory.end("build");
 

@@ -9,6 +9,7 @@
 #include <rumble/host_resources.hpp>
 
 #include "plugin/registry.hpp"
+#include "scenario/capability_check.hpp"
 #include "scenario/component_check.hpp"
 #include "scenario/relation_checks.hpp"
 #include "scenario/run_size.hpp"
@@ -88,6 +89,11 @@ CheckedScenario check_scenario_document(Document document, std::vector<Override>
   c.diagnostics = validate(doc, registry, options.load_plugins);
   if (no_errors(c.diagnostics)) {
     for (Diagnostic& d : check_scenario_relations(doc.json))
+      c.diagnostics.push_back(make_diagnostic(doc, d.pointer, d.message, d.hint, d.severity));
+  }
+  if (no_errors(c.diagnostics) && options.load_plugins) {  // (before a soil is built: meshed)
+    for (Diagnostic& d :
+         check_split_soil(doc.json, registry, options.ranks, options.linear_matrices))
       c.diagnostics.push_back(make_diagnostic(doc, d.pointer, d.message, d.hint, d.severity));
   }
   // The run's size, from the scenario alone: before any component is built (a FEM soil meshes

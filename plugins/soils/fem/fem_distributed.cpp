@@ -32,7 +32,6 @@
 #include "fem_soil.hpp"
 #include "frequency/resolved_band.hpp"
 #include "mesh/mesh_generator.hpp"
-#include "mesh/mesh_memory.hpp"
 #include "mesh/track_region.hpp"
 #include "output/pvtu_writer.hpp"
 #include "output/vtu_writer.hpp"
@@ -316,22 +315,6 @@ void FemSoil::set_probes_distributed(const std::vector<rumble::Probe>& probes,
   row_.assign(probes.size() * RUMBLE_PROBE_VALUES, 0.0);
   sample_interval_ = sample_interval;
   next_sample_ = -1.0;
-}
-
-void FemSoil::log_peak_per_rank() const {
-  const rumble::fem::DistributedSoil& d = *distributed_;
-  const double mine = rumble::fem::resident_memory().peak;
-  std::vector<double> all(d.root() ? static_cast<std::size_t>(d.ranks()) : 0);
-  MPI_Gather(&mine, 1, MPI_DOUBLE, all.data(), 1, MPI_DOUBLE, 0, d.comm());
-  if (!d.root() || mine == 0.0) return;  // (no /proc: nothing measured)
-  std::ostringstream m;
-  m << "fem: peak resident memory per rank (VmHWM; rank 0's since the engine's last phase "
-       "began, the others' over the run):";
-  const double dofs = static_cast<double>(d.whole_dofs());
-  for (int r = 0; r < d.ranks(); ++r)
-    m << " rank " << r << " " << format(all[r] / 1e9) << " GB ("
-      << std::lround(all[r] * d.ranks() / dofs) << " B per DOF of its share)";
-  host_.info(m.str());
 }
 
 void FemSoil::write_fields_distributed(double t, const std::string& path) {

@@ -15,6 +15,7 @@
 #include "boundary/absorbing_boundary.hpp"
 #include "boundary/pml.hpp"
 #include "distributed/rank_plan.hpp"
+#include "distributed/split_plan.hpp"
 #include "fem_soil.hpp"
 #include "memory_model.hpp"
 #include "mesh/gmsh_model.hpp"
@@ -68,7 +69,7 @@ void FemSoil::mesh_here(const std::vector<rumble::Footprint>& footprints) {
     plan_ = {.region = TrackRegion::of(footprints)};  // sizes unknown: radius 0
     host_.info("fem: mesh read from " + mesh_file_);
   }
-  report_ranks(static_cast<double>(mesh_.node_count()), "the mesh");
+  report_split();
 }
 
 void FemSoil::build_here(const std::vector<rumble::Footprint>& footprints, double mesh_seconds,
@@ -197,6 +198,20 @@ void FemSoil::report_ranks(double nodes, const char* source) const {
   if (ranks > 1 && !distributed_)
     host_.info(rumble::fem::describe(rumble::fem::plan_ranks(nodes, ranks, settings_.gamg_statics),
                                      source));
+}
+
+void FemSoil::report_split() const {
+  const int ranks = rumble::fem::planned_ranks();
+  if (ranks < 2 || distributed_) return;
+  // MPI started by the host (a singleton), which finishes it once the plugins are gone (decision
+  // 0012 §2): PETSc then leaves it alone. Started by PETSc, its MPI_Finalize at exit unloaded
+  // this plugin under PetscFinalize's feet (a segfault after `rumble mesh --ranks 2` was done).
+  host_.communicator();
+  const rumble::fem::MeshSplit split = rumble::fem::split_mesh(mesh_, ranks);
+  host_.info(rumble::fem::describe(
+      split, rumble::fem::plan_split(
+                 static_cast<double>(split.nodes), ranks, static_cast<double>(split.ghosts),
+                 static_cast<double>(split.largest()), settings_.gamg_statics)));
 }
 
 void FemSoil::hint_fast_meshing() const {

@@ -142,8 +142,6 @@ class FemSoil final : public rumble::Soil {
   void free_whole_on_root();
   /// What needs the whole operator, refused on many ranks: `what` names the call.
   void refuse_whole_operator(const std::string& what) const;
-  /// Every rank's peak resident memory (VmHWM) gathered on rank 0 and logged. Collective.
-  void log_peak_per_rank() const;
   /// The state the steps advance: this rank's share on many ranks.
   ExplicitState& stepped_state() { return distributed_ ? distributed_->state() : state_; }
 
@@ -166,6 +164,9 @@ class FemSoil final : public rumble::Soil {
   /// threads 4.4 s (and about 20 % fewer tetrahedra for the same sizes).
   /// `rumble mesh --ranks N` (distributed/rank_plan.hpp): the estimate per rank in the log.
   void report_ranks(double nodes, const char* source) const;
+  /// `rumble mesh --ranks N` once meshed: the mesh split on this process, its counts and the
+  /// memory per rank from them in the log (distributed/split_plan.hpp).
+  void report_split() const;
   void hint_fast_meshing() const;
 
   rumble::fem::TetMesh cached_or_new_mesh() const;

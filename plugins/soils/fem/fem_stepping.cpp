@@ -78,7 +78,6 @@ void FemSoil::free_statics() {
 }
 
 void FemSoil::finalize() {
-  if (distributed_) log_peak_per_rank();
   if (distributed_ && !distributed_->root()) return;  // (rank 0 says it for all)
   // Which team sizes the explicit steps ran on, when the host granted more than one thread:
   // on a busy machine, one thread most of the time (time/thread_tuner.hpp).

@@ -206,7 +206,10 @@ typedef struct rumble_lifecycle_api {
 /** 1.4, soil: every call of this soil is collective over rumble_host.communicator's
  *  communicator (MPI_COMM_WORLD's duplicate): under an MPI launcher the host creates it on every
  *  rank and mirrors each call from rank 0 with the same inputs; outputs are read on rank 0
- *  (docs/decisions/0012-distributed-soil.md). Without a launcher it runs as one rank. */
+ *  (docs/decisions/0012-distributed-soil.md). Without a launcher it runs as one rank. On N > 1
+ *  ranks it need not give linear_matrix (each rank holds its part): the host refuses what needs
+ *  it, a monolithic coupler or `rumble stability`, at validation
+ *  (docs/decisions/0015-memory-per-rank.md). */
 #define RUMBLE_CAP_DISTRIBUTED (UINT64_C(1) << 12)
 
 /**

@@ -1,6 +1,7 @@
 // Ranks other than 0 of an MPI launch (docs/decisions/0012-distributed-soil.md): rank 0 runs the
 // command, and this loop serves it until it releases the other ranks: a distributed soil's calls
-// (plugin/soil_server.hpp) and a study's runs (study/rank_share.hpp).
+// (plugin/soil_server.hpp), a study's runs (study/rank_share.hpp) and the ends of a run's phases
+// (plugin/rank_memory.hpp: each rank's peak memory).
 #pragma once
 
 namespace rumble::cli {

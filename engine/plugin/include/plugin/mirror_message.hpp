@@ -17,8 +17,9 @@ namespace rumble::mirror {
 
 /// Whom a message from rank 0 is for on the other ranks: the first byte of every message.
 enum class Service : std::uint8_t {
-  kSoil = 1,  // a call of a distributed soil (Call below)
-  kStudy = 2  // a study's runs, each rank running its share (study/rank_share.hpp)
+  kSoil = 1,     // a call of a distributed soil (Call below)
+  kStudy = 2,    // a study's runs, each rank running its share (study/rank_share.hpp)
+  kPhaseEnd = 3  // a run's phase ended: each rank's peak memory (plugin/rank_memory.hpp)
 };
 
 /// What a message asks a server to do with its instance (one per mirrored SoilInstance call).

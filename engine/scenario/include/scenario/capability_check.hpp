@@ -22,4 +22,13 @@ namespace rumble::scenario {
 std::vector<Diagnostic> check_capabilities(const nlohmann::json& scenario,
                                            const PluginRegistry& registry);
 
+/// What needs a soil's whole matrices (linear_matrix) against a soil split over MPI ranks: a
+/// soil that declares RUMBLE_CAP_DISTRIBUTED holds only its part on each of `ranks` > 1 ranks
+/// (docs/decisions/0012-distributed-soil.md), so a monolithic coupler (/coupling/type) and a
+/// command that reads the matrices (`linear_matrices`: rumble stability; /soil/type) are
+/// refused before the soil is built, where a FEM soil meshes. Nothing for ranks <= 1.
+std::vector<Diagnostic> check_split_soil(const nlohmann::json& scenario,
+                                         const PluginRegistry& registry, int ranks,
+                                         bool linear_matrices);
+
 }  // namespace rumble::scenario

@@ -41,6 +41,11 @@ struct CheckOptions {
   /// else under outputs.directory. Not in `validate`: a scenario may be meant for another machine.
   bool machine_room = false;
   const std::filesystem::path* output_directory = nullptr;  // (a pointer: kNotARun is constexpr)
+  /// The MPI ranks of this launch (`mpirun -n N`, on rank 0), over which a distributed soil is
+  /// split: what needs its whole matrices is refused before it is built (check_split_soil).
+  int ranks = 1;
+  /// true (`rumble stability`): the command reads the soil's linear matrices.
+  bool linear_matrices = false;
 };
 
 struct CheckedScenario {

@@ -253,6 +253,16 @@ void part_mesh(const PlexPoints& data, std::int64_t tets, MeshPartition& part,
   }
 }
 
+// Scotch splits a graph on threads of its own, and its random generator starts from a seed of
+// its own on each process (Debian builds it so): the same mesh was split differently run after
+// run (3 ranks: 486-499 nodes on rank 0 in 6 runs). On one thread from a fixed seed every run
+// on N ranks splits it alike, so that a run repeats bit for bit.
+void seed_scotch() {
+  setenv("SCOTCH_PTHREAD_NUMBER", "1", 1);
+  SCOTCH_randomSeed(1);
+  SCOTCH_randomReset();
+}
+
 void refuse_empty_part(MPI_Comm comm, const MeshPartition& part) {
   int size = 1;
   MPI_Comm_size(comm, &size);
@@ -293,13 +303,7 @@ MeshPartition partition_mesh(MPI_Comm comm, const TetMesh* whole) {
   petsc_check(DMPlexGetPartitioner(dm, &partitioner), "DMPlexGetPartitioner");
   petsc_check(PetscPartitionerSetType(partitioner, PETSCPARTITIONERPTSCOTCH),
               "PetscPartitionerSetType");
-  // Scotch splits a graph on threads of its own, and its random generator starts from a seed
-  // of its own on each process (Debian builds it so): the same mesh was split differently run
-  // after run (3 ranks: 486-499 nodes on rank 0 in 6 runs). On one thread from a fixed seed
-  // every run on N ranks splits it alike, so that a run repeats bit for bit.
-  setenv("SCOTCH_PTHREAD_NUMBER", "1", 1);
-  SCOTCH_randomSeed(1);
-  SCOTCH_randomReset();
+  seed_scotch();
   DM dist = nullptr;
   PetscSF migration = nullptr;
   petsc_check(DMPlexDistribute(dm, 0, &migration, &dist), "DMPlexDistribute");
@@ -331,6 +335,47 @@ MeshPartition partition_mesh(MPI_Comm comm, const TetMesh* whole) {
       comm, whole ? static_cast<std::int32_t>(part.global_nodes) : 0, from_root);
   refuse_empty_part(comm, part);
   return part;
+}
+
+std::vector<int> partition_on_one_process(const TetMesh& whole, int parts) {
+  std::vector<int> part_of(whole.tets.size(), 0);
+  if (parts <= 1 || whole.tets.empty()) return part_of;
+  DM dm = whole_plex(PETSC_COMM_SELF, &whole);
+  PetscInt vertices = 0;
+  PetscInt* start = nullptr;
+  PetscInt* adjacency = nullptr;
+  IS numbering = nullptr;  // (one process: the tetrahedra in their order)
+  petsc_check(DMPlexCreatePartitionerGraph(dm, 0, &vertices, &start, &adjacency, &numbering),
+              "DMPlexCreatePartitionerGraph");
+  PetscPartitioner partitioner = nullptr;
+  PetscSection sizes = nullptr;
+  IS order = nullptr;
+  petsc_check(PetscPartitionerCreate(PETSC_COMM_SELF, &partitioner), "PetscPartitionerCreate");
+  petsc_check(PetscPartitionerSetType(partitioner, PETSCPARTITIONERPTSCOTCH),
+              "PetscPartitionerSetType");
+  petsc_check(PetscSectionCreate(PETSC_COMM_SELF, &sizes), "PetscSectionCreate");
+  seed_scotch();
+  petsc_check(PetscPartitionerPartition(partitioner, parts, vertices, start, adjacency, nullptr,
+                                        nullptr, sizes, &order),
+              "PetscPartitionerPartition");
+  const PetscInt* tets = nullptr;
+  petsc_check(ISGetIndices(order, &tets), "ISGetIndices");
+  for (int p = 0; p < parts; ++p) {  // (the IS lists each part's tetrahedra, part by part)
+    PetscInt count = 0, offset = 0;
+    petsc_check(PetscSectionGetDof(sizes, p, &count), "PetscSectionGetDof");
+    petsc_check(PetscSectionGetOffset(sizes, p, &offset), "PetscSectionGetOffset");
+    for (PetscInt k = offset; k < offset + count; ++k)
+      part_of[static_cast<std::size_t>(tets[k])] = p;
+  }
+  ISRestoreIndices(order, &tets);
+  ISDestroy(&order);
+  PetscSectionDestroy(&sizes);
+  PetscPartitionerDestroy(&partitioner);
+  ISDestroy(&numbering);
+  PetscFree(start);
+  PetscFree(adjacency);
+  DMDestroy(&dm);
+  return part_of;
 }
 
 }  // namespace rumble::fem

@@ -57,4 +57,13 @@ const char* partitioner_name();
 /// the fix), and when PETSc fails.
 MeshPartition partition_mesh(MPI_Comm comm, const TetMesh* whole);
 
+/// Each tetrahedron's part in a split of `whole` into `parts` parts on this one process, by the
+/// partitioner partition_mesh's DMPlexDistribute uses, on the same graph (the tetrahedra sharing
+/// a face, DMPlexCreatePartitionerGraph) from the same seed, nothing distributed: for `rumble
+/// mesh --ranks N` (split_plan.hpp). On tests/mpi/fem_small.json its 2 and 3 parts were the
+/// runs' splits exactly (the same tetrahedra per part, nodes and ghosts); PETSc does not promise
+/// that a graph held by one of N ranks is split as on one process, so a test checks it. Needs a
+/// PETSc session (statics/petsc_session.hpp). Throws std::runtime_error when PETSc fails.
+std::vector<int> partition_on_one_process(const TetMesh& whole, int parts);
+
 }  // namespace rumble::fem

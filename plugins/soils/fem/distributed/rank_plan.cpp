@@ -10,6 +10,31 @@
 
 namespace rumble::fem {
 
+namespace {
+
+/// The memory per rank of `p` (its nodes, ranks and largest rank's nodes set).
+void plan_memory(RankPlan& p, bool gamg) {
+  const double share = memory::kHeldBytesPerDof * 3.0 * p.largest_nodes;
+  if (p.ranks == 1) {
+    p.root_bytes = memory::run_peak_bytes(3.0 * p.nodes);
+    return;
+  }
+  // On many ranks the statics run on the ranks by GAMG above the factor limit (or when asked):
+  // each rank its part's; below it rank 0 factors the whole (small) operator and frees it.
+  const double whole = 3.0 * p.nodes;
+  const bool on_ranks = gamg || whole > memory::kFactorLimitDofs;
+  const double share_statics =
+      on_ranks ? memory::kGamgBytesPerNonzero * memory::kNonzerosPerDof * 3.0 * p.largest_nodes
+               : 0.0;
+  p.rank_bytes = memory::kProcessBytes + share + share_statics;
+  // Rank 0: its share and the whole mesh (not the operator), or the factor's whole operator.
+  const double root_statics =
+      on_ranks ? share_statics : memory::kHeldBytesPerDof * whole + memory::factor_bytes(whole);
+  p.root_bytes = memory::kProcessBytes + share + memory::kMeshBytesPerDof * whole + root_statics;
+}
+
+}  // namespace
+
 RankPlan plan_ranks(double nodes, int ranks, bool gamg) {
   RankPlan p;
   p.ranks = std::max(1, ranks);
@@ -20,23 +45,18 @@ RankPlan plan_ranks(double nodes, int ranks, bool gamg) {
   }
   p.largest_nodes = (nodes + p.ghosts) / p.ranks;
   p.halo_bytes = kHaloBytesPerGhost * p.ghosts;
-  const double share = memory::kHeldBytesPerDof * 3.0 * p.largest_nodes;
-  if (p.ranks == 1) {
-    p.root_bytes = memory::run_peak_bytes(3.0 * nodes);
-    return p;
-  }
-  // On many ranks the statics run on the ranks by GAMG above the factor limit (or when asked):
-  // each rank its part's; below it rank 0 factors the whole (small) operator and frees it.
-  const double whole = 3.0 * nodes;
-  const bool on_ranks = gamg || whole > memory::kFactorLimitDofs;
-  const double share_statics =
-      on_ranks ? memory::kGamgBytesPerNonzero * memory::kNonzerosPerDof * 3.0 * p.largest_nodes
-               : 0.0;
-  p.rank_bytes = memory::kProcessBytes + share + share_statics;
-  // Rank 0: its share and the whole mesh (not the operator), or the factor's whole operator.
-  const double root_statics =
-      on_ranks ? share_statics : memory::kHeldBytesPerDof * whole + memory::factor_bytes(whole);
-  p.root_bytes = memory::kProcessBytes + share + memory::kMeshBytesPerDof * whole + root_statics;
+  plan_memory(p, gamg);
+  return p;
+}
+
+RankPlan plan_split(double nodes, int ranks, double ghosts, double largest_nodes, bool gamg) {
+  RankPlan p;
+  p.ranks = std::max(1, ranks);
+  p.nodes = nodes;
+  p.ghosts = ghosts;
+  p.largest_nodes = largest_nodes;
+  p.halo_bytes = kHaloBytesPerGhost * ghosts;
+  plan_memory(p, gamg);
   return p;
 }
 

@@ -1,8 +1,9 @@
 // What a run on N ranks will cost each rank, estimated before it is split (issue #33;
 // docs/fem-soil.md, "On many ranks", "Planning the ranks"): for `rumble mesh FILE --ranks N`,
 // which meshes on one process, and for the check of each node's memory before a run on the
-// ranks meshes. The halo is a surface-to-volume estimate, not a split: N parts cut a mesh of n
-// nodes on surfaces through about kHaloSurface n^(2/3) g(N) nodes in all (recursive bisection:
+// ranks meshes; with the mesh in hand `rumble mesh` splits it (split_plan.hpp) and plan_split
+// takes the split's counts. Before, the halo is a surface-to-volume estimate: N parts cut a mesh of
+// n nodes on surfaces through about kHaloSurface n^(2/3) g(N) nodes in all (recursive bisection:
 // the first cut through n^(2/3) nodes, each later level of cuts through 2^(1/3) times the
 // previous level's; g(N) = (N^(1/3) - 1) / (2^(1/3) - 1)), each such node a ghost on one rank.
 // The memory per rank is the soil's one-process model (memory_model.hpp) applied to what each
@@ -37,6 +38,10 @@ struct RankPlan {
 /// The plan for a mesh of `nodes` nodes on `ranks` >= 1 ranks; gamg: the statics solved on the
 /// ranks (statics.solver gamg) rather than by rank 0 alone.
 RankPlan plan_ranks(double nodes, int ranks, bool gamg);
+
+/// The plan for an actual split (split_plan.hpp): its ghosts over all ranks and the largest
+/// rank's nodes, owned and ghost, in place of the estimates; the memory per rank from them.
+RankPlan plan_split(double nodes, int ranks, double ghosts, double largest_nodes, bool gamg);
 
 /// The ranks `rumble mesh FILE --ranks N` plans for: N from RUMBLE_MESH_RANKS, which that
 /// command sets for the soil it builds on one process (docs/fem-soil.md, "Planning the
