@@ -395,8 +395,10 @@ void FemSoil::write_fields_distributed(double t, const std::string& path) {
     throw std::invalid_argument(
         "fem: a .vtu of the whole mesh (" + path + ") under mpirun with mesh.refine " +
         std::to_string(d.refined()) +
-        ": no rank holds the refined mesh whole (each refined its part after the split); ask "
-        "for a .pvtu (each rank writes its piece) or run without mpirun (docs/fem-soil.md §8)");
+        ": no rank holds the refined mesh whole (each refined its part after the split); run "
+        "`rumble mesh` without mpirun, or set mesh.refine 0 under mpirun (a run's snapshots "
+        "under mpirun, .pvtu pieces written by each rank, need no whole mesh; docs/fem-soil.md "
+        "§8)");
   // A .vtu asked of many ranks (`rumble mesh` under mpirun): gathered on rank 0, as one file.
   const Eigen::Index n = d.root() ? mesh_.dof_count() : 0;
   Eigen::VectorXd u = Eigen::VectorXd::Zero(n), w = u, v = u;
