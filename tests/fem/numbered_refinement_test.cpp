@@ -2,7 +2,8 @@
 // issue #33, docs/fem-soil.md §8 "mesh.refine on the ranks"): on the whole mesh they are each of
 // 0 .. N - 1 once, N the refined mesh's node count (counted, and refined_counts' formula), the
 // mesh refine_uniformly's node for node; a part refined alone numbers each of its nodes as the
-// whole refinement numbers the node at the same point, for 1, 2 and 3 levels.
+// whole refinement numbers the node at the same point, for 1, 2 and 3 levels; one process's
+// node order of a refined mesh is order_nodes_spatially's.
 #include "mesh/numbered_refinement.hpp"
 
 #include <gtest/gtest.h>
@@ -14,6 +15,7 @@
 #include <vector>
 
 #include "mesh/kuhn_box.hpp"
+#include "mesh/node_order.hpp"
 #include "mesh/uniform_refinement.hpp"
 
 namespace rumble::fem {
@@ -98,6 +100,24 @@ TEST(FemNumberedRefinement, APartNumbersItsNodesAsTheWholeDoes) {
     for (Eigen::Index i = 0; i < mine.mesh.node_count(); ++i)
       ASSERT_EQ(mine.mesh.nodes.col(i), fine.mesh.nodes.col(at[mine.number[i]]))
           << "node " << i << " of the part, " << levels << " levels";
+  }
+}
+
+// One process's order of a refined mesh (fem_layout.cpp's refine_here: Morton keys, ties by
+// number) is order_nodes_spatially's wherever no two nodes share a key: the mesh the explicit
+// kernel steps is the one it stepped before the ranks refined their parts (§4.3's speed).
+TEST(FemNumberedRefinement, OrdersTheNodesAsOrderNodesSpatially) {
+  const TetMesh whole = shaken_box(3, 0.5);
+  for (int levels = 1; levels <= 2; ++levels) {
+    NumberedRefinement fine = refine_numbered(whole, name_entities(whole), levels);
+    renumber_nodes(fine.mesh, numbered_spatial_order(fine.mesh.nodes, fine.number,
+                                                     fine.mesh.nodes.rowwise().minCoeff(),
+                                                     fine.mesh.nodes.rowwise().maxCoeff()));
+    TetMesh reference = refine_uniformly(whole, levels);
+    order_nodes_spatially(reference);
+    EXPECT_EQ(fine.mesh.nodes, reference.nodes) << levels << " levels";
+    EXPECT_EQ(fine.mesh.tets, reference.tets);
+    EXPECT_EQ(fine.mesh.ground, reference.ground);
   }
 }
 
