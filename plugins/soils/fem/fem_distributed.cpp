@@ -124,7 +124,7 @@ void FemSoil::accept_layout_distributed(const std::vector<rumble::Footprint>& fo
     // rank_plan.hpp): before meshing from the plan, again from the mesh.
     const auto check_memory = [&](double nodes, const char* source) {
       const rumble::fem::RankPlan plan =
-          rumble::fem::plan_ranks(nodes, d.ranks(), settings_.gamg_statics);
+          rumble::fem::plan_ranks(nodes, d.ranks(), settings_.gamg_statics, refine_on_ranks());
       host_.info(rumble::fem::describe(plan, source));
       rumble::fem::check_node_memory(plan, machines, settings_.mesh.f_max);
     };

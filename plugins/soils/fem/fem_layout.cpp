@@ -212,8 +212,8 @@ rumble::fem::TetMesh FemSoil::cached_or_new_mesh() const {
 void FemSoil::report_ranks(double nodes, const char* source) const {
   const int ranks = rumble::fem::planned_ranks();  // (`rumble mesh --ranks N` on one process)
   if (ranks > 1 && !distributed_)
-    host_.info(rumble::fem::describe(rumble::fem::plan_ranks(nodes, ranks, settings_.gamg_statics),
-                                     source));
+    host_.info(rumble::fem::describe(
+        rumble::fem::plan_ranks(nodes, ranks, settings_.gamg_statics, refine_on_ranks()), source));
 }
 
 void FemSoil::hint_fast_meshing() const {
