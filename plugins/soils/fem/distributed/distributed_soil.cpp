@@ -37,6 +37,7 @@ void DistributedSoil::lay_out(const TetMesh* mesh, const FemSettings& settings,
     part_ = partition_mesh(comm_, mesh);
     coarse_nodes_ = part_.global_nodes;
   }
+  split_peak_ = resident_memory().peak;
   build_step(settings, footprints, threads);
   state_ = step_->rest_state();
   const Eigen::Index n = step_->dofs();
@@ -228,6 +229,9 @@ std::string DistributedSoil::summary() const {
     m << "rank 0 split the coarse mesh of " << coarse_nodes_
       << " nodes only, and each rank refined its part " << refine_
       << " times after the split (mesh.refine): " << part_.global_nodes << " nodes in all; ";
+  if (split_peak_ > 0.0)  // (0: no /proc)
+    m << "rank 0's peak resident memory through the meshing and the split " << split_peak_ / 1e9
+      << " GB (VmHWM); ";
   m << "each rank built its share from its part; stable step " << step_->stable_step() << " s ("
     << step_->eigen_iterations() << " Lanczos iterations over the ranks)";
   return m.str();

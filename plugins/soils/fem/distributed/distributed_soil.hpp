@@ -122,7 +122,8 @@ class DistributedSoil {
   MPI_Comm comm_;
   int rank_ = 0, ranks_ = 1;
   MeshPartition part_;
-  int refine_ = 0;                 // mesh.refine on the ranks
+  double split_peak_ = 0.0;  // bytes: this rank's VmHWM once split (rank 0's: meshing included)
+  int refine_ = 0;           // mesh.refine on the ranks
   std::int64_t coarse_nodes_ = 0;  // rank 0's mesh, split
   std::optional<ExplicitSolver> step_;
   ExplicitState state_;
