@@ -5,8 +5,9 @@
 // blocks, footprint weights, far field rows, receivers, and the stable step by Lanczos over the
 // ranks), and the explicit steps run on the shares, their halos exchanged by PETSc. Rank 0 reads
 // the footprints' motion and the receivers' samples, gathered in rank order, and keeps the whole
-// mesh (for the receivers' resolution), not the whole operator; each rank writes its piece of a
-// field snapshot (distributed/field_pieces.hpp).
+// mesh, not the whole operator; each rank writes its piece of a field snapshot
+// (distributed/field_pieces.hpp). With mesh.refine rank 0 meshes and splits the coarse mesh only
+// and each rank refines its part after the split (distributed/refined_partition.hpp).
 //
 // The static state: GAMG on the ranks (distributed_statics.hpp) above the factor limit or with
 // statics.solver gamg; below the limit rank 0 factors the whole (small) operator as one process

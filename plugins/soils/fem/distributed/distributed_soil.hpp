@@ -2,9 +2,10 @@
 // docs/decisions/0012-distributed-soil.md; docs/fem-soil.md §8, "On many ranks"): its part of the
 // mesh, its operator and explicit step, its state, the footprints' weights, the far field's
 // rows and the receivers on its nodes. The plugin makes every call on every rank with the same
-// inputs (the host mirrors them). Rank 0 alone holds the whole mesh, which it hands out at the
-// layout; every rank then builds its share from its own part (part_pieces.hpp), the stable step
-// by Lanczos over the ranks. Every call is collective.
+// inputs (the host mirrors them). Rank 0 alone holds the whole mesh (with mesh.refine on the
+// ranks the coarse mesh, each rank refining its part: refined_partition.hpp), which it hands out
+// at the layout; every rank then builds its share from its own part (part_pieces.hpp), the stable
+// step by Lanczos over the ranks. Every call is collective.
 #pragma once
 
 #define OMPI_SKIP_MPICXX 1

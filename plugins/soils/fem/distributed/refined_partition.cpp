@@ -74,6 +74,8 @@ void number_children(const MeshPartition& coarse, int levels, MeshPartition& par
 MeshPartition refine_partition(MPI_Comm comm, const MeshPartition& coarse, int levels) {
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
+  if (coarse.names.edge.size() != coarse.mesh.tets.size())
+    throw std::logic_error("fem: refine_partition needs partition_mesh(..., named = true)");
   const RefinedCounts counts = refined_counts(coarse.names, levels);
   if (counts.nodes > std::numeric_limits<std::int32_t>::max() ||
       counts.tets > std::numeric_limits<std::int32_t>::max())
