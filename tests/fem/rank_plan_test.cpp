@@ -45,6 +45,20 @@ TEST(RankPlan, HaloGrowsAsTheSurfacesOfRecursiveBisection) {
   EXPECT_GT(eight.root_bytes, eight.rank_bytes);  // (rank 0 holds the whole mesh today)
 }
 
+// With mesh.refine on the ranks rank 0 holds the coarse mesh: 8^-refine of the whole mesh's
+// 40 B per DOF, the rest of its estimate as before (docs/fem-soil.md §8).
+TEST(RankPlan, RefinedOnTheRanksRankZeroHoldsTheCoarseMesh) {
+  const double n = 4e5;  // (1.2e6 DOFs: above the factor limit, the statics on the ranks)
+  const RankPlan whole = plan_ranks(n, 2, false), refined = plan_ranks(n, 2, false, 1);
+  EXPECT_NEAR(whole.root_bytes - refined.root_bytes,
+              rumble::fem::memory::kMeshBytesPerDof * 3.0 * n * (1.0 - 1.0 / 8.0), 1e-3);
+  EXPECT_EQ(whole.rank_bytes, refined.rank_bytes);
+  EXPECT_NE(rumble::fem::describe(refined, "the mesh").find("on rank 0 (it holds the coarse mesh"),
+            std::string::npos);
+  EXPECT_NE(rumble::fem::describe(whole, "the mesh").find("on rank 0 (it holds the whole mesh)"),
+            std::string::npos);
+}
+
 TEST(RankPlan, AMachineTooSmallForItsRanksIsRefusedWithTheNumbers) {
   const RankPlan p = plan_ranks(1e6, 4, false);
   const double root_machine = p.root_bytes + p.rank_bytes;  // rank 0 and one more

@@ -11,6 +11,11 @@
 //   - the step's product (stepped_product, on 2 threads) hands every node over once, with the
 //     same value as the product above, and every ghost holds its owner's value bit for bit;
 //   - the same mesh is split alike twice (and so run after run);
+//   - the same with a coarse box refined once and twice on the ranks after the split
+//     (refined_partition.hpp): each fine node owned once, every fine tetrahedron on one rank,
+//     the mass and K x against one process's refinement of the whole box (its nodes put in the
+//     ranks' numbering, numbered_refinement.hpp), ghosts equal to their owners; and what each
+//     rank builds from its refined part (below) as one process builds it on the refined box;
 //   - what each rank builds from its own part (distributed/part_pieces.hpp) equals what one
 //     process builds on the whole mesh: the boundary blocks (area, normal, dashpots, springs)
 //     at every node a rank holds, the far field's rows and mean distance, to 1e-14 (a shared
@@ -35,8 +40,11 @@
 #include "distributed/mesh_partition.hpp"
 #include "distributed/part_pieces.hpp"
 #include "distributed/part_stiffness.hpp"
+#include "distributed/refined_partition.hpp"
 #include "fem_settings.hpp"
 #include "mesh/kuhn_box.hpp"
+#include "mesh/node_order.hpp"
+#include "mesh/numbered_refinement.hpp"
 #include "operator/csr_operator.hpp"
 #include "operator/elasticity.hpp"
 #include "statics/petsc_session.hpp"
@@ -103,13 +111,30 @@ Eigen::VectorXd stepped(const DistributedOperator& op, const Eigen::VectorXd& x,
   return y;
 }
 
-int check(MPI_Comm comm, StepPrecision precision, std::vector<std::int32_t>& nodes) {
+// The whole coarse mesh refined `levels` times on one process, its nodes in the numbering the
+// ranks give them (numbered_refinement.hpp).
+TetMesh refined_whole(const TetMesh& coarse, int levels) {
+  NumberedRefinement fine = refine_numbered(coarse, name_entities(coarse), levels);
+  std::vector<std::int32_t> order(fine.number.size());  // new index (the number) -> old
+  for (std::size_t i = 0; i < order.size(); ++i)
+    order[fine.number[i]] = static_cast<std::int32_t>(i);
+  renumber_nodes(fine.mesh, order);
+  return fine.mesh;
+}
+
+// refine > 0: a coarser box split, each rank's part refined `refine` times after the split.
+int check(MPI_Comm comm, StepPrecision precision, std::vector<std::int32_t>& nodes,
+          int refine = 0) {
   Checks checks;
   const bool root = rank_of(comm) == 0;
   const FemSettings settings =
       read_settings(R"({"E": 155e6, "nu": 0.3, "rho": 1800})");  // the medium soil
-  const TetMesh whole = kuhn_box(12, 10, 8, 0.5);
-  MeshPartition part = partition_mesh(comm, root ? &whole : nullptr);
+  const TetMesh coarse = refine == 0 ? kuhn_box(12, 10, 8, 0.5) : kuhn_box(6, 5, 4, 1.0);
+  MeshPartition part =
+      refine == 0
+          ? partition_mesh(comm, root ? &coarse : nullptr)
+          : refine_partition(comm, partition_mesh(comm, root ? &coarse : nullptr, true), refine);
+  const TetMesh whole = refine == 0 ? coarse : refined_whole(coarse, refine);
   nodes = part.global;
   check_ownership(comm, part, checks);
   CsrMatrix K = assemble_stiffness(part.mesh, settings);
@@ -146,9 +171,9 @@ int check(MPI_Comm comm, StepPrecision precision, std::vector<std::int32_t>& nod
     checks.expect(relative(y_whole, y_one) < 1e-13, "K x as one process's",
                   relative(y_whole, y_one));
     std::printf(
-        "fem_partition_check (%s): %lld nodes, %lld tetrahedra; rank 0 holds %d nodes "
-        "(%d shared); K x within %.2g of one process's, mass within %.2g\n",
-        precision == StepPrecision::kSingle ? "single" : "double",
+        "fem_partition_check (%s, refined %d times on the ranks): %lld nodes, %lld tetrahedra; "
+        "rank 0 holds %d nodes (%d shared); K x within %.2g of one process's, mass within %.2g\n",
+        precision == StepPrecision::kSingle ? "single" : "double", refine,
         static_cast<long long>(part.global_nodes), static_cast<long long>(part.global_tetrahedra),
         part.nodes(), part.shared, relative(y_whole, y_one), relative(mass_whole, one.mass()));
   }
@@ -351,11 +376,17 @@ void check_stable_step(MPI_Comm comm, MeshPartition& part, const TetMesh& whole,
 }
 
 // What each rank builds from its part (part_pieces.hpp) against one process's on the whole mesh.
-int check_pieces(MPI_Comm comm) {
+// refine 1: the same box as twice as coarse a box refined once on the ranks after the split.
+int check_pieces(MPI_Comm comm, int refine = 0) {
   Checks checks;
   const FemSettings settings = read_settings(R"({"E": 155e6, "nu": 0.3, "rho": 1800})");
-  const TetMesh whole = kuhn_box(12, 10, 8, 0.5);
-  MeshPartition part = partition_mesh(comm, rank_of(comm) == 0 ? &whole : nullptr);
+  const bool root = rank_of(comm) == 0;
+  const TetMesh coarse = refine == 0 ? kuhn_box(12, 10, 8, 0.5) : kuhn_box(6, 5, 4, 1.0);
+  MeshPartition part =
+      refine == 0
+          ? partition_mesh(comm, root ? &coarse : nullptr)
+          : refine_partition(comm, partition_mesh(comm, root ? &coarse : nullptr, true), refine);
+  const TetMesh whole = refine == 0 ? coarse : refined_whole(coarse, refine);
   const std::vector<BoundaryNode> mine = part_boundary(part, settings, box_footprints());
   check_boundary(comm, part, whole, settings, mine, checks);
   check_weights(comm, part, whole, checks);
@@ -387,6 +418,9 @@ int main(int argc, char** argv) {
       std::printf("fem_partition_check: FAILED the same mesh split twice alike\n");
     failed += any;
     failed += check_pieces(MPI_COMM_WORLD);
+    for (int levels = 1; levels <= 2; ++levels)
+      failed += check(MPI_COMM_WORLD, StepPrecision::kSingle, second, levels);
+    failed += check_pieces(MPI_COMM_WORLD, 1);
   }
   MPI_Finalize();  // (the session's PETSc is left to the process's end: petsc_session.hpp)
   return failed == 0 ? 0 : 1;

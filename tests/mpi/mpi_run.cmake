@@ -46,6 +46,15 @@
 #   fem_whole_operator_refused_on_ranks  the monolithic coupler and `rumble stability` on 2
 #                                ranks: the linear matrices need the whole operator, refused at
 #                                validation (exit 1, before meshing) naming the pointer and fix
+#   fem_refined_on_N_ranks       fem_small.json with mesh.refine 1 without mpirun and on N ranks:
+#                                rank 0 says it holds gmsh's coarse mesh only and each rank
+#                                refined its part after the split; the CSVs as printed and the
+#                                fields to 1e-12 of their largest value, as fem_same_on_N_ranks
+#   fem_refined_gamg_statics_on_3_ranks  the same on 3 ranks with statics.solver gamg: GAMG on
+#                                the refined parts (as above the factor limit), fields to 1e-10
+#   fem_refined_whole_mesh_refused_on_ranks  with mesh.refine 1 under mpirun: mesh.export refused
+#                                with the params (exit 1), `rumble mesh`'s whole .vtu refused,
+#                                each naming the fix
 set(mpirun ${MPIEXEC} --oversubscribe)
 set(scenario ${SOURCE_DIR}/split_dashpot.json)
 file(REMOVE_RECURSE ${WORK_DIR})
@@ -196,6 +205,35 @@ function(fem_case)
         message(FATAL_ERROR "${f} differs between two runs on ${ranks} ranks")
       endif()
     endforeach()
+  elseif(CASE MATCHES "^fem_refined_on_([0-9])_ranks$")
+    set(ranks ${CMAKE_MATCH_1})
+    list(APPEND fem_csvs interface)
+    fem_runs(${ranks} 1e-12 --set /soil/params/mesh/refine=1)
+    expect_match("${fem_many_out}" "rank 0 holds gmsh's coarse mesh of [0-9.e+]+ nodes, [0-9.e+]+ tetrahedra only; each rank refines its part 1 times after the split")
+    expect_match("${fem_many_out}" "rank 0 split the coarse mesh of [0-9]+ nodes only, and each rank refined its part 1 times after the split \\(mesh.refine\\): [0-9]+ nodes in all")
+    # (below the factor limit rank 0 factors the static state as one process does)
+    expect_match("${fem_many_out}" "below the factor limit rank 0 refines the whole coarse mesh too")
+  elseif(CASE STREQUAL "fem_refined_gamg_statics_on_3_ranks")
+    list(APPEND fem_csvs interface)
+    fem_runs(3 1e-10 --set /soil/params/mesh/refine=1 --set /soil/params/statics/solver=gamg)
+    expect_match("${fem_many_out}" "each rank refined its part 1 times after the split")
+    expect_match("${fem_many_out}" "static solves by PETSc's CG with GAMG on 3 ranks")
+    if(fem_many_out MATCHES "rank 0 refines the whole coarse mesh")
+      message(FATAL_ERROR "with GAMG on the ranks rank 0 refined the whole mesh:\n${fem_many_out}")
+    endif()
+  elseif(CASE STREQUAL "fem_refined_whole_mesh_refused_on_ranks")
+    rumble_run(out code ${mpirun} -n 2 ${RUMBLE} run ${fem} --output ${WORK_DIR}/refused
+               --set /soil/params/mesh/refine=1 --set /soil/params/mesh/export=m.msh)
+    if(NOT code EQUAL 1 OR out MATCHES "fem: a mesh of about")
+      message(FATAL_ERROR "expected exit code 1 (params refused), got ${code}:\n${out}")
+    endif()
+    expect_match("${out}" "params/mesh/export: with mesh.refine 1 under mpirun no rank holds the refined mesh whole .*export it without mpirun .*got \"m.msh\"")
+    rumble_run(out code ${mpirun} -n 2 ${RUMBLE} mesh ${fem} --output ${WORK_DIR}/mesh
+               --set /soil/params/mesh/refine=1)
+    if(code EQUAL 0)
+      message(FATAL_ERROR "expected `rumble mesh` under mpirun with mesh.refine 1 to fail:\n${out}")
+    endif()
+    expect_match("${out}" "a .vtu of the whole mesh \\([^)]*mesh.vtu\\) under mpirun with mesh.refine 1: no rank holds the refined mesh whole.*run `rumble mesh` without mpirun")
   elseif(CASE STREQUAL "fem_gamg_statics_on_3_ranks")
     # statics.solver gamg: one process factors (below the factor limit), the ranks solve by
     # GAMG over their parts to 1e-12 of the load: whole runs within 1e-10 (the issue's bound).

@@ -5,8 +5,9 @@
 // blocks, footprint weights, far field rows, receivers, and the stable step by Lanczos over the
 // ranks), and the explicit steps run on the shares, their halos exchanged by PETSc. Rank 0 reads
 // the footprints' motion and the receivers' samples, gathered in rank order, and keeps the whole
-// mesh (for the receivers' resolution), not the whole operator; each rank writes its piece of a
-// field snapshot (distributed/field_pieces.hpp).
+// mesh, not the whole operator; each rank writes its piece of a field snapshot
+// (distributed/field_pieces.hpp). With mesh.refine rank 0 meshes and splits the coarse mesh only
+// and each rank refines its part after the split (distributed/refined_partition.hpp).
 //
 // The static state: GAMG on the ranks (distributed_statics.hpp) above the factor limit or with
 // statics.solver gamg; below the limit rank 0 factors the whole (small) operator as one process
@@ -21,6 +22,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -32,6 +34,9 @@
 #include "fem_soil.hpp"
 #include "frequency/resolved_band.hpp"
 #include "mesh/mesh_generator.hpp"
+#include "mesh/mesh_memory.hpp"
+#include "mesh/node_order.hpp"
+#include "mesh/numbered_refinement.hpp"
 #include "mesh/track_region.hpp"
 #include "output/pvtu_writer.hpp"
 #include "output/vtu_writer.hpp"
@@ -85,6 +90,13 @@ void FemSoil::refuse_on_many_ranks() const {
            "local time stepping runs on one process only for now; set local_steps 1 under "
            "mpirun, or run without mpirun, got " +
                std::to_string(settings_.local_steps));
+  if (refine_on_ranks() > 0 && !settings_.mesh.export_file.empty())
+    refuse("mesh/export",
+           "with mesh.refine " + std::to_string(refine_on_ranks()) +
+               " under mpirun no rank holds the refined mesh whole (each refines its part after "
+               "the split); export it without mpirun (`rumble mesh`), or drop mesh.export under "
+               "mpirun, got \"" +
+               settings_.mesh.export_file + "\"");
 }
 
 void FemSoil::accept_layout_distributed(const std::vector<rumble::Footprint>& footprints) {
@@ -93,6 +105,7 @@ void FemSoil::accept_layout_distributed(const std::vector<rumble::Footprint>& fo
   footprints_ = footprints;
   const std::vector<rumble::fem::NodeShare> machines = rumble::fem::node_shares(d.comm());
   free_whole_on_root();  // (a previous layout's)
+  whole_numbers_.clear();
   peak_estimate_ = 0.0;
   rumble::fem::on_root(d.comm(), [&] {
     const auto refuse_count = [&](double nodes, const char* what, const char* planned) {
@@ -112,7 +125,7 @@ void FemSoil::accept_layout_distributed(const std::vector<rumble::Footprint>& fo
     // rank_plan.hpp): before meshing from the plan, again from the mesh.
     const auto check_memory = [&](double nodes, const char* source) {
       const rumble::fem::RankPlan plan =
-          rumble::fem::plan_ranks(nodes, d.ranks(), settings_.gamg_statics);
+          rumble::fem::plan_ranks(nodes, d.ranks(), settings_.gamg_statics, refine_on_ranks());
       host_.info(rumble::fem::describe(plan, source));
       rumble::fem::check_node_memory(plan, machines, settings_.mesh.f_max);
     };
@@ -121,15 +134,20 @@ void FemSoil::accept_layout_distributed(const std::vector<rumble::Footprint>& fo
       refuse_count(planned, "a mesh of about", " (planned)");
       check_memory(planned, "the plan's estimate");
     }
-    mesh_here(footprints);
-    refuse_count(static_cast<double>(mesh_.node_count()), "the mesh's", "");
-    check_memory(static_cast<double>(mesh_.node_count()), "the mesh");
+    mesh_here(footprints);  // (with mesh.refine on the ranks: gmsh's coarse mesh)
+    const double nodes =
+        refine_on_ranks() > 0 ? refined_node_count() : static_cast<double>(mesh_.node_count());
+    refuse_count(nodes, "the mesh's", "");
+    check_memory(nodes, "the mesh");
   });
-  d.lay_out(d.root() ? &mesh_ : nullptr, settings_, footprints, host_.threads());
+  d.lay_out(d.root() ? &mesh_ : nullptr, settings_, footprints, host_.threads(), refine_on_ranks());
   statics_on_root_ =
       !settings_.gamg_statics && d.whole_dofs() <= rumble::fem::StaticSolver::kFactorLimit;
   if (statics_on_root_)  // (the whole operator for the factor: small below its limit)
-    rumble::fem::on_root(d.comm(), [&] { build_here(footprints, 0.0, start); });
+    rumble::fem::on_root(d.comm(), [&] {
+      if (d.refined() > 0) refine_whole_on_root();
+      build_here(footprints, 0.0, start);
+    });
   else if (!settings_.gamg_statics && d.root())  // (the soil's multigrid runs on one process)
     host_.info("fem: statics.solver \"multigrid\" runs on one process; on " +
                std::to_string(d.ranks()) +
@@ -140,6 +158,27 @@ void FemSoil::accept_layout_distributed(const std::vector<rumble::Footprint>& fo
   force_last_.assign(footprints.size(), 0.0);
   const std::string summary = d.summary();
   if (d.root()) host_.info(summary);
+}
+
+double FemSoil::refined_node_count() const {
+  return static_cast<double>(
+      rumble::fem::refined_counts(rumble::fem::name_entities(mesh_), refine_on_ranks()).nodes);
+}
+
+void FemSoil::refine_whole_on_root() {
+  using namespace rumble::fem;
+  NumberedRefinement fine = refine_numbered(mesh_, name_entities(mesh_), refine_on_ranks());
+  const std::vector<std::int32_t> order =
+      numbered_spatial_order(fine.mesh.nodes, fine.number, fine.mesh.nodes.rowwise().minCoeff(),
+                             fine.mesh.nodes.rowwise().maxCoeff());
+  renumber_nodes(fine.mesh, order);  // (refine_here's mesh, node for node)
+  whole_numbers_.resize(order.size());
+  for (std::size_t k = 0; k < order.size(); ++k)
+    whole_numbers_[k] = static_cast<std::int32_t>(fine.number[order[k]]);
+  mesh_ = std::move(fine.mesh);
+  host_.info("fem: below the factor limit rank 0 refines the whole coarse mesh too (" +
+             format(static_cast<double>(mesh_.dof_count())) +
+             " DOFs), for the static state's factor as one process solves it");
 }
 
 void FemSoil::free_whole_on_root() {
@@ -177,7 +216,14 @@ void FemSoil::initialize_distributed(double t0, const double* static_force, doub
       for (std::size_t j = 0; j < footprints_.size(); ++j)
         static_average_[j] = average(j, u_static_);
     });
-    d.set_static(d.root() ? &u_static_ : nullptr);
+    Eigen::VectorXd numbered;  // (rank 0's whole refined mesh: in the ranks' numbers)
+    if (d.root() && !whole_numbers_.empty()) {
+      numbered.resize(u_static_.size());
+      for (std::size_t k = 0; k < whole_numbers_.size(); ++k)
+        numbered.segment<3>(3 * static_cast<Eigen::Index>(whole_numbers_[k])) =
+            u_static_.segment<3>(3 * static_cast<Eigen::Index>(k));
+    }
+    d.set_static(d.root() ? (whole_numbers_.empty() ? &u_static_ : &numbered) : nullptr);
   }
   ExplicitState& s = d.state();
   s.w.setZero();
@@ -303,13 +349,20 @@ void FemSoil::motion_distributed(double* u, double* v) const {
 void FemSoil::set_probes_distributed(const std::vector<rumble::Probe>& probes,
                                      double sample_interval) {
   rumble::fem::DistributedSoil& d = *distributed_;
-  rumble::fem::on_root(d.comm(), [&] {  // (the resolution along the path: the whole mesh's)
-    std::vector<Eigen::Vector3d> points;
-    for (const rumble::Probe& p : probes) points.emplace_back(p.x, p.y, p.depth);
-    probe_resolution_ = rumble::fem::path_resolved_frequency(
-        mesh_, rumble::fem::TrackRegion::of(footprints_), points, rayleigh_speed(),
-        settings_.mesh.elements_per_wavelength);
-  });
+  // The resolution along each path: the largest tetrahedron on it over the ranks' parts, the
+  // lowest frequency of those found (0: none on a rank's part), the whole mesh's exactly.
+  std::vector<Eigen::Vector3d> points;
+  for (const rumble::Probe& p : probes) points.emplace_back(p.x, p.y, p.depth);
+  std::vector<double> mine = rumble::fem::path_resolved_frequency(
+      d.partition().mesh, rumble::fem::TrackRegion::of(footprints_), points, rayleigh_speed(),
+      settings_.mesh.elements_per_wavelength);
+  for (double& f : mine)
+    if (f == 0.0) f = std::numeric_limits<double>::infinity();
+  probe_resolution_.assign(probes.size(), 0.0);
+  MPI_Reduce(mine.data(), probe_resolution_.data(), static_cast<int>(mine.size()), MPI_DOUBLE,
+             MPI_MIN, 0, d.comm());
+  for (double& f : probe_resolution_)
+    if (std::isinf(f)) f = 0.0;
   d.set_probes(probes);  // (each receiver placed and sampled by the rank whose part holds it)
   probes_.assign(probes.size(), {});
   row_.assign(probes.size() * RUMBLE_PROBE_VALUES, 0.0);
@@ -323,6 +376,14 @@ void FemSoil::write_fields_distributed(double t, const std::string& path) {
     rumble::fem::on_root(d.comm(), [&] { export_if_due(); });
     return rumble::fem::write_field_pieces(d, t, path);
   }
+  if (d.refined() > 0)  // (every rank alike: before any collective call)
+    throw std::invalid_argument(
+        "fem: a .vtu of the whole mesh (" + path + ") under mpirun with mesh.refine " +
+        std::to_string(d.refined()) +
+        ": no rank holds the refined mesh whole (each refined its part after the split); run "
+        "`rumble mesh` without mpirun, or set mesh.refine 0 under mpirun (a run's snapshots "
+        "under mpirun, .pvtu pieces written by each rank, need no whole mesh; docs/fem-soil.md "
+        "§8)");
   // A .vtu asked of many ranks (`rumble mesh` under mpirun): gathered on rank 0, as one file.
   const Eigen::Index n = d.root() ? mesh_.dof_count() : 0;
   Eigen::VectorXd u = Eigen::VectorXd::Zero(n), w = u, v = u;

@@ -23,7 +23,7 @@
 #include "mesh/mesh_generator.hpp"
 #include "mesh/mesh_memory.hpp"
 #include "mesh/node_order.hpp"
-#include "mesh/uniform_refinement.hpp"
+#include "mesh/numbered_refinement.hpp"
 #include "operator/elasticity.hpp"
 #include "operator/footprint_loads.hpp"
 #include "statics/static_solver.hpp"
@@ -59,7 +59,15 @@ void FemSoil::mesh_here(const std::vector<rumble::Footprint>& footprints) {
                     : std::string()));
     report_ranks(plan_.estimated_nodes, "the plan's estimate");
     mesh_ = cached_or_new_mesh();
-    if (plan_.refine > 0) refine_here(footprints);
+    if (plan_.refine > 0 && !distributed_) refine_here(footprints);
+    if (plan_.refine > 0 && distributed_) {
+      host_.info("fem: rank 0 holds gmsh's coarse mesh of " +
+                 format(static_cast<double>(mesh_.node_count())) + " nodes, " +
+                 format(static_cast<double>(mesh_.tets.size())) +
+                 " tetrahedra only; each rank refines its part " + std::to_string(plan_.refine) +
+                 " times after the split (mesh.refine, docs/fem-soil.md §8)");
+      warn_if_coarse_near_track(footprints);
+    }
     export_due_ = !settings_.mesh.export_file.empty();
     export_if_due();
   } else {
@@ -152,12 +160,21 @@ void FemSoil::refine_here(const std::vector<rumble::Footprint>& footprints) {
   using namespace rumble::fem;
   const std::size_t coarse_tets = mesh_.tets.size();
   const Eigen::Index coarse_nodes = mesh_.node_count();
-  mesh_ = refine_uniformly(mesh_, plan_.refine);
-  order_nodes_spatially(mesh_);
+  // (refine_uniformly's mesh, its nodes in Morton order, ties by their numbers: the order the
+  // ranks reproduce, docs/fem-soil.md §8)
+  NumberedRefinement fine = refine_numbered(mesh_, name_entities(mesh_), plan_.refine);
+  renumber_nodes(fine.mesh, numbered_spatial_order(fine.mesh.nodes, fine.number,
+                                                   fine.mesh.nodes.rowwise().minCoeff(),
+                                                   fine.mesh.nodes.rowwise().maxCoeff()));
+  mesh_ = std::move(fine.mesh);
   host_.info("fem: gmsh's mesh of " + format(static_cast<double>(coarse_nodes)) + " nodes, " +
              format(static_cast<double>(coarse_tets)) + " tetrahedra refined " +
              std::to_string(plan_.refine) +
              " times (mesh.refine): " + format(static_cast<double>(mesh_.dof_count())) + " DOFs");
+  warn_if_coarse_near_track(footprints);
+}
+
+void FemSoil::warn_if_coarse_near_track(const std::vector<rumble::Footprint>& footprints) const {
   double narrowest = std::numeric_limits<double>::infinity();
   for (const rumble::Footprint& f : footprints)
     narrowest = std::min({narrowest, f.width, f.length});
@@ -196,8 +213,8 @@ rumble::fem::TetMesh FemSoil::cached_or_new_mesh() const {
 void FemSoil::report_ranks(double nodes, const char* source) const {
   const int ranks = rumble::fem::planned_ranks();  // (`rumble mesh --ranks N` on one process)
   if (ranks > 1 && !distributed_)
-    host_.info(rumble::fem::describe(rumble::fem::plan_ranks(nodes, ranks, settings_.gamg_statics),
-                                     source));
+    host_.info(rumble::fem::describe(
+        rumble::fem::plan_ranks(nodes, ranks, settings_.gamg_statics, refine_on_ranks()), source));
 }
 
 void FemSoil::report_split() const {
@@ -211,7 +228,8 @@ void FemSoil::report_split() const {
   host_.info(rumble::fem::describe(
       split, rumble::fem::plan_split(
                  static_cast<double>(split.nodes), ranks, static_cast<double>(split.ghosts),
-                 static_cast<double>(split.largest()), settings_.gamg_statics)));
+                 static_cast<double>(split.largest()), settings_.gamg_statics,
+                 refine_on_ranks())));
 }
 
 void FemSoil::hint_fast_meshing() const {

@@ -171,6 +171,16 @@ class FemSoil final : public rumble::Soil {
 
   rumble::fem::TetMesh cached_or_new_mesh() const;
   void refine_here(const std::vector<rumble::Footprint>& footprints);  // mesh.refine here
+  /// mesh.refine: warns when gmsh's coarse size near the track is wider than a footprint.
+  void warn_if_coarse_near_track(const std::vector<rumble::Footprint>& footprints) const;
+  /// mesh.refine on many ranks: the levels each rank refines its part by after the split (0:
+  /// none, or a mesh.file).
+  int refine_on_ranks() const { return settings_.mesh.file.empty() ? settings_.mesh.refine : 0; }
+  /// The refined mesh's node count, from rank 0's coarse mesh (numbered_refinement.hpp).
+  double refined_node_count() const;
+  /// Rank 0, below the factor limit with mesh.refine on the ranks: the whole coarse mesh refined
+  /// as one process refines it (for the static factor), and each node's number on the ranks.
+  void refine_whole_on_root();
 
   /// out = B (F(tau) - reference): consistent nodal forces of the footprint pressures [N].
   void footprint_forces(const rumble::Waveform& force, double tau, Eigen::VectorXd& out,
@@ -260,6 +270,8 @@ class FemSoil final : public rumble::Soil {
   // The statics on rank 0's whole mesh (a CHOLMOD factor, below its limit without statics.solver
   // gamg, as one process solves them); else GAMG on the ranks.
   bool statics_on_root_ = false;
+  // Rank 0's whole refined mesh (refine_whole_on_root): per node, its number on the ranks.
+  std::vector<std::int32_t> whole_numbers_;
   // RUMBLE_FEM_FAIL_RANK_AT ("rank:seconds", a test's): the rank whose steps fail from then on.
   int fail_rank_ = -1;
   double fail_at_ = 0.0;

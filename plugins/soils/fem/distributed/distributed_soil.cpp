@@ -10,6 +10,7 @@
 #include "distributed/distributed_operator.hpp"
 #include "distributed/part_stiffness.hpp"
 #include "distributed/rank_agreement.hpp"
+#include "distributed/refined_partition.hpp"
 #include "memory_model.hpp"
 #include "mesh/mesh_memory.hpp"
 #include "operator/elasticity.hpp"
@@ -22,10 +23,21 @@ DistributedSoil::DistributedSoil(MPI_Comm comm) : petsc_(PetscSession::get()), c
 }
 
 void DistributedSoil::lay_out(const TetMesh* mesh, const FemSettings& settings,
-                              const std::vector<Footprint>& footprints, unsigned threads) {
+                              const std::vector<Footprint>& footprints, unsigned threads,
+                              int refine) {
   statics_.reset();  // (they refer to the old partition)
   step_.reset();
-  part_ = partition_mesh(comm_, mesh);
+  part_ = {};
+  refine_ = refine;
+  if (refine > 0) {
+    const MeshPartition coarse = partition_mesh(comm_, mesh, true);
+    coarse_nodes_ = coarse.global_nodes;
+    part_ = refine_partition(comm_, coarse, refine);
+  } else {
+    part_ = partition_mesh(comm_, mesh);
+    coarse_nodes_ = part_.global_nodes;
+  }
+  split_peak_ = resident_memory().peak;
   build_step(settings, footprints, threads);
   state_ = step_->rest_state();
   const Eigen::Index n = step_->dofs();
@@ -212,10 +224,16 @@ std::string DistributedSoil::summary() const {
     << static_cast<double>(range(3).second) * 48.0 / 1024.0
     << " KiB exchanged per step (each ghost's product summed to its owner and copied back); "
     << static_cast<double>(most_bytes) / 1048576.0
-    << " MiB of operator and step on the largest rank; each rank built its share from its part; "
-       "stable step "
-    << step_->stable_step() << " s (" << step_->eigen_iterations()
-    << " Lanczos iterations over the ranks)";
+    << " MiB of operator and step on the largest rank; ";
+  if (refine_ > 0)
+    m << "rank 0 split the coarse mesh of " << coarse_nodes_
+      << " nodes only, and each rank refined its part " << refine_
+      << " times after the split (mesh.refine): " << part_.global_nodes << " nodes in all; ";
+  if (split_peak_ > 0.0)  // (0: no /proc)
+    m << "rank 0's peak resident memory through the meshing and the split " << split_peak_ / 1e9
+      << " GB (VmHWM); ";
+  m << "each rank built its share from its part; stable step " << step_->stable_step() << " s ("
+    << step_->eigen_iterations() << " Lanczos iterations over the ranks)";
   return m.str();
 }
 

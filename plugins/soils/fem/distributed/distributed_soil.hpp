@@ -2,9 +2,10 @@
 // docs/decisions/0012-distributed-soil.md; docs/fem-soil.md §8, "On many ranks"): its part of the
 // mesh, its operator and explicit step, its state, the footprints' weights, the far field's
 // rows and the receivers on its nodes. The plugin makes every call on every rank with the same
-// inputs (the host mirrors them). Rank 0 alone holds the whole mesh, which it hands out at the
-// layout; every rank then builds its share from its own part (part_pieces.hpp), the stable step
-// by Lanczos over the ranks. Every call is collective.
+// inputs (the host mirrors them). Rank 0 alone holds the whole mesh (with mesh.refine on the
+// ranks the coarse mesh, each rank refining its part: refined_partition.hpp), which it hands out
+// at the layout; every rank then builds its share from its own part (part_pieces.hpp), the stable
+// step by Lanczos over the ranks. Every call is collective.
 #pragma once
 
 #define OMPI_SKIP_MPICXX 1
@@ -44,11 +45,15 @@ class DistributedSoil {
   /// Splits rank 0's mesh (mesh_partition.hpp; nullptr on the other ranks) and builds this
   /// rank's share from its part alone: its operator, boundary blocks and fixed nodes, the
   /// explicit step with the stable step from Lanczos over the ranks (the same on every rank),
-  /// and the footprints' weights on its nodes. threads: the products'.
+  /// and the footprints' weights on its nodes. threads: the products'. refine > 0 (mesh.refine
+  /// on the ranks): rank 0's mesh is the coarse mesh, split as it is, and each rank refines its
+  /// part `refine` times after the split (refined_partition.hpp).
   void lay_out(const TetMesh* mesh, const FemSettings& settings,
-               const std::vector<Footprint>& footprints, unsigned threads);
+               const std::vector<Footprint>& footprints, unsigned threads, int refine = 0);
   /// The whole mesh's DOFs.
   std::int64_t whole_dofs() const { return 3 * part_.global_nodes; }
+  /// The levels each rank refined its part by (0: rank 0's mesh split as it is).
+  int refined() const { return refine_; }
   /// The far field's rows of this rank's boundary nodes (StaticFarField on its part), where the
   /// settings take one; its nodes take force jumps too. Returns the boundary nodes' mean
   /// distance from the footprints' centre over the whole mesh [m] (0: no far field).
@@ -118,6 +123,9 @@ class DistributedSoil {
   MPI_Comm comm_;
   int rank_ = 0, ranks_ = 1;
   MeshPartition part_;
+  double split_peak_ = 0.0;  // bytes: this rank's VmHWM once split (rank 0's: meshing included)
+  int refine_ = 0;           // mesh.refine on the ranks
+  std::int64_t coarse_nodes_ = 0;  // rank 0's mesh, split
   std::optional<ExplicitSolver> step_;
   ExplicitState state_;
   Eigen::VectorXd u_static_, f_, df_;

@@ -8,6 +8,7 @@
 #include <array>
 #include <cstdlib>
 #include <map>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -21,9 +22,11 @@ namespace {
 // What travels with each point of the DMPlex from rank 0 to the rank that receives it: its
 // number in rank 0's DMPlex and, for a tetrahedron, its nodes in rank 0's mesh, its layer and
 // its faces on the surfaces (face_codes) with its ground face's index among rank 0's ground faces
-// (-1: none; a tetrahedron has at most one face on the plane z = 0). The DMPlex of rank 0's mesh
-// numbers its tetrahedra first (0 .. T - 1), then its nodes (T + g).
+// (-1: none; a tetrahedron has at most one face on the plane z = 0), and, when the ranks refine
+// their parts (mesh/numbered_refinement.hpp), its 6 edges' and 4 faces' numbers in rank 0's mesh.
+// The DMPlex of rank 0's mesh numbers its tetrahedra first (0 .. T - 1), then its nodes (T + g).
 constexpr int kPointInts = 8;  // point, 4 nodes, layer, surface faces, ground face
+constexpr int kNamedPointInts = kPointInts + 10;  // and the edges' and faces' numbers
 
 // A tetrahedron's faces on the ground or the truncation surface in one int, a byte per face
 // (at most 4): the surface (1 ground, 2 truncation) in bits 6-7 and the face's three nodes as
@@ -90,7 +93,8 @@ void add_faces(unsigned codes, int ground, const Tetrahedron& t, MeshPartition& 
 }
 
 struct PlexPoints {
-  std::vector<int> ints;       // kPointInts per point of the distributed DMPlex
+  int width = kPointInts;      // ints per point
+  std::vector<int> ints;       // `width` per point of the distributed DMPlex
   std::vector<double> coords;  // 3 per point (a node's coordinates, 0 for a tetrahedron)
 };
 
@@ -114,29 +118,34 @@ DM whole_plex(MPI_Comm comm, const TetMesh* whole) {
 }
 
 // Each point's data on rank 0, sent along the migration star forest to where DMPlex put it.
-PlexPoints migrate_points(PetscSF migration, const TetMesh* whole, PetscInt points) {
+PlexPoints migrate_points(PetscSF migration, const TetMesh* whole, const CoarseNames* names,
+                          int width, PetscInt points) {
   std::vector<int> root_ints;
   std::vector<double> root_coords;
   if (whole != nullptr) {
     const auto tets = static_cast<std::int64_t>(whole->tets.size());
     const std::int64_t all = tets + whole->node_count();
-    root_ints.assign(static_cast<std::size_t>(kPointInts * all), -1);
+    root_ints.assign(static_cast<std::size_t>(width * all), -1);
     root_coords.assign(static_cast<std::size_t>(3 * all), 0.0);
-    for (std::int64_t p = 0; p < all; ++p) root_ints[kPointInts * p] = static_cast<int>(p);
+    for (std::int64_t p = 0; p < all; ++p) root_ints[width * p] = static_cast<int>(p);
     const auto [faces, ground] = face_codes(*whole);
     for (std::int64_t e = 0; e < tets; ++e) {
-      for (int a = 0; a < 4; ++a) root_ints[kPointInts * e + 1 + a] = whole->tets[e][a];
-      root_ints[kPointInts * e + 5] = whole->layer[e];
-      root_ints[kPointInts * e + 6] = static_cast<int>(faces[e]);
-      root_ints[kPointInts * e + 7] = ground[e];
+      int* cell = root_ints.data() + width * e;
+      for (int a = 0; a < 4; ++a) cell[1 + a] = whole->tets[e][a];
+      cell[5] = whole->layer[e];
+      cell[6] = static_cast<int>(faces[e]);
+      cell[7] = ground[e];
+      if (names == nullptr) continue;
+      std::copy_n(names->edge[e].begin(), 6, cell + kPointInts);
+      std::copy_n(names->face[e].begin(), 4, cell + kPointInts + 6);
     }
     for (std::int64_t g = 0; g < whole->node_count(); ++g)
       for (int c = 0; c < 3; ++c) root_coords[3 * (tets + g) + c] = whole->nodes(c, g);
   }
-  PlexPoints out{std::vector<int>(static_cast<std::size_t>(kPointInts * points), -1),
+  PlexPoints out{width, std::vector<int>(static_cast<std::size_t>(width * points), -1),
                  std::vector<double>(static_cast<std::size_t>(3 * points), 0.0)};
   MPI_Datatype ints = MPI_DATATYPE_NULL, coords = MPI_DATATYPE_NULL;
-  MPI_Type_contiguous(kPointInts, MPI_INT, &ints);
+  MPI_Type_contiguous(width, MPI_INT, &ints);
   MPI_Type_contiguous(3, MPI_DOUBLE, &coords);
   MPI_Type_commit(&ints);
   MPI_Type_commit(&coords);
@@ -173,7 +182,7 @@ std::vector<PartNode> part_nodes(DM dist, const PlexPoints& data, std::int64_t t
   std::vector<PartNode> nodes;
   std::vector<std::int32_t> node_of(static_cast<std::size_t>(end - start), -1);
   for (PetscInt p = start; p < end; ++p) {
-    const int original = data.ints[kPointInts * (p - start)];
+    const int original = data.ints[data.width * (p - start)];
     if (original < tets) continue;  // a tetrahedron
     node_of[p - start] = static_cast<std::int32_t>(nodes.size());
     nodes.push_back({p, static_cast<std::int32_t>(original - tets), rank, p, false});
@@ -229,11 +238,11 @@ std::vector<ForestLeaf> halo_leaves(DM dist, const std::vector<PartNode>& nodes,
 // The part's tetrahedra in rank 0's order, in local node numbers, and its nodes' coordinates.
 void part_mesh(const PlexPoints& data, std::int64_t tets, MeshPartition& part,
                const std::vector<PartNode>& nodes, const std::vector<std::int32_t>& node_of_point) {
-  std::vector<std::array<int, kPointInts>> cells;
-  for (std::size_t p = 0; p < data.ints.size() / kPointInts; ++p)
-    if (data.ints[kPointInts * p] < tets) {
-      std::array<int, kPointInts> c{};
-      std::copy_n(data.ints.data() + kPointInts * p, kPointInts, c.begin());
+  std::vector<std::array<int, kNamedPointInts>> cells;
+  for (std::size_t p = 0; p < data.ints.size() / data.width; ++p)
+    if (data.ints[data.width * p] < tets) {
+      std::array<int, kNamedPointInts> c{};
+      std::copy_n(data.ints.data() + data.width * p, data.width, c.begin());
       cells.push_back(c);
     }
   std::sort(cells.begin(), cells.end());
@@ -250,6 +259,11 @@ void part_mesh(const PlexPoints& data, std::int64_t tets, MeshPartition& part,
     part.mesh.layer.push_back(static_cast<std::uint16_t>(c[5]));
     part.tet_global.push_back(c[0]);
     add_faces(static_cast<unsigned>(c[6]), c[7], t, part);
+    if (data.width == kPointInts) continue;
+    std::array<std::int32_t, 6>& edges = part.names.edge.emplace_back();
+    std::array<std::int32_t, 4>& faces = part.names.face.emplace_back();
+    std::copy_n(c.begin() + kPointInts, 6, edges.begin());
+    std::copy_n(c.begin() + kPointInts + 6, 4, faces.begin());
   }
 }
 
@@ -289,13 +303,16 @@ const char* partitioner_name() {
   return "PT-Scotch through PETSc's DMPlexDistribute";
 }
 
-MeshPartition partition_mesh(MPI_Comm comm, const TetMesh* whole) {
+MeshPartition partition_mesh(MPI_Comm comm, const TetMesh* whole, bool named) {
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
   MeshPartition part;
-  long long counts[2] = {whole ? static_cast<long long>(whole->node_count()) : 0,
-                         whole ? static_cast<long long>(whole->tets.size()) : 0};
-  MPI_Bcast(counts, 2, MPI_LONG_LONG, 0, comm);
+  std::optional<CoarseNames> names;  // (rank 0's, when named)
+  if (named && whole != nullptr) names = name_entities(*whole);
+  long long counts[4] = {whole ? static_cast<long long>(whole->node_count()) : 0,
+                         whole ? static_cast<long long>(whole->tets.size()) : 0,
+                         names ? names->edges : 0, names ? names->faces : 0};
+  MPI_Bcast(counts, 4, MPI_LONG_LONG, 0, comm);
   part.global_nodes = counts[0];
   part.global_tetrahedra = counts[1];
   DM dm = whole_plex(comm, whole);
@@ -311,7 +328,9 @@ MeshPartition partition_mesh(MPI_Comm comm, const TetMesh* whole) {
   DMDestroy(&dm);
   PetscInt start = 0, end = 0;
   petsc_check(DMPlexGetChart(dist, &start, &end), "DMPlexGetChart");
-  const PlexPoints data = migrate_points(migration, whole, end - start);
+  const PlexPoints data = migrate_points(migration, whole, names ? &*names : nullptr,
+                                         named ? kNamedPointInts : kPointInts, end - start);
+  names.reset();
   PetscSFDestroy(&migration);
   const std::vector<PartNode> nodes = part_nodes(dist, data, part.global_tetrahedra, rank);
   std::vector<std::int32_t> node_of_point(nodes.size());
@@ -326,6 +345,15 @@ MeshPartition partition_mesh(MPI_Comm comm, const TetMesh* whole) {
   std::sort(part.by_global.begin(), part.by_global.end(),
             [&](std::int32_t a, std::int32_t b) { return part.global[a] < part.global[b]; });
   part_mesh(data, part.global_tetrahedra, part, nodes, node_of_point);
+  if (named)
+    part.names = {.node = part.global,
+                  .tet = part.tet_global,
+                  .edge = std::move(part.names.edge),
+                  .face = std::move(part.names.face),
+                  .nodes = counts[0],
+                  .edges = counts[2],
+                  .faces = counts[3],
+                  .tets = counts[1]};
   part.halo = std::make_unique<StarForest>(comm, part.shared, halo_leaves(dist, nodes, rank));
   DMDestroy(&dist);
   std::vector<ForestLeaf> from_root(nodes.size());

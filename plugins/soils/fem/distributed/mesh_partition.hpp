@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "distributed/star_forest.hpp"
+#include "mesh/numbered_refinement.hpp"
 #include "mesh/tet_mesh.hpp"
 
 namespace rumble::fem {
@@ -47,15 +48,27 @@ struct MeshPartition {
   std::int32_t local_of(std::int32_t g) const;
 
   std::vector<std::int32_t> by_global;  // the local nodes sorted by their global number
+  /// Refined on the ranks (refined_partition.hpp): per local node, its Morton key in the whole
+  /// mesh's box; one process orders the nodes by (key, global). Empty: by global alone.
+  std::vector<std::uint64_t> morton;
+  /// Whether local node i comes before j in one process's node order.
+  bool precedes(std::int32_t i, std::int32_t j) const {
+    if (!morton.empty() && morton[i] != morton[j]) return morton[i] < morton[j];
+    return global[i] < global[j];
+  }
+  /// When the partition was asked to name them (partition_mesh's `named`): the whole mesh's
+  /// numbers of this part's nodes, tetrahedra, edges and faces, for refine_partition.
+  CoarseNames names;
 };
 
 /// The partition's name in the log: which partitioner DMPlex used.
 const char* partitioner_name();
 
-/// Splits `whole` (rank 0's mesh; nullptr on the other ranks) over comm's ranks. Collective.
-/// Throws std::runtime_error on every rank when a rank gets no tetrahedra (naming the counts and
-/// the fix), and when PETSc fails.
-MeshPartition partition_mesh(MPI_Comm comm, const TetMesh* whole);
+/// Splits `whole` (rank 0's mesh; nullptr on the other ranks) over comm's ranks; named: each
+/// tetrahedron's edges and faces numbered on rank 0 (name_entities) travel with it, into
+/// MeshPartition::names. Collective. Throws std::runtime_error on every rank when a rank gets no
+/// tetrahedra (naming the counts and the fix), and when PETSc fails.
+MeshPartition partition_mesh(MPI_Comm comm, const TetMesh* whole, bool named = false);
 
 /// Each tetrahedron's part in a split of `whole` into `parts` parts on this one process, by the
 /// partitioner partition_mesh's DMPlexDistribute uses, on the same graph (the tetrahedra sharing

@@ -104,12 +104,12 @@ Exchange sum_pieces(const Exchange& in) {
   return reply;
 }
 
-// K_ji = K_ij^T for each pair with i before j in rank 0's node order.
+// K_ji = K_ij^T for each pair with i before j in one process's node order.
 void symmetrize(const MeshPartition& part, CsrMatrix& K) {
   for (std::int32_t j = 0; j < part.nodes(); ++j)
     for (std::int64_t q = 0; q < K.degree(j); ++q) {
       const std::int32_t i = K.neighbours(j)[q];
-      if (part.global[i] >= part.global[j]) continue;
+      if (!part.precedes(i, j)) continue;
       const std::int32_t* row = K.neighbours(i);
       const std::int64_t p = std::lower_bound(row, row + K.degree(i), j) - row;
       for (int c = 0; c < 3; ++c)

@@ -27,15 +27,18 @@ void plan_memory(RankPlan& p, bool gamg) {
       on_ranks ? memory::kGamgBytesPerNonzero * memory::kNonzerosPerDof * 3.0 * p.largest_nodes
                : 0.0;
   p.rank_bytes = memory::kProcessBytes + share + share_statics;
-  // Rank 0: its share and the whole mesh (not the operator), or the factor's whole operator.
+  // Rank 0: its share and the whole mesh (not the operator; with mesh.refine on the ranks the
+  // coarse mesh), or the factor's whole operator (below the limit with mesh.refine rank 0
+  // refines the whole mesh for the factor: the operator's bytes per DOF count it).
   const double root_statics =
       on_ranks ? share_statics : memory::kHeldBytesPerDof * whole + memory::factor_bytes(whole);
-  p.root_bytes = memory::kProcessBytes + share + memory::kMeshBytesPerDof * whole + root_statics;
+  p.root_bytes = memory::kProcessBytes + share +
+                 memory::kMeshBytesPerDof * whole / std::pow(8.0, p.refine) + root_statics;
 }
 
 }  // namespace
 
-RankPlan plan_ranks(double nodes, int ranks, bool gamg) {
+RankPlan plan_ranks(double nodes, int ranks, bool gamg, int refine) {
   RankPlan p;
   p.ranks = std::max(1, ranks);
   p.nodes = nodes;
@@ -45,17 +48,20 @@ RankPlan plan_ranks(double nodes, int ranks, bool gamg) {
   }
   p.largest_nodes = (nodes + p.ghosts) / p.ranks;
   p.halo_bytes = kHaloBytesPerGhost * p.ghosts;
+  p.refine = refine;
   plan_memory(p, gamg);
   return p;
 }
 
-RankPlan plan_split(double nodes, int ranks, double ghosts, double largest_nodes, bool gamg) {
+RankPlan plan_split(double nodes, int ranks, double ghosts, double largest_nodes, bool gamg,
+                    int refine) {
   RankPlan p;
   p.ranks = std::max(1, ranks);
   p.nodes = nodes;
   p.ghosts = ghosts;
   p.largest_nodes = largest_nodes;
   p.halo_bytes = kHaloBytesPerGhost * ghosts;
+  p.refine = refine;
   plan_memory(p, gamg);
   return p;
 }
@@ -73,7 +79,9 @@ std::string describe(const RankPlan& p, const std::string& source) {
     << " DOFs, ghosts included); a halo of about " << p.ghosts << " ghost nodes, "
     << p.halo_bytes / 1024.0 << " KiB exchanged per step (" << kHaloBytesPerGhost
     << " B per ghost; a surface-to-volume estimate, not a split); memory at the peak about "
-    << p.root_bytes / 1e9 << " GB on rank 0 (it holds the whole mesh) and " << p.rank_bytes / 1e9
+    << p.root_bytes / 1e9 << " GB on rank 0 (it holds the "
+    << (p.refine > 0 ? "coarse mesh, each rank refining its part" : "whole mesh") << ") and "
+    << p.rank_bytes / 1e9
     << " GB on each other rank (estimates: docs/fem-soil.md, \"Planning the ranks\")";
   return m.str();
 }

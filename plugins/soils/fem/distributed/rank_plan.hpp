@@ -33,15 +33,20 @@ struct RankPlan {
   double halo_bytes = 0.0;     // exchanged per explicit sub-step, all ranks [bytes]
   double root_bytes = 0.0;     // rank 0's peak resident memory [bytes]
   double rank_bytes = 0.0;     // any other rank's [bytes]
+  int refine = 0;              // mesh.refine on the ranks: rank 0 holds the coarse mesh only
 };
 
 /// The plan for a mesh of `nodes` nodes on `ranks` >= 1 ranks; gamg: the statics solved on the
-/// ranks (statics.solver gamg) rather than by rank 0 alone.
-RankPlan plan_ranks(double nodes, int ranks, bool gamg);
+/// ranks (statics.solver gamg) rather than by rank 0 alone; refine: the levels each rank refines
+/// its part by after the split (mesh.refine), rank 0 holding the coarse mesh, 8^-refine of the
+/// whole's nodes and tetrahedra (a refinement into eight has about 8 times the nodes).
+RankPlan plan_ranks(double nodes, int ranks, bool gamg, int refine = 0);
 
 /// The plan for an actual split (split_plan.hpp): its ghosts over all ranks and the largest
-/// rank's nodes, owned and ghost, in place of the estimates; the memory per rank from them.
-RankPlan plan_split(double nodes, int ranks, double ghosts, double largest_nodes, bool gamg);
+/// rank's nodes, owned and ghost, in place of the estimates; the memory per rank from them
+/// (refine as plan_ranks's).
+RankPlan plan_split(double nodes, int ranks, double ghosts, double largest_nodes, bool gamg,
+                    int refine = 0);
 
 /// The ranks `rumble mesh FILE --ranks N` plans for: N from RUMBLE_MESH_RANKS, which that
 /// command sets for the soil it builds on one process (docs/fem-soil.md, "Planning the

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <numeric>
+#include <utility>
 
 namespace rumble::fem {
 
@@ -21,26 +22,51 @@ std::uint64_t spread_bits(std::uint64_t v) {
 
 }  // namespace
 
-void order_nodes_spatially(TetMesh& m, std::vector<Triangle>* more_faces) {
-  const Eigen::Index n = m.node_count();
-  if (n == 0) return;
+std::vector<std::uint64_t> morton_keys(const Eigen::Matrix3Xd& points, const Eigen::Vector3d& min,
+                                       const Eigen::Vector3d& max) {
   // Halved coordinates (exactly: the keys are the same): a mesh file's nodes at +-1e308 made the
   // extent infinite, its scale 0 and 0 x inf a NaN key, no integer (found by the msh fuzz target).
-  const Eigen::Vector3d lo = 0.5 * m.nodes.rowwise().minCoeff(),
-                        hi = 0.5 * m.nodes.rowwise().maxCoeff();
+  const Eigen::Vector3d lo = 0.5 * min, hi = 0.5 * max;
   const double scale = ((1 << 21) - 1) / std::max((hi - lo).maxCoeff(), 1e-300);
-  std::vector<std::uint64_t> key(static_cast<std::size_t>(n));
-  for (Eigen::Index i = 0; i < n; ++i) {
-    const Eigen::Vector3d q = (0.5 * m.nodes.col(i) - lo) * scale;
+  std::vector<std::uint64_t> key(static_cast<std::size_t>(points.cols()));
+  for (Eigen::Index i = 0; i < points.cols(); ++i) {
+    const Eigen::Vector3d q = (0.5 * points.col(i) - lo) * scale;
     key[static_cast<std::size_t>(i)] = spread_bits(static_cast<std::uint64_t>(q.x())) |
                                        spread_bits(static_cast<std::uint64_t>(q.y())) << 1 |
                                        spread_bits(static_cast<std::uint64_t>(q.z())) << 2;
   }
+  return key;
+}
+
+std::vector<std::int32_t> numbered_spatial_order(const Eigen::Matrix3Xd& points,
+                                                 const std::vector<std::int64_t>& number,
+                                                 const Eigen::Vector3d& min,
+                                                 const Eigen::Vector3d& max) {
+  const std::vector<std::uint64_t> key = morton_keys(points, min, max);
+  std::vector<std::int32_t> order(key.size());  // new index -> old
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](std::int32_t a, std::int32_t b) {
+    return key[a] != key[b] ? key[a] < key[b] : number[a] < number[b];
+  });
+  return order;
+}
+
+std::vector<std::int32_t> spatial_order(const Eigen::Matrix3Xd& points) {
+  const Eigen::Index n = points.cols();
   std::vector<std::int32_t> order(static_cast<std::size_t>(n));  // new index -> old
+  if (n == 0) return order;
+  const std::vector<std::uint64_t> key =
+      morton_keys(points, points.rowwise().minCoeff(), points.rowwise().maxCoeff());
   std::iota(order.begin(), order.end(), 0);
   std::stable_sort(order.begin(), order.end(), [&key](std::int32_t a, std::int32_t b) {
     return key[static_cast<std::size_t>(a)] < key[static_cast<std::size_t>(b)];
   });
+  return order;
+}
+
+void renumber_nodes(TetMesh& m, const std::vector<std::int32_t>& order,
+                    std::vector<Triangle>* more_faces) {
+  const Eigen::Index n = m.node_count();
   std::vector<std::int32_t> renamed(static_cast<std::size_t>(n));  // old index -> new
   Eigen::Matrix3Xd nodes(3, n);
   for (Eigen::Index k = 0; k < n; ++k) {
@@ -57,6 +83,11 @@ void order_nodes_spatially(TetMesh& m, std::vector<Triangle>* more_faces) {
   rename(m.ground);
   rename(m.truncation);
   if (more_faces != nullptr) rename(*more_faces);
+}
+
+void order_nodes_spatially(TetMesh& m, std::vector<Triangle>* more_faces) {
+  if (m.node_count() == 0) return;
+  renumber_nodes(m, spatial_order(m.nodes), more_faces);
 }
 
 }  // namespace rumble::fem
