@@ -42,10 +42,12 @@ inline constexpr double kMultigridBytesPerNonzero = 12.2;
 
 /// PETSc's GAMG on many ranks at its peak, beyond what a rank holds after its layout, per nonzero
 /// of the rank's part of K [bytes]: its matrix (AIJ, 12 B per nonzero), the smoothed aggregation's
-/// prolongators and Galerkin products. Fitted to the stiff example at 1.0e6 DOFs on 2 ranks
-/// (docs/fem-soil.md §8: 2.24 GB per rank at the statics; 53 B gave 0.86 of it); unsmoothed
-/// aggregation (PETSC_OPTIONS -fem_statics_pc_gamg_agg_nsmooths 0) needed 1.38 GB there.
-inline constexpr double kGamgBytesPerNonzero = 65.0;
+/// prolongators and Galerkin products, each product's intermediates freed once it is formed
+/// (distributed/distributed_statics.cpp). Fitted to the stiff example at 1.0e6 DOFs on 2 ranks
+/// (docs/fem-soil.md §8: 1.94 GB per rank at the statics, 2.25 GB with the intermediates kept,
+/// for which 65 B was fitted); unsmoothed aggregation (PETSC_OPTIONS
+/// -fem_statics_pc_gamg_agg_nsmooths 0) needed 1.29-1.33 GB there.
+inline constexpr double kGamgBytesPerNonzero = 55.0;
 
 /// The whole mesh's nodes and tetrahedra as rank 0 keeps them on many ranks, per DOF [bytes]:
 /// 24 B per node and 16 B per tetrahedron, about 5.5 tetrahedra per node (docs/fem-soil.md §8,

@@ -2,6 +2,7 @@
 
 #include <petscksp.h>
 
+#include <algorithm>
 #include <chrono>
 #include <sstream>
 #include <stdexcept>
@@ -62,6 +63,80 @@ void add_blocks(Mat m, const SoilOperator& op, const std::vector<PetscInt>& row,
   petsc_check(MatAssemblyEnd(m, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
 }
 
+// PETSc's process-wide options for the span of GAMG's set-up on the ranks (MatPtAP and
+// MatMatMult read them without a prefix), each unless PETSC_OPTIONS gave it, restored after:
+// - "-matptap_via": the session's "rap" (one process's fastest, statics/petsc_session.cpp) is no
+//   algorithm of the ranks' matrices (MPIAIJ's: scalable, nonscalable, allatonce, ...): their
+//   default, scalable, for GAMG's Galerkin products (a "rap" in PETSC_OPTIONS is taken as the
+//   session's);
+// - "-mat_product_clear": each product's intermediates (A P's local rows, P's rows from the
+//   other ranks, ...) freed once it is formed. PETSc keeps them to form the product again from a
+//   changed matrix, which the statics never do: at 1.0e6 DOFs on 2 ranks a rank's peak fell from
+//   2.25 to 1.94 GB, and what it holds through the solves from 2.25 to 1.39 GB, with the same
+//   hierarchy and iterations (docs/fem-soil.md §8).
+class SetUpOptions {
+ public:
+  SetUpOptions() {
+    char via[32] = "";
+    PetscBool set = PETSC_FALSE;
+    petsc_check(PetscOptionsGetString(nullptr, nullptr, "-matptap_via", via, sizeof via, &set),
+                "PetscOptionsGetString");
+    rap_ = set && std::string(via) == "rap";
+    if (rap_)
+      petsc_check(PetscOptionsClearValue(nullptr, "-matptap_via"), "PetscOptionsClearValue");
+    petsc_check(PetscOptionsHasName(nullptr, nullptr, "-mat_product_clear", &set),
+                "PetscOptionsHasName");
+    clear_ = !set;
+    if (clear_)
+      petsc_check(PetscOptionsSetValue(nullptr, "-mat_product_clear", "true"),
+                  "PetscOptionsSetValue");
+  }
+  ~SetUpOptions() {  // (errors ignored: a destructor)
+    if (rap_) PetscOptionsSetValue(nullptr, "-matptap_via", "rap");
+    if (clear_) PetscOptionsClearValue(nullptr, "-mat_product_clear");
+  }
+  SetUpOptions(const SetUpOptions&) = delete;
+  SetUpOptions& operator=(const SetUpOptions&) = delete;
+
+ private:
+  bool rap_ = false, clear_ = false;
+};
+
+// Preallocates m's owned block rows (nodes) from this rank's part: each owned node's blocks in
+// the owned columns and in the others, as its row of K holds them; a shared node's row also
+// gathers the pieces of the ranks holding a ghost copy, whose columns this rank does not hold:
+// their blocks (each ghost copy's degree, summed to the owner) are added to both counts, an upper
+// bound on the shared nodes only (a few % of a rank's). MATPREALLOCATOR, which this replaces,
+// took a second pass over every block into a hash set (65 MB more on rank 0 at 1.0e6 DOFs).
+void preallocate(Mat m, const CsrMatrix& K, const MeshPartition& part,
+                 const std::vector<std::int32_t>& owned, const std::vector<PetscInt>& row,
+                 MPI_Comm comm) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  const auto count = static_cast<PetscInt>(owned.size());
+  PetscInt total = 0;
+  MPI_Allreduce(&count, &total, 1, MPIU_INT, MPI_SUM, comm);
+  const PetscInt first = owned.empty() ? 0 : row[owned.front()];
+  std::vector<double> others(static_cast<std::size_t>(part.shared), 0.0);
+  for (std::int32_t i = 0; i < part.shared; ++i)
+    if (!part.owns(i, rank)) others[i] = static_cast<double>(K.degree(i));
+  part.halo->sum_to_roots(others.data(), others.data(), 1);  // (a ghost adds to its owner)
+  std::vector<PetscInt> diagonal(owned.size(), 0), off(owned.size(), 0);
+  for (std::size_t k = 0; k < owned.size(); ++k) {
+    const std::int32_t i = owned[k];
+    for (std::int64_t q = 0; q < K.degree(i); ++q) {
+      const PetscInt column = row[K.neighbours(i)[q]];
+      ++(column >= first && column < first + count ? diagonal[k] : off[k]);
+    }
+    if (i >= part.shared) continue;
+    const auto extra = static_cast<PetscInt>(others[i]);
+    diagonal[k] = std::min(diagonal[k] + extra, count);
+    off[k] = std::min(off[k] + extra, total - count);
+  }
+  petsc_check(MatXAIJSetPreallocation(m, 3, diagonal.data(), off.data(), nullptr, nullptr),
+              "MatXAIJSetPreallocation");
+}
+
 // An empty matrix of the owned nodes' rows (3 per node, blocks of 3) of `type`.
 Mat owned_rows(MPI_Comm comm, PetscInt nodes, MatType type) {
   Mat m = nullptr;
@@ -106,12 +181,8 @@ void DistributedStatics::assemble(const SoilOperator& op) {
   int rank = 0;
   MPI_Comm_rank(p.comm, &rank);
   const auto count = static_cast<PetscInt>(p.owned.size());
-  Mat pattern = owned_rows(p.comm, count, MATPREALLOCATOR);
-  petsc_check(MatSetUp(pattern), "MatSetUp");
-  add_blocks(pattern, op, p.row, part_.owner, rank);
   p.a = owned_rows(p.comm, count, MATAIJ);
-  petsc_check(MatPreallocatorPreallocate(pattern, PETSC_TRUE, p.a), "MatPreallocatorPreallocate");
-  MatDestroy(&pattern);
+  preallocate(p.a, op.stiffness(), part_, p.owned, p.row, p.comm);
   add_blocks(p.a, op, p.row, part_.owner, rank);
   std::vector<PetscInt> fixed;  // the owned fixed nodes' DOFs: identity rows and columns
   for (const std::int32_t i : p.owned) {
@@ -154,18 +225,11 @@ void DistributedStatics::build_solver() {
   petsc_check(KSPGetPC(p.ksp, &pc), "KSPGetPC");
   petsc_check(PCSetType(pc, PCGAMG), "PCSetType");
   petsc_check(KSPSetFromOptions(p.ksp), "KSPSetFromOptions");
-  // The session's "-matptap_via rap" (one process's fastest, statics/petsc_session.cpp) is no
-  // algorithm of the ranks' matrices (MPIAIJ's: scalable, nonscalable, allatonce, ...): their
-  // default, scalable, while GAMG builds its levels (its only Galerkin products).
-  char via[32] = "";
-  PetscBool set = PETSC_FALSE;
-  petsc_check(PetscOptionsGetString(nullptr, nullptr, "-matptap_via", via, sizeof via, &set),
-              "PetscOptionsGetString");
-  const bool ours = set && std::string(via) == "rap";
-  if (ours) petsc_check(PetscOptionsClearValue(nullptr, "-matptap_via"), "PetscOptionsClearValue");
-  const PetscErrorCode code = KSPSetUp(p.ksp);
-  if (ours)
-    petsc_check(PetscOptionsSetValue(nullptr, "-matptap_via", "rap"), "PetscOptionsSetValue");
+  PetscErrorCode code = 0;
+  {
+    const SetUpOptions options;
+    code = KSPSetUp(p.ksp);
+  }
   petsc_check(code, "KSPSetUp (GAMG's hierarchy)");
   PetscInt levels = 0;
   petsc_check(PCMGGetLevels(pc, &levels), "PCMGGetLevels");

@@ -1,9 +1,9 @@
 // The static state on many ranks (issue #33; docs/fem-soil.md §8, §7.1): (K + S) u = f solved by
 // PETSc's conjugate gradients with its algebraic multigrid GAMG over the ranks, each rank's part
 // of K (part_stiffness.hpp) assembled into one matrix whose rows are the ranks' owned nodes
-// (MATAIJ, block size 3, preallocated by MATPREALLOCATOR: a shared node's row gathers the pieces
-// of every rank that holds it), S on the owned boundary nodes, fixed DOFs as identity rows and
-// columns with a zero load. GAMG's near-null space is the six rigid-body modes from the owned
+// (MATAIJ, block size 3, preallocated from each rank's part: a shared node's row gathers the
+// pieces of every rank that holds it), S on the owned boundary nodes, fixed DOFs as identity rows
+// and columns with a zero load. GAMG's near-null space is the six rigid-body modes from the owned
 // nodes' coordinates, as on one process (statics/petsc_static_solver.hpp); PETSC_OPTIONS with
 // the prefix "fem_statics_" tunes both.
 //
