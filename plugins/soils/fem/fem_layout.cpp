@@ -228,8 +228,7 @@ void FemSoil::report_split() const {
   host_.info(rumble::fem::describe(
       split, rumble::fem::plan_split(
                  static_cast<double>(split.nodes), ranks, static_cast<double>(split.ghosts),
-                 static_cast<double>(split.largest()), settings_.gamg_statics,
-                 refine_on_ranks())));
+                 static_cast<double>(split.largest()), settings_.gamg_statics, refine_on_ranks())));
 }
 
 void FemSoil::hint_fast_meshing() const {

@@ -95,7 +95,10 @@ MeshPartition refine_partition(MPI_Comm comm, const MeshPartition& coarse, int l
   MPI_Allreduce(MPI_IN_PLACE, max.data(), 3, MPI_DOUBLE, MPI_MAX, comm);
   std::vector<std::int32_t> order =  // (new -> old)
       numbered_spatial_order(fine.mesh.nodes, fine.number, min, max);
-  std::stable_partition(order.begin(), order.end(), [&](std::int32_t v) { return shared[v]; });
+  // (shared by reference, not captured: Clang 14 cannot capture a structured binding)
+  const std::vector<char>& is_shared = shared;
+  std::stable_partition(order.begin(), order.end(),
+                        [&is_shared](std::int32_t v) { return is_shared[v] != 0; });
   const std::vector<std::uint64_t> keys = morton_keys(fine.mesh.nodes, min, max);
   renumber_nodes(fine.mesh, order);
   MeshPartition part;
