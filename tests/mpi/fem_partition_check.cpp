@@ -122,6 +122,23 @@ TetMesh refined_whole(const TetMesh& coarse, int levels) {
   return fine.mesh;
 }
 
+/// The box the checks split (a Kuhn box of 0.5 m cubes), with this rank's part: refine 0 split as
+/// is; refine > 0 a box twice as coarse per level, split, and each part refined `refine` times
+/// after the split. whole: the mesh one process steps (the refined box in the ranks' numbering).
+struct SplitBox {
+  TetMesh whole;
+  MeshPartition part;
+};
+SplitBox split_box(MPI_Comm comm, int refine) {
+  const bool root = rank_of(comm) == 0;
+  const TetMesh coarse = refine == 0 ? kuhn_box(12, 10, 8, 0.5) : kuhn_box(6, 5, 4, 1.0);
+  MeshPartition part =
+      refine == 0
+          ? partition_mesh(comm, root ? &coarse : nullptr)
+          : refine_partition(comm, partition_mesh(comm, root ? &coarse : nullptr, true), refine);
+  return {refine == 0 ? coarse : refined_whole(coarse, refine), std::move(part)};
+}
+
 // refine > 0: a coarser box split, each rank's part refined `refine` times after the split.
 int check(MPI_Comm comm, StepPrecision precision, std::vector<std::int32_t>& nodes,
           int refine = 0) {
@@ -129,12 +146,7 @@ int check(MPI_Comm comm, StepPrecision precision, std::vector<std::int32_t>& nod
   const bool root = rank_of(comm) == 0;
   const FemSettings settings =
       read_settings(R"({"E": 155e6, "nu": 0.3, "rho": 1800})");  // the medium soil
-  const TetMesh coarse = refine == 0 ? kuhn_box(12, 10, 8, 0.5) : kuhn_box(6, 5, 4, 1.0);
-  MeshPartition part =
-      refine == 0
-          ? partition_mesh(comm, root ? &coarse : nullptr)
-          : refine_partition(comm, partition_mesh(comm, root ? &coarse : nullptr, true), refine);
-  const TetMesh whole = refine == 0 ? coarse : refined_whole(coarse, refine);
+  auto [whole, part] = split_box(comm, refine);
   nodes = part.global;
   check_ownership(comm, part, checks);
   CsrMatrix K = assemble_stiffness(part.mesh, settings);
@@ -380,13 +392,7 @@ void check_stable_step(MPI_Comm comm, MeshPartition& part, const TetMesh& whole,
 int check_pieces(MPI_Comm comm, int refine = 0) {
   Checks checks;
   const FemSettings settings = read_settings(R"({"E": 155e6, "nu": 0.3, "rho": 1800})");
-  const bool root = rank_of(comm) == 0;
-  const TetMesh coarse = refine == 0 ? kuhn_box(12, 10, 8, 0.5) : kuhn_box(6, 5, 4, 1.0);
-  MeshPartition part =
-      refine == 0
-          ? partition_mesh(comm, root ? &coarse : nullptr)
-          : refine_partition(comm, partition_mesh(comm, root ? &coarse : nullptr, true), refine);
-  const TetMesh whole = refine == 0 ? coarse : refined_whole(coarse, refine);
+  auto [whole, part] = split_box(comm, refine);
   const std::vector<BoundaryNode> mine = part_boundary(part, settings, box_footprints());
   check_boundary(comm, part, whole, settings, mine, checks);
   check_weights(comm, part, whole, checks);
