@@ -43,9 +43,10 @@
 #   fem_one_process_settings_refused_on_ranks  local steps, the implicit scheme, the matched
 #                                layer under mpirun: each refused with the params (exit 1),
 #                                naming its parameter
-#   fem_whole_operator_refused_on_ranks  the monolithic coupler and `rumble stability` on 2
-#                                ranks: the linear matrices need the whole operator, refused at
-#                                validation (exit 1, before meshing) naming the pointer and fix
+#   fem_whole_operator_refused_on_ranks  the monolithic coupler, `rumble stability`, `soil-frf`
+#                                and `calibrate` on 2 ranks: the linear matrices and the
+#                                receptance need the whole operator, refused at validation (exit
+#                                1, before meshing) naming the pointer, the soil function and fix
 #   fem_refined_on_N_ranks       fem_small.json with mesh.refine 1 without mpirun and on N ranks:
 #                                rank 0 says it holds gmsh's coarse mesh only and each rank
 #                                refined its part after the split; the CSVs as printed and the
@@ -338,6 +339,19 @@ function(fem_case)
     endif()
     expect_match("${out}" "/soil/type[^\n]*: rumble stability \\(it linearizes the track on the soil\\) needs the whole matrices of soil type \"fem\"[^\n]*split over the 2 MPI ranks")
     expect_match("${out}" "run rumble stability without mpirun")
+    rumble_run(out code ${mpirun} -n 2 ${RUMBLE} soil-frf ${fem} --output ${WORK_DIR}/frf)
+    if(NOT code EQUAL 1 OR out MATCHES "fem: a mesh of about [0-9.e+]+ DOFs")
+      message(FATAL_ERROR "rumble soil-frf: expected exit code 1 before meshing, got ${code}:\n${out}")
+    endif()
+    expect_match("${out}" "/soil/type[^\n]*: rumble soil-frf \\(the soil's receptance\\) needs the whole matrices of soil type \"fem\" \\(/soil, its frequency_response\\)[^\n]*split over the 2 MPI ranks")
+    expect_match("${out}" "run rumble soil-frf without mpirun")
+    rumble_run(out code ${mpirun} -n 2 ${RUMBLE} calibrate ${fem} --model clm
+               --output ${WORK_DIR}/calibrated.json)
+    if(NOT code EQUAL 1 OR out MATCHES "fem: a mesh of about [0-9.e+]+ DOFs")
+      message(FATAL_ERROR "rumble calibrate: expected exit code 1 before meshing, got ${code}:\n${out}")
+    endif()
+    expect_match("${out}" "/soil/type[^\n]*: rumble calibrate \\(the target soil's receptance\\) needs the whole matrices of soil type \"fem\"")
+    expect_match("${out}" "run rumble calibrate without mpirun")
   else()
     message(FATAL_ERROR "unknown case ${CASE}")
   endif()

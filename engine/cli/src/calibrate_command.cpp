@@ -12,6 +12,7 @@
 #include "cli/scenario_prepare.hpp"
 #include "core/errors.hpp"
 #include "core/interrupt.hpp"
+#include "parallel/mpi_session.hpp"
 #include "plugin/instance.hpp"
 #include "results/new_file.hpp"
 
@@ -28,6 +29,8 @@ int calibrate_command(const std::vector<std::string>& args) {
   BuiltSoils built;  // the target soil validation builds is the one measured: built once
   scenario::CheckOptions check = kNotARun;
   check.keep_soils = &built;
+  check.ranks = parallel::world_size();  // a distributed soil split so has no whole operator
+  check.whole_soil = {"rumble calibrate", "the target soil's receptance", "frequency_response"};
   const auto doc =
       prepare_scenario(a.positional()[0], registry, scenario::Format::kText, {}, check);
   if (!doc) return kExitConfig;

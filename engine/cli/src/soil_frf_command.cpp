@@ -15,6 +15,7 @@
 #include "core/errors.hpp"
 #include "core/interrupt.hpp"
 #include "core/number_text.hpp"
+#include "parallel/mpi_session.hpp"
 #include "plugin/instance.hpp"
 #include "results/results_directory.hpp"
 #include "run/run_scenario.hpp"
@@ -46,6 +47,8 @@ int soil_frf_command(const std::vector<std::string>& args) {
     if (!results)  // the first scenario's outputs.directory holds soil_frf/
       check_results_directory(check, output.has_value(), a.flag("allow-outside-results"));
     check.keep_soils = &built;
+    check.ranks = parallel::world_size();  // a distributed soil split so has no whole operator
+    check.whole_soil = {"rumble soil-frf", "the soil's receptance", "frequency_response"};
     const auto doc = prepare_scenario(file, registry, scenario::Format::kText, {}, check);
     if (!doc) return kExitConfig;
     if (!results) {

@@ -81,7 +81,7 @@ int stability_command(const std::vector<std::string>& args) {
   scenario::CheckOptions check = kNotARun;
   check.keep_soils = &built;
   check.ranks = parallel::world_size();  // a distributed soil split so has no whole matrices
-  check.linear_matrices = true;
+  check.whole_soil = {"rumble stability", "it linearizes the track on the soil", "linear_matrix"};
   const auto doc =
       prepare_scenario(a.positional()[0], registry, scenario::Format::kText, {}, check);
   if (!doc) return kExitConfig;

@@ -156,36 +156,41 @@ void check_receivers(const json& scenario, const Used& soil, std::vector<Diagnos
   out.push_back(std::move(d));
 }
 
-/// The error for `soil` split over `ranks` ranks where `who` needs its whole matrices.
+/// The error for `soil` split over `ranks` ranks where `who` needs its whole matrices, read by
+/// the soil's function `reads`.
 Diagnostic split_soil_refused(const Used& soil, int ranks, const std::string& pointer,
-                              const std::string& who, const std::string& fix) {
+                              const std::string& who, const std::string& reads,
+                              const std::string& fix) {
   return finding(pointer,
                  who + " needs the whole matrices of soil type \"" + soil.type->type_name + "\" (" +
-                     soil.pointer +
-                     ", its linear_matrix), which no rank holds when it is "
-                     "split over the " +
-                     std::to_string(ranks) + " MPI ranks of this launch (each holds its part)",
+                     soil.pointer + ", its " + reads +
+                     "), which no rank holds when it is split over the " + std::to_string(ranks) +
+                     " MPI ranks of this launch (each holds its part)",
                  fix);
 }
 
 }  // namespace
 
 std::vector<Diagnostic> check_split_soil(const json& scenario, const PluginRegistry& registry,
-                                         int ranks, bool linear_matrices) {
+                                         int ranks, const WholeSoilCommand& command) {
   std::vector<Diagnostic> out;
   if (ranks <= 1 || !scenario.is_object() || !scenario.contains("coupling")) return out;
   const ComponentType* soil_type = known(scenario, "/soil", RUMBLE_KIND_SOIL, registry);
   if (soil_type == nullptr || !soil_type->capabilities.has(RUMBLE_CAP_DISTRIBUTED)) return out;
   const Used soil{"/soil", soil_type};
   const ComponentType* coupler = known(scenario, "/coupling", RUMBLE_KIND_COUPLER, registry);
-  if (linear_matrices) {
-    out.push_back(split_soil_refused(
-        soil, ranks, "/soil/type", "rumble stability (it linearizes the track on the soil)",
-        "run rumble stability without mpirun, on one process: the soil is then whole"));
+  if (command.name != nullptr) {
+    out.push_back(split_soil_refused(soil, ranks, "/soil/type",
+                                     std::string(command.name) + " (" + command.why + ")",
+                                     command.reads,
+                                     "run " + std::string(command.name) +
+                                         " without mpirun, on one process: the soil is then "
+                                         "whole"));
   } else if (coupler != nullptr && coupler->capabilities.has(RUMBLE_CAP_MONOLITHIC)) {
     out.push_back(split_soil_refused(
         soil, ranks, "/coupling/type",
         "coupler \"" + coupler->type_name + "\" (it integrates the soil inside the track)",
+        "linear_matrix",
         "run it without mpirun, on one process, or choose a coupler that steps the soil on its "
         "ranks (gauss_seidel, jacobi, implicit), got \"" +
             coupler->type_name + "\""));

@@ -92,8 +92,7 @@ CheckedScenario check_scenario_document(Document document, std::vector<Override>
       c.diagnostics.push_back(make_diagnostic(doc, d.pointer, d.message, d.hint, d.severity));
   }
   if (no_errors(c.diagnostics) && options.load_plugins) {  // (before a soil is built: meshed)
-    for (Diagnostic& d :
-         check_split_soil(doc.json, registry, options.ranks, options.linear_matrices))
+    for (Diagnostic& d : check_split_soil(doc.json, registry, options.ranks, options.whole_soil))
       c.diagnostics.push_back(make_diagnostic(doc, d.pointer, d.message, d.hint, d.severity));
   }
   // The run's size, from the scenario alone: before any component is built (a FEM soil meshes

@@ -22,13 +22,22 @@ namespace rumble::scenario {
 std::vector<Diagnostic> check_capabilities(const nlohmann::json& scenario,
                                            const PluginRegistry& registry);
 
-/// What needs a soil's whole matrices (linear_matrix) against a soil split over MPI ranks: a
-/// soil that declares RUMBLE_CAP_DISTRIBUTED holds only its part on each of `ranks` > 1 ranks
+/// A command that reads a soil's whole operator, as its refusal on ranks names it: e.g.
+/// {"rumble stability", "it linearizes the track on the soil", "linear_matrix"}. name null: none
+/// (a run, whose coupler decides).
+struct WholeSoilCommand {
+  const char* name = nullptr;
+  const char* why = nullptr;
+  const char* reads = nullptr;  // the soil's function that needs the whole operator
+};
+
+/// What needs a soil's whole operator against a soil split over MPI ranks: a soil that declares
+/// RUMBLE_CAP_DISTRIBUTED holds only its part on each of `ranks` > 1 ranks
 /// (docs/decisions/0012-distributed-soil.md), so a monolithic coupler (/coupling/type) and a
-/// command that reads the matrices (`linear_matrices`: rumble stability; /soil/type) are
-/// refused before the soil is built, where a FEM soil meshes. Nothing for ranks <= 1.
+/// command that reads the whole operator (`command`, at /soil/type) are refused before the soil
+/// is built, where a FEM soil meshes. Nothing for ranks <= 1.
 std::vector<Diagnostic> check_split_soil(const nlohmann::json& scenario,
                                          const PluginRegistry& registry, int ranks,
-                                         bool linear_matrices);
+                                         const WholeSoilCommand& command = {});
 
 }  // namespace rumble::scenario

@@ -8,6 +8,7 @@
 #include <optional>
 #include <vector>
 
+#include "scenario/capability_check.hpp"
 #include "scenario/diagnostic.hpp"
 #include "scenario/document.hpp"
 #include "scenario/overrides.hpp"
@@ -44,8 +45,9 @@ struct CheckOptions {
   /// The MPI ranks of this launch (`mpirun -n N`, on rank 0), over which a distributed soil is
   /// split: what needs its whole matrices is refused before it is built (check_split_soil).
   int ranks = 1;
-  /// true (`rumble stability`): the command reads the soil's linear matrices.
-  bool linear_matrices = false;
+  /// The command, where it reads the soil's whole operator (`rumble stability`, `soil-frf`,
+  /// `calibrate`): refused before the soil is built when the soil is split over `ranks`.
+  WholeSoilCommand whole_soil{};
 };
 
 struct CheckedScenario {
