@@ -4,12 +4,11 @@
 // resolved at each distance) and, when it offers field output, writes it to DIR/mesh.vtu to look at
 // in ParaView before spending a run on it. DIR is the soil's results directory meanwhile: a FEM
 // soil's mesh.export goes there (docs/fem-soil.md §2.1). --ranks N: the soil is built on one
-// process as ever, told through RUMBLE_MESH_RANKS that a run on N ranks is planned; a FEM soil
-// then reports its estimate per rank (docs/fem-soil.md, "Planning the ranks").
+// process as ever, told through rumble_host.planned_ranks (ABI 1.6) that a run on N ranks is
+// planned; a FEM soil then reports its estimate per rank (docs/fem-soil.md, "Planning the ranks").
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include <cstdlib>
 #include <iostream>
 #include <optional>
 #include <string>
@@ -19,6 +18,7 @@
 #include "cli/exit_codes.hpp"
 #include "cli/scenario_prepare.hpp"
 #include "core/errors.hpp"
+#include "plugin/instance.hpp"
 #include "results/new_file.hpp"
 #include "run/run_scenario.hpp"
 
@@ -39,9 +39,9 @@ void new_mesh_file(const std::filesystem::path& path) {
   ::close(open_new_file(path));  // whatever stood there removed, the file made anew
 }
 
-/// --ranks N: an integer from 1 to 1e6, set as RUMBLE_MESH_RANKS for the soil.
-void set_planned_ranks(const std::optional<std::string>& text) {
-  ::unsetenv("RUMBLE_MESH_RANKS");
+/// --ranks N: an integer from 1 to 1e6, the soil's rumble_host.planned_ranks (ABI 1.6).
+void plan_ranks(const std::optional<std::string>& text) {
+  set_planned_ranks(0);
   if (!text) return;
   std::size_t used = 0;
   long n = 0;
@@ -54,7 +54,7 @@ void set_planned_ranks(const std::optional<std::string>& text) {
     throw UsageError("--ranks=" + *text +
                      " is not a number of MPI ranks; give an integer from 1 to 1000000, the N "
                      "of the planned `mpirun -n N rumble run`");
-  ::setenv("RUMBLE_MESH_RANKS", std::to_string(n).c_str(), 1);
+  set_planned_ranks(static_cast<int>(n));
 }
 
 }  // namespace
@@ -66,7 +66,7 @@ int mesh_command(const std::vector<std::string>& args) {
         "usage: rumble mesh FILE [--output DIR] [--ranks N] [--allow-outside-results] [--set "
         "POINTER=VALUE ...]");
   }
-  set_planned_ranks(a.value("ranks"));                    // (before the soil is built)
+  plan_ranks(a.value("ranks"));                           // (before the soil is built)
   const auto output = a.directory("output", "mesh.vtu");  // before a mesh is built
   std::vector<scenario::Override> overrides;
   for (const std::string& set : a.values("set"))

@@ -15,6 +15,8 @@
 namespace rumble {
 namespace {
 
+std::atomic<int> planned_ranks{0};  // set_planned_ranks
+
 /// Every kind's table starts with struct_size, then the common functions.
 const rumble_common_api* common_table(const ComponentType& type) {
   switch (type.kind) {
@@ -69,6 +71,7 @@ Instance::Instance(const ComponentType& type, std::string label, const nlohmann:
   host_.threads = 1;
   host_.progress = &Instance::progress_callback;
   host_.communicator = &Instance::communicator_callback;
+  host_.planned_ranks = planned_ranks.load();
   const bool everywhere = type.kind == RUMBLE_KIND_SOIL &&
                           type.capabilities.has(RUMBLE_CAP_DISTRIBUTED) && parallel::running() &&
                           parallel::world_size() > 1 && parallel::world_rank() == 0;
@@ -78,6 +81,10 @@ Instance::Instance(const ComponentType& type, std::string label, const nlohmann:
     warn_idle_ranks();
     create_here(params.dump());
   }
+}
+
+void set_planned_ranks(int ranks) {
+  planned_ranks = ranks < 0 ? 0 : ranks;
 }
 
 void Instance::warn_idle_ranks() const {

@@ -211,14 +211,14 @@ rumble::fem::TetMesh FemSoil::cached_or_new_mesh() const {
 }
 
 void FemSoil::report_ranks(double nodes, const char* source) const {
-  const int ranks = rumble::fem::planned_ranks();  // (`rumble mesh --ranks N` on one process)
+  const int ranks = host_.planned_ranks();  // (`rumble mesh --ranks N` on one process)
   if (ranks > 1 && !distributed_)
     host_.info(rumble::fem::describe(
         rumble::fem::plan_ranks(nodes, ranks, settings_.gamg_statics, refine_on_ranks()), source));
 }
 
 void FemSoil::report_split() const {
-  const int ranks = rumble::fem::planned_ranks();
+  const int ranks = host_.planned_ranks();
   if (ranks < 2 || distributed_) return;
   // MPI started by the host (a singleton), which finishes it once the plugins are gone (decision
   // 0012 §2): PETSc then leaves it alone. Started by PETSc, its MPI_Finalize at exit unloaded

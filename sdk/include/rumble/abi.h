@@ -55,6 +55,10 @@
  *       soil's degrees of freedom and its estimate of a run's peak memory, for the host's account
  *       of memory per DOF; statics_done, the end of the host's static iteration, after which a
  *       soil frees what only its statics needed.
+ *   1.6 (2026-12-06) appended to rumble_host (docs/decisions/0016-planned-ranks.md):
+ *       planned_ranks, the N of a launch on N MPI ranks that a command plans for without
+ *       running on them (`rumble mesh --ranks N`), so that a soil reports what each rank would
+ *       hold.
  */
 #ifndef RUMBLE_ABI_H
 #define RUMBLE_ABI_H
@@ -67,7 +71,7 @@ extern "C" {
 #endif
 
 #define RUMBLE_ABI_MAJOR 1
-#define RUMBLE_ABI_MINOR 5
+#define RUMBLE_ABI_MINOR 6
 
 /** Name of the one symbol every plugin library exports (see rumble_plugin_entry_fn). */
 #define RUMBLE_PLUGIN_ENTRY_SYMBOL "rumble_plugin_entry"
@@ -150,6 +154,13 @@ typedef struct rumble_host {
    *  why). Null: the host has no MPI; run on one process without it, or refuse. */
   rumble_status (*communicator)(void* host_data, int64_t* fortran_handle, int32_t* rank,
                                 int32_t* size);
+  /* ---- 1.6 (docs/decisions/0016-planned-ranks.md) */
+  /** The MPI ranks a command plans for without running on them (`rumble mesh --ranks N`: N):
+   *  the instance runs on its communicator as ever (one process), and a soil that can be split
+   *  reports what each of the N ranks would hold (its log). 0: no plan (a run: its ranks are its
+   *  communicator's). */
+  int32_t planned_ranks;
+  uint32_t reserved1; /**< 0 */
 } rumble_host;
 
 /** Opaque instance handle created by a factory. */

@@ -56,6 +56,12 @@ class ParamsRefused : public ConfigError {
 
 struct PluginHandle;
 
+/// The MPI ranks this process's command plans for without running on them (`rumble mesh --ranks
+/// N`), given to every instance made after it as rumble_host.planned_ranks (ABI 1.6,
+/// docs/decisions/0016-planned-ranks.md); 0: no plan (the default). A process-wide setting, as
+/// the ranks of an MPI launch are: one command runs per process.
+void set_planned_ranks(int ranks);
+
 class Instance {
  public:
   /// label: where the component sits in the scenario, e.g. "/soil" or "/vehicles/1".

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <sstream>
 #include <stdexcept>
 
@@ -64,11 +63,6 @@ RankPlan plan_split(double nodes, int ranks, double ghosts, double largest_nodes
   p.refine = refine;
   plan_memory(p, gamg);
   return p;
-}
-
-int planned_ranks() {
-  const char* n = std::getenv("RUMBLE_MESH_RANKS");
-  return n != nullptr ? std::max(0, std::atoi(n)) : 0;
 }
 
 std::string describe(const RankPlan& p, const std::string& source) {

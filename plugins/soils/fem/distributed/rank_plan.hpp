@@ -48,11 +48,6 @@ RankPlan plan_ranks(double nodes, int ranks, bool gamg, int refine = 0);
 RankPlan plan_split(double nodes, int ranks, double ghosts, double largest_nodes, bool gamg,
                     int refine = 0);
 
-/// The ranks `rumble mesh FILE --ranks N` plans for: N from RUMBLE_MESH_RANKS, which that
-/// command sets for the soil it builds on one process (docs/fem-soil.md, "Planning the
-/// ranks"); 0 when unset.
-int planned_ranks();
-
 /// One line for the log: nodes and DOFs on the largest rank, the halo (ghosts, bytes per
 /// sub-step), the memory of rank 0 and of each other rank; `source` says where the node count
 /// comes from ("the plan's estimate", "the mesh").

@@ -94,6 +94,11 @@ class Host {
     c.size = size;
     return c;
   }
+  /// The MPI ranks the host's command plans for without running on them (`rumble mesh --ranks N`:
+  /// N; ABI 1.6): report what each of them would hold. 0: no plan, or a host older than 1.6.
+  int planned_ranks() const {
+    return RUMBLE_HAS_FIELD(host_, rumble_host, planned_ranks) ? host_->planned_ranks : 0;
+  }
   /// stop_requested(), throwing rumble::Stopped when asked to stop.
   void check_stop(double fraction = -1.0) const {
     if (stop_requested(fraction)) throw Stopped("stopped at the host's request (Ctrl-C)");
