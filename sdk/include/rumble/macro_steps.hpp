@@ -22,9 +22,11 @@
 // length (no refactorisation). A step whose error is above 1 is taken again, shorter (by the
 // same rule, at most 0.9 times and at least one min_step shorter), when both participants can
 // be restored ("retake"); a participant's refusal (DISCARD) is retried by halving as with fixed
-// steps. The last step may be shorter than min_step, to end exactly at t_end. Why not SDK 1.2's
-// energy residual at the cut: it converges at first order whatever the scheme and is largest
-// where the power is, not where the coupling errs (docs/couplers.md, adaptive macro steps).
+// steps. The time left is taken in equal whole steps of at most that step (h()), so that the
+// run does not end on a short remainder; the last step may be shorter than min_step only when
+// t_end is not a whole number of it from t0. Why not SDK 1.2's energy residual at the cut: it
+// converges at first order whatever the scheme and is largest where the power is, not where the
+// coupling errs (docs/couplers.md, adaptive macro steps).
 //
 // A change of step has an error of its own (appended in SDK 1.3: StepChangeLimit and
 // accept(error, order, shortest, longest)): an explicit scheme lags (or leads) the coupled motion
