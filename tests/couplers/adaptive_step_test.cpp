@@ -12,7 +12,8 @@
 //     gauss_seidel's costs at most 0.7 times the steps of fixed steps at equal footprint PPV
 //     error and at equal displacement error (the fixed steps' count interpolated log-log between
 //     the pair that brackets the error; the adaptive cost counts the steps taken again);
-//     jacobi's, whose velocity errs more, at most that of fixed steps at equal PPV error;
+//     jacobi's too at equal PPV error, and at most that of fixed steps at equal displacement
+//     error;
 //   - jacobi adapts on the small scenario too; inverted bounds are refused at validate.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -81,16 +82,21 @@ const std::filesystem::path& reference_dir() {
 }
 
 /// Runs the scenario like run() and also returns how many steps the adaptive coupler took again
-/// (its log: "..., N taken again above the tolerance").
+/// (its log: "..., N taken again above the tolerance") and how many extra soil advances jacobi's
+/// probes of the held force's cost took ("... probed in N extra soil advances"; 0 for others).
 std::filesystem::path run_counting_retakes(const std::string& name, const nlohmann::json& s,
-                                           std::size_t& retaken) {
+                                           std::size_t& retaken, std::size_t* probes = nullptr) {
   const auto dir = scratch_directory(name);
   const CliResult r = run_rumble({"run", write_scenario(dir, s).string(), "--no-progress"});
   EXPECT_EQ(r.exit_code, 0) << r.output;
-  std::smatch m;
-  retaken = std::regex_search(r.output, m, std::regex("([0-9]+) taken again"))
-                ? static_cast<std::size_t>(std::stoul(m[1].str()))
-                : 0;
+  const auto count = [&](const char* pattern) -> std::size_t {
+    std::smatch m;
+    return std::regex_search(r.output, m, std::regex(pattern))
+               ? static_cast<std::size_t>(std::stoul(m[1].str()))
+               : 0;
+  };
+  retaken = count("([0-9]+) taken again");
+  if (probes != nullptr) *probes = count("probed in ([0-9]+) extra soil advances");
   return dir / "results";
 }
 
@@ -141,11 +147,13 @@ TEST(AdaptiveStep, StaysInItsBoundsAndShortensWhereTheWheelMeetsTheDip) {
 
 /// A run's error against a reference: displacements (relative_error) and footprint PPV (the
 /// largest difference over the footprints, relative to the reference's largest PPV); its cost:
-/// the steps, and those taken again above the tolerance (each a track and a soil solve too).
+/// the steps, those taken again above the tolerance (each a track and a soil solve too) and
+/// jacobi's extra soil advances probing its held force's cost (each counted as a whole step,
+/// though a soil-only advance costs less).
 struct RunError {
   double displacement = 0.0, ppv = 0.0;
-  std::size_t steps = 0, retaken = 0;
-  double cost() const { return static_cast<double>(steps + retaken); }
+  std::size_t steps = 0, retaken = 0, probes = 0;
+  double cost() const { return static_cast<double>(steps + retaken + probes); }
 };
 
 RunError run_error(const std::filesystem::path& dir, const std::filesystem::path& reference,
@@ -230,18 +238,23 @@ TEST(AdaptiveStep, EndingInsideTheDipItStillCostsLessThanFixedSteps) {
 }
 
 TEST(AdaptiveStep, OnThePapersDipCaseItsStepsShrinkAtTheDip) {
-  nlohmann::json s = paper_dip(1e-3);
-  s["coupling"] = adaptive_coupler("gauss_seidel", 0.1);
-  std::vector<double> ends;
-  const std::vector<double> steps = macro_steps(run("adaptive_paper_shrinks", s), ends);
-  double before = 0.0, at_dip = 1.0;
-  for (std::size_t k = 0; k < steps.size(); ++k) {
-    if (ends[k] < 0.14) before = std::max(before, steps[k]);
-    if (ends[k] > 0.148 && ends[k] < 0.175) at_dip = std::min(at_dip, steps[k]);
+  for (const std::string coupler : {"gauss_seidel", "jacobi"}) {
+    nlohmann::json s = paper_dip(1e-3);
+    s["coupling"] = adaptive_coupler(coupler, 0.1);
+    std::vector<double> ends;
+    const std::vector<double> steps =
+        macro_steps(run("adaptive_paper_shrinks_" + coupler, s), ends);
+    double before = 0.0, at_dip = 1.0;
+    for (std::size_t k = 0; k < steps.size(); ++k) {
+      if (ends[k] < 0.14) before = std::max(before, steps[k]);
+      if (ends[k] > 0.148 && ends[k] < 0.175) at_dip = std::min(at_dip, steps[k]);
+    }
+    std::cout << "[ measured ] " << coupler << ": " << steps.size()
+              << " steps; longest before the dip " << before << " s, shortest at it " << at_dip
+              << " s\n";
+    // Measured 2 ms and 0.15 ms (gauss_seidel), 1 ms and 0.05 ms (jacobi).
+    EXPECT_GT(before, 4.0 * at_dip) << coupler;
   }
-  std::cout << "[ measured ] " << steps.size() << " steps; longest before the dip " << before
-            << " s, shortest at it " << at_dip << " s\n";
-  EXPECT_GT(before, 4.0 * at_dip);  // measured 2 ms and 0.15 ms
 }
 
 /// A soil of the paper and a coupler, with the most the adaptive step may cost against fixed
@@ -270,19 +283,20 @@ TEST_P(AdaptiveStepOnThePapersDipCase, CostsLessThanFixedStepsAtEqualPpvAndDispl
   for (double tolerance : {0.1, 0.04}) {
     nlohmann::json s = paper_dip(1e-3, c.file);
     s["coupling"] = adaptive_coupler(c.coupler, tolerance);
-    std::size_t retaken = 0;
-    const auto dir =
-        run_counting_retakes(name + std::to_string(std::lround(1e3 * tolerance)), s, retaken);
-    const RunError e = run_error(dir, reference, retaken);
+    std::size_t retaken = 0, probes = 0;
+    const auto dir = run_counting_retakes(name + std::to_string(std::lround(1e3 * tolerance)), s,
+                                          retaken, &probes);
+    RunError e = run_error(dir, reference, retaken);
+    e.probes = probes;
     adaptive.push_back(e);
     for (const auto& [measure, of, bound] :
          {std::tuple{"PPV", &RunError::ppv, c.ppv_bound},
           std::tuple{"displacement", &RunError::displacement, c.displacement_bound}}) {
       const double equal = fixed_steps_at(fixed, of, e.*of);
       std::cout << "[ measured ] adaptive (tolerance " << tolerance << "): " << e.steps
-                << " steps + " << e.retaken << " taken again, " << measure << " error " << e.*of
-                << "; fixed steps at that error: " << equal << "; ratio " << e.cost() / equal
-                << "\n";
+                << " steps + " << e.retaken << " taken again + " << e.probes << " probes, "
+                << measure << " error " << e.*of << "; fixed steps at that error: " << equal
+                << "; ratio " << e.cost() / equal << "\n";
       EXPECT_GT(equal, 0.0) << "fixed steps of 1 ms are more accurate than the adaptive " << measure
                             << " error " << e.*of;
       EXPECT_LE(e.cost() / equal, bound) << measure << ", tolerance " << tolerance;
@@ -294,18 +308,20 @@ TEST_P(AdaptiveStepOnThePapersDipCase, CostsLessThanFixedStepsAtEqualPpvAndDispl
 }
 
 // Measured (docs/couplers.md, adaptive macro steps), tolerance 0.1 and 0.04: PPV 0.41 and
-// 0.25, displacement 0.35 and 0.34 (medium soil, Winkler); 0.39 and 0.21, 0.45 and 0.51
-// (medium, CLM); 0.30 and 0.29, 0.35 and 0.30 (stiff, CLM). jacobi, whose footprint velocity
-// errs at first order with a large constant (fixed 1 ms: 7.8 % of the PPV), is held to fixed
-// steps' cost at equal PPV error: 0.83 and 0.91 (before the step-change limit: 1.10 and 1.55),
-// displacement 0.70 and 0.39.
+// 0.25, displacement 0.35 and 0.34 (medium soil, Winkler); 0.35 and 0.21, 0.45 and 0.41
+// (medium, CLM); 0.30 and 0.29, 0.35 and 0.30 (stiff, CLM). jacobi, its soil's held force
+// counted in the soil's velocity (its probes counted as steps): PPV 0.54 and 0.35 (before:
+// 0.83 and 0.91), displacement 0.97 and 0.53 (before: 0.70 and 0.39): at tolerance 0.1 it
+// spends twice fixed steps' count through the dip, where the PPV needs it, while the
+// displacement error is set after the dip, where it takes steps of up to 2 ms; so it is held
+// to fixed steps' cost at equal displacement error.
 INSTANTIATE_TEST_SUITE_P(
     Soils, AdaptiveStepOnThePapersDipCase,
     ::testing::Values(
         PaperCase{"GaussSeidelMediumWinkler", "medium_soil_winkler", "gauss_seidel", 0.7, 0.7},
         PaperCase{"GaussSeidelMediumClm", "medium_soil_gauss_seidel", "gauss_seidel", 0.7, 0.7},
         PaperCase{"GaussSeidelStiffClm", "stiff_soil_gauss_seidel", "gauss_seidel", 0.7, 0.7},
-        PaperCase{"JacobiMediumWinkler", "medium_soil_winkler", "jacobi", 1.0, 0.8}),
+        PaperCase{"JacobiMediumWinkler", "medium_soil_winkler", "jacobi", 0.7, 1.0}),
     [](const ::testing::TestParamInfo<PaperCase>& param) {
       return std::string(param.param.label);
     });

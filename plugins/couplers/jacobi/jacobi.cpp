@@ -10,7 +10,8 @@
 //
 // With "adaptive", the macro step follows the coupling error of each step: each participant's
 // extrapolated input against what the other produced, and changes only as far as the soil's
-// footprint velocity allows (rumble/macro_steps.hpp).
+// footprint velocity allows (rumble/macro_steps.hpp); the soil's held force is counted in the
+// soil's outputs too, where its error lands (held_input_cost.hpp).
 #include <algorithm>
 #include <exception>
 #include <optional>
@@ -21,6 +22,7 @@
 #include <string>
 
 #include "advance_worker.hpp"
+#include "held_input_cost.hpp"
 
 namespace {
 
@@ -68,6 +70,7 @@ class Jacobi final : public rumble::Coupler {
              (max_halvings_ > 0 || (adaptive_.enabled() && adaptive_.retake)) &&
                  host.can_checkpoint(kTrack) && host.can_checkpoint(kSoil),
              rumble::coupling::StepChangeLimit(host, kSoil, adaptive_)};
+    s.soil_cost.emplace(host, kSoil, adaptive_, s.checkpoints);
     s.track.sample(t0);
     s.soil.sample(t0);
     s.change_limit.observe(s.soil.latest(), 0.0);
@@ -84,7 +87,12 @@ class Jacobi final : public rumble::Coupler {
       if (step(s, steps.t(), steps.h(), 0, &steps))
         steps.accept(step_error_, step_order_, s.change_limit.shortest(), s.change_limit.longest());
     }
-    if (adaptive_.enabled()) rumble::coupling::log_adaptive_steps(host, steps);
+    if (adaptive_.enabled()) {
+      rumble::coupling::log_adaptive_steps(host, steps);
+      host.log(RUMBLE_LOG_INFO, "held input's cost probed in " +
+                                    std::to_string(s.soil_cost->advances()) +
+                                    " extra soil advances");
+    }
     if (s.checkpoints) {
       host.free_checkpoint(kTrack, kSlot);
       host.free_checkpoint(kSoil, kSlot);
@@ -103,6 +111,7 @@ class Jacobi final : public rumble::Coupler {
                        // step is retried, a step above the adaptive tolerance retaken)
     rumble::coupling::StepChangeLimit change_limit;  // how far an adaptive step may change
     std::optional<rumble_jacobi::AdvanceWorker> soil_worker = std::nullopt;  // with two threads
+    std::optional<rumble_jacobi::HeldInputCost> soil_cost = std::nullopt;  // the soil's held force
   };
 
   /// Takes [t, t + h]; false when `steps` asked for it again, shorter (both participants are
@@ -118,6 +127,7 @@ class Jacobi final : public rumble::Coupler {
     if (s.checkpoints) host.save(kTrack, kSlot);
     host.set_input(kTrack, order_track, in_track_);
     host.set_input(kSoil, order_soil, in_soil_);
+    if (s.checkpoints && steps != nullptr) s.soil_cost->probe(t, h, order_soil, in_soil_, kSlot);
     const auto [track_status, soil_status] = advance_both(s, t, h);  // the soil saved first
     const bool track_refused = track_status == RUMBLE_DISCARD;
     const bool soil_refused = soil_status == RUMBLE_DISCARD;
@@ -138,8 +148,9 @@ class Jacobi final : public rumble::Coupler {
     host.get_output(kTrack, new_track_);
     host.get_output(kSoil, new_soil_);
     const std::uint32_t order = std::min(order_track, order_soil);
+    s.soil_cost->finish(h, new_soil_);
     if (s.checkpoints && steps != nullptr &&
-        steps->retake(trial_error(s, order_track, order_soil), order)) {
+        steps->retake(trial_error(s, h, order_track, order_soil), order)) {
       host.restore(kTrack, kSlot);
       host.restore(kSoil, kSlot);
       return false;
@@ -154,7 +165,8 @@ class Jacobi final : public rumble::Coupler {
     // The step's coupling error: each side's prediction against the other's outputs,
     // O(h^(order + 1)); over the halves of a refused step, the worst.
     step_error_ = std::max(
-        step_error_, rumble::coupling::step_error(adaptive_, residuals, report_.residuals.size()));
+        {step_error_, rumble::coupling::step_error(adaptive_, residuals, report_.residuals.size()),
+         held_error(s, h)});
     step_order_ = std::min(step_order_, order);
     report_.t = t;
     report_.H = h;
@@ -164,12 +176,23 @@ class Jacobi final : public rumble::Coupler {
 
   /// The coupling error of the step just taken, before it is final [-]: the predictions against
   /// the new outputs (new_track_, new_soil_), as the step report will give them.
-  double trial_error(const Scheme& s, std::uint32_t order_track, std::uint32_t order_soil) {
+  double trial_error(const Scheme& s, double h, std::uint32_t order_track,
+                     std::uint32_t order_soil) {
     rumble::GroupResidual* residuals = report_.residuals.data();
     s.soil_residuals.measure_trial(from_soil_, order_track, new_soil_, residuals);
     s.track_residuals.measure_trial(from_track_, order_soil, new_track_,
                                     residuals + s.soil_residuals.groups());
-    return rumble::coupling::step_error(adaptive_, residuals, report_.residuals.size());
+    return std::max(rumble::coupling::step_error(adaptive_, residuals, report_.residuals.size()),
+                    held_error(s, h));
+  }
+
+  /// What the soil's held force cost its outputs over the step of h [-] (held_input_cost.hpp),
+  /// from the residuals in report_ (the soil's groups, then the track's).
+  double held_error(const Scheme& s, double h) const {
+    const rumble::GroupResidual* residuals = report_.residuals.data();
+    const std::size_t soil_groups = s.soil_residuals.groups();
+    return s.soil_cost->error(h, residuals + soil_groups, s.track_residuals.groups(), residuals,
+                              soil_groups);
   }
 
   /// Advances the track and the soil over [t, t + h], the soil on the worker thread when there
