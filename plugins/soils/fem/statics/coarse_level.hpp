@@ -1,5 +1,5 @@
-// The coarse level of the statics' geometric multigrid (geometric_static_solver.hpp; docs/
-// fem-soil.md §7.1): with mesh.refine the soil's mesh is gmsh's coarse mesh refined uniformly,
+// The coarse level of the statics' geometric multigrid (geometric_static_solver.hpp;
+// docs/fem-soil.md §7.1): with mesh.refine the soil's mesh is gmsh's coarse mesh refined uniformly,
 // and that coarse mesh, kept, gives the multigrid its coarse problem directly: K + S assembled
 // again on it (the same elasticity and the same boundary springs, at the coarse size), and the
 // interpolation of the nested linear elements (nested_interpolation.hpp). No Galerkin product of
