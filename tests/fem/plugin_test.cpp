@@ -569,6 +569,25 @@ TEST(FemBadInput, LocalStepsUnderAMatchedLayersLimitSayWhy) {
       << said;
 }
 
+TEST(FemBadInput, TheGeometricStaticsSayWhatTheyNeed) {
+  // Its coarse level is gmsh's mesh before mesh.refine refined it (docs/fem-soil.md §7.1).
+  nlohmann::json p = small_stiff_soil();
+  p["statics"] = {{"solver", "geometric"}};
+  EXPECT_EQ(creation_error("fem", p.dump()),
+            "fem: params/statics/solver: \"geometric\" needs mesh.refine 1 or more (its coarse "
+            "level is gmsh's mesh before the refinement; docs/fem-soil.md section 7.1), got "
+            "params/mesh/refine 0: set mesh.refine to 1 (gmsh then meshes at twice the sizes), or "
+            "use statics.solver \"multigrid\" or \"gamg\"");
+  p["mesh"] = {{"refine", 1}, {"file", "soil.msh"}};
+  EXPECT_NE(creation_error("fem", p.dump())
+                .find("fem: params/statics/solver: \"geometric\" needs a generated mesh refined "
+                      "by mesh.refine"),
+            std::string::npos)
+      << creation_error("fem", p.dump());
+  p["mesh"] = {{"radius", 6.0}, {"f_max", 40.0}, {"near_distance", 1.5}, {"refine", 1}};
+  EXPECT_EQ(creation_error("fem", p.dump()), "");
+}
+
 TEST(FemBadInput, AMatchedLayerSaysWhatItNeedsAndWhatItCannotDo) {
   nlohmann::json p = small_box_with_layer();
   p["mesh"]["shape"] = "hemisphere";

@@ -90,6 +90,10 @@ void FemSoil::refuse_on_many_ranks() const {
            "local time stepping runs on one process only for now; set local_steps 1 under "
            "mpirun, or run without mpirun, got " +
                std::to_string(settings_.local_steps));
+  if (settings_.geometric_statics)
+    refuse("statics/solver",
+           "the geometric multigrid runs on one process only for now; use statics.solver "
+           "\"gamg\" under mpirun, or run without mpirun, got \"geometric\"");
   if (refine_on_ranks() > 0 && !settings_.mesh.export_file.empty())
     refuse("mesh/export",
            "with mesh.refine " + std::to_string(refine_on_ranks()) +

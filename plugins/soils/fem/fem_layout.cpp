@@ -26,6 +26,7 @@
 #include "mesh/numbered_refinement.hpp"
 #include "operator/elasticity.hpp"
 #include "operator/footprint_loads.hpp"
+#include "statics/coarse_level.hpp"
 #include "statics/static_solver.hpp"
 #include "time/implicit_solver.hpp"
 
@@ -48,6 +49,7 @@ void FemSoil::mesh_here(const std::vector<rumble::Footprint>& footprints) {
   impulse_.reset();
   receptance_key_.reset();
   footprints_ = footprints;
+  coarse_mesh_ = {};
   if (settings_.mesh.file.empty()) {
     plan_ = plan_mesh(settings_, footprints);
     host_.info("fem: a mesh of about " + format(3.0 * plan_.estimated_nodes) + " DOFs (h_near " +
@@ -85,12 +87,7 @@ void FemSoil::build_here(const std::vector<rumble::Footprint>& footprints, doubl
   using namespace rumble::fem;
   weights_ = footprint_weights(mesh_, footprints);
   std::vector<BoundaryNode> boundary = absorbing_boundary(mesh_, settings_, footprints);
-  std::vector<char> fixed(mesh_.node_count(), 0);
-  // Behind a matched layer the surface is fixed: with the viscous-spring blocks or dashpots
-  // there the discrete layer grew at every step tried (docs/fem-soil.md section 3.1).
-  if (settings_.boundary.kind == BoundaryKind::kFixed ||
-      settings_.boundary.kind == BoundaryKind::kPml)
-    for (const BoundaryNode& b : boundary) fixed[b.node] = 1;
+  std::vector<char> fixed = held_nodes(mesh_.node_count(), boundary, settings_);
   op_.emplace(assemble_stiffness(mesh_, settings_), lumped_mass(mesh_, settings_),
               std::move(boundary), settings_.boundary.springs(), std::move(fixed),
               settings_.damping.mass_coefficient(), settings_.damping.stiffness_coefficient(),
@@ -110,13 +107,21 @@ void FemSoil::build_here(const std::vector<rumble::Footprint>& footprints, doubl
   if (settings_.boundary.kind == BoundaryKind::kPml)
     op_->set_pml(PmlLayer(mesh_, settings_, pml_profile()));
   local_steps_chosen_ = false;  // (at the first macro step, whose length they are fitted to)
-  const bool gamg = settings_.gamg_statics && op_->dofs() > StaticSolver::kFactorLimit;
+  const bool petsc = (settings_.gamg_statics || settings_.geometric_statics) &&
+                     op_->dofs() > StaticSolver::kFactorLimit;
   // PETSc runs on the MPI the host starts for us (ABI 1.4, docs/decisions/0012): asking for the
   // communicator starts it, and PETSc then neither starts nor finalises MPI itself.
-  if (gamg) host_.communicator();
-  statics_ = std::make_unique<StaticSolver>(
-      op_->soil(), mesh_.nodes, StaticSolver::kFactorLimit,
-      settings_.gamg_statics ? CgPreconditioner::kGamg : CgPreconditioner::kMultigrid);
+  if (petsc) host_.communicator();
+  statics_ =
+      std::make_unique<StaticSolver>(op_->soil(), mesh_.nodes, StaticSolver::kFactorLimit,
+                                     settings_.gamg_statics        ? CgPreconditioner::kGamg
+                                     : settings_.geometric_statics ? CgPreconditioner::kGeometric
+                                                                   : CgPreconditioner::kMultigrid);
+  if (settings_.geometric_statics)  // (the coarse level at the first solve: validate needs none)
+    statics_->set_coarse_level([this] {
+      return coarse_level(coarse_mesh_, mesh_, plan_.refine, settings_, footprints_,
+                          op_->soil().fixed());
+    });
   far_field_.reset();  // (built at the first static solve: validate needs none)
   if (settings_.boundary.spring_model == rumble::fem::SpringModel::kHalfSpace &&
       !settings_.layers.empty() && settings_.boundary.springs())
@@ -144,7 +149,9 @@ double FemSoil::estimate_peak() const {
   if (resident.now == 0.0) return 0.0;  // (no /proc: nothing to start from)
   const auto dofs = static_cast<double>(op_->dofs());
   const auto nonzeros = static_cast<double>(op_->stiffness().nonzeros());
-  double peak = std::max(resident.peak, resident.now + memory::statics_bytes(dofs, nonzeros));
+  double peak =
+      std::max(resident.peak,
+               resident.now + memory::statics_bytes(dofs, nonzeros, settings_.geometric_statics));
   if (implicit_)  // (the step factors K's combination as the statics' factor does)
     peak = std::max(peak,
                     resident.now + memory::kFactorBytesPerNonzero * memory::factor_nonzeros(dofs));
@@ -163,6 +170,9 @@ void FemSoil::refine_here(const std::vector<rumble::Footprint>& footprints) {
   // (refine_uniformly's mesh, its nodes in Morton order, ties by their numbers: the order the
   // ranks reproduce, docs/fem-soil.md §8)
   NumberedRefinement fine = refine_numbered(mesh_, name_entities(mesh_), plan_.refine);
+  // (statics.solver geometric: gmsh's mesh is the multigrid's coarse level, 1/8 of the fine
+  // mesh's memory per level)
+  if (settings_.geometric_statics) coarse_mesh_ = mesh_;
   renumber_nodes(fine.mesh, numbered_spatial_order(fine.mesh.nodes, fine.number,
                                                    fine.mesh.nodes.rowwise().minCoeff(),
                                                    fine.mesh.nodes.rowwise().maxCoeff()));

@@ -113,6 +113,7 @@ struct FemSettings {
   int local_steps{};             // explicit: sub-steps of the stiffest nodes per step; 1 = one rate
   bool single_precision_step{};  // explicit: the step reads K's values as float
   bool gamg_statics{};           // above the factor limit: PETSc's GAMG, not the soil's multigrid
+  bool geometric_statics{};      // above it: PETSc's CG with mesh.refine's geometric multigrid
   unsigned mesh_threads{};
 
   /// The properties at depth z [m] (>= 0).

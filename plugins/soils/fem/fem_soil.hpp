@@ -238,6 +238,8 @@ class FemSoil final : public rumble::Soil {
   std::vector<rumble::Footprint> footprints_;
   rumble::fem::MeshPlan plan_;
   rumble::fem::TetMesh mesh_;
+  // statics.solver geometric: gmsh's mesh before mesh.refine (the multigrid's coarse level).
+  rumble::fem::TetMesh coarse_mesh_;
   rumble::fem::FootprintWeights weights_;
   std::optional<rumble::fem::ExplicitSolver> op_;
   std::unique_ptr<rumble::fem::StaticSolver> statics_;

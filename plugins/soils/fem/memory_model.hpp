@@ -49,6 +49,15 @@ inline constexpr double kMultigridBytesPerNonzero = 12.2;
 /// -fem_statics_pc_gamg_agg_nsmooths 0) needed 1.29-1.33 GB there.
 inline constexpr double kGamgBytesPerNonzero = 55.0;
 
+/// The geometric multigrid (statics.solver geometric, mesh.refine 1) at its peak, beyond what the
+/// soil holds into the statics, per nonzero of K [bytes]: it frees K's rows first (12 B per
+/// nonzero and their node graph), then adds the coarse level (K + S of gmsh's mesh and the
+/// interpolation) and PETSc's GAMG on it with CG's and the V-cycle's vectors on the mesh: less
+/// than it freed, so the build's peak stays the run's. Measured on the stiff example at 9.3e5
+/// DOFs (docs/fem-soil.md §7.1): 813 MB resident at the start, 321 MB with the rows freed, 428
+/// MB with the coarse level, 721 MB after the first solve: -92 MB over about 4.2e7 nonzeros.
+inline constexpr double kGeometricBytesPerNonzero = -2.2;
+
 /// The whole mesh's nodes and tetrahedra as rank 0 keeps them on many ranks, per DOF [bytes]:
 /// 24 B per node and 16 B per tetrahedron, about 5.5 tetrahedra per node (docs/fem-soil.md §8,
 /// "What rank 0 keeps").
@@ -68,9 +77,10 @@ inline double multigrid_bytes(double nonzeros) {
 }
 
 /// What the first static solve adds to what the soil holds [bytes], by its path, for n DOFs and
-/// K's nonzeros.
-inline double statics_bytes(double dofs, double nonzeros) {
-  return dofs <= kFactorLimitDofs ? factor_bytes(dofs) : multigrid_bytes(nonzeros);
+/// K's nonzeros (geometric: statics.solver geometric's, negative: it frees more than it adds).
+inline double statics_bytes(double dofs, double nonzeros, bool geometric = false) {
+  if (dofs <= kFactorLimitDofs) return factor_bytes(dofs);
+  return geometric ? kGeometricBytesPerNonzero * nonzeros : multigrid_bytes(nonzeros);
 }
 
 /// A run's peak resident memory for a mesh of n DOFs [bytes], before meshing: the process, what

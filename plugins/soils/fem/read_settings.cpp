@@ -9,6 +9,7 @@
 #include <rumble/params.hpp>
 #include <sstream>
 #include <stdexcept>
+#include <string>
 
 #include "fem_schema.hpp"
 #include "fem_settings.hpp"
@@ -230,6 +231,24 @@ void check_pml_needs(const FemSettings& s) {
               "the explicit integrator (its memory variables are stepped explicitly)");
 }
 
+// The geometric multigrid's coarse level is gmsh's mesh before mesh.refine refined it.
+void check_geometric_needs(const FemSettings& s) {
+  if (!s.geometric_statics) return;
+  if (!s.mesh.file.empty())
+    throw std::invalid_argument(
+        "fem: params/statics/solver: \"geometric\" needs a generated mesh refined by "
+        "mesh.refine (its coarse level is gmsh's mesh before the refinement), but mesh.file \"" +
+        s.mesh.file + "\" is the mesh here; use statics.solver \"multigrid\" or \"gamg\"");
+  if (s.mesh.refine < 1)
+    throw std::invalid_argument(
+        "fem: params/statics/solver: \"geometric\" needs mesh.refine 1 or more (its coarse "
+        "level is gmsh's mesh before the refinement; docs/fem-soil.md section 7.1), got "
+        "params/mesh/refine " +
+        std::to_string(s.mesh.refine) +
+        ": set mesh.refine to 1 (gmsh then meshes at twice the sizes), or use statics.solver "
+        "\"multigrid\" or \"gamg\"");
+}
+
 }  // namespace
 
 FemSettings read_settings(const std::string& params_json) {
@@ -245,8 +264,11 @@ FemSettings read_settings(const std::string& params_json) {
   s.damping = read_damping(params.object("damping"));
   s.receptance = read_receptance(params.object("receptance"), s.mesh);
   read_integrator(params, s);
-  s.gamg_statics = params.object("statics").get<std::string>("solver") == "gamg";
+  const std::string statics_solver = params.object("statics").get<std::string>("solver");
+  s.gamg_statics = statics_solver == "gamg";
+  s.geometric_statics = statics_solver == "geometric";
   check_pml_needs(s);
+  check_geometric_needs(s);
   return s;
 }
 

@@ -109,4 +109,13 @@ std::vector<BoundaryNode> absorbing_boundary(const TetMesh& mesh, const FemSetti
   return absorbing_boundary(mesh, settings, std::vector<Footprint>{spread});
 }
 
+std::vector<char> held_nodes(Eigen::Index nodes, const std::vector<BoundaryNode>& boundary,
+                             const FemSettings& settings) {
+  std::vector<char> held(static_cast<std::size_t>(nodes), 0);
+  if (settings.boundary.kind == BoundaryKind::kFixed ||
+      settings.boundary.kind == BoundaryKind::kPml)
+    for (const BoundaryNode& b : boundary) held[static_cast<std::size_t>(b.node)] = 1;
+  return held;
+}
+
 }  // namespace rumble::fem

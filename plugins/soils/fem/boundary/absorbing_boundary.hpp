@@ -29,6 +29,13 @@ std::vector<BoundaryNode> absorbing_boundary(const TetMesh& mesh, const FemSetti
 std::vector<BoundaryNode> absorbing_boundary(const TetMesh& mesh, const FemSettings& settings,
                                              const TrackRegion& region);
 
+/// Per node of a mesh of `nodes` nodes, whether it is held (never moves): the truncation
+/// surface's nodes under boundary.type fixed, and behind a matched layer, where the viscous-spring
+/// blocks or dashpots made the discrete layer grow at every step tried (docs/fem-soil.md section
+/// 3.1); none under the other kinds.
+std::vector<char> held_nodes(Eigen::Index nodes, const std::vector<BoundaryNode>& boundary,
+                             const FemSettings& settings);
+
 // The two halves of absorbing_boundary, for a mesh split over ranks (distributed/part_pieces.hpp):
 // a node's share of the surface sums the faces around it, which may lie on several ranks.
 /// The truncation surface's nodes of `mesh`, each with its share of the faces' area [m^2] and

@@ -13,6 +13,7 @@
 
 #include "operator/effective_matrix.hpp"
 #include "statics/petsc_session.hpp"
+#include "statics/petsc_stop_test.hpp"
 
 namespace rumble::fem {
 
@@ -20,14 +21,6 @@ namespace rumble::fem {
 static_assert(std::is_same_v<PetscInt, RowSparse::StorageIndex>,
               "PETSc's indices must be the rows' (a 32-bit PETSc, as Debian ships it)");
 static_assert(std::is_same_v<PetscScalar, double>, "a real, double PETSc");
-
-/// The operator's stop check (Ctrl-C) between CG's iterations: PETSc's C frames cannot carry a
-/// C++ exception, so the check's exception is kept, CG told to stop, and rethrown after.
-struct PetscStopTest {
-  const SoilOperator* op = nullptr;
-  void* default_test = nullptr;  // KSPConvergedDefault's context
-  std::exception_ptr stopped;
-};
 
 namespace {
 
@@ -39,19 +32,6 @@ struct PetscBlockRows {
   std::vector<PetscInt> start, column;
   std::vector<PetscScalar> value;
 };
-
-PetscErrorCode converged_or_stopped(KSP ksp, PetscInt it, PetscReal rnorm,
-                                    KSPConvergedReason* reason, void* context) {
-  auto* test = static_cast<PetscStopTest*>(context);
-  try {
-    test->op->check_stop();
-  } catch (...) {
-    test->stopped = std::current_exception();
-    *reason = KSP_DIVERGED_ITS;
-    return 0;
-  }
-  return KSPConvergedDefault(ksp, it, rnorm, reason, test->default_test);
-}
 
 /// a in blocks; the matrix must have 3 x 3 blocks' rows (3 DOFs per node).
 PetscBlockRows block_rows(const RowSparse& a) {
@@ -205,14 +185,7 @@ void PetscStaticSolver::build_solver(const Eigen::Matrix3Xd& nodes) {
   petsc_check(PCSetType(pc, PCGAMG), "PCSetType");
   if (p.product) petsc_check(PCSetUseAmat(pc, PETSC_TRUE), "PCSetUseAmat");  // the mesh's level
   petsc_check(KSPSetFromOptions(p.ksp), "KSPSetFromOptions");
-  p.stop.op = &op_;
-  petsc_check(KSPConvergedDefaultCreate(&p.stop.default_test), "KSPConvergedDefaultCreate");
-  petsc_check(KSPSetConvergenceTest(p.ksp, converged_or_stopped, &p.stop,
-                                    [](void* context) {
-                                      return KSPConvergedDefaultDestroy(
-                                          static_cast<PetscStopTest*>(context)->default_test);
-                                    }),
-              "KSPSetConvergenceTest");
+  set_stop_test(p.ksp, op_, p.stop);
   petsc_check(KSPSetUp(p.ksp), "KSPSetUp (GAMG's hierarchy)");
   PetscInt levels = 0;
   petsc_check(PCMGGetLevels(pc, &levels), "PCMGGetLevels");

@@ -23,6 +23,7 @@ void StaticSolver::release() {
   factor_.reset();
   multigrid_.reset();
   gamg_.reset();
+  geometric_.reset();
   Eigen::VectorXd().swap(diagonal_);
 }
 
@@ -30,11 +31,13 @@ std::size_t StaticSolver::bytes() const {
   std::size_t b = static_cast<std::size_t>(diagonal_.size() + last_.size()) * 8;
   if (factor_) b += factor_->llt.cholmod().memory_inuse;
   if (multigrid_) b += multigrid_->bytes();
+  if (geometric_) b += geometric_->bytes();
   return b;
 }
 
 int StaticSolver::multigrid_levels() const {
   if (gamg_) return gamg_->levels();
+  if (geometric_) return geometric_->levels();
   return multigrid_ ? multigrid_->levels() : 0;
 }
 
@@ -43,6 +46,8 @@ const char* StaticSolver::method() const {
   switch (preconditioner_) {
     case CgPreconditioner::kGamg:
       return "CG + GAMG (PETSc)";
+    case CgPreconditioner::kGeometric:
+      return "CG + geometric multigrid (PETSc)";
     case CgPreconditioner::kMultigrid:
       return "CG + multigrid";
     case CgPreconditioner::kJacobi:
@@ -61,6 +66,8 @@ Eigen::VectorXd StaticSolver::solve(const Eigen::VectorXd& f) {
     cg_iterations_ = gamg_->last_iterations();
     return u;
   }
+  if (op_.dofs() > factor_limit_ && preconditioner_ == CgPreconditioner::kGeometric)
+    return geometric_solve(f);
   if (op_.dofs() > factor_limit_) return conjugate_gradients(f);
   if (!factor_) {
     factor_ = std::make_unique<Factor>();
@@ -79,6 +86,20 @@ Eigen::VectorXd StaticSolver::solve(const Eigen::VectorXd& f) {
   Eigen::VectorXd u = factor_->llt.solve(rhs);
   if (factor_->llt.info() != Eigen::Success || !u.allFinite())
     throw std::runtime_error("fem: the static solve failed (CHOLMOD)");
+  return u;
+}
+
+Eigen::VectorXd StaticSolver::geometric_solve(const Eigen::VectorXd& f) {
+  if (!geometric_) {
+    if (!coarse_level_)
+      throw std::logic_error("fem: the geometric multigrid's statics without a coarse level");
+    const auto start = std::chrono::steady_clock::now();
+    geometric_ = std::make_unique<GeometricStaticSolver>(op_, coarse_level_);
+    multigrid_seconds_ =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+  Eigen::VectorXd u = geometric_->solve(f);
+  cg_iterations_ = geometric_->last_iterations();
   return u;
 }
 

@@ -5,23 +5,28 @@
 // the factor would take more memory than the soil itself by far, conjugate gradients
 // preconditioned by smoothed-aggregation multigrid (amg_preconditioner.hpp), or by the diagonal
 // (Jacobi, kept as the baseline bench/fem/fem_static_bench.cpp measures against), or PETSc's CG
-// preconditioned by its algebraic multigrid GAMG (petsc_static_solver.hpp; issue #33).
+// preconditioned by its algebraic multigrid GAMG (petsc_static_solver.hpp; issue #33) or by a
+// geometric multigrid on mesh.refine's nested meshes (geometric_static_solver.hpp).
 #pragma once
 
 #include <Eigen/Core>
 #include <cstddef>
+#include <functional>
 #include <memory>
 
 #include "memory_model.hpp"
 #include "operator/soil_operator.hpp"
 #include "statics/amg_preconditioner.hpp"
+#include "statics/coarse_level.hpp"
+#include "statics/geometric_static_solver.hpp"
 #include "statics/petsc_static_solver.hpp"
 
 namespace rumble::fem {
 
 /// The iterative path: our CG with our smoothed-aggregation multigrid or the diagonal, or
-/// PETSc's CG with GAMG (PETSc started at the first such solve, never before).
-enum class CgPreconditioner { kMultigrid, kJacobi, kGamg };
+/// PETSc's CG with GAMG or with the geometric multigrid of a refined mesh (set_coarse_level;
+/// PETSc started at the first such solve, never before).
+enum class CgPreconditioner { kMultigrid, kJacobi, kGamg, kGeometric };
 
 class StaticSolver {
  public:
@@ -43,15 +48,20 @@ class StaticSolver {
   /// the last solution (the engine's static iteration asks again with a slightly changed load).
   Eigen::VectorXd solve(const Eigen::VectorXd& f);
   bool factored() const { return factor_ != nullptr; }
+  /// kGeometric: what builds the coarse level (coarse_level.hpp), called at the first iterative
+  /// solve and again after release(). Without it such a solve throws std::logic_error.
+  void set_coarse_level(std::function<CoarseLevel()> build) { coarse_level_ = std::move(build); }
   /// Frees what the solves keep (the factor, the multigrid hierarchy, PETSc's solver), which the
   /// plugin does once the statics are done (at the first step: docs/fem-soil.md section 7.2); a
   /// later solve builds them again, the same, and still starts CG from the last solution.
   void release();
   /// Memory the solves keep now [bytes]: the factor (CHOLMOD's count of its memory in use), the
-  /// multigrid hierarchy, CG's last solution and diagonal; PETSc's solver is not counted.
+  /// multigrid hierarchy, CG's last solution and diagonal, the geometric multigrid's coarse
+  /// level and vectors; PETSc's own objects (GAMG's hierarchies) are not counted.
   std::size_t bytes() const;
   int last_cg_iterations() const { return cg_iterations_; }
-  /// Seconds the multigrid hierarchy took to build (0 before, or with the factor or Jacobi).
+  /// Seconds the multigrid hierarchy took to build (0 before, or with the factor or Jacobi;
+  /// the geometric multigrid's coarse level included).
   double multigrid_setup_seconds() const { return multigrid_seconds_; }
   /// The hand-written multigrid hierarchy once CG has built it, else null.
   const AmgPreconditioner* multigrid() const { return multigrid_.get(); }
@@ -63,6 +73,8 @@ class StaticSolver {
  private:
   struct Factor;
   Eigen::VectorXd conjugate_gradients(const Eigen::VectorXd& f);
+  /// kGeometric's solve, its levels built when missing.
+  Eigen::VectorXd geometric_solve(const Eigen::VectorXd& f);
   /// CG's preconditioner for n DOFs, built when missing, and its start (the last solution).
   void prepare_preconditioner(Eigen::Index n);
   void build_multigrid();
@@ -76,6 +88,8 @@ class StaticSolver {
   std::unique_ptr<Factor> factor_;
   std::unique_ptr<AmgPreconditioner> multigrid_;
   std::unique_ptr<PetscStaticSolver> gamg_;
+  std::unique_ptr<GeometricStaticSolver> geometric_;
+  std::function<CoarseLevel()> coarse_level_;
   Eigen::VectorXd diagonal_, last_;  // CG: the Jacobi preconditioner; the last solution
   int cg_iterations_ = 0;
   double multigrid_seconds_ = 0.0;

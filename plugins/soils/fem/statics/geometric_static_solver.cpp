@@ -1,0 +1,266 @@
+#include "statics/geometric_static_solver.hpp"
+
+#include <petscksp.h>
+
+#include <algorithm>
+#include <chrono>
+#include <sstream>
+#include <stdexcept>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include "statics/petsc_session.hpp"
+#include "statics/petsc_stop_test.hpp"
+
+namespace rumble::fem {
+
+static_assert(std::is_same_v<PetscInt, RowSparse::StorageIndex>,
+              "PETSc's indices must be the rows' (a 32-bit PETSc, as Debian ships it)");
+
+struct GeometricStaticSolver::Petsc {
+  ~Petsc() {
+    // (errors ignored: a destructor; the session outlives these objects, as it is a member)
+    KSPDestroy(&ksp);
+    VecDestroy(&x);
+    VecDestroy(&b);
+    MatDestroy(&interpolation);
+    MatDestroy(&node_interpolation);
+    MatDestroy(&coarse);
+    MatDestroy(&fine);
+  }
+  /// y = (K + S) x by the operator's threaded product, K as the step reads it; identity rows
+  /// and columns on held DOFs. The fine level's MATOP_MULT. (The operator's product is 0 on a
+  /// held node's rows but reads x there: with x's held entries taken out first the shell is
+  /// symmetric for any x, as the smoother's estimate of the spectrum, from a random x, needs:
+  /// with them, CG's estimate of D^-1 (K + S) on a box held on five sides was 8.6e6, not 2.6.)
+  static PetscErrorCode multiply(Mat a, Vec x, Vec y) {
+    Petsc* p = nullptr;
+    const PetscScalar* in = nullptr;
+    PetscScalar* out = nullptr;
+    PetscCall(MatShellGetContext(a, &p));
+    const std::vector<char>& held = p->op->fixed();
+    PetscCall(VecGetArrayRead(x, &in));
+    std::copy(in, in + p->in.size(), p->in.data());
+    for (Eigen::Index k = 0; k < p->in.size(); ++k)
+      if (held[k / 3]) p->in[k] = 0.0;
+    try {  // (a C++ exception must not cross PETSc's C frames)
+      p->op->stepped_stiffness_times(p->in, p->out, true);
+    } catch (...) {
+      VecRestoreArrayRead(x, &in);
+      return PETSC_ERR_LIB;
+    }
+    for (Eigen::Index k = 0; k < p->in.size(); ++k)
+      if (held[k / 3]) p->out[k] = in[k];
+    PetscCall(VecRestoreArrayRead(x, &in));
+    PetscCall(VecGetArray(y, &out));
+    std::copy(p->out.data(), p->out.data() + p->out.size(), out);
+    PetscCall(VecRestoreArray(y, &out));
+    return 0;
+  }
+  /// The diagonal of K + S (1 on held DOFs): the fine level's MATOP_GET_DIAGONAL, for Jacobi.
+  static PetscErrorCode get_diagonal(Mat a, Vec d) {
+    Petsc* p = nullptr;
+    PetscScalar* out = nullptr;
+    PetscCall(MatShellGetContext(a, &p));
+    PetscCall(VecGetArray(d, &out));
+    std::copy(p->diagonal.data(), p->diagonal.data() + p->diagonal.size(), out);
+    PetscCall(VecRestoreArray(d, &out));
+    return 0;
+  }
+  std::shared_ptr<PetscSession> session = PetscSession::get();
+  const SoilOperator* op = nullptr;
+  CoarseLevel level;                  // its arrays shared by coarse and node_interpolation
+  Eigen::VectorXd diagonal, in, out;  // the shell's
+  Mat fine = nullptr, coarse = nullptr;
+  Mat node_interpolation = nullptr;  // fine nodes x coarse nodes
+  Mat interpolation = nullptr;       // the same on each of a node's 3 DOFs (MAIJ)
+  Vec x = nullptr, b = nullptr;      // over the solver's own vectors (VecPlaceArray)
+  KSP ksp = nullptr;
+  PetscStopTest stop;
+};
+
+namespace {
+
+/// The diagonal of K + S from K's rows (1 on held DOFs).
+Eigen::VectorXd stiffness_diagonal(const SoilOperator& op) {
+  const CsrMatrix& K = op.stiffness();
+  Eigen::VectorXd d = Eigen::VectorXd::Zero(op.dofs());
+  for (Eigen::Index r = 0; r < d.size(); ++r)
+    for (std::int64_t k = K.row_start()[r]; k < K.row_start()[r + 1]; ++k)
+      if (K.column()[k] == r) d[r] = K.value()[k];
+  for (const BoundaryNode& b : op.boundary())
+    for (int c = 0; c < 3; ++c) d[3 * b.node + c] += b.spring(c, c);
+  for (Eigen::Index r = 0; r < d.size(); ++r)
+    if (op.fixed()[r / 3]) d[r] = 1.0;
+  return d;
+}
+
+}  // namespace
+
+GeometricStaticSolver::GeometricStaticSolver(const SoilOperator& op,
+                                             const std::function<CoarseLevel()>& coarse)
+    : op_(op), petsc_(std::make_unique<Petsc>()) {
+  const auto start = std::chrono::steady_clock::now();
+  Petsc& p = *petsc_;
+  p.op = &op;
+  p.diagonal = stiffness_diagonal(op);
+  // The rows were read for their diagonal alone: nothing else of the statics needs them
+  // (docs/fem-soil.md §7.1), and at 1e6 DOFs they are 0.55 GB, more than the levels take.
+  op.release_stiffness();
+  p.level = coarse();
+  if (p.level.interpolation.rows() != op.nodes() ||
+      p.level.interpolation.cols() != p.level.nodes.cols() ||
+      p.level.matrix.rows() != 3 * p.level.nodes.cols())
+    throw std::invalid_argument(
+        "fem: the geometric multigrid's coarse level does not fit the "
+        "soil's mesh (its interpolation's or matrix's size)");
+  make_levels();
+  build_solver();
+  setup_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  last_ = Eigen::VectorXd::Zero(op.dofs());
+}
+
+GeometricStaticSolver::~GeometricStaticSolver() = default;
+
+std::size_t GeometricStaticSolver::bytes() const {
+  const Petsc& p = *petsc_;
+  const auto sparse = [](const RowSparse& a) {
+    return static_cast<std::size_t>(a.nonZeros()) * 12 + static_cast<std::size_t>(a.rows()) * 4;
+  };
+  return sparse(p.level.matrix) + sparse(p.level.interpolation) +
+         static_cast<std::size_t>(p.level.nodes.size()) * 8 +
+         static_cast<std::size_t>(p.diagonal.size() + p.in.size() + p.out.size() + last_.size()) *
+             8;
+}
+
+void GeometricStaticSolver::make_levels() {
+  Petsc& p = *petsc_;
+  const auto n = static_cast<PetscInt>(op_.dofs());
+  p.in.resize(n);
+  p.out.resize(n);
+  petsc_check(MatCreateShell(PETSC_COMM_SELF, n, n, n, n, &p, &p.fine), "MatCreateShell");
+  petsc_check(
+      MatShellSetOperation(p.fine, MATOP_MULT, reinterpret_cast<void (*)(void)>(&Petsc::multiply)),
+      "MatShellSetOperation");
+  petsc_check(MatShellSetOperation(p.fine, MATOP_GET_DIAGONAL,
+                                   reinterpret_cast<void (*)(void)>(&Petsc::get_diagonal)),
+              "MatShellSetOperation");
+  petsc_check(MatSetBlockSize(p.fine, 3), "MatSetBlockSize");
+  petsc_check(MatSetOption(p.fine, MAT_SPD, PETSC_TRUE), "MatSetOption");
+  // The coarse matrix and the interpolation share the level's arrays (no copy).
+  RowSparse& a = p.level.matrix;
+  const auto m = static_cast<PetscInt>(a.rows());
+  petsc_check(MatCreateSeqAIJWithArrays(PETSC_COMM_SELF, m, m, a.outerIndexPtr(), a.innerIndexPtr(),
+                                        a.valuePtr(), &p.coarse),
+              "MatCreateSeqAIJWithArrays");
+  petsc_check(MatSetBlockSize(p.coarse, 3), "MatSetBlockSize");  // nodes, for GAMG's aggregates
+  petsc_check(MatSetOption(p.coarse, MAT_SPD, PETSC_TRUE), "MatSetOption");
+  RowSparse& t = p.level.interpolation;
+  petsc_check(MatCreateSeqAIJWithArrays(PETSC_COMM_SELF, static_cast<PetscInt>(t.rows()),
+                                        static_cast<PetscInt>(t.cols()), t.outerIndexPtr(),
+                                        t.innerIndexPtr(), t.valuePtr(), &p.node_interpolation),
+              "MatCreateSeqAIJWithArrays");
+  petsc_check(MatCreateMAIJ(p.node_interpolation, 3, &p.interpolation), "MatCreateMAIJ");
+  // The coarse solve's near-null space: the rigid-body modes of the coarse nodes.
+  Vec coordinates = nullptr;
+  MatNullSpace modes = nullptr;
+  petsc_check(VecCreateSeqWithArray(PETSC_COMM_SELF, 3, static_cast<PetscInt>(p.level.nodes.size()),
+                                    p.level.nodes.data(), &coordinates),
+              "VecCreateSeqWithArray");
+  petsc_check(MatNullSpaceCreateRigidBody(coordinates, &modes), "MatNullSpaceCreateRigidBody");
+  petsc_check(MatSetNearNullSpace(p.coarse, modes), "MatSetNearNullSpace");
+  MatNullSpaceDestroy(&modes);  // (the matrix holds it)
+  VecDestroy(&coordinates);
+  petsc_check(VecCreateSeqWithArray(PETSC_COMM_SELF, 3, n, nullptr, &p.x), "VecCreateSeqWithArray");
+  petsc_check(VecCreateSeqWithArray(PETSC_COMM_SELF, 3, n, nullptr, &p.b), "VecCreateSeqWithArray");
+}
+
+void GeometricStaticSolver::build_solver() {
+  Petsc& p = *petsc_;
+  PC pc = nullptr;
+  petsc_check(KSPCreate(PETSC_COMM_SELF, &p.ksp), "KSPCreate");
+  petsc_check(KSPSetOptionsPrefix(p.ksp, "fem_statics_"), "KSPSetOptionsPrefix");
+  petsc_check(KSPSetOperators(p.ksp, p.fine, p.fine), "KSPSetOperators");
+  petsc_check(KSPSetType(p.ksp, KSPCG), "KSPSetType");
+  // The other paths' test: the true residual, not the preconditioned one, against the load.
+  petsc_check(KSPSetNormType(p.ksp, KSP_NORM_UNPRECONDITIONED), "KSPSetNormType");
+  petsc_check(KSPSetTolerances(p.ksp, kTolerance, PETSC_DEFAULT, PETSC_DEFAULT, 20000),
+              "KSPSetTolerances");
+  petsc_check(KSPSetInitialGuessNonzero(p.ksp, PETSC_TRUE), "KSPSetInitialGuessNonzero");
+  petsc_check(KSPGetPC(p.ksp, &pc), "KSPGetPC");
+  petsc_check(PCSetType(pc, PCMG), "PCSetType");
+  petsc_check(PCMGSetLevels(pc, 2, nullptr), "PCMGSetLevels");
+  petsc_check(PCMGSetType(pc, PC_MG_MULTIPLICATIVE), "PCMGSetType");
+  petsc_check(PCMGSetGalerkin(pc, PC_MG_GALERKIN_NONE), "PCMGSetGalerkin");
+  petsc_check(PCMGSetInterpolation(pc, 1, p.interpolation), "PCMGSetInterpolation");
+  // The fine level: Chebyshev(2) with Jacobi, its bounds from CG's estimate of the spectrum of
+  // D^-1 (K + S): [0.1, 1.1] times the largest eigenvalue (GAMG's levels' defaults).
+  KSP smoother = nullptr, estimate = nullptr;
+  PC jacobi = nullptr;
+  petsc_check(PCMGGetSmoother(pc, 1, &smoother), "PCMGGetSmoother");
+  petsc_check(KSPSetOperators(smoother, p.fine, p.fine), "KSPSetOperators");
+  petsc_check(KSPSetType(smoother, KSPCHEBYSHEV), "KSPSetType");
+  petsc_check(KSPChebyshevEstEigSet(smoother, 0.0, 0.1, 0.0, 1.1), "KSPChebyshevEstEigSet");
+  petsc_check(KSPChebyshevEstEigGetKSP(smoother, &estimate), "KSPChebyshevEstEigGetKSP");
+  if (estimate) petsc_check(KSPSetType(estimate, KSPCG), "KSPSetType");
+  petsc_check(KSPSetTolerances(smoother, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT, 2),
+              "KSPSetTolerances");
+  petsc_check(KSPGetPC(smoother, &jacobi), "KSPGetPC");
+  petsc_check(PCSetType(jacobi, PCJACOBI), "PCSetType");
+  // The coarse level: one V-cycle of GAMG (a fixed linear operator, as CG needs).
+  KSP coarse = nullptr;
+  PC gamg = nullptr;
+  petsc_check(PCMGGetCoarseSolve(pc, &coarse), "PCMGGetCoarseSolve");
+  petsc_check(KSPSetOperators(coarse, p.coarse, p.coarse), "KSPSetOperators");
+  petsc_check(KSPSetType(coarse, KSPPREONLY), "KSPSetType");
+  petsc_check(KSPGetPC(coarse, &gamg), "KSPGetPC");
+  petsc_check(PCSetType(gamg, PCGAMG), "PCSetType");
+  petsc_check(KSPSetFromOptions(p.ksp), "KSPSetFromOptions");
+  set_stop_test(p.ksp, op_, p.stop);
+  petsc_check(KSPSetUp(p.ksp), "KSPSetUp (the geometric multigrid's levels)");
+  PetscInt below = 1;
+  PetscBool is_gamg = PETSC_FALSE;
+  petsc_check(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(gamg), PCGAMG, &is_gamg),
+              "PetscObjectTypeCompare");
+  if (is_gamg) petsc_check(PCMGGetLevels(gamg, &below), "PCMGGetLevels");
+  levels_ = 1 + static_cast<int>(below);
+}
+
+Eigen::VectorXd GeometricStaticSolver::solve(const Eigen::VectorXd& f) {
+  Petsc& p = *petsc_;
+  Eigen::VectorXd rhs = f;
+  for (Eigen::Index k = 0; k < rhs.size(); ++k)
+    if (op_.fixed()[k / 3]) rhs[k] = 0.0;
+  if (rhs.isZero(0.0)) {  // no load on a free DOF: at rest
+    iterations_ = 0;
+    last_.setZero();
+    return last_;
+  }
+  Eigen::VectorXd u = last_;
+  petsc_check(VecPlaceArray(p.b, rhs.data()), "VecPlaceArray");
+  petsc_check(VecPlaceArray(p.x, u.data()), "VecPlaceArray");
+  const PetscErrorCode code = KSPSolve(p.ksp, p.b, p.x);
+  VecResetArray(p.x);
+  VecResetArray(p.b);
+  if (p.stop.stopped) std::rethrow_exception(std::exchange(p.stop.stopped, nullptr));
+  petsc_check(code, "KSPSolve");
+  PetscInt iterations = 0;
+  KSPConvergedReason reason = KSP_CONVERGED_ITERATING;
+  KSPGetIterationNumber(p.ksp, &iterations);
+  KSPGetConvergedReason(p.ksp, &reason);
+  iterations_ = static_cast<int>(iterations);
+  if (reason < 0 || !u.allFinite()) {
+    PetscReal residual = 0.0;
+    KSPGetResidualNorm(p.ksp, &residual);
+    std::ostringstream m;
+    m << "fem: the static solve (CG with the geometric multigrid) did not converge in "
+      << iterations_ << " iterations (" << KSPConvergedReasons[reason] << ", residual "
+      << residual / rhs.norm() << " of the load)";
+    throw std::runtime_error(m.str());
+  }
+  last_ = u;
+  return u;
+}
+
+}  // namespace rumble::fem
