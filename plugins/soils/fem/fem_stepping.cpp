@@ -49,7 +49,10 @@ void FemSoil::initialize_here(double /*t0*/, const double* static_force, double*
   if (first_multigrid && statics_->multigrid_levels() > 0)  // (once: the hierarchy is kept)
     host_.info("fem: static solves by " + std::string(statics_->method()) + ": " +
                std::to_string(statics_->multigrid_levels()) + " levels (" +
-               format(static_cast<double>(statics_->bytes()) / 1048576.0) + " MiB), set up in " +
+               format(static_cast<double>(statics_->bytes()) / 1048576.0) +
+               (statics_->petsc_levels() ? " MiB besides PETSc's own, which summary.json's statics "
+                                           "peak counts), set up in "
+                                         : " MiB), set up in ") +
                format(statics_->multigrid_setup_seconds(), 2) +
                " s; the first solve, set-up included, " + solved);
   else if (!statics_->factored() && statics_->last_cg_iterations() > 0)

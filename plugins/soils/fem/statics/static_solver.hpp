@@ -69,6 +69,9 @@ class StaticSolver {
   int multigrid_levels() const;
   /// What the iterative path is, for the log: "CG + GAMG (PETSc)", "CG + multigrid", ...
   const char* method() const;
+  /// PETSc holds levels of the multigrid that bytes() does not count (GAMG's, the geometric
+  /// multigrid's coarse hierarchy): the log says so rather than give them as 0.
+  bool petsc_levels() const { return gamg_ != nullptr || geometric_ != nullptr; }
 
  private:
   struct Factor;
