@@ -4,14 +4,12 @@
 
 #include <algorithm>
 #include <chrono>
-#include <sstream>
 #include <stdexcept>
 #include <type_traits>
-#include <utility>
 #include <vector>
 
+#include "statics/petsc_cg.hpp"
 #include "statics/petsc_session.hpp"
-#include "statics/petsc_stop_test.hpp"
 
 namespace rumble::fem {
 
@@ -229,38 +227,8 @@ void GeometricStaticSolver::build_solver() {
 
 Eigen::VectorXd GeometricStaticSolver::solve(const Eigen::VectorXd& f) {
   Petsc& p = *petsc_;
-  Eigen::VectorXd rhs = f;
-  for (Eigen::Index k = 0; k < rhs.size(); ++k)
-    if (op_.fixed()[k / 3]) rhs[k] = 0.0;
-  if (rhs.isZero(0.0)) {  // no load on a free DOF: at rest
-    iterations_ = 0;
-    last_.setZero();
-    return last_;
-  }
-  Eigen::VectorXd u = last_;
-  petsc_check(VecPlaceArray(p.b, rhs.data()), "VecPlaceArray");
-  petsc_check(VecPlaceArray(p.x, u.data()), "VecPlaceArray");
-  const PetscErrorCode code = KSPSolve(p.ksp, p.b, p.x);
-  VecResetArray(p.x);
-  VecResetArray(p.b);
-  if (p.stop.stopped) std::rethrow_exception(std::exchange(p.stop.stopped, nullptr));
-  petsc_check(code, "KSPSolve");
-  PetscInt iterations = 0;
-  KSPConvergedReason reason = KSP_CONVERGED_ITERATING;
-  KSPGetIterationNumber(p.ksp, &iterations);
-  KSPGetConvergedReason(p.ksp, &reason);
-  iterations_ = static_cast<int>(iterations);
-  if (reason < 0 || !u.allFinite()) {
-    PetscReal residual = 0.0;
-    KSPGetResidualNorm(p.ksp, &residual);
-    std::ostringstream m;
-    m << "fem: the static solve (CG with the geometric multigrid) did not converge in "
-      << iterations_ << " iterations (" << KSPConvergedReasons[reason] << ", residual "
-      << residual / rhs.norm() << " of the load)";
-    throw std::runtime_error(m.str());
-  }
-  last_ = u;
-  return u;
+  return solve_static(p.ksp, p.x, p.b, p.stop, f, last_, iterations_,
+                      "CG with the geometric multigrid");
 }
 
 }  // namespace rumble::fem

@@ -1,0 +1,75 @@
+#include "statics/petsc_cg.hpp"
+
+#include <sstream>
+#include <stdexcept>
+#include <utility>
+
+#include "statics/petsc_session.hpp"
+
+namespace rumble::fem {
+
+namespace {
+
+PetscErrorCode converged_or_stopped(KSP ksp, PetscInt it, PetscReal rnorm,
+                                    KSPConvergedReason* reason, void* context) {
+  auto* test = static_cast<PetscStopTest*>(context);
+  try {
+    test->op->check_stop();
+  } catch (...) {
+    test->stopped = std::current_exception();
+    *reason = KSP_DIVERGED_ITS;
+    return 0;
+  }
+  return KSPConvergedDefault(ksp, it, rnorm, reason, test->default_test);
+}
+
+}  // namespace
+
+void set_stop_test(KSP ksp, const SoilOperator& op, PetscStopTest& stop) {
+  stop.op = &op;
+  petsc_check(KSPConvergedDefaultCreate(&stop.default_test), "KSPConvergedDefaultCreate");
+  petsc_check(KSPSetConvergenceTest(ksp, converged_or_stopped, &stop,
+                                    [](void* context) {
+                                      return KSPConvergedDefaultDestroy(
+                                          static_cast<PetscStopTest*>(context)->default_test);
+                                    }),
+              "KSPSetConvergenceTest");
+}
+
+Eigen::VectorXd solve_static(KSP ksp, Vec x, Vec b, PetscStopTest& stop, const Eigen::VectorXd& f,
+                             Eigen::VectorXd& last, int& iterations, const char* method) {
+  Eigen::VectorXd rhs = f;
+  for (Eigen::Index k = 0; k < rhs.size(); ++k)
+    if (stop.op->fixed()[k / 3]) rhs[k] = 0.0;
+  if (rhs.isZero(0.0)) {  // no load on a free DOF: at rest
+    iterations = 0;
+    last.setZero();
+    return last;
+  }
+  Eigen::VectorXd u = last;
+  petsc_check(VecPlaceArray(b, rhs.data()), "VecPlaceArray");
+  petsc_check(VecPlaceArray(x, u.data()), "VecPlaceArray");
+  const PetscErrorCode code = KSPSolve(ksp, b, x);
+  VecResetArray(x);
+  VecResetArray(b);
+  if (stop.stopped) std::rethrow_exception(std::exchange(stop.stopped, nullptr));
+  petsc_check(code, "KSPSolve");
+  PetscInt its = 0;
+  KSPConvergedReason reason = KSP_CONVERGED_ITERATING;
+  KSPGetIterationNumber(ksp, &its);
+  KSPGetConvergedReason(ksp, &reason);
+  iterations = static_cast<int>(its);
+  if (reason < 0 || !u.allFinite()) {
+    PetscReal residual = 0.0;
+    KSPGetResidualNorm(ksp, &residual);
+    std::ostringstream m;
+    m << "fem: the static solve (" << method << ") did not converge in " << iterations
+      << " iterations (" << KSPConvergedReasons[reason] << ", residual " << residual / rhs.norm()
+      << " of the load)";
+    throw std::runtime_error(m.str());
+  }
+  last = u;
+  return u;
+}
+
+}  // namespace rumble::fem

@@ -1,0 +1,36 @@
+// What the statics' PETSc solvers (petsc_static_solver.hpp, geometric_static_solver.hpp) share
+// around PETSc's CG: the operator's stop check (Ctrl-C) between its iterations, and one static
+// solve with the warm start, the held DOFs and the failure's message. PETSc's C frames cannot
+// carry a C++ exception, so the check's exception is kept, CG told to stop, and the solve
+// rethrows it after KSPSolve. Included by those solvers' .cpp files only (no header of the room
+// includes PETSc's).
+#pragma once
+
+#include <petscksp.h>
+
+#include <Eigen/Core>
+#include <exception>
+
+#include "operator/soil_operator.hpp"
+
+namespace rumble::fem {
+
+struct PetscStopTest {
+  const SoilOperator* op = nullptr;
+  void* default_test = nullptr;  // KSPConvergedDefault's context
+  std::exception_ptr stopped;    // the stop check's exception, rethrown after KSPSolve
+};
+
+/// ksp's convergence test: op's stop check, then PETSc's default test (stop must outlive ksp).
+/// Throws std::runtime_error when PETSc fails.
+void set_stop_test(KSP ksp, const SoilOperator& op, PetscStopTest& stop);
+
+/// One static solve by ksp (CG with a nonzero initial guess and set_stop_test's test, x and b
+/// its vectors over f's size, their arrays placed for the call): u with (K + S) u = f on the
+/// free DOFs, the load zeroed on op's held DOFs, from `last` (both updated); `iterations` the
+/// CG iterations (0 at rest). Rethrows the stop check's exception; throws std::runtime_error
+/// naming `method` (e.g. "CG with PETSc's GAMG") when CG does not converge.
+Eigen::VectorXd solve_static(KSP ksp, Vec x, Vec b, PetscStopTest& stop, const Eigen::VectorXd& f,
+                             Eigen::VectorXd& last, int& iterations, const char* method);
+
+}  // namespace rumble::fem
