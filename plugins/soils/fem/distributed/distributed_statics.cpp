@@ -10,6 +10,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "statics/petsc_cg.hpp"
 #include "statics/petsc_session.hpp"
 
 namespace rumble::fem {
@@ -214,14 +215,7 @@ void DistributedStatics::build_solver() {
   MatNullSpaceDestroy(&modes);  // (the matrix holds it)
   VecDestroy(&at);
   PC pc = nullptr;
-  petsc_check(KSPCreate(p.comm, &p.ksp), "KSPCreate");
-  petsc_check(KSPSetOptionsPrefix(p.ksp, "fem_statics_"), "KSPSetOptionsPrefix");
-  petsc_check(KSPSetOperators(p.ksp, p.a, p.a), "KSPSetOperators");
-  petsc_check(KSPSetType(p.ksp, KSPCG), "KSPSetType");
-  petsc_check(KSPSetNormType(p.ksp, KSP_NORM_UNPRECONDITIONED), "KSPSetNormType");
-  petsc_check(KSPSetTolerances(p.ksp, kTolerance, PETSC_DEFAULT, PETSC_DEFAULT, 20000),
-              "KSPSetTolerances");
-  petsc_check(KSPSetInitialGuessNonzero(p.ksp, PETSC_TRUE), "KSPSetInitialGuessNonzero");
+  p.ksp = static_cg(p.comm, p.a, p.a, kTolerance);
   petsc_check(KSPGetPC(p.ksp, &pc), "KSPGetPC");
   petsc_check(PCSetType(pc, PCGAMG), "PCSetType");
   petsc_check(KSPSetFromOptions(p.ksp), "KSPSetFromOptions");

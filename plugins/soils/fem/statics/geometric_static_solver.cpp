@@ -177,15 +177,7 @@ void GeometricStaticSolver::make_levels() {
 void GeometricStaticSolver::build_solver() {
   Petsc& p = *petsc_;
   PC pc = nullptr;
-  petsc_check(KSPCreate(PETSC_COMM_SELF, &p.ksp), "KSPCreate");
-  petsc_check(KSPSetOptionsPrefix(p.ksp, "fem_statics_"), "KSPSetOptionsPrefix");
-  petsc_check(KSPSetOperators(p.ksp, p.fine, p.fine), "KSPSetOperators");
-  petsc_check(KSPSetType(p.ksp, KSPCG), "KSPSetType");
-  // The other paths' test: the true residual, not the preconditioned one, against the load.
-  petsc_check(KSPSetNormType(p.ksp, KSP_NORM_UNPRECONDITIONED), "KSPSetNormType");
-  petsc_check(KSPSetTolerances(p.ksp, kTolerance, PETSC_DEFAULT, PETSC_DEFAULT, 20000),
-              "KSPSetTolerances");
-  petsc_check(KSPSetInitialGuessNonzero(p.ksp, PETSC_TRUE), "KSPSetInitialGuessNonzero");
+  p.ksp = static_cg(PETSC_COMM_SELF, p.fine, p.fine, kTolerance);
   petsc_check(KSPGetPC(p.ksp, &pc), "KSPGetPC");
   petsc_check(PCSetType(pc, PCMG), "PCSetType");
   petsc_check(PCMGSetLevels(pc, 2, nullptr), "PCMGSetLevels");

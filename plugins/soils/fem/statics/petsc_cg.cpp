@@ -25,6 +25,19 @@ PetscErrorCode converged_or_stopped(KSP ksp, PetscInt it, PetscReal rnorm,
 
 }  // namespace
 
+KSP static_cg(MPI_Comm comm, Mat a, Mat p, double tolerance) {
+  KSP ksp = nullptr;
+  petsc_check(KSPCreate(comm, &ksp), "KSPCreate");
+  petsc_check(KSPSetOptionsPrefix(ksp, "fem_statics_"), "KSPSetOptionsPrefix");
+  petsc_check(KSPSetOperators(ksp, a, p), "KSPSetOperators");
+  petsc_check(KSPSetType(ksp, KSPCG), "KSPSetType");
+  petsc_check(KSPSetNormType(ksp, KSP_NORM_UNPRECONDITIONED), "KSPSetNormType");
+  petsc_check(KSPSetTolerances(ksp, tolerance, PETSC_DEFAULT, PETSC_DEFAULT, 20000),
+              "KSPSetTolerances");
+  petsc_check(KSPSetInitialGuessNonzero(ksp, PETSC_TRUE), "KSPSetInitialGuessNonzero");
+  return ksp;
+}
+
 void set_stop_test(KSP ksp, const SoilOperator& op, PetscStopTest& stop) {
   stop.op = &op;
   petsc_check(KSPConvergedDefaultCreate(&stop.default_test), "KSPConvergedDefaultCreate");

@@ -1,5 +1,6 @@
 // What the statics' PETSc solvers (petsc_static_solver.hpp, geometric_static_solver.hpp) share
-// around PETSc's CG: the operator's stop check (Ctrl-C) between its iterations, and one static
+// around PETSc's CG (the ranks' statics, distributed/distributed_statics.hpp, too): its set-up,
+// the operator's stop check (Ctrl-C) between its iterations, and one static
 // solve with the warm start, the held DOFs and the failure's message. PETSc's C frames cannot
 // carry a C++ exception, so the check's exception is kept, CG told to stop, and the solve
 // rethrows it after KSPSolve. Included by those solvers' .cpp files only (no header of the room
@@ -20,6 +21,12 @@ struct PetscStopTest {
   void* default_test = nullptr;  // KSPConvergedDefault's context
   std::exception_ptr stopped;    // the stop check's exception, rethrown after KSPSolve
 };
+
+/// PETSc's CG on comm for operator a, preconditioned from p: options prefix "fem_statics_", the
+/// true (unpreconditioned) residual against `tolerance` of the load, as every static path tests
+/// (static_solver.hpp), a nonzero initial guess (the warm start); its PC is the caller's to set.
+/// Throws std::runtime_error when PETSc fails.
+KSP static_cg(MPI_Comm comm, Mat a, Mat p, double tolerance);
 
 /// ksp's convergence test: op's stop check, then PETSc's default test (stop must outlive ksp).
 /// Throws std::runtime_error when PETSc fails.

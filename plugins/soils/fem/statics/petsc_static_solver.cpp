@@ -169,15 +169,7 @@ void PetscStaticSolver::build_solver(const Eigen::Matrix3Xd& nodes) {
   VecDestroy(&coordinates);
 
   PC pc = nullptr;
-  petsc_check(KSPCreate(PETSC_COMM_SELF, &p.ksp), "KSPCreate");
-  petsc_check(KSPSetOptionsPrefix(p.ksp, "fem_statics_"), "KSPSetOptionsPrefix");
-  petsc_check(KSPSetOperators(p.ksp, p.product ? p.product : p.aij, p.aij), "KSPSetOperators");
-  petsc_check(KSPSetType(p.ksp, KSPCG), "KSPSetType");
-  // The hand-written CG's test: the true residual, not the preconditioned one, against the load.
-  petsc_check(KSPSetNormType(p.ksp, KSP_NORM_UNPRECONDITIONED), "KSPSetNormType");
-  petsc_check(KSPSetTolerances(p.ksp, kTolerance, PETSC_DEFAULT, PETSC_DEFAULT, 20000),
-              "KSPSetTolerances");
-  petsc_check(KSPSetInitialGuessNonzero(p.ksp, PETSC_TRUE), "KSPSetInitialGuessNonzero");
+  p.ksp = static_cg(PETSC_COMM_SELF, p.product ? p.product : p.aij, p.aij, kTolerance);
   petsc_check(KSPGetPC(p.ksp, &pc), "KSPGetPC");
   petsc_check(PCSetType(pc, PCGAMG), "PCSetType");
   if (p.product) petsc_check(PCSetUseAmat(pc, PETSC_TRUE), "PCSetUseAmat");  // the mesh's level
