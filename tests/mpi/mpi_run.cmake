@@ -41,8 +41,8 @@
 #   fem_too_many_ranks_is_refused  a mesh too small for 3 ranks: a clear error before meshing
 #                                (the run's validation lays the soil out: exit 1)
 #   fem_one_process_settings_refused_on_ranks  local steps, the implicit scheme, the matched
-#                                layer under mpirun: each refused with the params (exit 1),
-#                                naming its parameter
+#                                layer, the geometric statics under mpirun: each refused
+#                                with the params (exit 1), naming its parameter
 #   fem_whole_operator_refused_on_ranks  the monolithic coupler, `rumble stability`, `soil-frf`
 #                                and `calibrate` on 2 ranks: the linear matrices and the
 #                                receptance need the whole operator, refused at validation (exit
@@ -322,6 +322,12 @@ function(fem_case)
       endif()
       expect_match("${out}" "${said} runs on one process|${said} factors the whole mesh")
     endforeach()
+    rumble_run(out code ${mpirun} -n 2 ${RUMBLE} run ${fem} --output ${WORK_DIR}/refused
+               --set /soil/params/mesh/refine=1 --set /soil/params/statics={\"solver\":\"geometric\"})
+    if(NOT code EQUAL 1 OR out MATCHES "fem: a mesh of about")
+      message(FATAL_ERROR "geometric statics: expected exit code 1 (params refused), got ${code}:\n${out}")
+    endif()
+    expect_match("${out}" "params/statics/solver: the geometric multigrid runs on one process only for now; use statics.solver \"gamg\" under mpirun")
   elseif(CASE STREQUAL "fem_whole_operator_refused_on_ranks")
     # The monolithic coupler and `rumble stability` read the soil's linear matrices, its whole
     # operator, which no rank holds: refused at validation (exit 1, before meshing), naming the
