@@ -45,7 +45,8 @@ class Scheme {
         to_track_(host, kSoil, kTrack),
         to_soil_(host, kTrack, kSoil),
         residuals_(host, kSoil),
-        checkpoints_(host.can_checkpoint(kTrack)),
+        // The track is kept at each step start only for a soil that may refuse (ABI 1.7).
+        checkpoints_(host.can_checkpoint(kTrack) && host.may_refuse(kSoil)),
         track_output_(host.output_size(kTrack)) {
     soil_history_.sample(t0);                    // the soil's static outputs start the history...
     residuals_.observe(soil_history_.latest());  // ... and the residuals' scale

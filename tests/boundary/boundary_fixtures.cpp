@@ -70,7 +70,7 @@ constexpr const char* kSpringSchema = R"(
     "c": {"type": "number", "exclusiveMinimum": 0, "default": 2.0e5},
     "sub_step": {"type": "number", "exclusiveMinimum": 0, "default": 1.25e-4})";
 
-class PickySoil final : public rumble::Soil {
+class PickySoil : public rumble::Soil {
  public:
   static constexpr const char* kTypeName = "picky_soil";
   static constexpr const char* kSummary = "test fixture: refuses long steps, records probes";
@@ -252,6 +252,16 @@ class PickySoil final : public rumble::Soil {
   std::array<bool, RUMBLE_CHECKPOINT_SLOTS> saved_{};
 };
 
+/// picky_soil declaring that it never refuses a step (ABI 1.7), which its max_step breaks: the
+/// host must stop the run rather than let a coupler that kept no checkpoint go on.
+class BoastfulSoil final : public PickySoil {
+ public:
+  using PickySoil::PickySoil;
+  static constexpr const char* kTypeName = "boastful_soil";
+  static constexpr const char* kSummary = "test fixture: picky_soil that says it never refuses";
+  static constexpr std::uint64_t kCapabilities = rumble::kCapNeverRefuses;
+};
+
 class ForgetfulSoil final : public rumble::Soil {
  public:
   static constexpr const char* kTypeName = "forgetful_soil";
@@ -301,4 +311,4 @@ class NeedyCoupler final : public rumble::Coupler {
 
 }  // namespace
 
-RUMBLE_PLUGIN("boundary_fixtures", "1.1.0", PickySoil, ForgetfulSoil, NeedyCoupler)
+RUMBLE_PLUGIN("boundary_fixtures", "1.1.0", PickySoil, BoastfulSoil, ForgetfulSoil, NeedyCoupler)

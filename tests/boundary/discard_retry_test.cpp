@@ -62,6 +62,49 @@ TEST(DiscardRetry, JacobiRestoresTheTrackAndHalves) {
   expect_same_as_small_steps({{"type", "jacobi"}}, "discard_jacobi");
 }
 
+// ABI 1.7: the single wheel never refuses a step (RUMBLE_CAP_NEVER_REFUSES), so no scheme keeps
+// the soil's checkpoint for a refusal of the track's; the soil's own checkpoints count what was
+// kept. An adaptive step that may be retaken still needs both (the test's control).
+TEST(DiscardRetry, NoSoilCheckpointForATrackThatNeverRefuses) {
+  const struct {
+    nlohmann::json coupling;
+    long checkpoints;  // -1: at least one per macro step
+  } cases[] = {
+      {{{"type", "jacobi"}}, 0},
+      {{{"type", "jacobi"}, {"params", {{"threads", 1}}}}, 0},
+      {{{"type", "gauss_seidel"}, {"params", {{"order", "soil_first"}}}}, 0},
+      {{{"type", "jacobi"},
+        {"params", {{"adaptive", {{"min_step", kMacro / 8}, {"max_step", kMacro}}}}}},
+       -1},
+  };
+  int k = 0;
+  for (const auto& c : cases) {
+    nlohmann::json scenario = fixture_scenario(picky(1.0), c.coupling);
+    CliResult r;
+    const auto dir = run_in("never_refuses_" + std::to_string(k++), scenario, r);
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const auto plugin_side = nlohmann::json::parse(file_text(dir / "finalized.json"));
+    if (c.checkpoints >= 0)
+      EXPECT_EQ(plugin_side["checkpoints"], c.checkpoints) << c.coupling;
+    else
+      EXPECT_GE(plugin_side["checkpoints"].get<long>(), plugin_side["advances"].get<long>() / 2)
+          << c.coupling;
+  }
+}
+
+TEST(DiscardRetry, APromiseNeverToRefuseIsHeldToIt) {
+  nlohmann::json scenario = fixture_scenario(
+      {{"type", "boastful_soil"}, {"params", {{"max_step", kQuarter}}}}, {{"type", "jacobi"}});
+  scenario["time"] = {{"end", 4 * kMacro}, {"macro_step", kMacro}};
+  CliResult r;
+  run_in("never_refuses_broken", scenario, r);
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.output.find("boastful_soil"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("although its type declares it never does (capability never_refuses"),
+            std::string::npos)
+      << r.output;
+}
+
 TEST(DiscardRetry, ImplicitHalvesARefusedStep) {
   // Iterated to convergence: the soil advances several times per accepted step, so the plugin's
   // advance count is not 4 per macro step; the refused attempts fail on the soil's first advance
@@ -108,10 +151,12 @@ TEST(DiscardRetry, ImplicitStopsWhenNoHalvingIsLeft) {
 }
 
 TEST(DiscardRetry, APluginThatKeepsItsOwnCheckpointsIsNeverCopied) {
-  // jacobi checkpoints both participants at every step start; picky_soil declares its own
+  // jacobi checkpoints each participant at every step start when the other may refuse (here
+  // both: an ABI 1.1 vehicle does not say that it never refuses); picky_soil declares its own
   // checkpoints, so its state never crosses the boundary (a large FEM state is not copied).
   CliResult r;
   nlohmann::json s = fixture_scenario(picky(kQuarter), {{"type", "jacobi"}});
+  s["vehicles"][0]["type"] = "fixture_wheel_1_1";
   s["time"] = {{"end", 8 * kMacro}, {"macro_step", kMacro}};
   const auto dir = run_in("discard_own_checkpoints", s, r);
   ASSERT_EQ(r.exit_code, 0) << r.output;

@@ -24,7 +24,8 @@ constexpr Name kNames[] = {
     {RUMBLE_CAP_WAVE_SPEEDS, "wave_speeds", "give its wave speeds"},
     {RUMBLE_CAP_SURFACE_RECEIVERS, "surface_receivers", "record surface receivers (ABI 1.0)"},
     {RUMBLE_CAP_MONOLITHIC, "monolithic", "have the soil integrated with the track"},
-    {RUMBLE_CAP_DISTRIBUTED, "distributed", "run on every rank of an MPI launch"}};
+    {RUMBLE_CAP_DISTRIBUTED, "distributed", "run on every rank of an MPI launch"},
+    {RUMBLE_CAP_NEVER_REFUSES, "never_refuses", "take every step it is given"}};
 
 }  // namespace
 

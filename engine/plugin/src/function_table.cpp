@@ -70,6 +70,8 @@ std::string capabilities_defect(const rumble_factory* f) {
   if ((c.offers & RUMBLE_CAP_DISTRIBUTED) != 0 && f->kind != RUMBLE_KIND_SOIL)
     return "capability DISTRIBUTED is for soils only (the host mirrors a soil's calls to every "
            "rank; docs/decisions/0012-distributed-soil.md)";
+  if ((c.offers & RUMBLE_CAP_NEVER_REFUSES) != 0 && f->kind == RUMBLE_KIND_COUPLER)
+    return "capability NEVER_REFUSES is for vehicles and soils, whose advance could refuse";
   if (c.participants_json != nullptr) {
     const auto j = nlohmann::json::parse(c.participants_json, nullptr, false);
     if (!j.is_object()) return "capabilities participants_json is not a JSON object";

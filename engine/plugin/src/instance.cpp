@@ -325,6 +325,10 @@ rumble_status Instance::check(rumble_status status, const char* call) const {
       logger_->warn("{}: {}", call, what);
       return status;
     case RUMBLE_DISCARD:
+      if (!may_refuse())  // a coupler may have kept no checkpoint to put the other side back
+        throw RunError(who + ": " + call + " refused a step (" + what +
+                       ") although its type declares it never does (capability never_refuses, "
+                       "ABI 1.7); the plugin's author must drop the declaration or the refusal");
       throw Discarded(who + ": " + call + " refused: " + what);
     case RUMBLE_FATAL:
       throw RunError(who + ": " + call + " failed fatally: " + what);

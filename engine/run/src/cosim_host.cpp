@@ -187,6 +187,11 @@ void CosimHostImpl::fill_named_calls() {
     self(ctx).guard([&] { can = self(ctx).checked(p)->can_checkpoint() ? 1 : 0; });
     return can;
   };
+  table_.may_refuse = [](void* ctx, uint32_t p) -> int32_t {
+    int32_t may = 1;  // (an unknown participant: the stop's message says which)
+    self(ctx).guard([&] { may = self(ctx).checked(p)->may_refuse() ? 1 : 0; });
+    return may;
+  };
 }
 
 void CosimHostImpl::fill_layout_calls() {

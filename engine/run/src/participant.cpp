@@ -67,6 +67,12 @@ void TrackSide::set_input(const rumble_waveform& u) {
 void TrackSide::advance(double t, double H) {
   track_.advance(t, H);
 }
+bool TrackSide::may_refuse() const {
+  // The track's own equations take any step; its vehicles' plugins may refuse one.
+  for (const VehicleSet::Vehicle& v : track_.vehicles().vehicles())
+    if (v.instance->may_refuse()) return true;
+  return false;
+}
 std::size_t TrackSide::state_size() const {
   return track_.state_size();
 }
@@ -144,6 +150,10 @@ void SoilSide::advance(double t, double H) {
     for (std::uint32_t k = 0; k <= input_.order; ++k) sum += coeff_[k * n_ + i];
     applied_[i] = sum;
   }
+}
+bool SoilSide::may_refuse() const {
+  if (integrated_in_ != nullptr) return false;  // advancing it is an error, never a refusal
+  return soil_.may_refuse();
 }
 bool SoilSide::can_checkpoint() const {
   if (integrated_in_ != nullptr) return false;  // its state is the track's

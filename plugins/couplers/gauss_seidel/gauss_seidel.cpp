@@ -10,8 +10,8 @@
 //
 // A participant that refuses a step (DISCARD: state unchanged) gets it again as two halves, up
 // to max_step_halvings times; when the second participant refuses, the first is restored from a
-// checkpoint taken at the step's start (the track's state is small; a soil advancing first is
-// checkpointed only when it can be).
+// checkpoint taken at the step's start, taken only when the second may refuse (ABI 1.7's
+// may_refuse; a soil advancing first is checkpointed only when it can be).
 //
 // With "adaptive", the macro step follows the coupling error of each step: the first
 // participant's extrapolated input against what the second produced, and changes only as far
@@ -67,6 +67,9 @@ class GaussSeidel final : public rumble::Coupler {
     // A step above the adaptive tolerance is taken again when both participants can restore.
     const bool retakes = adaptive_.enabled() && adaptive_.retake && host.can_checkpoint(first) &&
                          host.can_checkpoint(second);
+    // The first is put back when the second refuses, if that can happen (ABI 1.7).
+    const bool keep_first =
+        ((max_halvings_ > 0 && host.may_refuse(second)) || retakes) && host.can_checkpoint(first);
     Scheme s{host,
              first,
              second,
@@ -75,7 +78,7 @@ class GaussSeidel final : public rumble::Coupler {
              Link(host, second, first),
              Link(host, first, second),
              GroupResiduals(host, second),
-             (max_halvings_ > 0 || retakes) && host.can_checkpoint(first),
+             keep_first,
              retakes,
              rumble::coupling::StepChangeLimit(host, CosimHost::kSoil, adaptive_)};
     s.first_history.sample(t0);

@@ -41,7 +41,7 @@ namespace rumble_jacobi {
 class HeldInputCost {
  public:
   /// For `receiver`'s inputs under the adaptive step `a`; inactive (error() 0) unless `active`
-  /// (the receiver can be restored from the checkpoint taken at every step start).
+  /// (the receiver can checkpoint: each probe saves it and puts it back).
   HeldInputCost(const rumble::CosimHost& host, std::uint32_t receiver,
                 const rumble::coupling::AdaptiveStep& a, bool active)
       : host_(host),

@@ -5,8 +5,11 @@
 // for stiff interfaces. Outputs and inputs are matched by channel group name (rumble/coupling.hpp).
 //
 // A refused step (DISCARD) is taken again as two halves, up to max_step_halvings times; the
-// participant that did advance is restored from the checkpoint taken at the step's start, so
-// retrying needs both participants to checkpoint (otherwise a refusal stops the run).
+// participant that did advance is restored from the checkpoint taken at the step's start. So a
+// participant is checkpointed at every step start only when the other may refuse (ABI 1.7's
+// may_refuse: a FEM soil's copy costs its thread about 0.3 ms a step beside the track, which
+// Jacobi's overlap cannot spare; docs/couplers.md, "Jacobi on two threads"); where that
+// participant cannot checkpoint, the other's refusal stops the run.
 //
 // With "adaptive", the macro step follows the coupling error of each step: each participant's
 // extrapolated input against what the other produced, and changes only as far as the soil's
@@ -60,6 +63,12 @@ class Jacobi final : public rumble::Coupler {
 
   void run(const CosimHost& host, double t0, double t_end, double H) override {
     constexpr std::uint32_t kTrack = CosimHost::kTrack, kSoil = CosimHost::kSoil;
+    // A step above the adaptive tolerance is taken again when both participants can restore.
+    const bool retakes = adaptive_.enabled() && adaptive_.retake && host.can_checkpoint(kTrack) &&
+                         host.can_checkpoint(kSoil);
+    const auto kept_for = [&](std::uint32_t p, std::uint32_t other) {
+      return retakes || (max_halvings_ > 0 && host.may_refuse(other) && host.can_checkpoint(p));
+    };
     Scheme s{host,
              OutputHistory(host, kTrack),
              OutputHistory(host, kSoil),
@@ -67,10 +76,11 @@ class Jacobi final : public rumble::Coupler {
              Link(host, kTrack, kSoil),
              GroupResiduals(host, kTrack),
              GroupResiduals(host, kSoil),
-             (max_halvings_ > 0 || (adaptive_.enabled() && adaptive_.retake)) &&
-                 host.can_checkpoint(kTrack) && host.can_checkpoint(kSoil),
+             kept_for(kTrack, kSoil),
+             kept_for(kSoil, kTrack),
+             retakes,
              rumble::coupling::StepChangeLimit(host, kSoil, adaptive_)};
-    s.soil_cost.emplace(host, kSoil, adaptive_, s.checkpoints);
+    s.soil_cost.emplace(host, kSoil, adaptive_, host.can_checkpoint(kSoil));
     s.track.sample(t0);
     s.soil.sample(t0);
     s.change_limit.observe(s.soil.latest(), 0.0);
@@ -93,10 +103,8 @@ class Jacobi final : public rumble::Coupler {
                                     std::to_string(s.soil_cost->advances()) +
                                     " extra soil advances");
     }
-    if (s.checkpoints) {
-      host.free_checkpoint(kTrack, kSlot);
-      host.free_checkpoint(kSoil, kSlot);
-    }
+    if (s.save_track) host.free_checkpoint(kTrack, kSlot);
+    if (s.save_soil || s.soil_cost->advances() > 0) host.free_checkpoint(kSoil, kSlot);
   }
 
  private:
@@ -107,8 +115,9 @@ class Jacobi final : public rumble::Coupler {
     OutputHistory track, soil;
     Link to_track, to_soil;
     GroupResiduals track_residuals, soil_residuals;
-    bool checkpoints;  // both participants are checkpointed at every step start (a refused
-                       // step is retried, a step above the adaptive tolerance retaken)
+    // Checkpointed at every step start: the track when the soil may refuse (it is put back for
+    // the retry), the soil when the track may, both when a step may be retaken.
+    bool save_track, save_soil, retakes;
     rumble::coupling::StepChangeLimit change_limit;  // how far an adaptive step may change
     std::optional<rumble_jacobi::AdvanceWorker> soil_worker = std::nullopt;  // with two threads
     std::optional<rumble_jacobi::HeldInputCost> soil_cost = std::nullopt;  // the soil's held force
@@ -124,10 +133,10 @@ class Jacobi final : public rumble::Coupler {
     const std::uint32_t order_soil = s.track.extrapolate(extrapolation_, t, h, from_track_);
     s.to_track.map(from_soil_, order_track, in_track_);
     s.to_soil.map(from_track_, order_soil, in_soil_);
-    if (s.checkpoints) host.save(kTrack, kSlot);
+    if (s.save_track) host.save(kTrack, kSlot);
     host.set_input(kTrack, order_track, in_track_);
     host.set_input(kSoil, order_soil, in_soil_);
-    if (s.checkpoints && steps != nullptr) s.soil_cost->probe(t, h, order_soil, in_soil_, kSlot);
+    if (steps != nullptr) s.soil_cost->probe(t, h, order_soil, in_soil_, kSlot);
     const auto [track_status, soil_status] = advance_both(s, t, h);  // the soil saved first
     const bool track_refused = track_status == RUMBLE_DISCARD;
     const bool soil_refused = soil_status == RUMBLE_DISCARD;
@@ -135,7 +144,7 @@ class Jacobi final : public rumble::Coupler {
       const std::uint32_t who = track_refused ? kTrack : kSoil;
       rumble::coupling::require_halving_left(host, t, h, who, halvings, max_halvings_);
       if (track_refused != soil_refused) {  // the other one advanced: take it back
-        if (!s.checkpoints) {
+        if (!(track_refused ? s.save_soil : s.save_track)) {
           rumble::coupling::refused_step(host, t, h, who,
                                          "the participant that advanced cannot be restored");
         }
@@ -149,7 +158,7 @@ class Jacobi final : public rumble::Coupler {
     host.get_output(kSoil, new_soil_);
     const std::uint32_t order = std::min(order_track, order_soil);
     s.soil_cost->finish(h, new_soil_);
-    if (s.checkpoints && steps != nullptr &&
+    if (s.retakes && steps != nullptr &&
         steps->retake(trial_error(s, h, order_track, order_soil), order)) {
       host.restore(kTrack, kSlot);
       host.restore(kSoil, kSlot);
@@ -196,15 +205,15 @@ class Jacobi final : public rumble::Coupler {
   }
 
   /// Advances the track and the soil over [t, t + h], the soil on the worker thread when there
-  /// is one, the soil checkpointed first when s.checkpoints (on the worker: a large soil's copy
+  /// is one, the soil checkpointed first when s.save_soil (on the worker: a large soil's copy
   /// then runs beside the track's step instead of before both); returns their statuses (OK,
   /// WARNING or DISCARD; a stop is rethrown after both have returned).
   static std::pair<rumble_status, rumble_status> advance_both(Scheme& s, double t, double h) {
     if (!s.soil_worker) {
-      if (s.checkpoints) s.host.save(CosimHost::kSoil, kSlot);
+      if (s.save_soil) s.host.save(CosimHost::kSoil, kSlot);
       return {s.host.advance(CosimHost::kTrack, t, h), s.host.advance(CosimHost::kSoil, t, h)};
     }
-    s.soil_worker->start(t, h, s.checkpoints, kSlot);
+    s.soil_worker->start(t, h, s.save_soil, kSlot);
     rumble_status track_status = RUMBLE_OK;
     std::exception_ptr track_error;
     try {

@@ -27,6 +27,8 @@ class Clm final : public rumble::soils::LumpedSoil {
   static constexpr const char* kSummary =
       "Coupled Lumped Mass soil (Kouroussis 2011): mass-spring-dashpot per footprint coupled to "
       "its neighbours; given or calibrated from E, nu, rho";
+  /// Takes any step it is given (a coupler need not keep the other side's checkpoint for it).
+  static constexpr std::uint64_t kCapabilities = rumble::kCapNeverRefuses;
   static const char* params_schema() {
     static const std::string schema = std::string(R"schema({
   "$schema": "http://json-schema.org/draft-07/schema#",

@@ -44,9 +44,10 @@ class FemSoil final : public rumble::Soil {
       "viscous-spring boundary, explicit sub-cycled steps, receivers at any depth, VTU fields)";
   /// Its matrices make it a soil for the monolithic reference (small meshes: the engine holds
   /// them banded) and for `rumble stability`. Under `mpirun -n N` its mesh is split over the N
-  /// ranks (fem_distributed.cpp; docs/fem-soil.md, "On many ranks").
-  static constexpr std::uint64_t kCapabilities =
-      rumble::kCapThreads | rumble::kCapLinearMatrices | rumble::kCapDistributed;
+  /// ranks (fem_distributed.cpp; docs/fem-soil.md, "On many ranks"). It takes any step it is
+  /// given (an unstable one stops the run): a coupler need not keep the track's checkpoint for it.
+  static constexpr std::uint64_t kCapabilities = rumble::kCapThreads | rumble::kCapLinearMatrices |
+                                                 rumble::kCapDistributed | rumble::kCapNeverRefuses;
   static const char* params_schema() { return rumble::fem::settings_schema(); }
 
   FemSoil(const std::string& params_json, const rumble::Host& host);

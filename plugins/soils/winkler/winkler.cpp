@@ -24,6 +24,8 @@ class Winkler final : public rumble::soils::LumpedSoil {
   static constexpr const char* kSummary =
       "one spring-dashpot (+ optional mass) per footprint, given or from E, nu, rho (Gazetas "
       "stiffness, Lysmer dashpot, Wolf trapped mass)";
+  /// Takes any step it is given (a coupler need not keep the other side's checkpoint for it).
+  static constexpr std::uint64_t kCapabilities = rumble::kCapNeverRefuses;
   static const char* params_schema() {
     static const std::string schema = std::string(R"schema({
   "$schema": "http://json-schema.org/draft-07/schema#",

@@ -170,6 +170,8 @@ class MbsVehicle final : public rumble::Vehicle {
   static constexpr const char* kSummary =
       "multibody vehicle from JSON: bodies on chains of transformations, spring-dampers, wheels "
       "(vertical plane)";
+  /// Takes any step it is given (a coupler need not keep the other side's checkpoint for it).
+  static constexpr std::uint64_t kCapabilities = rumble::kCapNeverRefuses;
   static const char* params_schema() { return mbs_params_schema(); }
 
   MbsVehicle(const std::string& params_json, const rumble::Host& host)

@@ -23,6 +23,8 @@ class QuarterCar final : public rumble::Vehicle {
   static constexpr const char* kSummary =
       "wheel + primary suspension + bogie [+ secondary suspension + car body], vertical, per "
       "wheel; 2 or 3 DOFs";
+  /// Takes any step it is given (a coupler need not keep the other side's checkpoint for it).
+  static constexpr std::uint64_t kCapabilities = rumble::kCapNeverRefuses;
   static const char* params_schema() { return quarter_car_schema(); }
 
   QuarterCar(const std::string& params_json, const rumble::Host& /*host*/) {

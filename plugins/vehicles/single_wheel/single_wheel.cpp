@@ -17,6 +17,8 @@ class SingleWheel final : public rumble::Vehicle {
   static constexpr const char* kTypeName = "single_wheel";
   static constexpr const char* kSummary =
       "one wheel with a static load (sprung weight as a constant force), 1 DOF";
+  /// Takes any step it is given (a coupler need not keep the other side's checkpoint for it).
+  static constexpr std::uint64_t kCapabilities = rumble::kCapNeverRefuses;
   static const char* params_schema() {
     return R"schema({
   "type": "object",

@@ -59,6 +59,10 @@
  *       planned_ranks, the N of a launch on N MPI ranks that a command plans for without
  *       running on them (`rumble mesh --ranks N`), so that a soil reports what each rank would
  *       hold.
+ *   1.7 (2026-12-06) one capability bit and one function appended to rumble_cosim_host
+ *       (docs/decisions/0017-never-refuses.md): RUMBLE_CAP_NEVER_REFUSES, a vehicle or soil whose
+ *       advance never returns DISCARD; may_refuse, which tells a coupler so, so that it
+ *       checkpoints a participant only where the other's refusal could need it put back.
  */
 #ifndef RUMBLE_ABI_H
 #define RUMBLE_ABI_H
@@ -71,7 +75,7 @@ extern "C" {
 #endif
 
 #define RUMBLE_ABI_MAJOR 1
-#define RUMBLE_ABI_MINOR 6
+#define RUMBLE_ABI_MINOR 7
 
 /** Name of the one symbol every plugin library exports (see rumble_plugin_entry_fn). */
 #define RUMBLE_PLUGIN_ENTRY_SYMBOL "rumble_plugin_entry"
@@ -222,6 +226,11 @@ typedef struct rumble_lifecycle_api {
  *  it, a monolithic coupler or `rumble stability`, at validation
  *  (docs/decisions/0015-memory-per-rank.md). */
 #define RUMBLE_CAP_DISTRIBUTED (UINT64_C(1) << 12)
+/** 1.7, vehicle or soil: advance never returns RUMBLE_DISCARD (the instance never refuses a
+ *  step; the host stops a run whose instance refuses anyway, naming this promise). A coupler
+ *  asks rumble_cosim_host.may_refuse and need not checkpoint the other participant at each step
+ *  for a refusal that cannot come (docs/decisions/0017-never-refuses.md). */
+#define RUMBLE_CAP_NEVER_REFUSES (UINT64_C(1) << 13)
 
 /**
  * 1.1: what a component type offers and, for a coupler, what it needs, declared on its factory
@@ -529,6 +538,11 @@ typedef struct rumble_cosim_host {
    *  with capacity 0 first). */
   rumble_status (*footprint_layout)(void* ctx, rumble_footprint* out, uint64_t capacity,
                                     uint64_t* n);
+  /* ---- 1.7 */
+  /** Nonzero when the participant's advance may return RUMBLE_DISCARD: some vehicle or soil in
+   *  it does not offer RUMBLE_CAP_NEVER_REFUSES. A coupler on a host older than 1.7 (no field)
+   *  assumes it may. */
+  int32_t (*may_refuse)(void* ctx, uint32_t participant);
 } rumble_cosim_host;
 
 typedef struct rumble_coupler_api {

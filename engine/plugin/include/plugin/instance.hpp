@@ -77,6 +77,9 @@ class Instance {
   const ComponentType& type() const { return type_; }
 
   const Capabilities& capabilities() const { return type_.capabilities; }
+  /// Whether its advance may refuse a step (RUMBLE_DISCARD): it does not promise otherwise
+  /// (RUMBLE_CAP_NEVER_REFUSES, ABI 1.7). A refusal despite the promise is a RunError.
+  bool may_refuse() const { return !capabilities().has(RUMBLE_CAP_NEVER_REFUSES); }
 
   /// Checkpoint slots 0 .. RUMBLE_CHECKPOINT_SLOTS - 1, one path whether the plugin keeps them
   /// (own checkpoints) or the engine copies its state (abi::Checkpoints). RunError for a slot

@@ -41,6 +41,9 @@ class Participant {
   /// held here (allocated once per slot: the track's); a soil goes through its instance's one
   /// checkpoint path instead (SoilInstance::checkpoint_save).
   virtual bool can_checkpoint() const { return state_size() > 0; }
+  /// Whether its advance may refuse a step: some plugin in it does not declare
+  /// RUMBLE_CAP_NEVER_REFUSES (docs/decisions/0017-never-refuses.md).
+  virtual bool may_refuse() const { return true; }
   virtual void checkpoint(std::uint32_t slot);
   virtual void rollback(std::uint32_t slot);
   virtual void free_checkpoint(std::uint32_t slot);
@@ -80,6 +83,7 @@ class TrackSide final : public Participant {
   void get_output(double* y) const override;
   void set_input(const rumble_waveform& u) override;
   void advance(double t, double H) override;
+  bool may_refuse() const override;
 
  private:
   std::size_t state_size() const override;
@@ -105,6 +109,7 @@ class SoilSide final : public Participant {
   void set_input(const rumble_waveform& u) override;
   void advance(double t, double H) override;
   bool can_checkpoint() const override;
+  bool may_refuse() const override;
   void checkpoint(std::uint32_t slot) override;
   void rollback(std::uint32_t slot) override;
   void free_checkpoint(std::uint32_t slot) override;

@@ -37,6 +37,8 @@ inline constexpr std::uint64_t kCapSaveRestore = RUMBLE_CAP_SAVE_RESTORE;
 inline constexpr std::uint64_t kCapLinearMatrices = RUMBLE_CAP_LINEAR_MATRICES;
 inline constexpr std::uint64_t kCapMonolithic = RUMBLE_CAP_MONOLITHIC;
 inline constexpr std::uint64_t kCapDistributed = RUMBLE_CAP_DISTRIBUTED;
+/// ABI 1.7, vehicle or soil: advance never throws Discard (docs/decisions/0017-never-refuses.md).
+inline constexpr std::uint64_t kCapNeverRefuses = RUMBLE_CAP_NEVER_REFUSES;
 
 /// The MPI communicator an instance works on (ABI 1.4, docs/decisions/0012-distributed-soil.md):
 /// MPI's Fortran handle, to be turned back with MPI_Comm_f2c; the rank of this process in it and

@@ -140,6 +140,14 @@ class CosimHost {
     check(h_->free_checkpoint(h_->ctx, p, slot), "free_checkpoint");
   }
   bool can_checkpoint(std::uint32_t p) const { return h_->can_checkpoint(h_->ctx, p) != 0; }
+  /// ABI 1.7: whether p's advance may return DISCARD (some vehicle or soil in it does not
+  /// declare kCapNeverRefuses). A participant that never refuses needs no checkpoint of the
+  /// other to be put back after its refusal. True on a host older than 1.7.
+  bool may_refuse(std::uint32_t p) const {
+    if (!RUMBLE_HAS_FIELD(h_, rumble_cosim_host, may_refuse) || h_->may_refuse == nullptr)
+      return true;
+    return h_->may_refuse(h_->ctx, p) != 0;
+  }
 
   // ---- ABI 1.4
   /// The footprints every soil accepted, in channel order: footprint i is channel i of the
