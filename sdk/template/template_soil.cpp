@@ -48,6 +48,10 @@ class TemplateSoil final : public rumble::Soil {
  public:
   static constexpr const char* kTypeName = "template_soil";
   static constexpr const char* kSummary = "one spring-dashpot per footprint, integrated exactly";
+  /// It takes every step it is given (its advance never throws rumble::Discard) and says so, so
+  /// that a coupler keeps no checkpoint of the other side for a refusal that cannot come (ABI
+  /// 1.7). Drop it if your advance may refuse a step.
+  static constexpr std::uint64_t kCapabilities = rumble::kCapNeverRefuses;
   static const char* params_schema() {
     return R"({
   "type": "object",
