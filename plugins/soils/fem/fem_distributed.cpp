@@ -125,8 +125,8 @@ void FemSoil::accept_layout_distributed(const std::vector<rumble::Footprint>& fo
     // Each machine's memory for its ranks, against the estimate per rank (distributed/
     // rank_plan.hpp): before meshing from the plan, again from the mesh.
     const auto check_memory = [&](double nodes, const char* source) {
-      const rumble::fem::RankPlan plan =
-          rumble::fem::plan_ranks(nodes, d.ranks(), settings_.gamg_statics, refine_on_ranks());
+      const rumble::fem::RankPlan plan = rumble::fem::plan_ranks(
+          nodes, d.ranks(), settings_.gamg_statics, refine_on_ranks(), settings_.geometric_statics);
       host_.info(rumble::fem::describe(plan, source));
       rumble::fem::check_node_memory(plan, machines, settings_.mesh.f_max);
     };

@@ -87,10 +87,13 @@ void DistributedSoil::build_step(const FemSettings& settings,
 
 double DistributedSoil::estimate_peak() const {
   const ResidentMemory resident = resident_memory();
-  // GAMG on the ranks copies this rank's rows into PETSc's matrix and builds its hierarchy
-  // (memory_model.hpp): the statics' peak on every rank above the factor limit.
+  // GAMG on the ranks copies this rank's rows into PETSc's matrix and builds its hierarchy, the
+  // geometric multigrid builds its coarse level (memory_model.hpp): the statics' peak on every
+  // rank above the factor limit.
   const auto nonzeros = static_cast<double>(step_->stiffness().nonzeros());
-  double mine = std::max(resident.peak, resident.now + memory::kGamgBytesPerNonzero * nonzeros);
+  const double per_nonzero =
+      coarse_ ? memory::kGeometricRankBytesPerNonzero : memory::kGamgBytesPerNonzero;
+  double mine = std::max(resident.peak, resident.now + per_nonzero * nonzeros);
   if (resident.now == 0.0) mine = 0.0;  // (no /proc: nothing to start from)
   double most = 0.0;
   MPI_Allreduce(&mine, &most, 1, MPI_DOUBLE, MPI_MAX, comm_);
