@@ -185,6 +185,9 @@ void GeometricRankStatics::build_solver(const MeshPartition& coarse,
   p.ksp = static_cg(p.comm, p.fine, p.fine, tolerance_);
   set_two_level_multigrid(p.ksp, p.fine, p.coarse, p.interpolation);
   petsc_check(KSPSetFromOptions(p.ksp), "KSPSetFromOptions");
+  PetscReal asked = tolerance_;  // (PETSC_OPTIONS' -fem_statics_ksp_rtol, if given, for the log)
+  petsc_check(KSPGetTolerances(p.ksp, &asked, nullptr, nullptr, nullptr), "KSPGetTolerances");
+  tolerance_ = asked;
   PetscErrorCode code = 0;
   {
     const SetUpOptions options;  // (GAMG's products on the coarse MPIAIJ matrix)
