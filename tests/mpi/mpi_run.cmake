@@ -43,7 +43,8 @@
 #   fem_one_process_settings_refused_on_ranks  local steps, the implicit scheme, the matched
 #                                layer under mpirun: each refused with the params (exit 1),
 #                                naming its parameter; the geometric statics without
-#                                mesh.refine refused under mpirun as on one process
+#                                mesh.refine or on mesh.file refused under mpirun as on one
+#                                process
 #   fem_whole_operator_refused_on_ranks  the monolithic coupler, `rumble stability`, `soil-frf`
 #                                and `calibrate` on 2 ranks: the linear matrices and the
 #                                receptance need the whole operator, refused at validation (exit
@@ -347,6 +348,13 @@ function(fem_case)
       message(FATAL_ERROR "geometric statics: expected exit code 1 (params refused), got ${code}:\n${out}")
     endif()
     expect_match("${out}" "params/statics/solver: \"geometric\" needs mesh.refine 1 or more .*got params/mesh/refine 0")
+    rumble_run(out code ${mpirun} -n 2 ${RUMBLE} run ${fem} --output ${WORK_DIR}/refused
+               --set /soil/params/mesh/file=absent.msh
+               --set /soil/params/statics={\"solver\":\"geometric\"})
+    if(NOT code EQUAL 1 OR out MATCHES "fem: a mesh of about")
+      message(FATAL_ERROR "geometric statics on mesh.file: expected exit code 1 (params refused), got ${code}:\n${out}")
+    endif()
+    expect_match("${out}" "params/statics/solver: \"geometric\" needs a generated mesh refined by mesh.refine .*but mesh.file \"absent.msh\" is the mesh here")
   elseif(CASE STREQUAL "fem_whole_operator_refused_on_ranks")
     # The monolithic coupler and `rumble stability` read the soil's linear matrices, its whole
     # operator, which no rank holds: refused at validation (exit 1, before meshing), naming the
