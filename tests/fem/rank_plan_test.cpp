@@ -59,6 +59,27 @@ TEST(RankPlan, RefinedOnTheRanksRankZeroHoldsTheCoarseMesh) {
             std::string::npos);
 }
 
+// statics.solver geometric on the ranks: its statics at 15 B per nonzero of a share, GAMG's at
+// 55 (memory_model.hpp; docs/fem-soil.md §8, "The geometric multigrid on the ranks"), on the
+// ranks at any size, as asked (below the factor limit too, where rank 0 would factor).
+TEST(RankPlan, TheGeometricMultigridOnTheRanksCostsItsOwnStatics) {
+  namespace memory = rumble::fem::memory;
+  const double n = 4e5;  // (1.2e6 DOFs: above the factor limit)
+  const RankPlan gamg = plan_ranks(n, 2, true, 1), geometric = plan_ranks(n, 2, false, 1, true);
+  const double nonzeros = memory::kNonzerosPerDof * 3.0 * gamg.largest_nodes;
+  EXPECT_NEAR(gamg.rank_bytes - geometric.rank_bytes,
+              (memory::kGamgBytesPerNonzero - memory::kGeometricRankBytesPerNonzero) * nonzeros,
+              1e-3);
+  EXPECT_NEAR(gamg.root_bytes - geometric.root_bytes, gamg.rank_bytes - geometric.rank_bytes, 1e-3);
+  const double small = 2e4;  // (6e4 DOFs: below the factor limit)
+  const RankPlan factored = plan_ranks(small, 2, false, 1),
+                 on_ranks = plan_ranks(small, 2, false, 1, true);
+  EXPECT_NEAR(on_ranks.rank_bytes - factored.rank_bytes,
+              memory::kGeometricRankBytesPerNonzero * memory::kNonzerosPerDof * 3.0 *
+                  on_ranks.largest_nodes,
+              1e-3);
+}
+
 TEST(RankPlan, AMachineTooSmallForItsRanksIsRefusedWithTheNumbers) {
   const RankPlan p = plan_ranks(1e6, 4, false);
   const double root_machine = p.root_bytes + p.rank_bytes;  // rank 0 and one more

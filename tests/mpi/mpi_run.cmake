@@ -41,8 +41,10 @@
 #   fem_too_many_ranks_is_refused  a mesh too small for 3 ranks: a clear error before meshing
 #                                (the run's validation lays the soil out: exit 1)
 #   fem_one_process_settings_refused_on_ranks  local steps, the implicit scheme, the matched
-#                                layer, the geometric statics under mpirun: each refused
-#                                with the params (exit 1), naming its parameter
+#                                layer under mpirun: each refused with the params (exit 1),
+#                                naming its parameter; the geometric statics without
+#                                mesh.refine or on mesh.file refused under mpirun as on one
+#                                process
 #   fem_whole_operator_refused_on_ranks  the monolithic coupler, `rumble stability`, `soil-frf`
 #                                and `calibrate` on 2 ranks: the linear matrices and the
 #                                receptance need the whole operator, refused at validation (exit
@@ -53,6 +55,9 @@
 #                                fields to 1e-12 of their largest value, as fem_same_on_N_ranks
 #   fem_refined_gamg_statics_on_3_ranks  the same on 3 ranks with statics.solver gamg: GAMG on
 #                                the refined parts (as above the factor limit), fields to 1e-10
+#   fem_refined_geometric_statics_on_N_ranks  the same on N ranks with statics.solver geometric:
+#                                the geometric multigrid on the refined parts, fields to 1e-10,
+#                                its levels and iterations said
 #   fem_refined_whole_mesh_refused_on_ranks  with mesh.refine 1 under mpirun: mesh.export refused
 #                                with the params (exit 1), `rumble mesh`'s whole .vtu refused,
 #                                each naming the fix
@@ -227,6 +232,19 @@ function(fem_case)
     if(fem_many_out MATCHES "rank 0 refines the whole coarse mesh")
       message(FATAL_ERROR "with GAMG on the ranks rank 0 refined the whole mesh:\n${fem_many_out}")
     endif()
+  elseif(CASE MATCHES "^fem_refined_geometric_statics_on_([0-9])_ranks$")
+    # statics.solver geometric: one process factors (below the factor limit), the ranks solve
+    # by CG with the geometric multigrid on their refined parts to 1e-12 of the load: whole
+    # runs within 1e-10, as GAMG's on the ranks.
+    set(ranks ${CMAKE_MATCH_1})
+    list(APPEND fem_csvs interface)
+    fem_runs(${ranks} 1e-10 --set /soil/params/mesh/refine=1
+             --set /soil/params/statics={\"solver\":\"geometric\"})
+    expect_match("${fem_many_out}" "each rank refined its part 1 times after the split")
+    expect_match("${fem_many_out}" "static solves by PETSc's CG with the geometric multigrid on ${ranks} ranks \\(to 1e-12 of the load\\): [0-9]+ levels.* [0-9]+ CG iterations")
+    if(fem_many_out MATCHES "rank 0 refines the whole coarse mesh")
+      message(FATAL_ERROR "with the geometric multigrid on the ranks rank 0 refined the whole mesh:\n${fem_many_out}")
+    endif()
   elseif(CASE STREQUAL "fem_refined_whole_mesh_refused_on_ranks")
     rumble_run(out code ${mpirun} -n 2 ${RUMBLE} run ${fem} --output ${WORK_DIR}/refused
                --set /soil/params/mesh/refine=1 --set /soil/params/mesh/export=m.msh)
@@ -322,12 +340,21 @@ function(fem_case)
       endif()
       expect_match("${out}" "${said} runs on one process|${said} factors the whole mesh")
     endforeach()
+    # The geometric statics run on the ranks (fem_refined_geometric_statics_on_N_ranks), but
+    # what they need is asked under mpirun as on one process: mesh.refine 1 or more.
     rumble_run(out code ${mpirun} -n 2 ${RUMBLE} run ${fem} --output ${WORK_DIR}/refused
-               --set /soil/params/mesh/refine=1 --set /soil/params/statics={\"solver\":\"geometric\"})
+               --set /soil/params/statics={\"solver\":\"geometric\"})
     if(NOT code EQUAL 1 OR out MATCHES "fem: a mesh of about")
       message(FATAL_ERROR "geometric statics: expected exit code 1 (params refused), got ${code}:\n${out}")
     endif()
-    expect_match("${out}" "params/statics/solver: the geometric multigrid runs on one process only for now; use statics.solver \"gamg\" under mpirun")
+    expect_match("${out}" "params/statics/solver: \"geometric\" needs mesh.refine 1 or more .*got params/mesh/refine 0")
+    rumble_run(out code ${mpirun} -n 2 ${RUMBLE} run ${fem} --output ${WORK_DIR}/refused
+               --set /soil/params/mesh/file=absent.msh
+               --set /soil/params/statics={\"solver\":\"geometric\"})
+    if(NOT code EQUAL 1 OR out MATCHES "fem: a mesh of about")
+      message(FATAL_ERROR "geometric statics on mesh.file: expected exit code 1 (params refused), got ${code}:\n${out}")
+    endif()
+    expect_match("${out}" "params/statics/solver: \"geometric\" needs a generated mesh refined by mesh.refine .*but mesh.file \"absent.msh\" is the mesh here")
   elseif(CASE STREQUAL "fem_whole_operator_refused_on_ranks")
     # The monolithic coupler and `rumble stability` read the soil's linear matrices, its whole
     # operator, which no rank holds: refused at validation (exit 1, before meshing), naming the

@@ -10,12 +10,13 @@
 // and each rank refines its part after the split (distributed/refined_partition.hpp).
 //
 // The static state: GAMG on the ranks (distributed_statics.hpp) above the factor limit or with
-// statics.solver gamg; below the limit rank 0 factors the whole (small) operator as one process
-// does, then frees it. What needs the whole operator (the receptance, the linear matrices) is
-// refused on many ranks, and what does not run on many ranks yet is refused when the soil is
-// made, before any work: the matched layer, the local steps and the implicit scheme (each names
-// its parameter and the fix), and so is a mesh whose estimate per rank outgrows a machine's
-// memory.
+// statics.solver gamg, the geometric multigrid on the ranks' refined parts with statics.solver
+// geometric (distributed/geometric_rank_statics.hpp; at any size, as gamg); else below the limit
+// rank 0 factors the whole (small) operator as one process does, then frees it. What needs the
+// whole operator (the receptance, the linear matrices) is refused on many ranks, and what does not
+// run on many ranks yet is refused when the soil is made, before any work: the matched layer, the
+// local steps and the implicit scheme (each names its parameter and the fix), and so is a mesh
+// whose estimate per rank outgrows a machine's memory.
 #define OMPI_SKIP_MPICXX 1
 #include <mpi.h>
 
@@ -90,10 +91,6 @@ void FemSoil::refuse_on_many_ranks() const {
            "local time stepping runs on one process only for now; set local_steps 1 under "
            "mpirun, or run without mpirun, got " +
                std::to_string(settings_.local_steps));
-  if (settings_.geometric_statics)
-    refuse("statics/solver",
-           "the geometric multigrid runs on one process only for now; use statics.solver "
-           "\"gamg\" under mpirun, or run without mpirun, got \"geometric\"");
   if (refine_on_ranks() > 0 && !settings_.mesh.export_file.empty())
     refuse("mesh/export",
            "with mesh.refine " + std::to_string(refine_on_ranks()) +
@@ -128,8 +125,8 @@ void FemSoil::accept_layout_distributed(const std::vector<rumble::Footprint>& fo
     // Each machine's memory for its ranks, against the estimate per rank (distributed/
     // rank_plan.hpp): before meshing from the plan, again from the mesh.
     const auto check_memory = [&](double nodes, const char* source) {
-      const rumble::fem::RankPlan plan =
-          rumble::fem::plan_ranks(nodes, d.ranks(), settings_.gamg_statics, refine_on_ranks());
+      const rumble::fem::RankPlan plan = rumble::fem::plan_ranks(
+          nodes, d.ranks(), settings_.gamg_statics, refine_on_ranks(), settings_.geometric_statics);
       host_.info(rumble::fem::describe(plan, source));
       rumble::fem::check_node_memory(plan, machines, settings_.mesh.f_max);
     };
@@ -145,14 +142,16 @@ void FemSoil::accept_layout_distributed(const std::vector<rumble::Footprint>& fo
     check_memory(nodes, "the mesh");
   });
   d.lay_out(d.root() ? &mesh_ : nullptr, settings_, footprints, host_.threads(), refine_on_ranks());
-  statics_on_root_ =
-      !settings_.gamg_statics && d.whole_dofs() <= rumble::fem::StaticSolver::kFactorLimit;
+  // (statics.solver gamg or geometric: on the ranks at any size, as asked)
+  statics_on_root_ = !settings_.gamg_statics && !settings_.geometric_statics &&
+                     d.whole_dofs() <= rumble::fem::StaticSolver::kFactorLimit;
   if (statics_on_root_)  // (the whole operator for the factor: small below its limit)
     rumble::fem::on_root(d.comm(), [&] {
       if (d.refined() > 0) refine_whole_on_root();
       build_here(footprints, 0.0, start);
     });
-  else if (!settings_.gamg_statics && d.root())  // (the soil's multigrid runs on one process)
+  else if (!settings_.gamg_statics && !settings_.geometric_statics &&
+           d.root())  // (the soil's multigrid runs on one process)
     host_.info("fem: statics.solver \"multigrid\" runs on one process; on " +
                std::to_string(d.ranks()) +
                " ranks above the factor limit the static state is solved by GAMG on the ranks "
@@ -247,17 +246,18 @@ void FemSoil::solve_static_on_ranks(const double* static_force, double* static_u
   const bool first = d.solve_static(static_force, static_average_.data());
   if (!d.root()) return;
   for (std::size_t j = 0; j < footprints_.size(); ++j) static_u[j] = static_average_[j];
-  const rumble::fem::DistributedStatics& statics = *d.statics();
+  const rumble::fem::RankStatics& statics = *d.statics();
   const std::string solved = "in " + format(seconds_since(start), 2) + " s, " +
                              std::to_string(statics.last_iterations()) + " CG iterations";
   if (first)
-    host_.info("fem: static solves by PETSc's CG with GAMG on " + std::to_string(d.ranks()) +
-               " ranks (to " + format(statics.kTolerance) +
+    host_.info("fem: static solves by PETSc's " + std::string(statics.method()) + " on " +
+               std::to_string(d.ranks()) + " ranks (to " + format(statics.tolerance()) +
                " of the load): " + std::to_string(statics.levels()) + " levels, set up in " +
                format(statics.setup_seconds(), 2) + " s; the first solve, set-up included, " +
                solved);
   else
-    host_.log(RUMBLE_LOG_DEBUG, "fem: static solve (GAMG on the ranks) " + solved);
+    host_.log(RUMBLE_LOG_DEBUG,
+              "fem: static solve (" + std::string(statics.method()) + " on the ranks) " + solved);
 }
 
 void FemSoil::distributed_forces(const rumble::Waveform& force, double tau, Eigen::VectorXd& out,

@@ -224,7 +224,9 @@ void FemSoil::report_ranks(double nodes, const char* source) const {
   const int ranks = host_.planned_ranks();  // (`rumble mesh --ranks N` on one process)
   if (ranks > 1 && !distributed_)
     host_.info(rumble::fem::describe(
-        rumble::fem::plan_ranks(nodes, ranks, settings_.gamg_statics, refine_on_ranks()), source));
+        rumble::fem::plan_ranks(nodes, ranks, settings_.gamg_statics, refine_on_ranks(),
+                                settings_.geometric_statics),
+        source));
 }
 
 void FemSoil::report_split() const {
@@ -236,9 +238,10 @@ void FemSoil::report_split() const {
   host_.communicator();
   const rumble::fem::MeshSplit split = rumble::fem::split_mesh(mesh_, ranks);
   host_.info(rumble::fem::describe(
-      split, rumble::fem::plan_split(
-                 static_cast<double>(split.nodes), ranks, static_cast<double>(split.ghosts),
-                 static_cast<double>(split.largest()), settings_.gamg_statics, refine_on_ranks())));
+      split, rumble::fem::plan_split(static_cast<double>(split.nodes), ranks,
+                                     static_cast<double>(split.ghosts),
+                                     static_cast<double>(split.largest()), settings_.gamg_statics,
+                                     refine_on_ranks(), settings_.geometric_statics)));
 }
 
 void FemSoil::hint_fast_meshing() const {

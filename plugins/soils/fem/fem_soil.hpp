@@ -128,7 +128,8 @@ class FemSoil final : public rumble::Soil {
   void refuse_on_many_ranks() const;
   void accept_layout_distributed(const std::vector<rumble::Footprint>& footprints);
   void initialize_distributed(double t0, const double* static_force, double* static_u);
-  /// The static state solved on the ranks (statics.solver gamg: distributed_statics.hpp).
+  /// The static state solved on the ranks (statics.solver gamg: distributed_statics.hpp;
+  /// geometric: geometric_rank_statics.hpp).
   void solve_static_on_ranks(const double* static_force, double* static_u);
   void advance_distributed(double t, double H, const rumble::Waveform& force);
   /// The footprints' forces on this rank's nodes (as footprint_forces).

@@ -58,6 +58,15 @@ inline constexpr double kGamgBytesPerNonzero = 55.0;
 /// MB with the coarse level, 721 MB after the first solve: -92 MB over about 4.2e7 nonzeros.
 inline constexpr double kGeometricBytesPerNonzero = -2.2;
 
+/// The geometric multigrid on many ranks (statics.solver geometric under mpirun, mesh.refine 1)
+/// at its peak, beyond what a rank holds after its layout, per nonzero of the rank's part of K
+/// [bytes]: the coarse part's operator and its MPIAIJ K + S (1/8 of the part's), GAMG's
+/// hierarchy on it, the interpolation, the fine level's diagonal and the CG, smoother and shell
+/// vectors (distributed/geometric_rank_statics.hpp; the part's K is kept: the step and the
+/// shell's product read it). Fitted to the stiff example refined once, 9.33e5 DOFs on 2 ranks
+/// (docs/fem-soil.md §8: 0.77-0.80 GB per rank at the statics, GAMG's 1.74-1.75 GB).
+inline constexpr double kGeometricRankBytesPerNonzero = 15.0;
+
 /// The whole mesh's nodes and tetrahedra as rank 0 keeps them on many ranks, per DOF [bytes]:
 /// 24 B per node and 16 B per tetrahedron, about 5.5 tetrahedra per node (docs/fem-soil.md §8,
 /// "What rank 0 keeps").

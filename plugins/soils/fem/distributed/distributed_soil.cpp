@@ -8,7 +8,9 @@
 #include <utility>
 
 #include "distributed/distributed_operator.hpp"
-#include "distributed/part_stiffness.hpp"
+#include "distributed/distributed_statics.hpp"
+#include "distributed/geometric_rank_statics.hpp"
+#include "distributed/part_operator.hpp"
 #include "distributed/rank_agreement.hpp"
 #include "distributed/refined_partition.hpp"
 #include "memory_model.hpp"
@@ -28,11 +30,16 @@ void DistributedSoil::lay_out(const TetMesh* mesh, const FemSettings& settings,
   statics_.reset();  // (they refer to the old partition)
   step_.reset();
   part_ = {};
+  coarse_.reset();
   refine_ = refine;
   if (refine > 0) {
-    const MeshPartition coarse = partition_mesh(comm_, mesh, true);
+    MeshPartition coarse = partition_mesh(comm_, mesh, true);
     coarse_nodes_ = coarse.global_nodes;
     part_ = refine_partition(comm_, coarse, refine);
+    if (settings.geometric_statics) {  // (1/8 of the part per level)
+      coarse.names = {};
+      coarse_ = std::make_unique<MeshPartition>(std::move(coarse));
+    }
   } else {
     part_ = partition_mesh(comm_, mesh);
     coarse_nodes_ = part_.global_nodes;
@@ -56,28 +63,21 @@ void DistributedSoil::lay_out(const TetMesh* mesh, const FemSettings& settings,
       if (part_.owns(w.node, rank_)) owned_weights_.back().push_back(w);
   }
   set_loaded_nodes();
+  make_statics_ = [this, settings, footprints, refine]() -> std::unique_ptr<RankStatics> {
+    if (!coarse_) return std::make_unique<DistributedStatics>(part_, step_->soil(), comm_);
+    const std::unique_ptr<DistributedOperator> coarse_op =
+        part_operator(*coarse_, settings, footprints, 1, StepPrecision::kDouble, comm_);
+    return std::make_unique<GeometricRankStatics>(part_, step_->soil(), *coarse_, *coarse_op,
+                                                  refine, comm_);
+  };
   peak_estimate_ = estimate_peak();
 }
 
 void DistributedSoil::build_step(const FemSettings& settings,
                                  const std::vector<Footprint>& footprints, unsigned threads) {
-  std::vector<BoundaryNode> boundary = part_boundary(part_, settings, footprints);
-  std::vector<char> fixed(static_cast<std::size_t>(part_.nodes()), 0);
-  if (settings.boundary.kind == BoundaryKind::kFixed)  // (the matched layer is refused here)
-    for (const BoundaryNode& b : boundary) fixed[b.node] = 1;
-  std::optional<CsrMatrix> K;
-  Eigen::VectorXd mass;
-  on_every_rank(comm_, [&] {  // (a degenerate tetrahedron throws on its rank alone)
-    K.emplace(assemble_stiffness(part_.mesh, settings));
-    mass = lumped_mass(part_.mesh, settings);
-  });
-  complete_shared_entries(part_, *K, comm_);
-  complete_mass(part_, mass);
-  auto op = std::make_unique<DistributedOperator>(
-      std::move(*K), std::move(mass), std::move(boundary), settings.boundary.springs(),
-      std::move(fixed), threads,
-      settings.single_precision_step ? StepPrecision::kSingle : StepPrecision::kDouble, part_,
-      comm_);
+  std::unique_ptr<DistributedOperator> op = part_operator(
+      part_, settings, footprints, threads,
+      settings.single_precision_step ? StepPrecision::kSingle : StepPrecision::kDouble, comm_);
   // Lanczos on the ranks' operator (its sums over the ranks in rank order): every rank gets
   // the same stable step, one process's to rounding (fem_partition_check.cpp).
   step_.emplace(std::move(op), settings.damping.mass_coefficient(),
@@ -87,10 +87,13 @@ void DistributedSoil::build_step(const FemSettings& settings,
 
 double DistributedSoil::estimate_peak() const {
   const ResidentMemory resident = resident_memory();
-  // GAMG on the ranks copies this rank's rows into PETSc's matrix and builds its hierarchy
-  // (memory_model.hpp): the statics' peak on every rank above the factor limit.
+  // GAMG on the ranks copies this rank's rows into PETSc's matrix and builds its hierarchy, the
+  // geometric multigrid builds its coarse level (memory_model.hpp): the statics' peak on every
+  // rank above the factor limit.
   const auto nonzeros = static_cast<double>(step_->stiffness().nonzeros());
-  double mine = std::max(resident.peak, resident.now + memory::kGamgBytesPerNonzero * nonzeros);
+  const double per_nonzero =
+      coarse_ ? memory::kGeometricRankBytesPerNonzero : memory::kGamgBytesPerNonzero;
+  double mine = std::max(resident.peak, resident.now + per_nonzero * nonzeros);
   if (resident.now == 0.0) mine = 0.0;  // (no /proc: nothing to start from)
   double most = 0.0;
   MPI_Allreduce(&mine, &most, 1, MPI_DOUBLE, MPI_MAX, comm_);
@@ -128,7 +131,7 @@ void DistributedSoil::set_far_field_force(const double* F, Eigen::VectorXd& f) c
 
 bool DistributedSoil::solve_static(const double* F, double* averages) {
   const bool built = !statics_;
-  if (built) statics_ = std::make_unique<DistributedStatics>(part_, step_->soil(), comm_);
+  if (built) statics_ = make_statics_();
   Eigen::VectorXd f = Eigen::VectorXd::Zero(step_->dofs());
   for (std::size_t j = 0; j < weights_.size(); ++j)  // (as FemSoil::spread, on this rank's nodes)
     for (const NodalWeight& w : weights_[j]) f[3 * w.node + 2] += w.weight * F[j];

@@ -13,15 +13,16 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "boundary/static_far_field.hpp"
-#include "distributed/distributed_statics.hpp"
 #include "distributed/mesh_partition.hpp"
 #include "distributed/part_pieces.hpp"
+#include "distributed/rank_statics.hpp"
 #include "fem_settings.hpp"
 #include "operator/footprint_loads.hpp"
 #include "output/probe_locator.hpp"
@@ -47,7 +48,8 @@ class DistributedSoil {
   /// explicit step with the stable step from Lanczos over the ranks (the same on every rank),
   /// and the footprints' weights on its nodes. threads: the products'. refine > 0 (mesh.refine
   /// on the ranks): rank 0's mesh is the coarse mesh, split as it is, and each rank refines its
-  /// part `refine` times after the split (refined_partition.hpp).
+  /// part `refine` times after the split (refined_partition.hpp); with statics.solver geometric
+  /// each rank keeps its coarse part, the multigrid's coarse level (geometric_rank_statics.hpp).
   void lay_out(const TetMesh* mesh, const FemSettings& settings,
                const std::vector<Footprint>& footprints, unsigned threads, int refine = 0);
   /// The whole mesh's DOFs.
@@ -61,16 +63,17 @@ class DistributedSoil {
   bool has_far_field() const { return far_.loads.cols() > 0; }
   /// The static state [m] on this rank's nodes.
   void set_static(const Eigen::VectorXd* whole);
-  /// The static state solved on the ranks (distributed_statics.hpp, built at the first call)
+  /// The static state solved on the ranks (built at the first call: geometric_rank_statics.hpp
+  /// with statics.solver geometric and mesh.refine, else distributed_statics.hpp's GAMG)
   /// under the footprint forces F [N] and the far field's traction; on rank 0 each footprint's
   /// average of it [m] in `averages` (sized by the caller). Returns whether this call built the
   /// solver.
   bool solve_static(const double* F, double* averages);
-  const DistributedStatics* statics() const { return statics_.get(); }
+  const RankStatics* statics() const { return statics_.get(); }
   const Eigen::VectorXd& static_state() const { return u_static_; }
   /// The receivers, each sampled by the rank whose part holds its tetrahedron (part_pieces.hpp).
   void set_probes(const std::vector<Probe>& probes);
-  /// Frees the statics' matrix and GAMG's hierarchy (ABI 1.5's statics_done); the next
+  /// Frees the statics' matrices and multigrid (ABI 1.5's statics_done); the next
   /// solve_static builds them again.
   void free_statics() { statics_.reset(); }
   /// The largest rank's estimate of its peak resident memory [bytes] over the run (memory_model
@@ -133,8 +136,10 @@ class DistributedSoil {
   FootprintWeights owned_weights_;  // local nodes this rank owns
   LocalFarField far_;
   bool far_field_set_ = false;
-  double far_mean_distance_ = 0.0;               // m, over the whole mesh
-  std::unique_ptr<DistributedStatics> statics_;  // at the first solve_static of a layout
+  double far_mean_distance_ = 0.0;        // m, over the whole mesh
+  std::unique_ptr<RankStatics> statics_;  // at the first solve_static of a layout
+  std::function<std::unique_ptr<RankStatics>()> make_statics_;  // (lay_out's settings)
+  std::unique_ptr<MeshPartition> coarse_;  // statics.solver geometric: the coarse part
   std::vector<PartProbe> probes_;
   std::size_t probe_count_ = 0;
   double peak_estimate_ = 0.0;  // bytes

@@ -19,11 +19,12 @@
 #include <memory>
 
 #include "distributed/mesh_partition.hpp"
+#include "distributed/rank_statics.hpp"
 #include "operator/soil_operator.hpp"
 
 namespace rumble::fem {
 
-class DistributedStatics {
+class DistributedStatics final : public RankStatics {
  public:
   /// K + S of each rank's part (op: its operator on part's nodes), and GAMG's hierarchy.
   /// Throws std::runtime_error on every rank when PETSc fails.
@@ -32,24 +33,17 @@ class DistributedStatics {
   DistributedStatics(const DistributedStatics&) = delete;
   DistributedStatics& operator=(const DistributedStatics&) = delete;
 
-  /// u on every node of the part, owned and ghost: (K + S) u = f on the free DOFs, 0 on fixed
-  /// ones; f: each owned node's whole load [N] (the ghosts' are not read). Throws on every rank
-  /// when CG does not converge.
-  Eigen::VectorXd solve(const Eigen::VectorXd& f);
-  int last_iterations() const { return iterations_; }
-  int levels() const { return levels_; }
-  double setup_seconds() const { return setup_seconds_; }
+  Eigen::VectorXd solve(const Eigen::VectorXd& f) override;
+  const char* method() const override { return "CG with GAMG"; }
+  double tolerance() const override { return kTolerance; }
   static constexpr double kTolerance = 1e-12;
 
  private:
   struct Petsc;
-  void assemble(const SoilOperator& op);
   void build_solver();
 
   const MeshPartition& part_;
   std::unique_ptr<Petsc> petsc_;
-  int iterations_ = 0, levels_ = 0;
-  double setup_seconds_ = 0.0;
 };
 
 }  // namespace rumble::fem

@@ -12,19 +12,21 @@ namespace rumble::fem {
 namespace {
 
 /// The memory per rank of `p` (its nodes, ranks and largest rank's nodes set).
-void plan_memory(RankPlan& p, bool gamg) {
+void plan_memory(RankPlan& p, bool gamg, bool geometric) {
   const double share = memory::kHeldBytesPerDof * 3.0 * p.largest_nodes;
   if (p.ranks == 1) {
     p.root_bytes = memory::run_peak_bytes(3.0 * p.nodes);
     return;
   }
-  // On many ranks the statics run on the ranks by GAMG above the factor limit (or when asked):
-  // each rank its part's; below it rank 0 factors the whole (small) operator and frees it.
+  // On many ranks the statics run on the ranks by GAMG above the factor limit (or when asked),
+  // or by the geometric multigrid when asked: each rank its part's; below it rank 0 factors the
+  // whole (small) operator and frees it.
   const double whole = 3.0 * p.nodes;
-  const bool on_ranks = gamg || whole > memory::kFactorLimitDofs;
+  const bool on_ranks = gamg || geometric || whole > memory::kFactorLimitDofs;
+  const double per_nonzero =
+      geometric ? memory::kGeometricRankBytesPerNonzero : memory::kGamgBytesPerNonzero;
   const double share_statics =
-      on_ranks ? memory::kGamgBytesPerNonzero * memory::kNonzerosPerDof * 3.0 * p.largest_nodes
-               : 0.0;
+      on_ranks ? per_nonzero * memory::kNonzerosPerDof * 3.0 * p.largest_nodes : 0.0;
   p.rank_bytes = memory::kProcessBytes + share + share_statics;
   // Rank 0: its share and the whole mesh (not the operator; with mesh.refine on the ranks the
   // coarse mesh), or the factor's whole operator (below the limit with mesh.refine rank 0
@@ -37,7 +39,7 @@ void plan_memory(RankPlan& p, bool gamg) {
 
 }  // namespace
 
-RankPlan plan_ranks(double nodes, int ranks, bool gamg, int refine) {
+RankPlan plan_ranks(double nodes, int ranks, bool gamg, int refine, bool geometric) {
   RankPlan p;
   p.ranks = std::max(1, ranks);
   p.nodes = nodes;
@@ -48,12 +50,12 @@ RankPlan plan_ranks(double nodes, int ranks, bool gamg, int refine) {
   p.largest_nodes = (nodes + p.ghosts) / p.ranks;
   p.halo_bytes = kHaloBytesPerGhost * p.ghosts;
   p.refine = refine;
-  plan_memory(p, gamg);
+  plan_memory(p, gamg, geometric);
   return p;
 }
 
 RankPlan plan_split(double nodes, int ranks, double ghosts, double largest_nodes, bool gamg,
-                    int refine) {
+                    int refine, bool geometric) {
   RankPlan p;
   p.ranks = std::max(1, ranks);
   p.nodes = nodes;
@@ -61,7 +63,7 @@ RankPlan plan_split(double nodes, int ranks, double ghosts, double largest_nodes
   p.largest_nodes = largest_nodes;
   p.halo_bytes = kHaloBytesPerGhost * ghosts;
   p.refine = refine;
-  plan_memory(p, gamg);
+  plan_memory(p, gamg, geometric);
   return p;
 }
 

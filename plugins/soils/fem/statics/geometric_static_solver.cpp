@@ -10,6 +10,7 @@
 
 #include "statics/petsc_cg.hpp"
 #include "statics/petsc_session.hpp"
+#include "statics/two_level_multigrid.hpp"
 
 namespace rumble::fem {
 
@@ -176,45 +177,12 @@ void GeometricStaticSolver::make_levels() {
 
 void GeometricStaticSolver::build_solver() {
   Petsc& p = *petsc_;
-  PC pc = nullptr;
   p.ksp = static_cg(PETSC_COMM_SELF, p.fine, p.fine, kTolerance);
-  petsc_check(KSPGetPC(p.ksp, &pc), "KSPGetPC");
-  petsc_check(PCSetType(pc, PCMG), "PCSetType");
-  petsc_check(PCMGSetLevels(pc, 2, nullptr), "PCMGSetLevels");
-  petsc_check(PCMGSetType(pc, PC_MG_MULTIPLICATIVE), "PCMGSetType");
-  petsc_check(PCMGSetGalerkin(pc, PC_MG_GALERKIN_NONE), "PCMGSetGalerkin");
-  petsc_check(PCMGSetInterpolation(pc, 1, p.interpolation), "PCMGSetInterpolation");
-  // The fine level: Chebyshev(2) with Jacobi, its bounds from CG's estimate of the spectrum of
-  // D^-1 (K + S): [0.1, 1.1] times the largest eigenvalue (GAMG's levels' defaults).
-  KSP smoother = nullptr, estimate = nullptr;
-  PC jacobi = nullptr;
-  petsc_check(PCMGGetSmoother(pc, 1, &smoother), "PCMGGetSmoother");
-  petsc_check(KSPSetOperators(smoother, p.fine, p.fine), "KSPSetOperators");
-  petsc_check(KSPSetType(smoother, KSPCHEBYSHEV), "KSPSetType");
-  petsc_check(KSPChebyshevEstEigSet(smoother, 0.0, 0.1, 0.0, 1.1), "KSPChebyshevEstEigSet");
-  petsc_check(KSPChebyshevEstEigGetKSP(smoother, &estimate), "KSPChebyshevEstEigGetKSP");
-  if (estimate) petsc_check(KSPSetType(estimate, KSPCG), "KSPSetType");
-  petsc_check(KSPSetTolerances(smoother, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT, 2),
-              "KSPSetTolerances");
-  petsc_check(KSPGetPC(smoother, &jacobi), "KSPGetPC");
-  petsc_check(PCSetType(jacobi, PCJACOBI), "PCSetType");
-  // The coarse level: one V-cycle of GAMG (a fixed linear operator, as CG needs).
-  KSP coarse = nullptr;
-  PC gamg = nullptr;
-  petsc_check(PCMGGetCoarseSolve(pc, &coarse), "PCMGGetCoarseSolve");
-  petsc_check(KSPSetOperators(coarse, p.coarse, p.coarse), "KSPSetOperators");
-  petsc_check(KSPSetType(coarse, KSPPREONLY), "KSPSetType");
-  petsc_check(KSPGetPC(coarse, &gamg), "KSPGetPC");
-  petsc_check(PCSetType(gamg, PCGAMG), "PCSetType");
+  set_two_level_multigrid(p.ksp, p.fine, p.coarse, p.interpolation);
   petsc_check(KSPSetFromOptions(p.ksp), "KSPSetFromOptions");
   set_stop_test(p.ksp, op_, p.stop);
   petsc_check(KSPSetUp(p.ksp), "KSPSetUp (the geometric multigrid's levels)");
-  PetscInt below = 1;
-  PetscBool is_gamg = PETSC_FALSE;
-  petsc_check(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(gamg), PCGAMG, &is_gamg),
-              "PetscObjectTypeCompare");
-  if (is_gamg) petsc_check(PCMGGetLevels(gamg, &below), "PCMGGetLevels");
-  levels_ = 1 + static_cast<int>(below);
+  levels_ = two_level_multigrid_levels(p.ksp);
 }
 
 Eigen::VectorXd GeometricStaticSolver::solve(const Eigen::VectorXd& f) {

@@ -6,8 +6,9 @@
 // threaded product (stepped_stiffness_times: K's upper blocks as the step reads them, in its
 // precision), smoothed by Chebyshev(2) with Jacobi (the diagonal of K + S, the shell's
 // MATOP_GET_DIAGONAL; the spectrum's bound estimated by 10 CG iterations, as GAMG estimates
-// its levels'). The coarse level is gmsh's mesh before its refinement with K + S assembled on it
-// again (coarse_level.hpp: 1/8 of the fine DOFs per level of mesh.refine), solved by one V-cycle
+// its levels'; statics/two_level_multigrid.hpp, shared with the ranks' solver). The coarse level
+// is gmsh's mesh before its refinement with K + S assembled on it again (coarse_level.hpp: 1/8
+// of the fine DOFs per level of mesh.refine), solved by one V-cycle
 // of PETSc's algebraic multigrid GAMG (block size 3, the rigid-body modes of its nodes as the
 // near-null space). The transfer is the nested linear elements' interpolation, exact for the
 // coarse space, applied to the three components alike (MatCreateMAIJ), its transpose the

@@ -1,0 +1,73 @@
+// What the static solves on the ranks (issue #33; docs/fem-soil.md §8: distributed_statics.hpp
+// with GAMG, geometric_rank_statics.hpp) share around PETSc: a matrix over the ranks' parts of
+// a mesh, one static solve by CG, the options of GAMG's set-up. The matrix's rows are the
+// ranks' owned nodes (each rank's in turn, in local order; a ghost takes its owner's number
+// through the halo), 3 per node. K + S assembled from each rank's part of K as MPIAIJ (block
+// size 3, preallocated from the part: a shared node's row gathers the pieces of every rank that
+// holds it), S on the owned boundary nodes, fixed DOFs as identity rows and columns; the six
+// rigid-body modes of the owned nodes as GAMG's near-null space. Included by those solvers' .cpp
+// files only (no header of the room includes PETSc's but star_forest.hpp's MPI).
+#pragma once
+
+#define OMPI_SKIP_MPICXX 1
+#include <mpi.h>
+#include <petscksp.h>
+
+#include <cstdint>
+#include <vector>
+
+#include "distributed/mesh_partition.hpp"
+#include "operator/soil_operator.hpp"
+
+namespace rumble::fem {
+
+struct RankRows {
+  std::vector<std::int32_t> owned;  // the local nodes this rank owns, in local order
+  std::vector<PetscInt> row;        // per local node (owned and ghost): its node in the matrix
+  PetscInt first = 0, total = 0;    // this rank's first node in the matrix; the matrix's nodes
+};
+
+/// The matrix's node of each of part's nodes, as above. Collective.
+RankRows number_rows(const MeshPartition& part, MPI_Comm comm);
+
+/// K + S of op (its part's rows of K, its boundary and fixed nodes, on part's nodes) as above,
+/// marked symmetric positive definite. Collective; throws std::runtime_error when PETSc fails.
+Mat assemble_part_matrix(const MeshPartition& part, const SoilOperator& op, const RankRows& rows,
+                         MPI_Comm comm);
+
+/// The rigid-body modes of the owned nodes (part.mesh's coordinates) as m's near-null space.
+/// Collective; throws std::runtime_error when PETSc fails.
+void set_rigid_body_modes(Mat m, const MeshPartition& part, const RankRows& rows, MPI_Comm comm);
+
+/// PETSc's process-wide options for the span of GAMG's set-up on the ranks (MatPtAP and
+/// MatMatMult read them without a prefix), each unless PETSC_OPTIONS gave it, restored after:
+/// - "-matptap_via": the session's "rap" (one process's fastest, statics/petsc_session.cpp) is no
+///   algorithm of the ranks' matrices (MPIAIJ's: scalable, nonscalable, allatonce, ...): their
+///   default, scalable, for GAMG's Galerkin products (a "rap" in PETSC_OPTIONS is taken as the
+///   session's);
+/// - "-mat_product_clear": each product's intermediates (A P's local rows, P's rows from the
+///   other ranks, ...) freed once it is formed. PETSc keeps them to form the product again from
+///   a changed matrix, which the statics never do: at 1.0e6 DOFs on 2 ranks a rank's peak fell
+///   from 2.25 to 1.94 GB, and what it holds through the solves from 2.25 to 1.39 GB, with the
+///   same hierarchy and iterations (docs/fem-soil.md §8).
+class SetUpOptions {
+ public:
+  SetUpOptions();
+  ~SetUpOptions();
+  SetUpOptions(const SetUpOptions&) = delete;
+  SetUpOptions& operator=(const SetUpOptions&) = delete;
+
+ private:
+  bool rap_ = false, clear_ = false;
+};
+
+/// One static solve on the ranks by ksp, set up on a matrix of `rows` (x: its last solution,
+/// CG's start, and b: vectors of the owned rows): u on every node of the part, owned and ghost,
+/// with (K + S) u = f on the free DOFs, 0 on `fixed` ones (per local node); f: each owned node's
+/// whole load [N] (the ghosts' are not read). `iterations`: CG's (0 at rest, on every rank
+/// alike). Throws std::runtime_error on every rank, naming `method`, when CG does not converge.
+Eigen::VectorXd solve_on_ranks(KSP ksp, Vec x, Vec b, const MeshPartition& part,
+                               const RankRows& rows, const std::vector<char>& fixed,
+                               const Eigen::VectorXd& f, int& iterations, const char* method);
+
+}  // namespace rumble::fem
