@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <string>
 #include <utility>
 
 #include "operator/block_kernel_avx2.hpp"
@@ -60,11 +61,25 @@ template <class Value>
 void SymmetricBlocks<Value>::set_parts(unsigned parts) {
   const std::int64_t n = nodes();
   const std::int64_t count = std::max<std::int64_t>(1, parts);
+  std::vector<std::int64_t> starts(static_cast<std::size_t>(count) + 1);
+  for (std::int64_t p = 0; p <= count; ++p) starts[p] = n * p / count;
+  set_part_starts(starts);
+}
+
+template <class Value>
+void SymmetricBlocks<Value>::set_part_starts(const std::vector<std::int64_t>& starts) {
+  const std::int64_t n = nodes();
+  if (starts.size() < 2 || starts.front() != 0 || starts.back() != n ||
+      !std::is_sorted(starts.begin(), starts.end()))
+    throw std::invalid_argument(
+        "SymmetricBlocks: the parts' starts must ascend from node 0 to the node count (" +
+        std::to_string(n) + ")");
   // (The plugin sets the threads at every macro step: the lists are rebuilt only on a change.)
-  if (part_start_.size() == static_cast<std::size_t>(count) + 1) return;
-  part_start_.resize(static_cast<std::size_t>(count) + 1);
-  for (std::int64_t p = 0; p <= count; ++p) part_start_[p] = n * p / count;
-  // The cross blocks, grouped by the part of their column node.
+  if (starts == part_start_) return;
+  part_start_ = starts;
+  const auto count = static_cast<std::int64_t>(starts.size()) - 1;
+  // The cross blocks, grouped by the part of their column node (the last of equal starts: the
+  // part that holds it where some parts are empty).
   const auto part_of = [&](std::int64_t node) {
     return std::upper_bound(part_start_.begin(), part_start_.end(), node) - part_start_.begin() - 1;
   };
