@@ -9,7 +9,8 @@
 //     whole before it is rounded (summed in pieces, the rounding of each piece would leave
 //     differences near 6e-8);
 //   - the step's product (stepped_product, on 2 threads) hands every node over once, with the
-//     same value as the product above, and every ghost holds its owner's value bit for bit;
+//     same value as the product above, and every ghost holds its owner's value bit for bit; it
+//     reads the part's upper blocks, under 0.7 of the bytes of its whole rows;
 //   - the same mesh is split alike twice (and so run after run);
 //   - the same with a coarse box refined once and twice on the ranks after the split
 //     (refined_partition.hpp): each fine node owned once, every fine tetrahedron on one rank,
@@ -164,6 +165,14 @@ int check(MPI_Comm comm, StepPrecision precision, std::vector<std::int32_t>& nod
   const Eigen::VectorXd handed = stepped(op, x, twice);
   checks.expect(twice == 0, "stepped_product hands every node over once", twice);
   checks.expect(handed == y, "stepped_product equals the product", relative(handed, y));
+  // The step reads the part's upper blocks: about half the bytes of its whole rows in the
+  // step's precision (a value each, an index per block), the shared nodes' blocks into the
+  // interior listed again for the interior's parts.
+  const double value_bytes = precision == StepPrecision::kSingle ? 4.0 : 8.0;
+  const auto nonzeros = static_cast<double>(op.stiffness().nonzeros());
+  const double rows = nonzeros * value_bytes + nonzeros / 9.0 * 4.0;
+  const double upper = static_cast<double>(op.stepped_bytes()) / rows;
+  checks.expect(upper < 0.7, "the step reads about half of the part's rows' bytes", upper);
   Eigen::VectorXd ghosts = y;  // each ghost's value replaced by its owner's
   part.halo->to_leaves(y.data(), ghosts.data(), 3);
   checks.expect(ghosts == y, "every ghost holds its owner's product", relative(ghosts, y));
@@ -184,10 +193,12 @@ int check(MPI_Comm comm, StepPrecision precision, std::vector<std::int32_t>& nod
                   relative(y_whole, y_one));
     std::printf(
         "fem_partition_check (%s, refined %d times on the ranks): %lld nodes, %lld tetrahedra; "
-        "rank 0 holds %d nodes (%d shared); K x within %.2g of one process's, mass within %.2g\n",
+        "rank 0 holds %d nodes (%d shared), its step reads %.2f of its rows' bytes; K x within "
+        "%.2g of one process's, mass within %.2g\n",
         precision == StepPrecision::kSingle ? "single" : "double", refine,
         static_cast<long long>(part.global_nodes), static_cast<long long>(part.global_tetrahedra),
-        part.nodes(), part.shared, relative(y_whole, y_one), relative(mass_whole, one.mass()));
+        part.nodes(), part.shared, upper, relative(y_whole, y_one),
+        relative(mass_whole, one.mass()));
   }
   int failed = 0;
   MPI_Allreduce(&checks.failed, &failed, 1, MPI_INT, MPI_MAX, comm);

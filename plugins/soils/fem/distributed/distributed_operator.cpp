@@ -11,27 +11,6 @@ namespace rumble::fem {
 
 namespace {
 
-// Node i's three rows times x from its rows' values in K's layout (csr_matrix.hpp: row 3 i + c
-// holds 3 x deg(i) values), read as Value and summed in double: CsrMatrix::node_rows_dot's
-// loop for K rounded to float.
-template <class Value>
-void node_rows(const Value* r0, std::int64_t degree, const std::int32_t* node, const double* x,
-               double out[3]) {
-  const Value* r1 = r0 + 3 * degree;
-  const Value* r2 = r1 + 3 * degree;
-  double s0 = 0.0, s1 = 0.0, s2 = 0.0;
-  for (std::int64_t p = 0; p < degree; ++p) {
-    const double* xj = x + 3 * static_cast<std::int64_t>(node[p]);
-    const std::int64_t t = 3 * p;
-    s0 += double(r0[t]) * xj[0] + double(r0[t + 1]) * xj[1] + double(r0[t + 2]) * xj[2];
-    s1 += double(r1[t]) * xj[0] + double(r1[t + 1]) * xj[1] + double(r1[t + 2]) * xj[2];
-    s2 += double(r2[t]) * xj[0] + double(r2[t + 1]) * xj[1] + double(r2[t + 2]) * xj[2];
-  }
-  out[0] = s0;
-  out[1] = s1;
-  out[2] = s2;
-}
-
 // This thread's share [lo, hi) of the nodes [begin, end) (contiguous, as schedule(static)).
 void share(std::int64_t begin, std::int64_t end, std::int64_t& lo, std::int64_t& hi) {
   const std::int64_t team = omp_get_num_threads(), me = omp_get_thread_num();
@@ -48,6 +27,7 @@ DistributedOperator::DistributedOperator(CsrMatrix K, Eigen::VectorXd mass,
                                          MPI_Comm comm)
     : SoilOperator(std::move(mass), std::move(boundary), springs, std::move(fixed), threads),
       K_(std::move(K)),
+      scratch_(static_cast<std::size_t>(part.nodes()), NodeSum{}),
       shared_(part.shared),
       halo_(*part.halo),
       global_(part.global),
@@ -57,13 +37,39 @@ DistributedOperator::DistributedOperator(CsrMatrix K, Eigen::VectorXd mass,
   int rank = 0;
   MPI_Comm_rank(comm_, &rank);
   for (std::int32_t i = 0; i < part.nodes(); ++i) owned_[i] = part.owns(i, rank) ? 1 : 0;
-  if (precision == StepPrecision::kSingle)
-    single_.assign(K_.value().begin(), K_.value().end());  // (rounded to nearest)
+  if (precision == StepPrecision::kSingle) {  // (rounded to nearest)
+    single_blocks_.emplace(*K_, 1);
+    single_blocks_->set_part_starts(part_starts());
+  } else {
+    double_blocks_.emplace(*K_, 1);
+    double_blocks_->set_part_starts(part_starts());
+  }
+}
+
+std::vector<std::int64_t> DistributedOperator::part_starts() const {
+  const std::int64_t n = nodes(), t = threads_;
+  std::vector<std::int64_t> starts(static_cast<std::size_t>(2 * t) + 1);
+  for (std::int64_t p = 0; p <= t; ++p) {
+    starts[p] = shared_ * p / t;
+    starts[t + p] = shared_ + (n - shared_) * p / t;
+  }
+  return starts;
+}
+
+void DistributedOperator::set_threads(unsigned threads) {
+  threads_ = threads < 1 ? 1 : threads;
+  if (single_blocks_) single_blocks_->set_part_starts(part_starts());
+  if (double_blocks_) double_blocks_->set_part_starts(part_starts());
+}
+
+const CsrMatrix& DistributedOperator::stiffness() const {
+  if (!K_) K_.emplace(assemble_());
+  return *K_;
 }
 
 std::size_t DistributedOperator::bytes() const {
-  return K_.bytes() + single_.size() * 4 + shared_products_.size() * 8 + owned_.size() +
-         node_bytes();
+  return (K_ ? K_->bytes() : 0) + stepped_bytes() + scratch_.size() * sizeof(NodeSum) +
+         shared_products_.size() * 8 + owned_.size() + node_bytes();
 }
 
 double DistributedOperator::dot(const Eigen::VectorXd& x, const Eigen::VectorXd& y,
@@ -77,42 +83,45 @@ double DistributedOperator::dot(const Eigen::VectorXd& x, const Eigen::VectorXd&
   return sum_in_rank_order(comm_, mine);
 }
 
-void DistributedOperator::rows_times(std::int32_t i, const double* x, double out[3],
-                                     bool stepped) const {
-  if (!stepped || single_.empty()) {
-    K_.node_rows_dot(i, x, out);
-    return;
-  }
-  node_rows(single_.data() + K_.row_start()[3 * static_cast<std::int64_t>(i)], K_.degree(i),
-            K_.neighbours(i), x, out);
+template <class Finish>
+void DistributedOperator::blocks_times(unsigned first, unsigned last, const double* x,
+                                       Finish&& finish) const {
+  if (single_blocks_)
+    single_blocks_->multiply_parts(first, last, x, scratch_.data(), finish);
+  else
+    double_blocks_->multiply_parts(first, last, x, scratch_.data(), finish);
 }
 
 void DistributedOperator::stepped_product(const double* x, NodeProducts& take) const {
-  const std::int64_t n = nodes();
+  const unsigned half = threads_;  // (the shared nodes' parts, then the interior's)
   double* summed = shared_products_.data();
-  std::int64_t lo = 0, hi = 0;
-  share(0, shared_, lo, hi);
-  for (std::int64_t i = lo; i < hi; ++i)
-    rows_times(static_cast<std::int32_t>(i), x, summed + 3 * i, true);
+  blocks_times(0, half, x,
+               [summed](std::int64_t i, const double* p) { std::copy_n(p, 3, summed + 3 * i); });
 #pragma omp barrier
 #pragma omp master
   halo_.sum_to_roots_begin(summed, summed, 3);  // (while every thread computes the interior)
-  // The interior's products are whole here: handed over at once, in runs from the stack.
+  // The interior's products are whole here: handed over at once, in runs from the stack (a
+  // thread's nodes come in ascending runs, one per part it owns).
   constexpr std::int64_t kRun = 64;
   double run[3 * kRun];
-  share(shared_, n, lo, hi);
-  for (std::int64_t first = lo; first < hi; first += kRun) {
-    const std::int64_t count = std::min(kRun, hi - first);
-    for (std::int64_t k = 0; k < count; ++k)
-      rows_times(static_cast<std::int32_t>(first + k), x, run + 3 * k, true);
-    take.take(first, count, run);
-  }
+  std::int64_t first = 0, count = 0;
+  blocks_times(half, 2 * half, x, [&](std::int64_t i, const double* p) {
+    if (count == kRun || (count > 0 && i != first + count)) {
+      take.take(first, count, run);
+      count = 0;
+    }
+    if (count == 0) first = i;
+    std::copy_n(p, 3, run + 3 * count);
+    ++count;
+  });
+  if (count > 0) take.take(first, count, run);
 #pragma omp master
   {
     halo_.sum_to_roots_end(summed, summed, 3);
     halo_.to_leaves(summed, summed, 3);
   }
 #pragma omp barrier
+  std::int64_t lo = 0, hi = 0;
   share(0, shared_, lo, hi);
   if (hi > lo) take.take(lo, hi - lo, summed + 3 * lo);
 }
@@ -121,19 +130,28 @@ void DistributedOperator::times(const Eigen::VectorXd& x, Eigen::VectorXd& y, bo
                                 bool stepped) const {
   const std::int64_t n = nodes();
   y.resize(x.size());
+  double* out = y.data();
+  if (stepped) {
+    const auto parts = static_cast<unsigned>(2 * threads_);
+#pragma omp parallel num_threads(threads_)
+    blocks_times(0, parts, x.data(),
+                 [out](std::int64_t i, const double* p) { std::copy_n(p, 3, out + 3 * i); });
+  } else {
+    const CsrMatrix& K = stiffness();
 #pragma omp parallel for num_threads(threads_) schedule(static)
-  for (std::int64_t i = 0; i < n; ++i)
-    rows_times(static_cast<std::int32_t>(i), x.data(), y.data() + 3 * i, stepped);
-  halo_.sum_to_roots(y.data(), y.data(), 3);
-  halo_.to_leaves(y.data(), y.data(), 3);
+    for (std::int64_t i = 0; i < n; ++i)
+      K.node_rows_dot(static_cast<std::int32_t>(i), x.data(), out + 3 * i);
+  }
+  halo_.sum_to_roots(out, out, 3);
+  halo_.to_leaves(out, out, 3);
   for (std::int64_t i = 0; i < n; ++i) {
-    double* out = y.data() + 3 * i;
+    double* node = out + 3 * i;
     if (fixed_[i]) {
-      out[0] = out[1] = out[2] = 0.0;
+      node[0] = node[1] = node[2] = 0.0;
       continue;
     }
     const std::int32_t b = boundary_of_[i];
-    if (with_springs && b >= 0) boundary_[b].apply_spring(x.data() + 3 * i, out);
+    if (with_springs && b >= 0) boundary_[b].apply_spring(x.data() + 3 * i, node);
   }
 }
 

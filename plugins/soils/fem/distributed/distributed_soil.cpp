@@ -78,6 +78,13 @@ void DistributedSoil::build_step(const FemSettings& settings,
       std::move(fixed), threads,
       settings.single_precision_step ? StepPrecision::kSingle : StepPrecision::kDouble, part_,
       comm_);
+  // K's rows are for the statics (GAMG's matrix): freed once they are done (free_statics), built
+  // again on every rank if a later static solve asks for them.
+  op->set_stiffness_source([this, settings] {
+    CsrMatrix again = assemble_stiffness(part_.mesh, settings);
+    complete_shared_entries(part_, again, comm_);
+    return again;
+  });
   // Lanczos on the ranks' operator (its sums over the ranks in rank order): every rank gets
   // the same stable step, one process's to rounding (fem_partition_check.cpp).
   step_.emplace(std::move(op), settings.damping.mass_coefficient(),
