@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "mesh/kuhn_box.hpp"
+#include "mesh/node_order.hpp"
 #include "operator/elasticity.hpp"
 #include "settings_from_params.hpp"
 
@@ -126,7 +127,7 @@ TEST(SymmetricBlocks, ProductOnARandomMeshIsTheFullRowsProduct) {
   check_product<float>(m, 1e-7);
 }
 
-// The ranks' split (distributed/distributed_operator.hpp): parts at given starts, some empty,
+// A caller's split (set_part_starts, multiply_parts): parts at given starts, some empty,
 // multiplied in two calls (the first parts, then the others, each on the whole team): every
 // node handed over once, the same product to the bit as one part's, the scratch left zero.
 TEST(SymmetricBlocks, PartsAtGivenStartsMultipliedInTwoCalls) {
@@ -179,6 +180,36 @@ TEST(SymmetricBlocks, RefusesPartStartsThatDoNotCoverTheNodes) {
   EXPECT_THROW(blocks.set_part_starts({0}), std::invalid_argument);
   blocks.set_part_starts({0, 3, 3, n});
   EXPECT_EQ(blocks.parts(), 3u);
+}
+
+// The nodes taken in a given order (the ranks' parts in one process's order,
+// distributed/distributed_operator.hpp): the product, by place in the order, is the one of the
+// mesh renumbered in that order (K assembled again: the same entries) to the bit, on any parts.
+TEST(SymmetricBlocks, NodesInAGivenOrderSumAsTheRenumberedMesh) {
+  const TetMesh m = random_mesh();
+  const FemSettings soil = rumble::test::soil_settings(155e6, 0.3, 1800.0);
+  const CsrMatrix K = assemble_stiffness(m, soil);
+  std::vector<std::int32_t> order(static_cast<std::size_t>(m.node_count()));  // place -> node
+  std::iota(order.begin(), order.end(), 0);
+  std::shuffle(order.begin(), order.end(), std::mt19937(5));
+  TetMesh renumbered = m;
+  renumber_nodes(renumbered, order);
+  const CsrMatrix K_renumbered = assemble_stiffness(renumbered, soil);
+  std::srand(13);
+  const Eigen::VectorXd x = Eigen::VectorXd::Random(K.rows());
+  std::vector<NodeSum> scratch(static_cast<std::size_t>(m.node_count()), NodeSum{});
+  for (const auto kernel : kernels())
+    for (const unsigned parts : {1u, 3u}) {
+      SymmetricBlocks<float> ordered(K, parts, order), reference(K_renumbered, parts);
+      ordered.set_kernel(kernel);
+      reference.set_kernel(kernel);
+      EXPECT_TRUE(blocks_times(ordered, x, 2, scratch) == blocks_times(reference, x, 2, scratch))
+          << parts << " parts";
+    }
+  EXPECT_THROW(SymmetricBlocks<float>(K, 1, std::vector<std::int32_t>(order.size() - 1, 0)),
+               std::invalid_argument);
+  order[1] = order[0];
+  EXPECT_THROW(SymmetricBlocks<float>(K, 1, order), std::invalid_argument);
 }
 
 // The SIMD kernel (fused multiply-adds, another order) against the portable one: the same

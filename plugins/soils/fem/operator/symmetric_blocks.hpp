@@ -40,6 +40,12 @@ class SymmetricBlocks {
   /// K's blocks (i, j >= i), rounded to Value; parts: how many node ranges the product has.
   /// The kernel: the SIMD one where the processor runs it.
   SymmetricBlocks(const CsrMatrix& K, unsigned parts);
+  /// The same with K's nodes taken in `order` (order[p]: the node at place p, each node once;
+  /// else std::invalid_argument): the blocks (i, j) with j at or after i in the order, and every
+  /// node index below (x, scratch, finish, parts) a place in the order. Each node's sum then runs
+  /// as with K renumbered in that order: the ranks' parts (distributed/distributed_operator.hpp)
+  /// sum each interior node's product in one process's order, so to the bit as one process.
+  SymmetricBlocks(const CsrMatrix& K, unsigned parts, const std::vector<std::int32_t>& order);
 
   std::int64_t nodes() const { return static_cast<std::int64_t>(block_start_.size()) - 1; }
   unsigned parts() const { return static_cast<unsigned>(part_start_.size()) - 1; }
@@ -47,8 +53,7 @@ class SymmetricBlocks {
   void set_parts(unsigned parts);
   /// Splits the nodes at `starts` (parts + 1 node indices, ascending, 0 first and nodes() last;
   /// a part may be empty): for a caller that multiplies some parts before others
-  /// (multiply_parts; the ranks' product, distributed/distributed_operator.hpp). Else
-  /// std::invalid_argument.
+  /// (multiply_parts). Else std::invalid_argument.
   void set_part_starts(const std::vector<std::int64_t>& starts);
   std::size_t bytes() const;
   BlockKernel kernel() const { return kernel_; }
