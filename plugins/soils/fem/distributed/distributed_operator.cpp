@@ -3,6 +3,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <numeric>
 #include <utility>
 
 #include "distributed/rank_sum.hpp"
@@ -33,33 +34,27 @@ DistributedOperator::DistributedOperator(CsrMatrix K, Eigen::VectorXd mass,
       global_(part.global),
       owned_(static_cast<std::size_t>(part.nodes()), 0),
       comm_(comm),
-      shared_products_(3 * static_cast<std::size_t>(part.shared), 0.0) {
+      shared_products_(3 * static_cast<std::size_t>(part.shared), 0.0),
+      order_(static_cast<std::size_t>(part.nodes())),
+      ordered_x_(3 * static_cast<std::size_t>(part.nodes())) {
   int rank = 0;
   MPI_Comm_rank(comm_, &rank);
   for (std::int32_t i = 0; i < part.nodes(); ++i) owned_[i] = part.owns(i, rank) ? 1 : 0;
-  if (precision == StepPrecision::kSingle) {  // (rounded to nearest)
-    single_blocks_.emplace(*K_, 1);
-    single_blocks_->set_part_starts(part_starts());
-  } else {
-    double_blocks_.emplace(*K_, 1);
-    double_blocks_->set_part_starts(part_starts());
-  }
-}
-
-std::vector<std::int64_t> DistributedOperator::part_starts() const {
-  const std::int64_t n = nodes(), t = threads_;
-  std::vector<std::int64_t> starts(static_cast<std::size_t>(2 * t) + 1);
-  for (std::int64_t p = 0; p <= t; ++p) {
-    starts[p] = shared_ * p / t;
-    starts[t + p] = shared_ + (n - shared_) * p / t;
-  }
-  return starts;
+  // One process's node order: the shared nodes and the interior each come in it already
+  // (mesh_partition.hpp), so this merges the two.
+  std::iota(order_.begin(), order_.end(), 0);
+  std::stable_sort(order_.begin(), order_.end(),
+                   [&part](std::int32_t i, std::int32_t j) { return part.precedes(i, j); });
+  if (precision == StepPrecision::kSingle)  // (rounded to nearest)
+    single_blocks_.emplace(*K_, threads_, order_);
+  else
+    double_blocks_.emplace(*K_, threads_, order_);
 }
 
 void DistributedOperator::set_threads(unsigned threads) {
   threads_ = threads < 1 ? 1 : threads;
-  if (single_blocks_) single_blocks_->set_part_starts(part_starts());
-  if (double_blocks_) double_blocks_->set_part_starts(part_starts());
+  if (single_blocks_) single_blocks_->set_parts(threads_);
+  if (double_blocks_) double_blocks_->set_parts(threads_);
 }
 
 const CsrMatrix& DistributedOperator::stiffness() const {
@@ -69,7 +64,8 @@ const CsrMatrix& DistributedOperator::stiffness() const {
 
 std::size_t DistributedOperator::bytes() const {
   return (K_ ? K_->bytes() : 0) + stepped_bytes() + scratch_.size() * sizeof(NodeSum) +
-         shared_products_.size() * 8 + owned_.size() + node_bytes();
+         shared_products_.size() * 8 + owned_.size() + order_.size() * 4 + ordered_x_.size() * 8 +
+         node_bytes();
 }
 
 double DistributedOperator::dot(const Eigen::VectorXd& x, const Eigen::VectorXd& y,
@@ -83,29 +79,41 @@ double DistributedOperator::dot(const Eigen::VectorXd& x, const Eigen::VectorXd&
   return sum_in_rank_order(comm_, mine);
 }
 
+void DistributedOperator::gather_x(const double* x) const {
+  std::int64_t lo = 0, hi = 0;
+  share(0, nodes(), lo, hi);
+  for (std::int64_t p = lo; p < hi; ++p)
+    std::copy_n(x + 3 * static_cast<std::int64_t>(order_[p]), 3, ordered_x_.data() + 3 * p);
+#pragma omp barrier
+}
+
 template <class Finish>
-void DistributedOperator::blocks_times(unsigned first, unsigned last, const double* x,
-                                       Finish&& finish) const {
+void DistributedOperator::blocks_times(const double* x, Finish&& finish) const {
+  gather_x(x);
+  const std::int32_t* order = order_.data();
+  const auto by_node = [order, &finish](std::int64_t p, const double* product) {
+    finish(static_cast<std::int64_t>(order[p]), product);
+  };
   if (single_blocks_)
-    single_blocks_->multiply_parts(first, last, x, scratch_.data(), finish);
+    single_blocks_->multiply(ordered_x_.data(), scratch_.data(), by_node);
   else
-    double_blocks_->multiply_parts(first, last, x, scratch_.data(), finish);
+    double_blocks_->multiply(ordered_x_.data(), scratch_.data(), by_node);
 }
 
 void DistributedOperator::stepped_product(const double* x, NodeProducts& take) const {
-  const unsigned half = threads_;  // (the shared nodes' parts, then the interior's)
   double* summed = shared_products_.data();
-  blocks_times(0, half, x,
-               [summed](std::int64_t i, const double* p) { std::copy_n(p, 3, summed + 3 * i); });
-#pragma omp barrier
-#pragma omp master
-  halo_.sum_to_roots_begin(summed, summed, 3);  // (while every thread computes the interior)
-  // The interior's products are whole here: handed over at once, in runs from the stack (a
-  // thread's nodes come in ascending runs, one per part it owns).
+  const std::int32_t shared = shared_;
+  // The interior's products are whole at once: handed over in runs from the stack (a thread's
+  // interior nodes come in ascending runs: the interior is in one process's order, the blocks'
+  // order, between the shared nodes), the shared nodes' kept for their sums over the ranks.
   constexpr std::int64_t kRun = 64;
   double run[3 * kRun];
   std::int64_t first = 0, count = 0;
-  blocks_times(half, 2 * half, x, [&](std::int64_t i, const double* p) {
+  blocks_times(x, [&](std::int64_t i, const double* p) {
+    if (i < shared) {
+      std::copy_n(p, 3, summed + 3 * i);
+      return;
+    }
     if (count == kRun || (count > 0 && i != first + count)) {
       take.take(first, count, run);
       count = 0;
@@ -115,8 +123,10 @@ void DistributedOperator::stepped_product(const double* x, NodeProducts& take) c
     ++count;
   });
   if (count > 0) take.take(first, count, run);
+#pragma omp barrier
 #pragma omp master
   {
+    halo_.sum_to_roots_begin(summed, summed, 3);
     halo_.sum_to_roots_end(summed, summed, 3);
     halo_.to_leaves(summed, summed, 3);
   }
@@ -132,9 +142,8 @@ void DistributedOperator::times(const Eigen::VectorXd& x, Eigen::VectorXd& y, bo
   y.resize(x.size());
   double* out = y.data();
   if (stepped) {
-    const auto parts = static_cast<unsigned>(2 * threads_);
 #pragma omp parallel num_threads(threads_)
-    blocks_times(0, parts, x.data(),
+    blocks_times(x.data(),
                  [out](std::int64_t i, const double* p) { std::copy_n(p, 3, out + 3 * i); });
   } else {
     const CsrMatrix& K = stiffness();
