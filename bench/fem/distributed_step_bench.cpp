@@ -5,7 +5,10 @@
 // mesh split by DMPlex and each rank stepping its part, the shared nodes' products summed over
 // the ranks by PETSc's star forest each step (two exchanges of 24 B per ghost).
 // Prints the best of `repeats` timings of `steps` steps (each timed between barriers, so the
-// slowest rank's), the DOF-updates per second of the whole mesh, and the halo.
+// slowest rank's), the DOF-updates per second of the whole mesh, and the halo; then the largest
+// rank's memory (the operator's bytes(), K's compressed rows in it, which a run frees after the
+// statics) and the bytes of K its step reads each step (on N > 1 its upper blocks; K's whole
+// rows in the step's precision, a value per nonzero and an index per block, beside them).
 // usage: mpirun -n N distributed_step_bench [n=46] [steps=100] [single|double] [repeats=5]
 #include <mpi.h>
 #include <omp.h>
@@ -24,6 +27,7 @@
 #include "distributed/part_stiffness.hpp"
 #include "mesh/kuhn_box.hpp"
 #include "operator/elasticity.hpp"
+#include "operator/symmetric_blocks.hpp"
 #include "statics/petsc_session.hpp"
 #include "time/explicit_solver.hpp"
 
@@ -42,6 +46,14 @@ double time_steps(MPI_Comm comm, const ExplicitSolver& solver, ExplicitState& st
   for (int k = 0; k < steps; ++k) solver.step(state, f, dt);
   MPI_Barrier(comm);
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// The bytes of K the step reads: the ranks' upper blocks, or one process's (CsrOperator's blocks,
+// built again here: the same layout on one part).
+std::size_t stepped_bytes(const SoilOperator& op, int ranks, bool single) {
+  if (ranks > 1) return static_cast<const DistributedOperator&>(op).stepped_bytes();
+  return single ? SymmetricBlocks<float>(op.stiffness(), 1).bytes()
+                : SymmetricBlocks<double>(op.stiffness(), 1).bytes();
 }
 
 }  // namespace
@@ -92,6 +104,14 @@ int main(int argc, char** argv) {
       best = std::min(best, time_steps(MPI_COMM_WORLD, *solver, state, f, dt, steps));
     long long all_ghosts = 0;
     MPI_Reduce(&ghosts, &all_ghosts, 1, MPI_LONG_LONG, MPI_SUM, 0, MPI_COMM_WORLD);
+    const SoilOperator& op = solver->soil();
+    const auto nonzeros = static_cast<double>(op.stiffness().nonzeros());
+    const long long mine[4] = {
+        static_cast<long long>(op.bytes()), static_cast<long long>(op.stiffness().bytes()),
+        static_cast<long long>(stepped_bytes(op, ranks, single)),
+        static_cast<long long>(nonzeros * (single ? 4.0 : 8.0) + nonzeros / 9.0 * 4.0)};
+    long long most[4] = {0, 0, 0, 0};
+    MPI_Reduce(mine, most, 4, MPI_LONG_LONG, MPI_MAX, 0, MPI_COMM_WORLD);
     if (rank == 0) {
       const double dofs = 3.0 * static_cast<double>(whole.node_count());
       std::printf(
@@ -99,6 +119,12 @@ int main(int argc, char** argv) {
           "per step, %.3g million DOF-updates per second; halo %lld ghosts, %.3g KiB per step\n",
           n, dofs, single ? "single" : "double", ranks, omp_get_max_threads(), 1e3 * best / steps,
           dofs * steps / best / 1e6, all_ghosts, static_cast<double>(all_ghosts) * 48.0 / 1024.0);
+      constexpr double kMiB = 1048576.0;
+      std::printf(
+          "distributed_step_bench: the largest rank's operator %.1f MiB (K's rows %.1f MiB in "
+          "it); its step reads %.1f MiB of K per step (K's whole rows in the step's precision: "
+          "%.1f MiB)\n",
+          most[0] / kMiB, most[1] / kMiB, most[2] / kMiB, most[3] / kMiB);
     }
   }
   MPI_Finalize();

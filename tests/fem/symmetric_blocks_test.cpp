@@ -12,9 +12,11 @@
 #include <cmath>
 #include <numeric>
 #include <random>
+#include <stdexcept>
 #include <vector>
 
 #include "mesh/kuhn_box.hpp"
+#include "mesh/node_order.hpp"
 #include "operator/elasticity.hpp"
 #include "settings_from_params.hpp"
 
@@ -123,6 +125,91 @@ TEST(SymmetricBlocks, ProductOnARandomMeshIsTheFullRowsProduct) {
   for (const Tetrahedron& t : m.tets) ASSERT_GT(tet_volume(m, t), 0.0);
   check_product<double>(m, 1e-12);
   check_product<float>(m, 1e-7);
+}
+
+// A caller's split (set_part_starts, multiply_parts): parts at given starts, some empty,
+// multiplied in two calls (the first parts, then the others, each on the whole team): every
+// node handed over once, the same product to the bit as one part's, the scratch left zero.
+TEST(SymmetricBlocks, PartsAtGivenStartsMultipliedInTwoCalls) {
+  const TetMesh m = random_mesh();
+  const CsrMatrix K = assemble_stiffness(m, rumble::test::soil_settings(155e6, 0.3, 1800.0));
+  std::srand(11);
+  const Eigen::VectorXd x = Eigen::VectorXd::Random(K.rows());
+  std::vector<NodeSum> scratch(static_cast<std::size_t>(m.node_count()), NodeSum{});
+  for (const auto kernel : kernels()) {
+    SymmetricBlocks<float> blocks(K, 1);
+    blocks.set_kernel(kernel);
+    const Eigen::VectorXd one = blocks_times(blocks, x, 1, scratch);
+    const std::int64_t n = blocks.nodes(), shared = n / 5;
+    for (const std::vector<std::int64_t>& starts :
+         {std::vector<std::int64_t>{0, shared / 2, shared, shared + (n - shared) / 2, n},
+          std::vector<std::int64_t>{0, 0, 0, n / 3, n}}) {
+      blocks.set_part_starts(starts);
+      ASSERT_EQ(blocks.parts(), 4u);
+      for (const int team : {1, 2}) {
+        Eigen::VectorXd y = Eigen::VectorXd::Constant(x.size(), std::nan(""));
+        std::vector<int> handed(static_cast<std::size_t>(n), 0);
+        const auto finish = [&](std::int64_t i, const double* out) {
+          ++handed[static_cast<std::size_t>(i)];
+          std::copy_n(out, 3, y.data() + 3 * i);
+        };
+#pragma omp parallel num_threads(team)
+        {
+          blocks.multiply_parts(0, 2, x.data(), scratch.data(), finish);
+#pragma omp barrier
+          blocks.multiply_parts(2, 4, x.data(), scratch.data(), finish);
+        }
+        EXPECT_TRUE(std::all_of(handed.begin(), handed.end(), [](int k) { return k == 1; }));
+        EXPECT_TRUE(y == one) << "team " << team << ", parts from " << starts[1];
+      }
+      EXPECT_TRUE(std::all_of(scratch.begin(), scratch.end(), [](const NodeSum& s) {
+        return s.v[0] == 0.0 && s.v[1] == 0.0 && s.v[2] == 0.0;
+      }));
+    }
+  }
+}
+
+TEST(SymmetricBlocks, RefusesPartStartsThatDoNotCoverTheNodes) {
+  const TetMesh m = kuhn_box(2, 0.5);
+  const CsrMatrix K = assemble_stiffness(m, rumble::test::soil_settings(155e6, 0.3, 1800.0));
+  SymmetricBlocks<double> blocks(K, 1);
+  const std::int64_t n = blocks.nodes();
+  EXPECT_THROW(blocks.set_part_starts({0, n - 1}), std::invalid_argument);
+  EXPECT_THROW(blocks.set_part_starts({1, n}), std::invalid_argument);
+  EXPECT_THROW(blocks.set_part_starts({0, 5, 3, n}), std::invalid_argument);
+  EXPECT_THROW(blocks.set_part_starts({0}), std::invalid_argument);
+  blocks.set_part_starts({0, 3, 3, n});
+  EXPECT_EQ(blocks.parts(), 3u);
+}
+
+// The nodes taken in a given order (the ranks' parts in one process's order,
+// distributed/distributed_operator.hpp): the product, by place in the order, is the one of the
+// mesh renumbered in that order (K assembled again: the same entries) to the bit, on any parts.
+TEST(SymmetricBlocks, NodesInAGivenOrderSumAsTheRenumberedMesh) {
+  const TetMesh m = random_mesh();
+  const FemSettings soil = rumble::test::soil_settings(155e6, 0.3, 1800.0);
+  const CsrMatrix K = assemble_stiffness(m, soil);
+  std::vector<std::int32_t> order(static_cast<std::size_t>(m.node_count()));  // place -> node
+  std::iota(order.begin(), order.end(), 0);
+  std::shuffle(order.begin(), order.end(), std::mt19937(5));
+  TetMesh renumbered = m;
+  renumber_nodes(renumbered, order);
+  const CsrMatrix K_renumbered = assemble_stiffness(renumbered, soil);
+  std::srand(13);
+  const Eigen::VectorXd x = Eigen::VectorXd::Random(K.rows());
+  std::vector<NodeSum> scratch(static_cast<std::size_t>(m.node_count()), NodeSum{});
+  for (const auto kernel : kernels())
+    for (const unsigned parts : {1u, 3u}) {
+      SymmetricBlocks<float> ordered(K, parts, order), reference(K_renumbered, parts);
+      ordered.set_kernel(kernel);
+      reference.set_kernel(kernel);
+      EXPECT_TRUE(blocks_times(ordered, x, 2, scratch) == blocks_times(reference, x, 2, scratch))
+          << parts << " parts";
+    }
+  EXPECT_THROW(SymmetricBlocks<float>(K, 1, std::vector<std::int32_t>(order.size() - 1, 0)),
+               std::invalid_argument);
+  order[1] = order[0];
+  EXPECT_THROW(SymmetricBlocks<float>(K, 1, order), std::invalid_argument);
 }
 
 // The SIMD kernel (fused multiply-adds, another order) against the portable one: the same

@@ -3,6 +3,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <numeric>
 #include <utility>
 
 #include "distributed/rank_sum.hpp"
@@ -10,27 +11,6 @@
 namespace rumble::fem {
 
 namespace {
-
-// Node i's three rows times x from its rows' values in K's layout (csr_matrix.hpp: row 3 i + c
-// holds 3 x deg(i) values), read as Value and summed in double: CsrMatrix::node_rows_dot's
-// loop for K rounded to float.
-template <class Value>
-void node_rows(const Value* r0, std::int64_t degree, const std::int32_t* node, const double* x,
-               double out[3]) {
-  const Value* r1 = r0 + 3 * degree;
-  const Value* r2 = r1 + 3 * degree;
-  double s0 = 0.0, s1 = 0.0, s2 = 0.0;
-  for (std::int64_t p = 0; p < degree; ++p) {
-    const double* xj = x + 3 * static_cast<std::int64_t>(node[p]);
-    const std::int64_t t = 3 * p;
-    s0 += double(r0[t]) * xj[0] + double(r0[t + 1]) * xj[1] + double(r0[t + 2]) * xj[2];
-    s1 += double(r1[t]) * xj[0] + double(r1[t + 1]) * xj[1] + double(r1[t + 2]) * xj[2];
-    s2 += double(r2[t]) * xj[0] + double(r2[t + 1]) * xj[1] + double(r2[t + 2]) * xj[2];
-  }
-  out[0] = s0;
-  out[1] = s1;
-  out[2] = s2;
-}
 
 // This thread's share [lo, hi) of the nodes [begin, end) (contiguous, as schedule(static)).
 void share(std::int64_t begin, std::int64_t end, std::int64_t& lo, std::int64_t& hi) {
@@ -48,21 +28,43 @@ DistributedOperator::DistributedOperator(CsrMatrix K, Eigen::VectorXd mass,
                                          MPI_Comm comm)
     : SoilOperator(std::move(mass), std::move(boundary), springs, std::move(fixed), threads),
       K_(std::move(K)),
+      scratch_(static_cast<std::size_t>(part.nodes()), NodeSum{}),
       shared_(part.shared),
       halo_(*part.halo),
       global_(part.global),
       owned_(static_cast<std::size_t>(part.nodes()), 0),
       comm_(comm),
-      shared_products_(3 * static_cast<std::size_t>(part.shared), 0.0) {
+      shared_products_(3 * static_cast<std::size_t>(part.shared), 0.0),
+      order_(static_cast<std::size_t>(part.nodes())),
+      ordered_x_(3 * static_cast<std::size_t>(part.nodes())) {
   int rank = 0;
   MPI_Comm_rank(comm_, &rank);
   for (std::int32_t i = 0; i < part.nodes(); ++i) owned_[i] = part.owns(i, rank) ? 1 : 0;
-  if (precision == StepPrecision::kSingle)
-    single_.assign(K_.value().begin(), K_.value().end());  // (rounded to nearest)
+  // One process's node order: the shared nodes and the interior each come in it already
+  // (mesh_partition.hpp), so this merges the two.
+  std::iota(order_.begin(), order_.end(), 0);
+  std::stable_sort(order_.begin(), order_.end(),
+                   [&part](std::int32_t i, std::int32_t j) { return part.precedes(i, j); });
+  if (precision == StepPrecision::kSingle)  // (rounded to nearest)
+    single_blocks_.emplace(*K_, threads_, order_);
+  else
+    double_blocks_.emplace(*K_, threads_, order_);
+}
+
+void DistributedOperator::set_threads(unsigned threads) {
+  threads_ = threads < 1 ? 1 : threads;
+  if (single_blocks_) single_blocks_->set_parts(threads_);
+  if (double_blocks_) double_blocks_->set_parts(threads_);
+}
+
+const CsrMatrix& DistributedOperator::stiffness() const {
+  if (!K_) K_.emplace(assemble_());
+  return *K_;
 }
 
 std::size_t DistributedOperator::bytes() const {
-  return K_.bytes() + single_.size() * 4 + shared_products_.size() * 8 + owned_.size() +
+  return (K_ ? K_->bytes() : 0) + stepped_bytes() + scratch_.size() * sizeof(NodeSum) +
+         shared_products_.size() * 8 + owned_.size() + order_.size() * 4 + ordered_x_.size() * 8 +
          node_bytes();
 }
 
@@ -77,42 +79,59 @@ double DistributedOperator::dot(const Eigen::VectorXd& x, const Eigen::VectorXd&
   return sum_in_rank_order(comm_, mine);
 }
 
-void DistributedOperator::rows_times(std::int32_t i, const double* x, double out[3],
-                                     bool stepped) const {
-  if (!stepped || single_.empty()) {
-    K_.node_rows_dot(i, x, out);
-    return;
-  }
-  node_rows(single_.data() + K_.row_start()[3 * static_cast<std::int64_t>(i)], K_.degree(i),
-            K_.neighbours(i), x, out);
+void DistributedOperator::gather_x(const double* x) const {
+  std::int64_t lo = 0, hi = 0;
+  share(0, nodes(), lo, hi);
+  for (std::int64_t p = lo; p < hi; ++p)
+    std::copy_n(x + 3 * static_cast<std::int64_t>(order_[p]), 3, ordered_x_.data() + 3 * p);
+#pragma omp barrier
+}
+
+template <class Finish>
+void DistributedOperator::blocks_times(const double* x, Finish&& finish) const {
+  gather_x(x);
+  const std::int32_t* order = order_.data();
+  const auto by_node = [order, &finish](std::int64_t p, const double* product) {
+    finish(static_cast<std::int64_t>(order[p]), product);
+  };
+  if (single_blocks_)
+    single_blocks_->multiply(ordered_x_.data(), scratch_.data(), by_node);
+  else
+    double_blocks_->multiply(ordered_x_.data(), scratch_.data(), by_node);
 }
 
 void DistributedOperator::stepped_product(const double* x, NodeProducts& take) const {
-  const std::int64_t n = nodes();
   double* summed = shared_products_.data();
-  std::int64_t lo = 0, hi = 0;
-  share(0, shared_, lo, hi);
-  for (std::int64_t i = lo; i < hi; ++i)
-    rows_times(static_cast<std::int32_t>(i), x, summed + 3 * i, true);
-#pragma omp barrier
-#pragma omp master
-  halo_.sum_to_roots_begin(summed, summed, 3);  // (while every thread computes the interior)
-  // The interior's products are whole here: handed over at once, in runs from the stack.
+  const std::int32_t shared = shared_;
+  // The interior's products are whole at once: handed over in runs from the stack (a thread's
+  // interior nodes come in ascending runs: the interior is in one process's order, the blocks'
+  // order, between the shared nodes), the shared nodes' kept for their sums over the ranks.
   constexpr std::int64_t kRun = 64;
   double run[3 * kRun];
-  share(shared_, n, lo, hi);
-  for (std::int64_t first = lo; first < hi; first += kRun) {
-    const std::int64_t count = std::min(kRun, hi - first);
-    for (std::int64_t k = 0; k < count; ++k)
-      rows_times(static_cast<std::int32_t>(first + k), x, run + 3 * k, true);
-    take.take(first, count, run);
-  }
+  std::int64_t first = 0, count = 0;
+  blocks_times(x, [&](std::int64_t i, const double* p) {
+    if (i < shared) {
+      std::copy_n(p, 3, summed + 3 * i);
+      return;
+    }
+    if (count == kRun || (count > 0 && i != first + count)) {
+      take.take(first, count, run);
+      count = 0;
+    }
+    if (count == 0) first = i;
+    std::copy_n(p, 3, run + 3 * count);
+    ++count;
+  });
+  if (count > 0) take.take(first, count, run);
+#pragma omp barrier
 #pragma omp master
   {
+    halo_.sum_to_roots_begin(summed, summed, 3);
     halo_.sum_to_roots_end(summed, summed, 3);
     halo_.to_leaves(summed, summed, 3);
   }
 #pragma omp barrier
+  std::int64_t lo = 0, hi = 0;
   share(0, shared_, lo, hi);
   if (hi > lo) take.take(lo, hi - lo, summed + 3 * lo);
 }
@@ -121,19 +140,27 @@ void DistributedOperator::times(const Eigen::VectorXd& x, Eigen::VectorXd& y, bo
                                 bool stepped) const {
   const std::int64_t n = nodes();
   y.resize(x.size());
+  double* out = y.data();
+  if (stepped) {
+#pragma omp parallel num_threads(threads_)
+    blocks_times(x.data(),
+                 [out](std::int64_t i, const double* p) { std::copy_n(p, 3, out + 3 * i); });
+  } else {
+    const CsrMatrix& K = stiffness();
 #pragma omp parallel for num_threads(threads_) schedule(static)
-  for (std::int64_t i = 0; i < n; ++i)
-    rows_times(static_cast<std::int32_t>(i), x.data(), y.data() + 3 * i, stepped);
-  halo_.sum_to_roots(y.data(), y.data(), 3);
-  halo_.to_leaves(y.data(), y.data(), 3);
+    for (std::int64_t i = 0; i < n; ++i)
+      K.node_rows_dot(static_cast<std::int32_t>(i), x.data(), out + 3 * i);
+  }
+  halo_.sum_to_roots(out, out, 3);
+  halo_.to_leaves(out, out, 3);
   for (std::int64_t i = 0; i < n; ++i) {
-    double* out = y.data() + 3 * i;
+    double* node = out + 3 * i;
     if (fixed_[i]) {
-      out[0] = out[1] = out[2] = 0.0;
+      node[0] = node[1] = node[2] = 0.0;
       continue;
     }
     const std::int32_t b = boundary_of_[i];
-    if (with_springs && b >= 0) boundary_[b].apply_spring(x.data() + 3 * i, out);
+    if (with_springs && b >= 0) boundary_[b].apply_spring(x.data() + 3 * i, node);
   }
 }
 

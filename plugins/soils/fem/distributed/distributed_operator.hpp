@@ -4,20 +4,35 @@
 // its nodes, and the halo (mesh_partition.hpp) that sums the shared nodes' products over the
 // ranks.
 //
-// The step's product (stepped_product): the shared nodes' rows first; their sums over the ranks
-// begin (PETSc's star forest: each ghost's row added to its owner's) while the interior's rows
-// are computed and handed to the step, then end, and the owners' complete products are copied
-// back to the ghosts (a second exchange of the same nodes) before the shared nodes are handed
-// over. Every rank then steps its owned and ghost nodes alike from the same complete product,
-// mass, blocks and force, so the copies of a node stay equal bit for bit and the step needs no
+// The step reads the part's K by its upper blocks (operator/symmetric_blocks.hpp, one process's
+// kernel and threads unchanged; docs/fem-soil.md §8): each block between two of the part's
+// nodes once, used for both. The part's K is symmetric (part_stiffness.hpp) and its blocks are
+// taken in one process's node order (the shared and interior nodes merged; x gathered into that
+// order for each product), so every interior node's product sums the same terms in the same
+// order as one process's and equals it to the bit: only the shared nodes' products, summed over
+// the ranks, differ by rounding. (Taken in the part's own order, the shared nodes first, the
+// interior nodes next to them summed in another order, and fem_small.json's velocity on 2 ranks
+// drifted 4.6e-12 from one process's by 30 ms, against 1e-12 asked; §8.)
+//
+// The step's product (stepped_product): the interior's products handed to the step as they
+// come, the shared nodes' kept; then their sums over the ranks (PETSc's star forest: each
+// ghost's product added to its owner's) and the owners' complete products copied back to the
+// ghosts (a second exchange of the same nodes) before the shared nodes are handed over.
+// Every rank then steps its owned and ghost nodes alike from the same complete product, mass,
+// blocks and force, so the copies of a node stay equal bit for bit and the step needs no
 // exchange of its own. The explicit step (time/explicit_solver.hpp) runs unchanged on it.
+//
+// K's compressed rows (in double: the statics' matrix, stiffness_times) are kept until
+// release_stiffness, and built again (collectively) when next asked for.
 //
 // Every product is collective: all ranks call it, in the same order.
 #pragma once
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <functional>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "distributed/mesh_partition.hpp"
@@ -25,6 +40,7 @@
 #include "operator/boundary_blocks.hpp"
 #include "operator/csr_matrix.hpp"
 #include "operator/soil_operator.hpp"
+#include "operator/symmetric_blocks.hpp"
 
 namespace rumble::fem {
 
@@ -37,7 +53,7 @@ class DistributedOperator final : public SoilOperator {
                       bool springs, std::vector<char> fixed, unsigned threads,
                       StepPrecision precision, const MeshPartition& part, MPI_Comm comm);
 
-  void set_threads(unsigned threads) override { threads_ = threads < 1 ? 1 : threads; }
+  void set_threads(unsigned threads) override;
   void stiffness_times(const Eigen::VectorXd& x, Eigen::VectorXd& y,
                        bool with_springs) const override {
     times(x, y, with_springs, false);
@@ -48,11 +64,25 @@ class DistributedOperator final : public SoilOperator {
   }
   void stepped_product(const double* x, NodeProducts& take) const override;
   StepPrecision precision() const override {
-    return single_.empty() ? StepPrecision::kDouble : StepPrecision::kSingle;
+    return single_blocks_ ? StepPrecision::kSingle : StepPrecision::kDouble;
   }
-  /// The part's rows (not K's whole rows at the shared nodes).
-  const CsrMatrix& stiffness() const override { return K_; }
+  /// The part's rows (not K's whole rows at the shared nodes). Collective where they were
+  /// released (every rank builds its own again): every rank calls it then, in the same order.
+  const CsrMatrix& stiffness() const override;
   std::size_t bytes() const override;
+  /// The bytes of K the step reads (its upper blocks, their indices and the parts' lists).
+  std::size_t stepped_bytes() const {
+    return single_blocks_ ? single_blocks_->bytes() : double_blocks_->bytes();
+  }
+  /// `assemble` builds the part's rows again (collective: part_stiffness.hpp's, the same to the
+  /// bit); from then on release_stiffness frees them.
+  void set_stiffness_source(std::function<CsrMatrix()> assemble) override {
+    assemble_ = std::move(assemble);
+  }
+  void release_stiffness() const override {
+    if (assemble_) K_.reset();
+  }
+  bool holds_stiffness() const override { return K_.has_value(); }
 
   std::int32_t shared() const { return shared_; }
 
@@ -63,19 +93,29 @@ class DistributedOperator final : public SoilOperator {
   std::int64_t whole_node(std::int64_t i) const override { return global_[i]; }
 
  private:
-  /// Node i's rows of the part's K times x (K as the step reads it when stepped).
-  void rows_times(std::int32_t i, const double* x, double out[3], bool stepped) const;
   /// y = K x + S x, summed over the ranks at the shared nodes, 0 on fixed nodes.
   void times(const Eigen::VectorXd& x, Eigen::VectorXd& y, bool with_springs, bool stepped) const;
+  /// x into ordered_x_ (one process's order), this thread's share; a barrier at the end.
+  void gather_x(const double* x) const;
+  /// The blocks' product, by the step's precision: finish(i, product) for each local node i, by
+  /// the thread whose part holds it. Called by every thread of a team; no barrier at the end.
+  template <class Finish>
+  void blocks_times(const double* x, Finish&& finish) const;
 
-  CsrMatrix K_;
-  std::vector<float> single_;  // K's values rounded to float (StepPrecision::kSingle), else empty
+  mutable std::optional<CsrMatrix> K_;  // (a cache: released between the statics)
+  std::function<CsrMatrix()> assemble_;
+  // The part's upper blocks as the step reads them: rounded to float, or in double (one of two).
+  std::optional<SymmetricBlocks<float>> single_blocks_;
+  std::optional<SymmetricBlocks<double>> double_blocks_;
+  mutable std::vector<NodeSum> scratch_;  // the blocks' pending sums; zero between products
   std::int32_t shared_;
   const StarForest& halo_;
   const std::vector<std::int32_t>& global_;  // per local node: its node in the whole mesh
   std::vector<char> owned_;                  // per local node: this rank owns it
   MPI_Comm comm_;
   mutable std::vector<double> shared_products_;  // 3 per shared node
+  std::vector<std::int32_t> order_;              // the local nodes in one process's order
+  mutable std::vector<double> ordered_x_;        // the product's x in that order
 };
 
 }  // namespace rumble::fem

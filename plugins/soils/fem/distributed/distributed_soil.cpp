@@ -11,6 +11,7 @@
 #include "distributed/distributed_statics.hpp"
 #include "distributed/geometric_rank_statics.hpp"
 #include "distributed/part_operator.hpp"
+#include "distributed/part_stiffness.hpp"
 #include "distributed/rank_agreement.hpp"
 #include "distributed/refined_partition.hpp"
 #include "memory_model.hpp"
@@ -78,6 +79,13 @@ void DistributedSoil::build_step(const FemSettings& settings,
   std::unique_ptr<DistributedOperator> op = part_operator(
       part_, settings, footprints, threads,
       settings.single_precision_step ? StepPrecision::kSingle : StepPrecision::kDouble, comm_);
+  // K's rows are for the statics (their matrix, the geometric multigrid's product): freed once
+  // they are done (free_statics), built again on every rank if a later static solve asks.
+  op->set_stiffness_source([this, settings] {
+    CsrMatrix again = assemble_stiffness(part_.mesh, settings);
+    complete_shared_entries(part_, again, comm_);
+    return again;
+  });
   // Lanczos on the ranks' operator (its sums over the ranks in rank order): every rank gets
   // the same stable step, one process's to rounding (fem_partition_check.cpp).
   step_.emplace(std::move(op), settings.damping.mass_coefficient(),

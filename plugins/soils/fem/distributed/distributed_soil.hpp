@@ -73,9 +73,13 @@ class DistributedSoil {
   const Eigen::VectorXd& static_state() const { return u_static_; }
   /// The receivers, each sampled by the rank whose part holds its tetrahedron (part_pieces.hpp).
   void set_probes(const std::vector<Probe>& probes);
-  /// Frees the statics' matrices and multigrid (ABI 1.5's statics_done); the next
-  /// solve_static builds them again.
-  void free_statics() { statics_.reset(); }
+  /// Frees the statics' matrices and multigrid (ABI 1.5's statics_done) and the operator's K
+  /// rows (the step reads its upper blocks); the next solve_static builds them again. On every
+  /// rank.
+  void free_statics() {
+    statics_.reset();
+    if (step_) step_->release_stiffness();
+  }
   /// The largest rank's estimate of its peak resident memory [bytes] over the run (memory_model
   /// .hpp, from what each rank holds after its layout), for ABI 1.5's size.
   double peak_estimate() const { return peak_estimate_; }

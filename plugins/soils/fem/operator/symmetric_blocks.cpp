@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <string>
 #include <utility>
 
 #include "operator/block_kernel_avx2.hpp"
@@ -9,32 +10,54 @@
 namespace rumble::fem {
 
 template <class Value>
-SymmetricBlocks<Value>::SymmetricBlocks(const CsrMatrix& K, unsigned parts) {
+SymmetricBlocks<Value>::SymmetricBlocks(const CsrMatrix& K, unsigned parts)
+    : SymmetricBlocks(K, parts, {}) {}
+
+template <class Value>
+SymmetricBlocks<Value>::SymmetricBlocks(const CsrMatrix& K, unsigned parts,
+                                        const std::vector<std::int32_t>& order) {
   const std::int64_t n = K.rows() / 3;
+  if (!order.empty() && static_cast<std::int64_t>(order.size()) != n)
+    throw std::invalid_argument("SymmetricBlocks: the order must name each of the " +
+                                std::to_string(n) + " nodes once");
+  // position[i]: node i's place in the order (its index where no order is given).
+  std::vector<std::int32_t> position(static_cast<std::size_t>(n), -1);
+  for (std::int64_t p = 0; p < n; ++p) {
+    const std::int32_t i = order.empty() ? static_cast<std::int32_t>(p) : order[p];
+    if (i < 0 || i >= n || position[i] >= 0)
+      throw std::invalid_argument("SymmetricBlocks: the order must name each of the " +
+                                  std::to_string(n) + " nodes once");
+    position[i] = static_cast<std::int32_t>(p);
+  }
   block_start_.assign(static_cast<std::size_t>(n) + 1, 0);
-  for (std::int64_t i = 0; i < n; ++i) {
-    const auto node = static_cast<std::int32_t>(i);
+  // Per position: (the later neighbour's position, its place in the node's row), ascending.
+  std::vector<std::pair<std::int32_t, std::int64_t>> later;
+  const auto later_of = [&](std::int64_t p) {
+    const std::int32_t node = order.empty() ? static_cast<std::int32_t>(p) : order[p];
     const std::int32_t* nb = K.neighbours(node);
-    const std::int64_t upper =
-        nb + K.degree(node) - std::lower_bound(nb, nb + K.degree(node), node);
-    block_start_[i + 1] = block_start_[i] + upper;  // (the diagonal and the nodes after i)
+    later.clear();
+    for (std::int64_t q = 0; q < K.degree(node); ++q)
+      if (position[nb[q]] >= p) later.emplace_back(position[nb[q]], q);
+    std::sort(later.begin(), later.end());
+    if (later.empty() || later.front().first != p)
+      throw std::invalid_argument("SymmetricBlocks: a node is not its own neighbour");
+    return node;
+  };
+  for (std::int64_t p = 0; p < n; ++p) {
+    later_of(p);
+    block_start_[p + 1] = block_start_[p] + static_cast<std::int64_t>(later.size());
   }
   column_.resize(static_cast<std::size_t>(block_start_.back()));
   value_.assign(9 * column_.size() + 3, Value{0});
-  for (std::int64_t i = 0; i < n; ++i) {
-    const auto node = static_cast<std::int32_t>(i);
-    const std::int32_t* nb = K.neighbours(node);
-    const std::int64_t degree = K.degree(node);
-    const std::int64_t diagonal = std::lower_bound(nb, nb + degree, node) - nb;
-    if (diagonal == degree || nb[diagonal] != node)
-      throw std::invalid_argument("SymmetricBlocks: a node is not its own neighbour");
-    for (std::int64_t p = diagonal; p < degree; ++p) {
-      const std::int64_t q = block_start_[i] + (p - diagonal);
-      column_[static_cast<std::size_t>(q)] = nb[p];
+  for (std::int64_t p = 0; p < n; ++p) {
+    const std::int32_t node = later_of(p);
+    for (std::size_t k = 0; k < later.size(); ++k) {
+      const std::int64_t q = block_start_[p] + static_cast<std::int64_t>(k);
+      column_[static_cast<std::size_t>(q)] = later[k].first;
       for (int c = 0; c < 3; ++c)
         for (int d = 0; d < 3; ++d)
           value_[static_cast<std::size_t>(9 * q + 3 * c + d)] =
-              static_cast<Value>(K.block_entry(node, p, c, d));  // (rounded to nearest)
+              static_cast<Value>(K.block_entry(node, later[k].second, c, d));  // (to nearest)
     }
   }
   set_parts(parts);
@@ -60,11 +83,25 @@ template <class Value>
 void SymmetricBlocks<Value>::set_parts(unsigned parts) {
   const std::int64_t n = nodes();
   const std::int64_t count = std::max<std::int64_t>(1, parts);
+  std::vector<std::int64_t> starts(static_cast<std::size_t>(count) + 1);
+  for (std::int64_t p = 0; p <= count; ++p) starts[p] = n * p / count;
+  set_part_starts(starts);
+}
+
+template <class Value>
+void SymmetricBlocks<Value>::set_part_starts(const std::vector<std::int64_t>& starts) {
+  const std::int64_t n = nodes();
+  if (starts.size() < 2 || starts.front() != 0 || starts.back() != n ||
+      !std::is_sorted(starts.begin(), starts.end()))
+    throw std::invalid_argument(
+        "SymmetricBlocks: the parts' starts must ascend from node 0 to the node count (" +
+        std::to_string(n) + ")");
   // (The plugin sets the threads at every macro step: the lists are rebuilt only on a change.)
-  if (part_start_.size() == static_cast<std::size_t>(count) + 1) return;
-  part_start_.resize(static_cast<std::size_t>(count) + 1);
-  for (std::int64_t p = 0; p <= count; ++p) part_start_[p] = n * p / count;
-  // The cross blocks, grouped by the part of their column node.
+  if (starts == part_start_) return;
+  part_start_ = starts;
+  const auto count = static_cast<std::int64_t>(starts.size()) - 1;
+  // The cross blocks, grouped by the part of their column node (the last of equal starts: the
+  // part that holds it where some parts are empty).
   const auto part_of = [&](std::int64_t node) {
     return std::upper_bound(part_start_.begin(), part_start_.end(), node) - part_start_.begin() - 1;
   };

@@ -40,11 +40,21 @@ class SymmetricBlocks {
   /// K's blocks (i, j >= i), rounded to Value; parts: how many node ranges the product has.
   /// The kernel: the SIMD one where the processor runs it.
   SymmetricBlocks(const CsrMatrix& K, unsigned parts);
+  /// The same with K's nodes taken in `order` (order[p]: the node at place p, each node once;
+  /// else std::invalid_argument): the blocks (i, j) with j at or after i in the order, and every
+  /// node index below (x, scratch, finish, parts) a place in the order. Each node's sum then runs
+  /// as with K renumbered in that order: the ranks' parts (distributed/distributed_operator.hpp)
+  /// sum each interior node's product in one process's order, so to the bit as one process.
+  SymmetricBlocks(const CsrMatrix& K, unsigned parts, const std::vector<std::int32_t>& order);
 
   std::int64_t nodes() const { return static_cast<std::int64_t>(block_start_.size()) - 1; }
   unsigned parts() const { return static_cast<unsigned>(part_start_.size()) - 1; }
   /// Splits the nodes into `parts` ranges of equal size (the threads of the step).
   void set_parts(unsigned parts);
+  /// Splits the nodes at `starts` (parts + 1 node indices, ascending, 0 first and nodes() last;
+  /// a part may be empty): for a caller that multiplies some parts before others
+  /// (multiply_parts). Else std::invalid_argument.
+  void set_part_starts(const std::vector<std::int64_t>& starts);
   std::size_t bytes() const;
   BlockKernel kernel() const { return kernel_; }
   /// Chooses the kernel (tests and benchmarks); kSimd where the processor cannot run it:
@@ -57,7 +67,15 @@ class SymmetricBlocks {
   /// stays unchanged; scratch: nodes() sums, zero before the call and left zero after it. No
   /// barrier at the end.
   template <class Finish>
-  void multiply(const double* x, NodeSum* scratch, Finish&& finish) const;
+  void multiply(const double* x, NodeSum* scratch, Finish&& finish) const {
+    multiply_parts(0, parts(), x, scratch, finish);
+  }
+  /// The same over the parts [first_part, last_part) alone: their nodes' products are complete
+  /// without the other parts' (a part gathers the blocks from earlier parts itself), so the parts
+  /// may be multiplied in any order and in several calls, each on the whole team.
+  template <class Finish>
+  void multiply_parts(unsigned first_part, unsigned last_part, const double* x, NodeSum* scratch,
+                      Finish&& finish) const;
 
  private:
   BlockView<Value> view(std::int64_t part) const;
@@ -82,11 +100,13 @@ class SymmetricBlocks {
 
 template <class Value>
 template <class Finish>
-void SymmetricBlocks<Value>::multiply(const double* x, NodeSum* scratch, Finish&& finish) const {
+void SymmetricBlocks<Value>::multiply_parts(unsigned first_part, unsigned last_part,
+                                            const double* x, NodeSum* scratch,
+                                            Finish&& finish) const {
   const int team = omp_get_num_threads();
-  const auto count = static_cast<int>(parts());
+  const auto count = static_cast<int>(std::min(last_part, parts()));
   alignas(32) double out[4 * kRun];
-  for (int p = omp_get_thread_num(); p < count; p += team) {
+  for (int p = static_cast<int>(first_part) + omp_get_thread_num(); p < count; p += team) {
     const BlockView<Value> v = view(p);
     gather_cross(v, x, scratch);
     for (std::int64_t first = v.begin; first < v.end; first += kRun) {
