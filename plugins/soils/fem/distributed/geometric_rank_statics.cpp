@@ -39,8 +39,13 @@ struct GeometricRankStatics::Petsc {
     for (std::size_t k = 0; k < owned.size(); ++k)
       for (int c = 0; c < 3; ++c)
         p->in[3 * owned[k] + c] = p->fixed[owned[k]] ? 0.0 : in[3 * k + c];
-    p->part->halo->to_leaves(p->in.data(), p->in.data(), 3);  // (the ghosts: their owners')
-    p->op->stiffness_times(p->in, p->out, true);
+    try {  // (a C++ exception must not cross PETSc's C frames: PETSc's error instead)
+      p->part->halo->to_leaves(p->in.data(), p->in.data(), 3);  // (the ghosts: their owners')
+      p->op->stiffness_times(p->in, p->out, true);
+    } catch (...) {
+      VecRestoreArrayRead(x, &in);
+      return PETSC_ERR_LIB;
+    }
     PetscCall(VecGetArray(y, &out));
     for (std::size_t k = 0; k < owned.size(); ++k)
       for (int c = 0; c < 3; ++c)
