@@ -28,34 +28,11 @@ struct GeometricStaticSolver::Petsc {
     MatDestroy(&coarse);
     MatDestroy(&fine);
   }
-  /// y = (K + S) x by the operator's threaded product, K as the step reads it; identity rows
-  /// and columns on held DOFs. The fine level's MATOP_MULT. (The operator's product is 0 on a
-  /// held node's rows but reads x there: with x's held entries taken out first the shell is
-  /// symmetric for any x, as the smoother's estimate of the spectrum, from a random x, needs:
-  /// with them, CG's estimate of D^-1 (K + S) on a box held on five sides was 8.6e6, not 2.6.)
+  /// y = (K + S) x, held DOFs as identity (petsc_cg.hpp): the fine level's MATOP_MULT.
   static PetscErrorCode multiply(Mat a, Vec x, Vec y) {
     Petsc* p = nullptr;
-    const PetscScalar* in = nullptr;
-    PetscScalar* out = nullptr;
     PetscCall(MatShellGetContext(a, &p));
-    const std::vector<char>& held = p->op->fixed();
-    PetscCall(VecGetArrayRead(x, &in));
-    std::copy(in, in + p->in.size(), p->in.data());
-    for (Eigen::Index k = 0; k < p->in.size(); ++k)
-      if (held[k / 3]) p->in[k] = 0.0;
-    try {  // (a C++ exception must not cross PETSc's C frames)
-      p->op->stepped_stiffness_times(p->in, p->out, true);
-    } catch (...) {
-      VecRestoreArrayRead(x, &in);
-      return PETSC_ERR_LIB;
-    }
-    for (Eigen::Index k = 0; k < p->in.size(); ++k)
-      if (held[k / 3]) p->out[k] = in[k];
-    PetscCall(VecRestoreArrayRead(x, &in));
-    PetscCall(VecGetArray(y, &out));
-    std::copy(p->out.data(), p->out.data() + p->out.size(), out);
-    PetscCall(VecRestoreArray(y, &out));
-    return 0;
+    return held_stepped_product(*p->op, x, y, p->in, p->out);
   }
   /// The diagonal of K + S (1 on held DOFs): the fine level's MATOP_GET_DIAGONAL, for Jacobi.
   static PetscErrorCode get_diagonal(Mat a, Vec d) {

@@ -1,8 +1,10 @@
 #include "statics/petsc_cg.hpp"
 
+#include <algorithm>
 #include <sstream>
 #include <stdexcept>
 #include <utility>
+#include <vector>
 
 #include "statics/petsc_session.hpp"
 
@@ -83,6 +85,30 @@ Eigen::VectorXd solve_static(KSP ksp, Vec x, Vec b, PetscStopTest& stop, const E
   }
   last = u;
   return u;
+}
+
+PetscErrorCode held_stepped_product(const SoilOperator& op, Vec x, Vec y, Eigen::VectorXd& in,
+                                    Eigen::VectorXd& out) {
+  const std::vector<char>& held = op.fixed();
+  const PetscScalar* from = nullptr;
+  PetscScalar* to = nullptr;
+  PetscCall(VecGetArrayRead(x, &from));
+  std::copy(from, from + in.size(), in.data());
+  for (Eigen::Index k = 0; k < in.size(); ++k)
+    if (held[k / 3]) in[k] = 0.0;
+  try {
+    op.stepped_stiffness_times(in, out, true);
+  } catch (...) {
+    VecRestoreArrayRead(x, &from);
+    return PETSC_ERR_LIB;
+  }
+  for (Eigen::Index k = 0; k < in.size(); ++k)
+    if (held[k / 3]) out[k] = from[k];
+  PetscCall(VecRestoreArrayRead(x, &from));
+  PetscCall(VecGetArray(y, &to));
+  std::copy(out.data(), out.data() + out.size(), to);
+  PetscCall(VecRestoreArray(y, &to));
+  return 0;
 }
 
 }  // namespace rumble::fem

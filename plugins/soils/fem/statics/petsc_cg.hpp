@@ -1,7 +1,8 @@
 // What the statics' PETSc solvers (petsc_static_solver.hpp, geometric_static_solver.hpp) share
 // around PETSc's CG (the ranks' statics, distributed/distributed_statics.hpp, too): its set-up,
 // the operator's stop check (Ctrl-C) between its iterations, and one static
-// solve with the warm start, the held DOFs and the failure's message. PETSc's C frames cannot
+// solve with the warm start, the held DOFs and the failure's message; and the one-process shell
+// product over the step's K with the held DOFs as identity. PETSc's C frames cannot
 // carry a C++ exception, so the check's exception is kept, CG told to stop, and the solve
 // rethrows it after KSPSolve. Included by those solvers' .cpp files only (no header of the room
 // includes PETSc's).
@@ -39,5 +40,15 @@ void set_stop_test(KSP ksp, const SoilOperator& op, PetscStopTest& stop);
 /// naming `method` (e.g. "CG with PETSc's GAMG") when CG does not converge.
 Eigen::VectorXd solve_static(KSP ksp, Vec x, Vec b, PetscStopTest& stop, const Eigen::VectorXd& f,
                              Eigen::VectorXd& last, int& iterations, const char* method);
+
+/// y = (K + S) x by op's threaded product, K as the step reads it; identity rows and columns on
+/// op's held DOFs, as the assembled matrices have. The operator's product is 0 on a held node's
+/// rows but reads x there, so x's held entries are taken out first: the product is then
+/// symmetric for any x, as a smoother's spectrum estimate from a random x needs (with them, CG's
+/// estimate of D^-1 (K + S) on a box held on five sides was 8.6e6, not 2.6). in, out: scratch of
+/// x's size. For a MATSHELL's MATOP_MULT: returns PETSc's error for a C++ exception, which must
+/// not cross PETSc's C frames.
+PetscErrorCode held_stepped_product(const SoilOperator& op, Vec x, Vec y, Eigen::VectorXd& in,
+                                    Eigen::VectorXd& out);
 
 }  // namespace rumble::fem

@@ -72,34 +72,11 @@ struct PetscStaticSolver::Petsc {
     MatDestroy(&product);
     MatDestroy(&aij);
   }
-  /// y = (K + S) x by the operator's threaded product, K as the step reads it; identity rows and
-  /// columns on fixed DOFs, as in aij. A MATSHELL's MATOP_MULT. (The operator gives 0 on a fixed
-  /// node's rows but reads x there, so x's fixed entries are taken out first: else the shell
-  /// differs from aij, and is not symmetric, for any x that GAMG's coarse corrections or its
-  /// smoother's random spectrum estimate leave nonzero there; as the geometric solver's shell.)
+  /// y = (K + S) x, fixed DOFs as identity as in aij (petsc_cg.hpp): a MATSHELL's MATOP_MULT.
   static PetscErrorCode stepped_product(Mat a, Vec x, Vec y) {
     Petsc* p = nullptr;
-    const PetscScalar* in = nullptr;
-    PetscScalar* out = nullptr;
     PetscCall(MatShellGetContext(a, &p));
-    const std::vector<char>& fixed = p->op->fixed();
-    PetscCall(VecGetArrayRead(x, &in));
-    std::copy(in, in + p->in.size(), p->in.data());
-    for (Eigen::Index k = 0; k < p->in.size(); ++k)
-      if (fixed[k / 3]) p->in[k] = 0.0;
-    try {  // (a C++ exception must not cross PETSc's C frames)
-      p->op->stepped_stiffness_times(p->in, p->out, true);
-    } catch (...) {
-      VecRestoreArrayRead(x, &in);
-      return PETSC_ERR_LIB;
-    }
-    for (Eigen::Index k = 0; k < p->in.size(); ++k)
-      if (fixed[k / 3]) p->out[k] = in[k];
-    PetscCall(VecRestoreArrayRead(x, &in));
-    PetscCall(VecGetArray(y, &out));
-    std::copy(p->out.data(), p->out.data() + p->out.size(), out);
-    PetscCall(VecRestoreArray(y, &out));
-    return 0;
+    return held_stepped_product(*p->op, x, y, p->in, p->out);
   }
   std::shared_ptr<PetscSession> session = PetscSession::get();
   const SoilOperator* op = nullptr;
