@@ -10,6 +10,7 @@
 
 #include "core/errors.hpp"
 #include "fixture_paths.hpp"
+#include "plugin/function_table.hpp"
 #include "plugin/registry.hpp"
 
 namespace {
@@ -171,6 +172,25 @@ TEST(PluginLoadErrors, MalformedCapabilities) {
                 "couplers only" +
                 tail);
   EXPECT_TRUE(registry.types().empty());
+}
+
+// ABI 1.7: never_refuses promises that a participant's advance takes every step; a coupler has
+// no advance to refuse, so declaring it there is a malformed factory. (A vehicle or soil
+// declaring it is checked where it refuses anyway: DiscardRetry.APromiseNeverToRefuseIsHeldToIt.)
+TEST(PluginLoadErrors, NeverRefusesIsForVehiclesAndSoils) {
+  rumble_capabilities caps{};
+  caps.struct_size = sizeof caps;
+  caps.offers = RUMBLE_CAP_NEVER_REFUSES;
+  rumble_factory f{};
+  f.struct_size = sizeof f;
+  f.capabilities = &caps;
+  f.kind = RUMBLE_KIND_COUPLER;
+  EXPECT_EQ(rumble::factory_capabilities_defect(f, 0),
+            "capability NEVER_REFUSES is for vehicles and soils, whose advance could refuse");
+  for (const rumble_kind kind : {RUMBLE_KIND_VEHICLE, RUMBLE_KIND_SOIL}) {
+    f.kind = kind;
+    EXPECT_EQ(rumble::factory_capabilities_defect(f, 0), "") << kind;
+  }
 }
 
 TEST(PluginLoadErrors, NoFactories) {
