@@ -3,14 +3,14 @@
 // example's graded hemisphere (scenarios/examples/stiff_soil_fem.json: R = 15 m, 30 sleeper
 // footprints, resolution near_distance 5 m) meshed at each F_MAX, the time and iterations of
 // one static solve under the sleepers' weight by each path StaticSolver has: the CHOLMOD factor
-// (up to FACTOR_LIMIT DOFs) and conjugate gradients preconditioned by multigrid or by the
-// diagonal (our CG), or PETSc's CG with its algebraic multigrid GAMG (issue #33). Prints one line
-// per path and mesh: DOFs, setup and solve times [s], CG iterations, and the difference between
-// paths. PATHS: a comma-separated list of multigrid-cg, gamg-cg, jacobi-cg, gamg-aij (GAMG with
-// CG's products on compressed rows, not 3 x 3 blocks), gamg-stepped (by the operator's threaded
-// product, K as the step reads it; default: the first three), run in that
-// order in one process, so that a busy machine loads them alike; compare them by their ratios,
-// and in both orders (the first path pays the first touch of fresh memory). PETSC_OPTIONS with the
+// (up to FACTOR_LIMIT DOFs) and PETSc's CG with its algebraic multigrid GAMG (issue #33; the
+// soil's own multigrid and CG it replaced: docs/decisions/0018-petsc-statics.md). Prints one line
+// per path and mesh: DOFs, setup and solve times [s], CG iterations, and the difference from the
+// factor. PATHS: a comma-separated list of gamg (StaticSolver's: CG's products by the operator's
+// threaded product, K as the step reads it) and gamg-aij (by PETSc's AIJ rows, in double, on one
+// thread); default both, run in that order in one process, so that a busy machine loads them
+// alike; compare them by their ratios, and in both orders (the first path pays the first touch
+// of fresh memory). PETSC_OPTIONS with the
 // prefix fem_statics_ tunes GAMG (statics/petsc_static_solver.hpp).
 //   OMP_WAIT_POLICY=passive build/release/bin/fem_static_bench [--paths=PATHS] [FACTOR_LIMIT]
 //       F_MAX...   (default 4e5; 50 80 120)
@@ -51,13 +51,6 @@ FemSettings stiff_example(double f_max) {
   return s;
 }
 
-std::string level_sizes(const AmgPreconditioner& amg) {
-  std::string sizes;
-  for (int l = 0; l < amg.levels(); ++l)
-    sizes += (l ? " " : "") + std::to_string(static_cast<long>(amg.dofs(l)));
-  return sizes;
-}
-
 std::vector<Footprint> sleepers() {  // 30 at 0.6 m, 2.6 m x 0.26 m, centred on x = 0
   std::vector<Footprint> fp;
   for (int i = 0; i < 30; ++i) fp.push_back({(i - 14.5) * 0.6, 0.0, 2.6, 0.26});
@@ -69,7 +62,6 @@ struct Solved {
   Eigen::VectorXd u;
   double setup_s = 0.0;  // its set-up, within the first solve
   int iterations = 0, levels = 0;
-  std::string hierarchy;  // the hand-written multigrid's sizes, or empty
 };
 using Path = std::function<Solved(const Eigen::VectorXd&)>;
 
@@ -77,16 +69,12 @@ using Path = std::function<Solved(const Eigen::VectorXd&)>;
 Path static_solver(const SoilOperator& soil, const Eigen::Matrix3Xd& nodes, CgPreconditioner kind) {
   auto cg = std::make_shared<StaticSolver>(soil, nodes, 0, kind);
   return [cg](const Eigen::VectorXd& f) {
-    Solved s{cg->solve(f), cg->multigrid_setup_seconds(), cg->last_cg_iterations(),
-             cg->multigrid_levels(), ""};
-    if (const AmgPreconditioner* amg = cg->multigrid())
-      s.hierarchy = level_sizes(*amg) + ", operator complexity " +
-                    std::to_string(amg->operator_complexity()).substr(0, 4);
-    return s;
+    return Solved{cg->solve(f), cg->multigrid_setup_seconds(), cg->last_cg_iterations(),
+                  cg->multigrid_levels()};
   };
 }
 
-/// PETSc's GAMG with CG's products stored as `storage` says (StaticSolver's: 3 x 3 blocks;
+/// PETSc's GAMG with CG's products by `storage` (StaticSolver's: the step's product;
 /// petsc_static_solver.hpp), set up at its first solve.
 Path gamg_with(const SoilOperator& soil, const Eigen::Matrix3Xd& nodes,
                PetscStaticSolver::Storage storage) {
@@ -95,7 +83,7 @@ Path gamg_with(const SoilOperator& soil, const Eigen::Matrix3Xd& nodes,
     if (!*solver) *solver = std::make_unique<PetscStaticSolver>(soil, nodes, storage);
     const PetscStaticSolver& s = **solver;
     Eigen::VectorXd u = (*solver)->solve(f);
-    return Solved{std::move(u), s.setup_seconds(), s.last_iterations(), s.levels(), ""};
+    return Solved{std::move(u), s.setup_seconds(), s.last_iterations(), s.levels()};
   };
 }
 
@@ -109,7 +97,6 @@ void time_path(const char* name, const Path& path, const Eigen::VectorXd& f,
   std::printf("  %-14s setup %6.2f s  solve %6.2f s  %5d iterations", name, first.setup_s,
               first_s - first.setup_s, first.iterations);
   if (first.levels > 0) std::printf("  %d levels", first.levels);
-  if (!first.hierarchy.empty()) std::printf(" (%s)", first.hierarchy.c_str());
   if (reference.size())
     std::printf("  |u - u_factor| / |u_factor| = %.1e",
                 (first.u - reference).norm() / reference.norm());
@@ -129,10 +116,10 @@ void run(double f_max, Eigen::Index factor_limit, const std::string& paths) {
   auto start = std::chrono::steady_clock::now();
   const TetMesh mesh = generate_mesh(s, fp, plan);
   const double mesh_s = seconds_since(start);
-  const ExplicitSolver op(
-      assemble_stiffness(mesh, s), lumped_mass(mesh, s), absorbing_boundary(mesh, s, plan.region),
-      true, std::vector<char>(mesh.node_count(), 0), 0.0, 0.0, 2,
-      StepPrecision::kSingle);  // (the plugin's default: multigrid's fine products)
+  const ExplicitSolver op(assemble_stiffness(mesh, s), lumped_mass(mesh, s),
+                          absorbing_boundary(mesh, s, plan.region), true,
+                          std::vector<char>(mesh.node_count(), 0), 0.0, 0.0, 2,
+                          StepPrecision::kSingle);  // (the plugin's default: GAMG's CG products)
   // 1 kN down on every surface node inside a footprint: the shape of the sleepers' weight.
   Eigen::VectorXd f = Eigen::VectorXd::Zero(op.dofs());
   for (Eigen::Index node = 0; node < mesh.nodes.cols(); ++node) {
@@ -160,14 +147,9 @@ void run(double f_max, Eigen::Index factor_limit, const std::string& paths) {
     if (name == "gamg-aij")
       time_path("gamg-aij", gamg_with(op.soil(), mesh.nodes, PetscStaticSolver::Storage::kAij), f,
                 reference);
-    if (name == "gamg-stepped")
-      time_path("gamg-stepped",
-                gamg_with(op.soil(), mesh.nodes, PetscStaticSolver::Storage::kSteppedProduct), f,
+    if (name == "gamg")
+      time_path("gamg", static_solver(op.soil(), mesh.nodes, CgPreconditioner::kGamg), f,
                 reference);
-    for (const auto& [path, kind] : {std::pair{"multigrid-cg", CgPreconditioner::kMultigrid},
-                                     std::pair{"gamg-cg", CgPreconditioner::kGamg},
-                                     std::pair{"jacobi-cg", CgPreconditioner::kJacobi}})
-      if (name == path) time_path(path, static_solver(op.soil(), mesh.nodes, kind), f, reference);
   }
 }
 
@@ -175,7 +157,7 @@ void run(double f_max, Eigen::Index factor_limit, const std::string& paths) {
 
 int main(int argc, char** argv) {
   std::vector<std::string> args(argv + 1, argv + argc);
-  std::string paths = "multigrid-cg,gamg-cg,jacobi-cg";
+  std::string paths = "gamg,gamg-aij";
   if (!args.empty() && args.front().rfind("--paths=", 0) == 0) {
     paths = args.front().substr(8);
     args.erase(args.begin());

@@ -81,7 +81,7 @@ TEST(FemMesh, PlanRefusesAMeshTheMachinesMemoryCannotHold) {
   test::expect_invalid_argument_containing(
       [&] { plan_mesh(s, sleepers(10)); },
       {"fem: params/mesh: a mesh of about", "degrees of freedom needs about",
-       "GB at a run's peak (", "kB per DOF: the statics' multigrid set-up",
+       "GB at a run's peak (", "kB per DOF: the statics' GAMG set-up",
        "this machine has available now",
        "lower mesh.f_max or mesh.radius, raise mesh.h_near, or free memory and run again"});
 }

@@ -577,7 +577,7 @@ TEST(FemBadInput, TheGeometricStaticsSayWhatTheyNeed) {
             "fem: params/statics/solver: \"geometric\" needs mesh.refine 1 or more (its coarse "
             "level is gmsh's mesh before the refinement; docs/fem-soil.md section 7.1), got "
             "params/mesh/refine 0: set mesh.refine to 1 (gmsh then meshes at twice the sizes), or "
-            "use statics.solver \"multigrid\" or \"gamg\"");
+            "use statics.solver \"gamg\" or \"auto\"");
   p["mesh"] = {{"refine", 1}, {"file", "soil.msh"}};
   EXPECT_NE(creation_error("fem", p.dump())
                 .find("fem: params/statics/solver: \"geometric\" needs a generated mesh refined "

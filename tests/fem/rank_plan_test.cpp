@@ -61,7 +61,8 @@ TEST(RankPlan, RefinedOnTheRanksRankZeroHoldsTheCoarseMesh) {
 
 // statics.solver geometric on the ranks: its statics at 15 B per nonzero of a share, GAMG's at
 // 55 (memory_model.hpp; docs/fem-soil.md §8, "The geometric multigrid on the ranks"), on the
-// ranks at any size, as asked (below the factor limit too, where rank 0 would factor).
+// ranks at any size when named (below the factor limit too, where rank 0 would factor); auto's
+// below the limit is rank 0's factor.
 TEST(RankPlan, TheGeometricMultigridOnTheRanksCostsItsOwnStatics) {
   namespace memory = rumble::fem::memory;
   const double n = 4e5;  // (1.2e6 DOFs: above the factor limit)
@@ -73,7 +74,10 @@ TEST(RankPlan, TheGeometricMultigridOnTheRanksCostsItsOwnStatics) {
   EXPECT_NEAR(gamg.root_bytes - geometric.root_bytes, gamg.rank_bytes - geometric.rank_bytes, 1e-3);
   const double small = 2e4;  // (6e4 DOFs: below the factor limit)
   const RankPlan factored = plan_ranks(small, 2, false, 1),
-                 on_ranks = plan_ranks(small, 2, false, 1, true);
+                 on_ranks = plan_ranks(small, 2, true, 1, true),
+                 auto_geometric = plan_ranks(small, 2, false, 1, true);
+  EXPECT_EQ(auto_geometric.rank_bytes, factored.rank_bytes);
+  EXPECT_EQ(auto_geometric.root_bytes, factored.root_bytes);
   EXPECT_NEAR(on_ranks.rank_bytes - factored.rank_bytes,
               memory::kGeometricRankBytesPerNonzero * memory::kNonzerosPerDof * 3.0 *
                   on_ranks.largest_nodes,

@@ -33,13 +33,30 @@ TEST(FemSettingsDefaults, UnfilledParamsReadTheSchemasDefaults) {
   EXPECT_EQ(unfilled.damping.maxwell, host.damping.maxwell);
   EXPECT_EQ(unfilled.receptance.duration, host.receptance.duration);
   EXPECT_EQ(unfilled.local_steps, host.local_steps);
-  EXPECT_EQ(unfilled.gamg_statics, host.gamg_statics);
-  EXPECT_FALSE(host.gamg_statics);  // (the soil's own multigrid: docs/fem-soil.md §7.1)
-  EXPECT_TRUE(
-      fem::read_settings(
-          json{{"E", 750e6}, {"nu", 0.3}, {"rho", 1800.0}, {"statics", {{"solver", "gamg"}}}}
-              .dump())
-          .gamg_statics);
+  EXPECT_EQ(unfilled.geometric_statics, host.geometric_statics);
+  EXPECT_EQ(unfilled.statics_named, host.statics_named);
+  // statics.solver "auto": GAMG without mesh.refine's nested meshes (docs/fem-soil.md §7.1), not
+  // named, so under mpirun rank 0 factors below the limit.
+  EXPECT_FALSE(host.geometric_statics);
+  EXPECT_FALSE(host.statics_named);
+  const fem::FemSettings gamg = fem::read_settings(
+      json{{"E", 750e6}, {"nu", 0.3}, {"rho", 1800.0}, {"statics", {{"solver", "gamg"}}}}.dump());
+  EXPECT_FALSE(gamg.geometric_statics);
+  EXPECT_TRUE(gamg.statics_named);
+}
+
+TEST(FemSettingsDefaults, AutoStaticsTakeTheGeometricMultigridWhereTheMeshIsRefined) {
+  const json refined = {{"E", 750e6}, {"nu", 0.3}, {"rho", 1800.0}, {"mesh", {{"refine", 1}}}};
+  const fem::FemSettings s = fem::read_settings(refined.dump());
+  EXPECT_TRUE(s.geometric_statics);
+  EXPECT_FALSE(s.statics_named);
+  json named = refined;
+  named["statics"] = {{"solver", "gamg"}};  // (named: as asked, on the refined mesh too)
+  EXPECT_FALSE(fem::read_settings(named.dump()).geometric_statics);
+  json from_file = refined;  // (a mesh file has no coarse level: GAMG)
+  from_file["mesh"]["file"] = "soil.msh";
+  const fem::FemSettings f = fem::read_settings(from_file.dump());
+  EXPECT_FALSE(f.geometric_statics);
 }
 
 TEST(FemSettingsDefaults, ADefaultOnlyOneChoiceHasFollowsThatChoice) {

@@ -125,8 +125,9 @@ void FemSoil::accept_layout_distributed(const std::vector<rumble::Footprint>& fo
     // Each machine's memory for its ranks, against the estimate per rank (distributed/
     // rank_plan.hpp): before meshing from the plan, again from the mesh.
     const auto check_memory = [&](double nodes, const char* source) {
-      const rumble::fem::RankPlan plan = rumble::fem::plan_ranks(
-          nodes, d.ranks(), settings_.gamg_statics, refine_on_ranks(), settings_.geometric_statics);
+      const rumble::fem::RankPlan plan =
+          rumble::fem::plan_ranks(nodes, d.ranks(), settings_.statics_named, refine_on_ranks(),
+                                  settings_.geometric_statics);
       host_.info(rumble::fem::describe(plan, source));
       rumble::fem::check_node_memory(plan, machines, settings_.mesh.f_max);
     };
@@ -142,20 +143,14 @@ void FemSoil::accept_layout_distributed(const std::vector<rumble::Footprint>& fo
     check_memory(nodes, "the mesh");
   });
   d.lay_out(d.root() ? &mesh_ : nullptr, settings_, footprints, host_.threads(), refine_on_ranks());
-  // (statics.solver gamg or geometric: on the ranks at any size, as asked)
-  statics_on_root_ = !settings_.gamg_statics && !settings_.geometric_statics &&
-                     d.whole_dofs() <= rumble::fem::StaticSolver::kFactorLimit;
+  // (statics.solver gamg or geometric named: on the ranks at any size, as asked)
+  statics_on_root_ =
+      !settings_.statics_named && d.whole_dofs() <= rumble::fem::StaticSolver::kFactorLimit;
   if (statics_on_root_)  // (the whole operator for the factor: small below its limit)
     rumble::fem::on_root(d.comm(), [&] {
       if (d.refined() > 0) refine_whole_on_root();
       build_here(footprints, 0.0, start);
     });
-  else if (!settings_.gamg_statics && !settings_.geometric_statics &&
-           d.root())  // (the soil's multigrid runs on one process)
-    host_.info("fem: statics.solver \"multigrid\" runs on one process; on " +
-               std::to_string(d.ranks()) +
-               " ranks above the factor limit the static state is solved by GAMG on the ranks "
-               "(docs/fem-soil.md section 8)");
   peak_estimate_ = std::max(peak_estimate_, d.peak_estimate());
   force_static_.assign(footprints.size(), 0.0);
   force_last_.assign(footprints.size(), 0.0);

@@ -107,16 +107,13 @@ void FemSoil::build_here(const std::vector<rumble::Footprint>& footprints, doubl
   if (settings_.boundary.kind == BoundaryKind::kPml)
     op_->set_pml(PmlLayer(mesh_, settings_, pml_profile()));
   local_steps_chosen_ = false;  // (at the first macro step, whose length they are fitted to)
-  const bool petsc = (settings_.gamg_statics || settings_.geometric_statics) &&
-                     op_->dofs() > StaticSolver::kFactorLimit;
+  const bool petsc = op_->dofs() > StaticSolver::kFactorLimit;
   // PETSc runs on the MPI the host starts for us (ABI 1.4, docs/decisions/0012): asking for the
   // communicator starts it, and PETSc then neither starts nor finalises MPI itself.
   if (petsc) host_.communicator();
-  statics_ =
-      std::make_unique<StaticSolver>(op_->soil(), mesh_.nodes, StaticSolver::kFactorLimit,
-                                     settings_.gamg_statics        ? CgPreconditioner::kGamg
-                                     : settings_.geometric_statics ? CgPreconditioner::kGeometric
-                                                                   : CgPreconditioner::kMultigrid);
+  statics_ = std::make_unique<StaticSolver>(
+      op_->soil(), mesh_.nodes, StaticSolver::kFactorLimit,
+      settings_.geometric_statics ? CgPreconditioner::kGeometric : CgPreconditioner::kGamg);
   if (settings_.geometric_statics)  // (the coarse level at the first solve: validate needs none)
     statics_->set_coarse_level([this] {
       return coarse_level(coarse_mesh_, mesh_, plan_.refine, settings_, footprints_,
@@ -224,7 +221,7 @@ void FemSoil::report_ranks(double nodes, const char* source) const {
   const int ranks = host_.planned_ranks();  // (`rumble mesh --ranks N` on one process)
   if (ranks > 1 && !distributed_)
     host_.info(rumble::fem::describe(
-        rumble::fem::plan_ranks(nodes, ranks, settings_.gamg_statics, refine_on_ranks(),
+        rumble::fem::plan_ranks(nodes, ranks, settings_.statics_named, refine_on_ranks(),
                                 settings_.geometric_statics),
         source));
 }
@@ -240,7 +237,7 @@ void FemSoil::report_split() const {
   host_.info(rumble::fem::describe(
       split, rumble::fem::plan_split(static_cast<double>(split.nodes), ranks,
                                      static_cast<double>(split.ghosts),
-                                     static_cast<double>(split.largest()), settings_.gamg_statics,
+                                     static_cast<double>(split.largest()), settings_.statics_named,
                                      refine_on_ranks(), settings_.geometric_statics)));
 }
 

@@ -112,8 +112,12 @@ struct FemSettings {
                                  // 1 / (20 mesh.f_max) (read_settings)
   int local_steps{};             // explicit: sub-steps of the stiffest nodes per step; 1 = one rate
   bool single_precision_step{};  // explicit: the step reads K's values as float
-  bool gamg_statics{};           // above the factor limit: PETSc's GAMG, not the soil's multigrid
-  bool geometric_statics{};      // above it: PETSc's CG with mesh.refine's geometric multigrid
+  // Above the factor limit the statics are PETSc's CG with GAMG or with the geometric multigrid
+  // on mesh.refine's nested meshes (statics.solver, whose "auto" takes the geometric multigrid
+  // where those meshes exist: docs/fem-soil.md §7.1).
+  bool geometric_statics{};  // the geometric multigrid, else GAMG
+  bool statics_named{};      // statics.solver named, not "auto": under mpirun solved on the
+                             // ranks at any size (auto: by rank 0's factor below its limit)
   unsigned mesh_threads{};
 
   /// The properties at depth z [m] (>= 0).

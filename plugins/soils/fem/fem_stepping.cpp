@@ -35,7 +35,7 @@ void FemSoil::initialize(double t0, const double* static_force, double* static_u
 
 void FemSoil::initialize_here(double /*t0*/, const double* static_force, double* static_u) {
   export_if_due();  // a run's soil was laid out by its validation, before it had a directory
-  op_->set_threads(host_.threads());  // the statics' products and multigrid set-up use them
+  op_->set_threads(host_.threads());  // the statics' products use them
   force_static_.assign(static_force, static_force + footprints_.size());
   force_last_ = force_static_;
   spread(force_static_.data(), f_);
@@ -50,9 +50,7 @@ void FemSoil::initialize_here(double /*t0*/, const double* static_force, double*
     host_.info("fem: static solves by " + std::string(statics_->method()) + ": " +
                std::to_string(statics_->multigrid_levels()) + " levels (" +
                format(static_cast<double>(statics_->bytes()) / 1048576.0) +
-               (statics_->petsc_levels() ? " MiB besides PETSc's own, which summary.json's statics "
-                                           "peak counts), set up in "
-                                         : " MiB), set up in ") +
+               " MiB besides PETSc's own, which summary.json's statics peak counts), set up in " +
                format(statics_->multigrid_setup_seconds(), 2) +
                " s; the first solve, set-up included, " + solved);
   else if (!statics_->factored() && statics_->last_cg_iterations() > 0)
@@ -77,7 +75,7 @@ void FemSoil::free_statics() {
   host_.log(RUMBLE_LOG_DEBUG,
             "fem: the statics done, " +
                 format(static_cast<double>(before - statics_->bytes() - op_->bytes()) / 1048576.0) +
-                " MiB freed (their factor or multigrid hierarchy, K's compressed rows)");
+                " MiB freed (their factor or PETSc's hierarchy, K's compressed rows)");
 }
 
 void FemSoil::finalize() {

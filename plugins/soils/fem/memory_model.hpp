@@ -9,7 +9,7 @@
 
 namespace rumble::fem::memory {
 
-/// DOFs up to which the statics factor K + S (CHOLMOD); above, CG with multigrid
+/// DOFs up to which the statics factor K + S (CHOLMOD); above, PETSc's CG with a multigrid
 /// (statics/static_solver.hpp).
 inline constexpr double kFactorLimitDofs = 4e5;
 
@@ -33,12 +33,14 @@ inline double factor_nonzeros(double dofs) {
 /// is given.
 inline constexpr double kFactorBytesPerNonzero = 11.5;
 
-/// The statics' multigrid set-up at its peak, beyond what the soil holds into them, per nonzero
-/// of K [bytes]: the first coarse level in double (0.66 nonzeros per nonzero of K, 12 B each)
-/// and the prolongator in float (0.60, 8 B), less K's column indices (4 B) that the mesh level
-/// drops, with the tentative prolongator and the chunks' rows; 12.1 B measured both on the
-/// stiff example at 1.0e6 DOFs and on a Kuhn box of 2.1e5 (tests/fem/static_solver_test.cpp).
-inline constexpr double kMultigridBytesPerNonzero = 12.2;
+/// PETSc's GAMG on one process (statics.solver gamg or auto without mesh.refine) at its peak,
+/// beyond what the soil holds into the statics, per nonzero of K [bytes]: its matrix is K's own
+/// rows with the springs added in place (no copy), so this is the plain aggregation's graph,
+/// prolongators and Galerkin products (formed by the "scalable" algorithm, petsc_session.cpp)
+/// and CG's and the smoothers' vectors: 8.7 B measured on a Kuhn box of 2.1e5 DOFs
+/// (tests/fem/gamg_statics_test.cpp) and 388 B per DOF on the stiff example at 8.8e5 DOFs
+/// (docs/fem-soil.md §7.2). One smoothing of the prolongator would take 15.4 B.
+inline constexpr double kGamgProcessBytesPerNonzero = 8.7;
 
 /// PETSc's GAMG on many ranks at its peak, beyond what a rank holds after its layout, per nonzero
 /// of the rank's part of K [bytes]: its matrix (AIJ, 12 B per nonzero), the smoothed aggregation's
@@ -80,16 +82,17 @@ inline double factor_bytes(double dofs) {
   return kFactorBytesPerNonzero * factor_nonzeros(dofs);
 }
 
-/// What multigrid's set-up adds at its peak to what the soil holds [bytes], for K's nonzeros.
-inline double multigrid_bytes(double nonzeros) {
-  return kMultigridBytesPerNonzero * nonzeros;
+/// What GAMG's set-up on one process adds at its peak to what the soil holds [bytes], for K's
+/// nonzeros.
+inline double gamg_bytes(double nonzeros) {
+  return kGamgProcessBytesPerNonzero * nonzeros;
 }
 
 /// What the first static solve adds to what the soil holds [bytes], by its path, for n DOFs and
 /// K's nonzeros (geometric: statics.solver geometric's, negative: it frees more than it adds).
 inline double statics_bytes(double dofs, double nonzeros, bool geometric = false) {
   if (dofs <= kFactorLimitDofs) return factor_bytes(dofs);
-  return geometric ? kGeometricBytesPerNonzero * nonzeros : multigrid_bytes(nonzeros);
+  return geometric ? kGeometricBytesPerNonzero * nonzeros : gamg_bytes(nonzeros);
 }
 
 /// A run's peak resident memory for a mesh of n DOFs [bytes], before meshing: the process, what

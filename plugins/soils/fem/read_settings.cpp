@@ -238,7 +238,7 @@ void check_geometric_needs(const FemSettings& s) {
     throw std::invalid_argument(
         "fem: params/statics/solver: \"geometric\" needs a generated mesh refined by "
         "mesh.refine (its coarse level is gmsh's mesh before the refinement), but mesh.file \"" +
-        s.mesh.file + "\" is the mesh here; use statics.solver \"multigrid\" or \"gamg\"");
+        s.mesh.file + "\" is the mesh here; use statics.solver \"gamg\" or \"auto\"");
   if (s.mesh.refine < 1)
     throw std::invalid_argument(
         "fem: params/statics/solver: \"geometric\" needs mesh.refine 1 or more (its coarse "
@@ -246,7 +246,7 @@ void check_geometric_needs(const FemSettings& s) {
         "params/mesh/refine " +
         std::to_string(s.mesh.refine) +
         ": set mesh.refine to 1 (gmsh then meshes at twice the sizes), or use statics.solver "
-        "\"multigrid\" or \"gamg\"");
+        "\"gamg\" or \"auto\"");
 }
 
 }  // namespace
@@ -265,8 +265,9 @@ FemSettings read_settings(const std::string& params_json) {
   s.receptance = read_receptance(params.object("receptance"), s.mesh);
   read_integrator(params, s);
   const std::string statics_solver = params.object("statics").get<std::string>("solver");
-  s.gamg_statics = statics_solver == "gamg";
-  s.geometric_statics = statics_solver == "geometric";
+  s.statics_named = statics_solver != "auto";
+  s.geometric_statics = statics_solver == "geometric" ||
+                        (statics_solver == "auto" && s.mesh.refine >= 1 && s.mesh.file.empty());
   check_pml_needs(s);
   check_geometric_needs(s);
   return s;

@@ -136,17 +136,10 @@ SetUpOptions::SetUpOptions() {
               "PetscOptionsGetString");
   rap_ = set && std::string(via) == "rap";
   if (rap_) petsc_check(PetscOptionsClearValue(nullptr, "-matptap_via"), "PetscOptionsClearValue");
-  petsc_check(PetscOptionsHasName(nullptr, nullptr, "-mat_product_clear", &set),
-              "PetscOptionsHasName");
-  clear_ = !set;
-  if (clear_)
-    petsc_check(PetscOptionsSetValue(nullptr, "-mat_product_clear", "true"),
-                "PetscOptionsSetValue");
 }
 
 SetUpOptions::~SetUpOptions() {  // (errors ignored: a destructor)
   if (rap_) PetscOptionsSetValue(nullptr, "-matptap_via", "rap");
-  if (clear_) PetscOptionsClearValue(nullptr, "-mat_product_clear");
 }
 
 Eigen::VectorXd solve_on_ranks(KSP ksp, Vec x, Vec b, const MeshPartition& part,

@@ -18,6 +18,7 @@
 
 #include "distributed/mesh_partition.hpp"
 #include "operator/soil_operator.hpp"
+#include "statics/petsc_session.hpp"
 
 namespace rumble::fem {
 
@@ -41,15 +42,11 @@ void set_rigid_body_modes(Mat m, const MeshPartition& part, const RankRows& rows
 
 /// PETSc's process-wide options for the span of GAMG's set-up on the ranks (MatPtAP and
 /// MatMatMult read them without a prefix), each unless PETSC_OPTIONS gave it, restored after:
-/// - "-matptap_via": the session's "rap" (one process's fastest, statics/petsc_session.cpp) is no
-///   algorithm of the ranks' matrices (MPIAIJ's: scalable, nonscalable, allatonce, ...): their
-///   default, scalable, for GAMG's Galerkin products (a "rap" in PETSC_OPTIONS is taken as the
-///   session's);
-/// - "-mat_product_clear": each product's intermediates (A P's local rows, P's rows from the
-///   other ranks, ...) freed once it is formed. PETSc keeps them to form the product again from
-///   a changed matrix, which the statics never do: at 1.0e6 DOFs on 2 ranks a rank's peak fell
-///   from 2.25 to 1.94 GB, and what it holds through the solves from 2.25 to 1.39 GB, with the
-///   same hierarchy and iterations (docs/fem-soil.md §8).
+/// - "-matptap_via": a "rap" from PETSC_OPTIONS (one process's algorithm) is no algorithm of the
+///   ranks' matrices (MPIAIJ's: scalable, nonscalable, allatonce, ...): it is taken out for the
+///   span, so that GAMG's Galerkin products take the session's scalable
+///   (statics/petsc_session.cpp);
+/// - "-mat_product_clear" (kClearProducts, as one process's GAMG sets it).
 class SetUpOptions {
  public:
   SetUpOptions();
@@ -58,7 +55,8 @@ class SetUpOptions {
   SetUpOptions& operator=(const SetUpOptions&) = delete;
 
  private:
-  bool rap_ = false, clear_ = false;
+  bool rap_ = false;
+  ScopedPetscOption clear_{kClearProducts, "true"};
 };
 
 /// One static solve on the ranks by ksp, set up on a matrix of `rows` (x: its last solution,

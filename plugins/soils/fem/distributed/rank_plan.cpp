@@ -12,17 +12,17 @@ namespace rumble::fem {
 namespace {
 
 /// The memory per rank of `p` (its nodes, ranks and largest rank's nodes set).
-void plan_memory(RankPlan& p, bool gamg, bool geometric) {
+void plan_memory(RankPlan& p, bool named, bool geometric) {
   const double share = memory::kHeldBytesPerDof * 3.0 * p.largest_nodes;
   if (p.ranks == 1) {
     p.root_bytes = memory::run_peak_bytes(3.0 * p.nodes);
     return;
   }
-  // On many ranks the statics run on the ranks by GAMG above the factor limit (or when asked),
-  // or by the geometric multigrid when asked: each rank its part's; below it rank 0 factors the
-  // whole (small) operator and frees it.
+  // On many ranks the statics run on the ranks (GAMG or the geometric multigrid) above the factor
+  // limit, or at any size when named: each rank its part's; below it rank 0 factors the whole
+  // (small) operator and frees it.
   const double whole = 3.0 * p.nodes;
-  const bool on_ranks = gamg || geometric || whole > memory::kFactorLimitDofs;
+  const bool on_ranks = named || whole > memory::kFactorLimitDofs;
   const double per_nonzero =
       geometric ? memory::kGeometricRankBytesPerNonzero : memory::kGamgBytesPerNonzero;
   const double share_statics =
@@ -39,7 +39,7 @@ void plan_memory(RankPlan& p, bool gamg, bool geometric) {
 
 }  // namespace
 
-RankPlan plan_ranks(double nodes, int ranks, bool gamg, int refine, bool geometric) {
+RankPlan plan_ranks(double nodes, int ranks, bool named, int refine, bool geometric) {
   RankPlan p;
   p.ranks = std::max(1, ranks);
   p.nodes = nodes;
@@ -50,11 +50,11 @@ RankPlan plan_ranks(double nodes, int ranks, bool gamg, int refine, bool geometr
   p.largest_nodes = (nodes + p.ghosts) / p.ranks;
   p.halo_bytes = kHaloBytesPerGhost * p.ghosts;
   p.refine = refine;
-  plan_memory(p, gamg, geometric);
+  plan_memory(p, named, geometric);
   return p;
 }
 
-RankPlan plan_split(double nodes, int ranks, double ghosts, double largest_nodes, bool gamg,
+RankPlan plan_split(double nodes, int ranks, double ghosts, double largest_nodes, bool named,
                     int refine, bool geometric) {
   RankPlan p;
   p.ranks = std::max(1, ranks);
@@ -63,7 +63,7 @@ RankPlan plan_split(double nodes, int ranks, double ghosts, double largest_nodes
   p.largest_nodes = largest_nodes;
   p.halo_bytes = kHaloBytesPerGhost * ghosts;
   p.refine = refine;
-  plan_memory(p, gamg, geometric);
+  plan_memory(p, named, geometric);
   return p;
 }
 

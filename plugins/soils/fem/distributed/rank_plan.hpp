@@ -36,18 +36,18 @@ struct RankPlan {
   int refine = 0;              // mesh.refine on the ranks: rank 0 holds the coarse mesh only
 };
 
-/// The plan for a mesh of `nodes` nodes on `ranks` >= 1 ranks; gamg: the statics solved on the
-/// ranks (statics.solver gamg) rather than by rank 0 alone; refine: the levels each rank refines
-/// its part by after the split (mesh.refine), rank 0 holding the coarse mesh, 8^-refine of the
-/// whole's nodes and tetrahedra (a refinement into eight has about 8 times the nodes);
-/// geometric: the statics solved on the ranks by the geometric multigrid (statics.solver
-/// geometric), its memory rather than GAMG's.
-RankPlan plan_ranks(double nodes, int ranks, bool gamg, int refine = 0, bool geometric = false);
+/// The plan for a mesh of `nodes` nodes on `ranks` >= 1 ranks; named: the statics solved on the
+/// ranks at any size (statics.solver named), else only above the factor limit, rank 0 factoring
+/// below it; refine: the levels each rank refines its part by after the split (mesh.refine),
+/// rank 0 holding the coarse mesh, 8^-refine of the whole's nodes and tetrahedra (a refinement
+/// into eight has about 8 times the nodes); geometric: the ranks' statics by the geometric
+/// multigrid (statics.solver geometric, or auto with mesh.refine), its memory rather than GAMG's.
+RankPlan plan_ranks(double nodes, int ranks, bool named, int refine = 0, bool geometric = false);
 
 /// The plan for an actual split (split_plan.hpp): its ghosts over all ranks and the largest
 /// rank's nodes, owned and ghost, in place of the estimates; the memory per rank from them
 /// (refine as plan_ranks's).
-RankPlan plan_split(double nodes, int ranks, double ghosts, double largest_nodes, bool gamg,
+RankPlan plan_split(double nodes, int ranks, double ghosts, double largest_nodes, bool named,
                     int refine = 0, bool geometric = false);
 
 /// One line for the log: nodes and DOFs on the largest rank, the halo (ghosts, bytes per

@@ -30,7 +30,7 @@ inline void check_memory_for(double dofs, const std::string& where, const std::s
   m << where << ": a mesh of about " << dofs << " degrees of freedom needs about " << need / 1e9
     << " GB at a run's peak (" << need / dofs * 1e-3 << " kB per DOF: "
     << (dofs <= memory::kFactorLimitDofs ? "the statics' Cholesky factor"
-                                         : "the statics' multigrid set-up")
+                                         : "the statics' GAMG set-up")
     << "; docs/fem-soil.md section 7.2), more than the " << available / 1e9
     << " GB this machine has available now (MemAvailable, or the cgroup's limit); " << fix
     << ", or free memory and run again";

@@ -53,12 +53,12 @@ double* CsrMatrix::block_row(std::int32_t i, std::int32_t j, int c) {
   return value_.data() + row_start_[3 * static_cast<std::int64_t>(i) + c] + 3 * (it - first);
 }
 
-CsrMatrix::Blocks CsrMatrix::release_blocks() && {
-  Blocks b{std::move(neighbour_start_), std::move(neighbour_), std::move(value_)};
-  std::vector<std::int64_t>().swap(row_start_);
-  std::vector<std::int32_t>().swap(column_);
+CsrMatrix::Rows CsrMatrix::release_rows() && {
+  Rows r{std::move(row_start_), std::move(column_), std::move(value_)};
+  std::vector<std::int64_t>().swap(neighbour_start_);
+  std::vector<std::int32_t>().swap(neighbour_);
   row_start_.assign(1, 0);  // (an empty matrix: rows() 0)
-  return b;
+  return r;
 }
 
 void CsrMatrix::multiply_rows(const double* x, double* y, std::int64_t begin,

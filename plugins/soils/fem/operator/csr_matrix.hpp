@@ -86,17 +86,16 @@ class CsrMatrix {
            neighbour_start_.size() * 8 + neighbour_.size() * 4;
   }
 
-  /// The node graph and the values (node i's three rows of 3 deg(i) values each, as
-  /// block_entry reads them), without the column index per value.
-  struct Blocks {
-    std::vector<std::int64_t> neighbour_start;  // nodes + 1
-    std::vector<std::int32_t> neighbour;
+  /// The compressed rows alone (row starts, a column index per value, the values).
+  struct Rows {
+    std::vector<std::int64_t> start;  // rows + 1
+    std::vector<std::int32_t> column;
     std::vector<double> value;
   };
-  /// Hands over the graph and values and frees the rest, the matrix left empty: for a reader of
-  /// K by 3 x 3 blocks (multigrid's mesh level, statics/mesh_matrix.hpp), 4 B per nonzero less
-  /// than the rows and no copy.
-  Blocks release_blocks() &&;
+  /// Hands over the rows and frees the node graph, the matrix left empty: for a reader of K by
+  /// compressed rows that would otherwise copy them (PETSc's AIJ for GAMG,
+  /// statics/petsc_static_solver.hpp).
+  Rows release_rows() &&;
 
  private:
   std::vector<std::int64_t> neighbour_start_;  // node graph (node i: its sorted neighbours)

@@ -16,8 +16,8 @@
 
 #include <vector>
 
+#include "operator/row_sparse.hpp"
 #include "operator/soil_operator.hpp"
-#include "operator/sparse_product.hpp"
 
 namespace rumble::fem {
 

@@ -12,7 +12,7 @@
 
 #include "fem_settings.hpp"
 #include "mesh/tet_mesh.hpp"
-#include "operator/sparse_product.hpp"
+#include "operator/row_sparse.hpp"
 
 namespace rumble::fem {
 

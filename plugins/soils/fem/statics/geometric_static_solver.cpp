@@ -158,7 +158,10 @@ void GeometricStaticSolver::build_solver() {
   set_two_level_multigrid(p.ksp, p.fine, p.coarse, p.interpolation);
   petsc_check(KSPSetFromOptions(p.ksp), "KSPSetFromOptions");
   set_stop_test(p.ksp, op_, p.stop);
-  petsc_check(KSPSetUp(p.ksp), "KSPSetUp (the geometric multigrid's levels)");
+  {
+    const ScopedPetscOption clear(kClearProducts, "true");  // (GAMG's on the coarse level)
+    petsc_check(KSPSetUp(p.ksp), "KSPSetUp (the geometric multigrid's levels)");
+  }
   levels_ = two_level_multigrid_levels(p.ksp);
 }
 

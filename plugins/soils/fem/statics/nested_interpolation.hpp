@@ -10,7 +10,7 @@
 #pragma once
 
 #include "mesh/tet_mesh.hpp"
-#include "operator/sparse_product.hpp"
+#include "operator/row_sparse.hpp"
 
 namespace rumble::fem {
 

@@ -40,15 +40,16 @@ PetscSession::PetscSession() {
     throw std::runtime_error("fem: PETSc (and MPI) did not start (PetscInitialize failed)");
   owns_petsc_ = true;
   PetscPushErrorHandler(keep_petsc_message, nullptr);
-  // GAMG's Galerkin products P^T A P by forming P^T first ("rap"): GAMG set up 1.7-2x faster
-  // than with PETSc 3.18's default for one rank ("scalable", which avoids the transpose's
-  // memory) on the statics at 2.1e5 DOFs (docs/fem-soil.md §7.1). A process-wide option, as
-  // MatPtAP reads it without a prefix; PETSC_OPTIONS may still choose another.
+  // GAMG's Galerkin products P^T A P by PETSc's "scalable" algorithm, which forms no transpose
+  // of P: on the stiff example at 8.8e5 DOFs on one process the statics' peak was 2.6 kB per
+  // DOF against 3.9 kB by forming P^T first ("rap"), whose set-up had been 1.7-2x faster at
+  // 2.1e5 DOFs (docs/fem-soil.md §7.1). A process-wide option, as MatPtAP reads it without a
+  // prefix; PETSC_OPTIONS may still choose another.
   PetscBool chosen = PETSC_FALSE;
   petsc_check(PetscOptionsHasName(nullptr, nullptr, "-matptap_via", &chosen),
               "PetscOptionsHasName");
   if (!chosen)
-    petsc_check(PetscOptionsSetValue(nullptr, "-matptap_via", "rap"), "PetscOptionsSetValue");
+    petsc_check(PetscOptionsSetValue(nullptr, "-matptap_via", "scalable"), "PetscOptionsSetValue");
 }
 
 PetscSession::~PetscSession() {
@@ -68,6 +69,17 @@ std::shared_ptr<PetscSession> PetscSession::get() {
 
 bool PetscSession::started() {
   return session_started;
+}
+
+ScopedPetscOption::ScopedPetscOption(const char* name, const char* value) : name_(name) {
+  PetscBool given = PETSC_FALSE;
+  petsc_check(PetscOptionsHasName(nullptr, nullptr, name, &given), "PetscOptionsHasName");
+  set_ = !given;
+  if (set_) petsc_check(PetscOptionsSetValue(nullptr, name, value), "PetscOptionsSetValue");
+}
+
+ScopedPetscOption::~ScopedPetscOption() {  // (errors ignored: a destructor)
+  if (set_) PetscOptionsClearValue(nullptr, name_);
 }
 
 void petsc_check(int code, const char* what) {

@@ -2,10 +2,12 @@
 
 #include <petscksp.h>
 
-#include <algorithm>
 #include <chrono>
+#include <cstdint>
+#include <limits>
 #include <stdexcept>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "operator/effective_matrix.hpp"
@@ -14,51 +16,44 @@
 
 namespace rumble::fem {
 
-// PETSc's matrix shares the rows' arrays (no copy of K + S, a few hundred MB at 1e6 DOFs).
-static_assert(std::is_same_v<PetscInt, RowSparse::StorageIndex>,
-              "PETSc's indices must be the rows' (a 32-bit PETSc, as Debian ships it)");
+// PETSc's matrix shares K's arrays (no copy of K + S, 0.5 GB at 1e6 DOFs).
+static_assert(std::is_same_v<PetscInt, std::int32_t>,
+              "PETSc's indices must be K's column indices (a 32-bit PETSc, as Debian ships it)");
 static_assert(std::is_same_v<PetscScalar, double>, "a real, double PETSc");
 
 namespace {
 
-/// K + S in 3 x 3 blocks, each column-major as BAIJ stores them, compressed block rows (node
-/// rows; within a block, entries absent from the rows are zero): a block row is then one
-/// column-oriented MatSetValuesBlocked. (PETSc 3.18 takes no such arrays without a copy for
-/// blocks larger than 1: MatCreateSeqBAIJWithArrays refuses them.)
-struct PetscBlockRows {
-  std::vector<PetscInt> start, column;
-  std::vector<PetscScalar> value;
-};
-
-/// a in blocks; the matrix must have 3 x 3 blocks' rows (3 DOFs per node).
-PetscBlockRows block_rows(const RowSparse& a) {
-  PetscBlockRows b;
-  const Eigen::Index nodes = a.rows() / 3;
-  b.start.assign(nodes + 1, 0);
-  const auto blocks = static_cast<std::size_t>(a.nonZeros() / 9 + nodes);  // (9 a full block)
-  b.column.reserve(blocks);
-  b.value.reserve(9 * blocks);
-  std::vector<PetscInt> slot(nodes, -1);  // per node column: its block in the current row
-  for (Eigen::Index i = 0; i < nodes; ++i) {
-    const auto first = static_cast<PetscInt>(b.column.size());
-    for (int c = 0; c < 3; ++c)
-      for (RowSparse::InnerIterator e(a, 3 * i + c); e; ++e) {
-        const PetscInt node = e.col() / 3;
-        if (slot[node] < first) {  // (a block of an earlier row, or none yet)
-          slot[node] = static_cast<PetscInt>(b.column.size());
-          b.column.push_back(node);
-        }
-      }
-    std::sort(b.column.begin() + first, b.column.end());
-    for (auto k = static_cast<std::size_t>(first); k < b.column.size(); ++k)
-      slot[b.column[k]] = static_cast<PetscInt>(k);
-    b.value.resize(9 * b.column.size(), 0.0);
-    for (int c = 0; c < 3; ++c)
-      for (RowSparse::InnerIterator e(a, 3 * i + c); e; ++e)
-        b.value[9 * slot[e.col() / 3] + 3 * (e.col() % 3) + c] = e.value();
-    b.start[i + 1] = static_cast<PetscInt>(b.column.size());
+/// K's rows (the operator's, handed over) turned into K + S in place: the entries
+/// full_combination(op, {.stiffness = 1, .springs = true}) gives (operator/effective_matrix.hpp),
+/// to the bit and with its pattern: the boundary's blocks added on the diagonal, a held node's
+/// rows its diagonal 1 alone and its columns left out, compacted towards the front. (Kept as
+/// stored zeros, they tied held nodes to their neighbours in GAMG's aggregates: held DOFs came
+/// out 1e-16, not 0, tests/fem/gamg_statics_test.cpp.)
+void add_springs_and_hold(CsrMatrix::Rows& k, const SoilOperator& op) {
+  const std::vector<double> block = boundary_blocks(op, {.stiffness = 1.0, .springs = true});
+  const auto& held = op.fixed();
+  const auto rows = static_cast<std::int64_t>(k.start.size()) - 1;
+  std::int64_t kept = 0;  // (entries written so far: never ahead of the one read)
+  for (std::int64_t row = 0; row < rows; ++row) {
+    const std::int64_t node = row / 3, first = k.start[row], last = k.start[row + 1];
+    k.start[row] = kept;
+    if (held[node]) {
+      k.column[kept] = static_cast<std::int32_t>(row);
+      k.value[kept++] = 1.0;
+      continue;
+    }
+    for (std::int64_t e = first; e < last; ++e) {
+      const std::int64_t col = k.column[e];
+      if (held[col / 3]) continue;
+      double value = k.value[e];
+      if (col / 3 == node) value += block[9 * node + 3 * (row % 3) + col % 3];
+      k.column[kept] = static_cast<std::int32_t>(col);
+      k.value[kept++] = value;
+    }
   }
-  return b;
+  k.start[rows] = kept;
+  k.column.resize(static_cast<std::size_t>(kept));  // (no reallocation: the memory stays K's)
+  k.value.resize(static_cast<std::size_t>(kept));
 }
 
 }  // namespace
@@ -80,7 +75,9 @@ struct PetscStaticSolver::Petsc {
   }
   std::shared_ptr<PetscSession> session = PetscSession::get();
   const SoilOperator* op = nullptr;
-  RowSparse rows;                        // K + S, whose arrays aij shares
+  std::vector<PetscInt> row_start;  // K + S's rows: K's own arrays, which aij shares
+  std::vector<std::int32_t> column;
+  std::vector<double> value;
   Mat aij = nullptr, product = nullptr;  // product: CG's and the mesh level's, or null (aij)
   Vec x = nullptr, b = nullptr;          // over the solver's own vectors (VecPlaceArray)
   Eigen::VectorXd in, out;               // stepped_product's
@@ -94,15 +91,14 @@ PetscStaticSolver::PetscStaticSolver(const SoilOperator& op, const Eigen::Matrix
   const auto start = std::chrono::steady_clock::now();
   Petsc& p = *petsc_;
   p.op = &op;
-  p.rows = full_combination(op, {.stiffness = 1.0, .springs = true});
-  p.rows.makeCompressed();
-  const auto n = static_cast<PetscInt>(p.rows.rows());
-  petsc_check(MatCreateSeqAIJWithArrays(PETSC_COMM_SELF, n, n, p.rows.outerIndexPtr(),
-                                        p.rows.innerIndexPtr(), p.rows.valuePtr(), &p.aij),
+  take_rows(op);
+  const auto n = static_cast<PetscInt>(p.row_start.size() - 1);
+  petsc_check(MatCreateSeqAIJWithArrays(PETSC_COMM_SELF, n, n, p.row_start.data(), p.column.data(),
+                                        p.value.data(), &p.aij),
               "MatCreateSeqAIJWithArrays");
   petsc_check(MatSetBlockSize(p.aij, 3), "MatSetBlockSize");  // nodes, for GAMG's aggregates
   petsc_check(MatSetOption(p.aij, MAT_SPD, PETSC_TRUE), "MatSetOption");
-  make_product(storage);
+  if (storage == Storage::kSteppedProduct) make_stepped_product();
   petsc_check(VecCreateSeqWithArray(PETSC_COMM_SELF, 3, n, nullptr, &p.x), "VecCreateSeqWithArray");
   petsc_check(VecCreateSeqWithArray(PETSC_COMM_SELF, 3, n, nullptr, &p.b), "VecCreateSeqWithArray");
   build_solver(nodes);
@@ -110,28 +106,28 @@ PetscStaticSolver::PetscStaticSolver(const SoilOperator& op, const Eigen::Matrix
   last_ = Eigen::VectorXd::Zero(n);
 }
 
-void PetscStaticSolver::make_product(Storage storage) {
+void PetscStaticSolver::take_rows(const SoilOperator& op) {
   Petsc& p = *petsc_;
-  const auto n = static_cast<PetscInt>(p.rows.rows());
-  if (storage == Storage::kSteppedProduct) {
-    p.in.resize(n);
-    p.out.resize(n);
-    petsc_check(MatCreateShell(PETSC_COMM_SELF, n, n, n, n, &p, &p.product), "MatCreateShell");
-    petsc_check(MatShellSetOperation(p.product, MATOP_MULT,
-                                     reinterpret_cast<void (*)(void)>(&Petsc::stepped_product)),
-                "MatShellSetOperation");
-    petsc_check(MatSetBlockSize(p.product, 3), "MatSetBlockSize");
-  } else if (storage == Storage::kBaijProduct) {
-    const PetscBlockRows blocks = block_rows(p.rows);
-    petsc_check(MatCreate(PETSC_COMM_SELF, &p.product), "MatCreate");
-    petsc_check(MatSetSizes(p.product, n, n, n, n), "MatSetSizes");
-    petsc_check(MatSetType(p.product, MATSEQBAIJ), "MatSetType");
-    petsc_check(MatSetOption(p.product, MAT_ROW_ORIENTED, PETSC_FALSE), "MatSetOption");
-    petsc_check(MatSeqBAIJSetPreallocationCSR(p.product, 3, blocks.start.data(),
-                                              blocks.column.data(), blocks.value.data()),
-                "MatSeqBAIJSetPreallocationCSR");
-    petsc_check(MatSetOption(p.product, MAT_SPD, PETSC_TRUE), "MatSetOption");
-  }
+  CsrMatrix::Rows k = op.take_stiffness().release_rows();
+  if (k.column.size() > static_cast<std::size_t>(std::numeric_limits<PetscInt>::max()))
+    throw std::length_error("fem: the stiffness has too many nonzeros for PETSc's 32-bit indices");
+  add_springs_and_hold(k, op);
+  p.row_start.assign(k.start.begin(), k.start.end());
+  std::vector<std::int64_t>().swap(k.start);
+  p.column = std::move(k.column);
+  p.value = std::move(k.value);
+}
+
+void PetscStaticSolver::make_stepped_product() {
+  Petsc& p = *petsc_;
+  const auto n = static_cast<PetscInt>(p.row_start.size() - 1);
+  p.in.resize(n);
+  p.out.resize(n);
+  petsc_check(MatCreateShell(PETSC_COMM_SELF, n, n, n, n, &p, &p.product), "MatCreateShell");
+  petsc_check(MatShellSetOperation(p.product, MATOP_MULT,
+                                   reinterpret_cast<void (*)(void)>(&Petsc::stepped_product)),
+              "MatShellSetOperation");
+  petsc_check(MatSetBlockSize(p.product, 3), "MatSetBlockSize");
 }
 
 PetscStaticSolver::~PetscStaticSolver() = default;
@@ -155,10 +151,18 @@ void PetscStaticSolver::build_solver(const Eigen::Matrix3Xd& nodes) {
   p.ksp = static_cg(PETSC_COMM_SELF, p.product ? p.product : p.aij, p.aij, kTolerance);
   petsc_check(KSPGetPC(p.ksp, &pc), "KSPGetPC");
   petsc_check(PCSetType(pc, PCGAMG), "PCSetType");
+  // Plain aggregation: the prolongator not smoothed. On the stiff example at 8.8e5 DOFs the
+  // static start (set-up and 4 solves) took 27-28 s with 1288 B per DOF at its peak, against
+  // 40-41 s and 1677 B with PETSc's one smoothing (its denser prolongator and coarse levels);
+  // 78 CG iterations for the first solve, against 24 (docs/fem-soil.md §7.1).
+  petsc_check(PCGAMGSetNSmooths(pc, 0), "PCGAMGSetNSmooths");
   if (p.product) petsc_check(PCSetUseAmat(pc, PETSC_TRUE), "PCSetUseAmat");  // the mesh's level
   petsc_check(KSPSetFromOptions(p.ksp), "KSPSetFromOptions");
   set_stop_test(p.ksp, op_, p.stop);
-  petsc_check(KSPSetUp(p.ksp), "KSPSetUp (GAMG's hierarchy)");
+  {
+    const ScopedPetscOption clear(kClearProducts, "true");
+    petsc_check(KSPSetUp(p.ksp), "KSPSetUp (GAMG's hierarchy)");
+  }
   PetscInt levels = 0;
   petsc_check(PCMGGetLevels(pc, &levels), "PCMGGetLevels");
   levels_ = static_cast<int>(levels);

@@ -2,9 +2,9 @@
 // aggregation algebraic multigrid, GAMG (issue #33; docs/fem-soil.md §7.1, docs/numerics.md §4.4),
 // on one rank (PETSC_COMM_SELF) for now: StaticSolver's path above its factor limit.
 //
-// The matrix is the operator's K + S in double, 3 DOFs per node (block size 3, so GAMG
-// aggregates nodes, not single DOFs), fixed DOFs as identity rows and columns with a zero load;
-// GAMG's near-null space is the six rigid-body modes from the node coordinates
+// The preconditioner's matrix is the operator's K + S in double, 3 DOFs per node (block size 3, so
+// GAMG aggregates nodes, not single DOFs), fixed DOFs as identity rows and columns with a zero
+// load; GAMG's near-null space is the six rigid-body modes from the node coordinates
 // (MatNullSpaceCreateRigidBody): the displacements that cost elasticity no energy, which each
 // aggregate's coarse basis must reproduce for the coarse levels to correct the smooth error the
 // smoother leaves. CG stops when the residual of the true system, unpreconditioned, is 1e-10 of
@@ -12,10 +12,12 @@
 // engine's static iteration asks again with a slightly changed load. The hierarchy is built once,
 // by the constructor (StaticSolver's first solve), and kept (the matrix does not change).
 //
-// Options: GAMG with one smoothing of the prolongator, Chebyshev(2) smoothing with Jacobi on
-// each level (PETSc 3.18's defaults), set before KSPSetFromOptions, so that PETSC_OPTIONS with
-// the prefix "fem_statics_" overrides them for tuning (e.g. PETSC_OPTIONS="
-// -fem_statics_pc_gamg_threshold 0.02"; docs/fem-soil.md §7.1 has what was measured).
+// Options: GAMG with plain (unsmoothed) aggregation, which at 8.8e5 DOFs set up in a seventh of
+// the time and half the memory of one smoothing of the prolongator, and solved the static start
+// faster despite three times the iterations; Chebyshev(2) smoothing with Jacobi on each level
+// (PETSc 3.18's default). Set before KSPSetFromOptions, so that PETSC_OPTIONS with the prefix
+// "fem_statics_" overrides them for tuning (e.g. PETSC_OPTIONS="
+// -fem_statics_pc_gamg_agg_nsmooths 1"; docs/fem-soil.md §7.1 has what was measured).
 #pragma once
 
 #include <Eigen/Core>
@@ -27,22 +29,22 @@ namespace rumble::fem {
 
 class PetscStaticSolver {
  public:
-  /// How PETSc stores K + S. kAij: compressed rows (AIJ, block size 3) sharing the rows' arrays
-  /// with no copy, for everything. kBaijProduct (the default): the same for GAMG's set-up, and a
-  /// copy in 3 x 3 blocks (BAIJ) for CG's products and the mesh level's smoothing, which read a
-  /// third fewer bytes (one column index per block): the solve 1.5-2.5x faster at 2e5-1e6 DOFs
-  /// for 0.4 kB more per DOF (docs/fem-soil.md §7.1). PETSc 3.18's GAMG cannot set up from BAIJ
-  /// alone (no MatCreateGraph for it: "No support for this operation").
-  /// kSteppedProduct: CG's products and the mesh level's smoothing by the operator's own
-  /// threaded product (stepped_stiffness_times: K's upper blocks as the step reads them, in its
-  /// precision, on the host's threads), GAMG set up from the AIJ rows.
-  enum class Storage { kAij, kBaijProduct, kSteppedProduct };
+  /// What CG's products and the mesh level's smoothing read. GAMG always sets up from K + S in
+  /// compressed rows (AIJ, block size 3) in K's own arrays, taken from the operator
+  /// (SoilOperator::take_stiffness: built again when the operator next needs them) with the
+  /// springs added in place, so the statics hold no copy of K (0.5 GB at 1e6 DOFs).
+  /// kSteppedProduct (the default): the operator's own threaded product (stepped_stiffness_times:
+  /// K's upper blocks as the step reads them, in its precision, on the host's threads), which
+  /// reads a sixth of the rows' bytes in single precision; the static state is then the one of
+  /// the operator the dynamics step, which the soil starts from at rest. kAij: the AIJ rows, in
+  /// double, on one thread.
+  enum class Storage { kAij, kSteppedProduct };
 
   /// Builds the matrix and GAMG's hierarchy (PETSc started on first use, petsc_session.hpp).
   /// nodes: the mesh's coordinates [m], 3 x op.nodes(). Throws std::runtime_error when PETSc
   /// fails.
   PetscStaticSolver(const SoilOperator& op, const Eigen::Matrix3Xd& nodes,
-                    Storage storage = Storage::kBaijProduct);
+                    Storage storage = Storage::kSteppedProduct);
   ~PetscStaticSolver();
   PetscStaticSolver(const PetscStaticSolver&) = delete;
   PetscStaticSolver& operator=(const PetscStaticSolver&) = delete;
@@ -61,7 +63,9 @@ class PetscStaticSolver {
 
  private:
   struct Petsc;
-  void make_product(Storage storage);
+  /// K's rows from the operator, made K + S in place (the constructor's first step).
+  void take_rows(const SoilOperator& op);
+  void make_stepped_product();
   void build_solver(const Eigen::Matrix3Xd& nodes);
 
   const SoilOperator& op_;

@@ -2,11 +2,11 @@
 // fixed). A sparse Cholesky factor from CHOLMOD's 64-bit interface (cholmod_l, docs/toolchain.md §4
 // and docs/numerics.md §4.2: the int interface fails near 1e6 DOFs), computed once and reused by
 // every solve (the engine iterates the static state with the track); above kFactorLimit DOFs, where
-// the factor would take more memory than the soil itself by far, conjugate gradients
-// preconditioned by smoothed-aggregation multigrid (amg_preconditioner.hpp), or by the diagonal
-// (Jacobi, kept as the baseline bench/fem/fem_static_bench.cpp measures against), or PETSc's CG
-// preconditioned by its algebraic multigrid GAMG (petsc_static_solver.hpp; issue #33) or by a
-// geometric multigrid on mesh.refine's nested meshes (geometric_static_solver.hpp).
+// the factor would take more memory than the soil itself by far, PETSc's conjugate gradients
+// preconditioned by its algebraic multigrid GAMG (petsc_static_solver.hpp) or by a geometric
+// multigrid on mesh.refine's nested meshes (geometric_static_solver.hpp). The soil's own
+// smoothed-aggregation multigrid and CG, which these replaced, are gone
+// (docs/decisions/0018-petsc-statics.md).
 #pragma once
 
 #include <Eigen/Core>
@@ -16,17 +16,15 @@
 
 #include "memory_model.hpp"
 #include "operator/soil_operator.hpp"
-#include "statics/amg_preconditioner.hpp"
 #include "statics/coarse_level.hpp"
 #include "statics/geometric_static_solver.hpp"
 #include "statics/petsc_static_solver.hpp"
 
 namespace rumble::fem {
 
-/// The iterative path: our CG with our smoothed-aggregation multigrid or the diagonal, or
-/// PETSc's CG with GAMG or with the geometric multigrid of a refined mesh (set_coarse_level;
-/// PETSc started at the first such solve, never before).
-enum class CgPreconditioner { kMultigrid, kJacobi, kGamg, kGeometric };
+/// The iterative path: PETSc's CG with GAMG or with the geometric multigrid of a refined mesh
+/// (set_coarse_level; PETSc started at the first such solve, never before).
+enum class CgPreconditioner { kGamg, kGeometric };
 
 class StaticSolver {
  public:
@@ -34,11 +32,11 @@ class StaticSolver {
   static constexpr auto kFactorLimit = static_cast<Eigen::Index>(memory::kFactorLimitDofs);
 
   /// Uses the operator's K, boundary springs (always: they carry the static load) and fixed
-  /// nodes; nodes: the mesh's coordinates [m] (multigrid's rigid-body modes). Factors on first
+  /// nodes; nodes: the mesh's coordinates [m] (GAMG's rigid-body modes). Factors on first
   /// use when op has at most factor_limit DOFs, else uses CG with the given preconditioner.
   StaticSolver(const SoilOperator& op, const Eigen::Matrix3Xd& nodes,
                Eigen::Index factor_limit = kFactorLimit,
-               CgPreconditioner preconditioner = CgPreconditioner::kMultigrid);
+               CgPreconditioner preconditioner = CgPreconditioner::kGamg);
   ~StaticSolver();
   StaticSolver(const StaticSolver&) = delete;
   StaticSolver& operator=(const StaticSolver&) = delete;
@@ -51,49 +49,39 @@ class StaticSolver {
   /// kGeometric: what builds the coarse level (coarse_level.hpp), called at the first iterative
   /// solve and again after release(). Without it such a solve throws std::logic_error.
   void set_coarse_level(std::function<CoarseLevel()> build) { coarse_level_ = std::move(build); }
-  /// Frees what the solves keep (the factor, the multigrid hierarchy, PETSc's solver), which the
+  /// Frees what the solves keep (the factor, PETSc's solver and hierarchy), which the
   /// plugin does once the statics are done (at the first step: docs/fem-soil.md section 7.2); a
-  /// later solve builds them again, the same, and still starts CG from the last solution.
+  /// later solve builds them again, the same, and starts CG from rest.
   void release();
   /// Memory the solves keep now [bytes]: the factor (CHOLMOD's count of its memory in use), the
-  /// multigrid hierarchy, CG's last solution and diagonal, the geometric multigrid's coarse
-  /// level and vectors; PETSc's own objects (GAMG's hierarchies) are not counted.
+  /// geometric multigrid's coarse level and vectors; PETSc's own objects
+  /// (GAMG's matrix, which holds K's taken rows, and its hierarchies) are not counted.
   std::size_t bytes() const;
   int last_cg_iterations() const { return cg_iterations_; }
-  /// Seconds the multigrid hierarchy took to build (0 before, or with the factor or Jacobi;
-  /// the geometric multigrid's coarse level included).
+  /// Seconds the multigrid hierarchy took to build (0 before, or with the factor; the geometric
+  /// multigrid's coarse level included).
   double multigrid_setup_seconds() const { return multigrid_seconds_; }
-  /// The hand-written multigrid hierarchy once CG has built it, else null.
-  const AmgPreconditioner* multigrid() const { return multigrid_.get(); }
   /// Levels of either multigrid once built (the mesh's included), else 0.
   int multigrid_levels() const;
-  /// What the iterative path is, for the log: "CG + GAMG (PETSc)", "CG + multigrid", ...
+  /// What the path is, for the log: "CHOLMOD", "CG + GAMG (PETSc)", ...
   const char* method() const;
-  /// PETSc holds levels of the multigrid that bytes() does not count (GAMG's, the geometric
-  /// multigrid's coarse hierarchy): the log says so rather than give them as 0.
-  bool petsc_levels() const { return gamg_ != nullptr || geometric_ != nullptr; }
 
  private:
   struct Factor;
-  Eigen::VectorXd conjugate_gradients(const Eigen::VectorXd& f);
+  Eigen::VectorXd factor_solve(const Eigen::VectorXd& f);
+  /// kGamg's solve, its hierarchy built when missing.
+  Eigen::VectorXd gamg_solve(const Eigen::VectorXd& f);
   /// kGeometric's solve, its levels built when missing.
   Eigen::VectorXd geometric_solve(const Eigen::VectorXd& f);
-  /// CG's preconditioner for n DOFs, built when missing, and its start (the last solution).
-  void prepare_preconditioner(Eigen::Index n);
-  void build_multigrid();
-
-  void precondition(const Eigen::VectorXd& r, Eigen::VectorXd& z) const;
 
   const SoilOperator& op_;
   const Eigen::Matrix3Xd& nodes_;
   Eigen::Index factor_limit_;
   CgPreconditioner preconditioner_;
   std::unique_ptr<Factor> factor_;
-  std::unique_ptr<AmgPreconditioner> multigrid_;
   std::unique_ptr<PetscStaticSolver> gamg_;
   std::unique_ptr<GeometricStaticSolver> geometric_;
   std::function<CoarseLevel()> coarse_level_;
-  Eigen::VectorXd diagonal_, last_;  // CG: the Jacobi preconditioner; the last solution
   int cg_iterations_ = 0;
   double multigrid_seconds_ = 0.0;
 };
