@@ -43,13 +43,12 @@ inline constexpr double kFactorBytesPerNonzero = 11.5;
 inline constexpr double kGamgProcessBytesPerNonzero = 8.7;
 
 /// PETSc's GAMG on many ranks at its peak, beyond what a rank holds after its layout, per nonzero
-/// of the rank's part of K [bytes]: its matrix (AIJ, 12 B per nonzero), the smoothed aggregation's
+/// of the rank's part of K [bytes]: its matrix (AIJ, 12 B per nonzero), the plain aggregation's
 /// prolongators and Galerkin products, each product's intermediates freed once it is formed
-/// (distributed/distributed_statics.cpp). Fitted to the stiff example at 1.0e6 DOFs on 2 ranks
-/// (docs/fem-soil.md §8: 1.94 GB per rank at the statics, 2.25 GB with the intermediates kept,
-/// for which 65 B was fitted); unsmoothed aggregation (PETSC_OPTIONS
-/// -fem_statics_pc_gamg_agg_nsmooths 0) needed 1.29-1.33 GB there.
-inline constexpr double kGamgBytesPerNonzero = 55.0;
+/// (distributed/distributed_statics.cpp). Fitted to the stiff example at 8.8e5 DOFs on 2 ranks
+/// (docs/fem-soil.md §8: 1.11-1.16 GB per rank at the statics); one smoothing of the
+/// prolongator (PETSC_OPTIONS -fem_statics_pc_gamg_agg_nsmooths 1) needs 55 B, 1.68-1.69 GB there.
+inline constexpr double kGamgBytesPerNonzero = 28.0;
 
 /// The geometric multigrid (statics.solver geometric, mesh.refine 1) at its peak, beyond what the
 /// soil holds into the statics, per nonzero of K [bytes]: it frees K's rows first (12 B per

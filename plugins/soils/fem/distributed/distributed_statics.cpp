@@ -51,6 +51,12 @@ void DistributedStatics::build_solver() {
   p.ksp = static_cg(p.comm, p.a, p.a, kTolerance);
   petsc_check(KSPGetPC(p.ksp, &pc), "KSPGetPC");
   petsc_check(PCSetType(pc, PCGAMG), "PCSetType");
+  // Plain aggregation, as one process's GAMG (statics/petsc_static_solver.cpp): on the stiff
+  // example at 8.8e5 DOFs on 2 ranks 1.11-1.16 GB per rank at the statics against 1.68-1.69 GB
+  // with one smoothing of the prolongator, a static start of 41 s against 37 s (93 CG
+  // iterations to 1e-12 against 29): the ranks' memory is what limits their size
+  // (docs/fem-soil.md §8).
+  petsc_check(PCGAMGSetNSmooths(pc, 0), "PCGAMGSetNSmooths");
   petsc_check(KSPSetFromOptions(p.ksp), "KSPSetFromOptions");
   PetscErrorCode code = 0;
   {
