@@ -9,10 +9,11 @@
 // (distributed/field_pieces.hpp). With mesh.refine rank 0 meshes and splits the coarse mesh only
 // and each rank refines its part after the split (distributed/refined_partition.hpp).
 //
-// The static state: GAMG on the ranks (distributed_statics.hpp) above the factor limit or with
-// statics.solver gamg, the geometric multigrid on the ranks' refined parts with statics.solver
-// geometric (distributed/geometric_rank_statics.hpp; at any size, as gamg); else below the limit
-// rank 0 factors the whole (small) operator as one process does, then frees it. What needs the
+// The static state: above the factor limit, or at any size with statics.solver named, GAMG on
+// the ranks (distributed_statics.hpp) or the geometric multigrid on the ranks' refined parts
+// (distributed/geometric_rank_statics.hpp: statics.solver geometric, or auto with mesh.refine);
+// else, below the limit with auto, rank 0 factors the whole (small) operator as one process
+// does, then frees it. What needs the
 // whole operator (the receptance, the linear matrices) is refused on many ranks, and what does not
 // run on many ranks yet is refused when the soil is made, before any work: the matched layer, the
 // local steps and the implicit scheme (each names its parameter and the fix), and so is a mesh
