@@ -36,6 +36,8 @@
 #                                RUMBLE_FEM_FAIL_RANK_AT): every rank stops, exit 3, its message
 #   fem_interrupt_stops_every_rank  mpirun stopped mid-run on 2 ranks: "interrupted", results
 #                                on disk
+#   fem_interrupt_in_the_ranks_statics  mpirun stopped while the ranks' CG runs (made endless by
+#                                PETSC_OPTIONS): every rank leaves it, "interrupted", no hang
 #   fem_node_memory_is_refused   the estimate per rank above this machine's memory (made 0.1 GB
 #                                by RUMBLE_FEM_NODE_MEMORY): a clear error before meshing (exit 1)
 #   fem_too_many_ranks_is_refused  a mesh too small for 3 ranks: a clear error before meshing
@@ -318,6 +320,23 @@ function(fem_case)
     if(n LESS 10)
       message(FATAL_ERROR "the results up to the interrupt are not on disk (${n} rows)")
     endif()
+  elseif(CASE STREQUAL "fem_interrupt_in_the_ranks_statics")
+    # statics.solver gamg named: solved on the ranks even at this size. Richardson with a tiny
+    # step never converges (CG could end in a breakdown), so only the stop ends the statics:
+    # rank 0 asks the host between the iterations and every rank leaves at the same one
+    # (plugins/soils/fem/statics/petsc_cg.hpp). Without it the ranks iterate on after SIGTERM
+    # and the test times out.
+    set(ENV{PETSC_OPTIONS} "-fem_statics_ksp_type richardson -fem_statics_ksp_richardson_scale 1e-4 -fem_statics_ksp_max_it 100000000")
+    string(JOIN " " launch ${mpirun} -n 2 ${RUMBLE} run ${fem} --output ${WORK_DIR}/stopped
+           --no-plots --set /soil/params/statics/solver=gamg)
+    set(log ${WORK_DIR}/log)
+    rumble_run(out code sh -c "${launch} > ${log} 2>&1 & pid=$!\nwhile kill -0 $pid && ! grep -q 'estimates the run' ${log}\ndo sleep 0.2\ndone\nsleep 2\nkill -TERM $pid\nwait $pid\ncat ${log}")
+    file(READ ${WORK_DIR}/stopped/summary.json summary)
+    string(JSON status GET "${summary}" status)
+    if(NOT status STREQUAL "interrupted")
+      message(FATAL_ERROR "summary.json status '${status}', expected 'interrupted':\n${out}")
+    endif()
+    expect_match("${out}" "interrupted \\(SIGTERM\\) while the static state was solved, before the first step")
   elseif(CASE STREQUAL "fem_too_many_ranks_is_refused")
     # (refused as the run's validation lays the soil out: exit 1, before meshing)
     rumble_run(out code ${mpirun} -n 3 ${RUMBLE} run ${fem} --output ${WORK_DIR}/small

@@ -66,6 +66,9 @@ void FemSoil::join_ranks() {
   refuse_on_many_ranks();
   distributed_ = std::make_unique<rumble::fem::DistributedSoil>(
       MPI_Comm_f2c(static_cast<MPI_Fint>(c->fortran_handle)));
+  // Ctrl-C inside the ranks' static solves: rank 0 asks the host, every rank learns it at the
+  // same CG iteration (statics/petsc_cg.hpp).
+  if (distributed_->root()) distributed_->set_stop_check(throttled_stop_check());
   if (const char* hook = std::getenv("RUMBLE_FEM_FAIL_RANK_AT")) {
     std::istringstream in(hook);
     char colon = 0;

@@ -96,13 +96,7 @@ void FemSoil::build_here(const std::vector<rumble::Footprint>& footprints, doubl
   op_->set_loaded_nodes(loaded_nodes(weights_));  // (the footprints' forces act there only)
   // K's rows may go once the statics are done, and are built again if a later call needs them.
   op_->set_stiffness_source([this] { return assemble_stiffness(mesh_, settings_); });
-  // Ctrl-C inside the static solves and the local steps' choice, checked every 0.1 s at most.
-  op_->set_stop_check([this, last = std::chrono::steady_clock::now()]() mutable {
-    const auto now = std::chrono::steady_clock::now();
-    if (now - last < std::chrono::milliseconds(100)) return;
-    last = now;
-    host_.check_stop();
-  });
+  op_->set_stop_check(throttled_stop_check());
   if (settings_.damping.maxwell) op_->set_maxwell_damping(settings_.damping.maxwell_mechanisms());
   if (settings_.boundary.kind == BoundaryKind::kPml)
     op_->set_pml(PmlLayer(mesh_, settings_, pml_profile()));
@@ -215,6 +209,15 @@ rumble::fem::TetMesh FemSoil::cached_or_new_mesh() const {
     host_.warn("fem: could not keep the mesh in " + path.string() +
                " (set RUMBLE_MESH_CACHE to a writable directory, or to off)");
   return mesh;
+}
+
+std::function<void()> FemSoil::throttled_stop_check() {
+  return [this, last = std::chrono::steady_clock::now()]() mutable {
+    const auto now = std::chrono::steady_clock::now();
+    if (now - last < std::chrono::milliseconds(100)) return;
+    last = now;
+    host_.check_stop();
+  };
 }
 
 void FemSoil::report_ranks(double nodes, const char* source) const {

@@ -119,6 +119,9 @@ class FemSoil final : public rumble::Soil {
   void build_here(const std::vector<rumble::Footprint>& footprints, double mesh_seconds,
                   std::chrono::steady_clock::time_point start);
   void initialize_here(double t0, const double* static_force, double* static_u);
+  /// The host's Ctrl-C check (throws rumble::Stopped), asked every 0.1 s at most: inside the
+  /// static solves and the local steps' choice (on many ranks rank 0's, in the ranks' CG).
+  std::function<void()> throttled_stop_check();
   void set_probes_here(const std::vector<rumble::Probe>& probes, double sample_interval);
 
   // On many ranks (fem_distributed.cpp): the same calls on every rank's share.

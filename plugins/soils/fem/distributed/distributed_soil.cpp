@@ -139,7 +139,10 @@ void DistributedSoil::set_far_field_force(const double* F, Eigen::VectorXd& f) c
 
 bool DistributedSoil::solve_static(const double* F, double* averages) {
   const bool built = !statics_;
-  if (built) statics_ = make_statics_();
+  if (built) {
+    statics_ = make_statics_();
+    statics_->set_stop_check(stop_check_);
+  }
   Eigen::VectorXd f = Eigen::VectorXd::Zero(step_->dofs());
   for (std::size_t j = 0; j < weights_.size(); ++j)  // (as FemSoil::spread, on this rank's nodes)
     for (const NodalWeight& w : weights_[j]) f[3 * w.node + 2] += w.weight * F[j];

@@ -69,6 +69,9 @@ class DistributedSoil {
   /// average of it [m] in `averages` (sized by the caller). Returns whether this call built the
   /// solver.
   bool solve_static(const double* F, double* averages);
+  /// What the statics' CG calls between its iterations (RankStatics::set_stop_check; the soil
+  /// gives rank 0 the host's Ctrl-C check): kept for each solver built.
+  void set_stop_check(std::function<void()> check) { stop_check_ = std::move(check); }
   const RankStatics* statics() const { return statics_.get(); }
   const Eigen::VectorXd& static_state() const { return u_static_; }
   /// The receivers, each sampled by the rank whose part holds its tetrahedron (part_pieces.hpp).
@@ -143,6 +146,7 @@ class DistributedSoil {
   double far_mean_distance_ = 0.0;        // m, over the whole mesh
   std::unique_ptr<RankStatics> statics_;  // at the first solve_static of a layout
   std::function<std::unique_ptr<RankStatics>()> make_statics_;  // (lay_out's settings)
+  std::function<void()> stop_check_;                            // (set_stop_check's)
   std::unique_ptr<MeshPartition> coarse_;  // statics.solver geometric: the coarse part
   std::vector<PartProbe> probes_;
   std::size_t probe_count_ = 0;

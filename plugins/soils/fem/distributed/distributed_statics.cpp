@@ -25,6 +25,7 @@ struct DistributedStatics::Petsc {
   Mat a = nullptr;
   Vec x = nullptr, b = nullptr;  // x: the last solution (CG's start)
   KSP ksp = nullptr;
+  PetscStopTest stop;
 };
 
 DistributedStatics::DistributedStatics(const MeshPartition& part, const SoilOperator& op,
@@ -39,10 +40,15 @@ DistributedStatics::DistributedStatics(const MeshPartition& part, const SoilOper
   petsc_check(MatCreateVecs(p.a, &p.x, &p.b), "MatCreateVecs");
   petsc_check(VecSet(p.x, 0.0), "VecSet");
   build_solver();
+  set_stop_test(p.ksp, op, p.stop);
   setup_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 DistributedStatics::~DistributedStatics() = default;
+
+void DistributedStatics::set_stop_check(std::function<void()> check) {
+  petsc_->stop.check = std::move(check);
+}
 
 void DistributedStatics::build_solver() {
   Petsc& p = *petsc_;
@@ -71,7 +77,7 @@ void DistributedStatics::build_solver() {
 
 Eigen::VectorXd DistributedStatics::solve(const Eigen::VectorXd& f) {
   Petsc& p = *petsc_;
-  return solve_on_ranks(p.ksp, p.x, p.b, part_, p.rows, p.fixed, f, iterations_,
+  return solve_on_ranks(p.ksp, p.x, p.b, p.stop, part_, p.rows, p.fixed, f, iterations_,
                         "PETSc's CG with GAMG");
 }
 

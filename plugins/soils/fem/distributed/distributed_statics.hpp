@@ -35,6 +35,7 @@ class DistributedStatics final : public RankStatics {
 
   Eigen::VectorXd solve(const Eigen::VectorXd& f) override;
   const char* method() const override { return "CG with GAMG"; }
+  void set_stop_check(std::function<void()> check) override;
   double tolerance() const override { return kTolerance; }
   static constexpr double kTolerance = 1e-12;
 

@@ -77,6 +77,7 @@ struct GeometricRankStatics::Petsc {
   Mat interpolation = nullptr;       // the same on each of a node's 3 DOFs (MAIJ)
   Vec x = nullptr, b = nullptr;      // x: the last solution (CG's start)
   KSP ksp = nullptr;
+  PetscStopTest stop;
 };
 
 namespace {
@@ -118,10 +119,15 @@ GeometricRankStatics::GeometricRankStatics(const MeshPartition& fine, const Soil
   make_fine_level();
   make_interpolation(coarse, coarse_op, levels);
   build_solver(coarse, coarse_op);
+  set_stop_test(p.ksp, op, p.stop);
   setup_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 GeometricRankStatics::~GeometricRankStatics() = default;
+
+void GeometricRankStatics::set_stop_check(std::function<void()> check) {
+  petsc_->stop.check = std::move(check);
+}
 
 void GeometricRankStatics::make_fine_level() {
   Petsc& p = *petsc_;
@@ -204,7 +210,7 @@ void GeometricRankStatics::build_solver(const MeshPartition& coarse,
 
 Eigen::VectorXd GeometricRankStatics::solve(const Eigen::VectorXd& f) {
   Petsc& p = *petsc_;
-  return solve_on_ranks(p.ksp, p.x, p.b, part_, p.rows, p.fixed, f, iterations_,
+  return solve_on_ranks(p.ksp, p.x, p.b, p.stop, part_, p.rows, p.fixed, f, iterations_,
                         "PETSc's CG with the geometric multigrid");
 }
 

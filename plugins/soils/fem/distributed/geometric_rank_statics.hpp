@@ -47,6 +47,7 @@ class GeometricRankStatics final : public RankStatics {
   Eigen::VectorXd solve(const Eigen::VectorXd& f) override;
   const char* method() const override { return "CG with the geometric multigrid"; }
   /// `tolerance`, or PETSC_OPTIONS' -fem_statics_ksp_rtol.
+  void set_stop_check(std::function<void()> check) override;
   double tolerance() const override { return tolerance_; }
   static constexpr double kTolerance = 1e-12;
 

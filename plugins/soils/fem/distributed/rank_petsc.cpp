@@ -142,9 +142,10 @@ SetUpOptions::~SetUpOptions() {  // (errors ignored: a destructor)
   if (rap_) PetscOptionsSetValue(nullptr, "-matptap_via", "rap");
 }
 
-Eigen::VectorXd solve_on_ranks(KSP ksp, Vec x, Vec b, const MeshPartition& part,
-                               const RankRows& rows, const std::vector<char>& fixed,
-                               const Eigen::VectorXd& f, int& iterations, const char* method) {
+Eigen::VectorXd solve_on_ranks(KSP ksp, Vec x, Vec b, PetscStopTest& stop,
+                               const MeshPartition& part, const RankRows& rows,
+                               const std::vector<char>& fixed, const Eigen::VectorXd& f,
+                               int& iterations, const char* method) {
   PetscScalar* load = nullptr;
   petsc_check(VecGetArray(b, &load), "VecGetArray");
   for (std::size_t k = 0; k < rows.owned.size(); ++k)
@@ -157,7 +158,9 @@ Eigen::VectorXd solve_on_ranks(KSP ksp, Vec x, Vec b, const MeshPartition& part,
   if (largest == 0.0) {  // no load on a free DOF: at rest
     petsc_check(VecSet(x, 0.0), "VecSet");
   } else {
-    petsc_check(KSPSolve(ksp, b, x), "KSPSolve");
+    const PetscErrorCode code = KSPSolve(ksp, b, x);
+    if (stop.stopped) std::rethrow_exception(std::exchange(stop.stopped, nullptr));
+    petsc_check(code, "KSPSolve");
     PetscInt its = 0;
     KSPConvergedReason reason = KSP_CONVERGED_ITERATING;
     KSPGetIterationNumber(ksp, &its);

@@ -18,6 +18,7 @@
 
 #include "distributed/mesh_partition.hpp"
 #include "operator/soil_operator.hpp"
+#include "statics/petsc_cg.hpp"
 #include "statics/petsc_session.hpp"
 
 namespace rumble::fem {
@@ -63,9 +64,12 @@ class SetUpOptions {
 /// CG's start, and b: vectors of the owned rows): u on every node of the part, owned and ghost,
 /// with (K + S) u = f on the free DOFs, 0 on `fixed` ones (per local node); f: each owned node's
 /// whole load [N] (the ghosts' are not read). `iterations`: CG's (0 at rest, on every rank
-/// alike). Throws std::runtime_error on every rank, naming `method`, when CG does not converge.
-Eigen::VectorXd solve_on_ranks(KSP ksp, Vec x, Vec b, const MeshPartition& part,
-                               const RankRows& rows, const std::vector<char>& fixed,
-                               const Eigen::VectorXd& f, int& iterations, const char* method);
+/// alike). Throws std::runtime_error on every rank, naming `method`, when CG does not converge;
+/// rethrows stop's exception (ksp's test, statics/petsc_cg.hpp: on every rank alike) when the
+/// host asked to stop.
+Eigen::VectorXd solve_on_ranks(KSP ksp, Vec x, Vec b, PetscStopTest& stop,
+                               const MeshPartition& part, const RankRows& rows,
+                               const std::vector<char>& fixed, const Eigen::VectorXd& f,
+                               int& iterations, const char* method);
 
 }  // namespace rumble::fem

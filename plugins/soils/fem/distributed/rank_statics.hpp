@@ -6,6 +6,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <functional>
 
 namespace rumble::fem {
 
@@ -20,6 +21,10 @@ class RankStatics {
   virtual const char* method() const = 0;
   /// CG's stop: the true residual against this share of the load.
   virtual double tolerance() const = 0;
+  /// Called between CG's iterations (rank 0's asks the host: Ctrl-C); when it throws on any
+  /// rank, every rank leaves CG at that iteration and solve() throws there (statics/
+  /// petsc_cg.hpp). Unset: none.
+  virtual void set_stop_check(std::function<void()> check) = 0;
   int last_iterations() const { return iterations_; }
   /// The multigrid's levels.
   int levels() const { return levels_; }

@@ -1,6 +1,7 @@
 #include "statics/petsc_cg.hpp"
 
 #include <algorithm>
+#include <rumble/plugin.hpp>
 #include <sstream>
 #include <stdexcept>
 #include <utility>
@@ -16,9 +17,26 @@ PetscErrorCode converged_or_stopped(KSP ksp, PetscInt it, PetscReal rnorm,
                                     KSPConvergedReason* reason, void* context) {
   auto* test = static_cast<PetscStopTest*>(context);
   try {
-    test->op->check_stop();
+    if (test->check)
+      test->check();
+    else if (test->op != nullptr)
+      test->op->check_stop();
   } catch (...) {
     test->stopped = std::current_exception();
+  }
+  const MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(ksp));
+  int ranks = 1;
+  MPI_Comm_size(comm, &ranks);
+  int stop = test->stopped ? 1 : 0;
+  if (ranks > 1) {
+    int any = 0;
+    PetscCallMPI(MPI_Allreduce(&stop, &any, 1, MPI_INT, MPI_MAX, comm));
+    if (any && !test->stopped)
+      test->stopped =
+          std::make_exception_ptr(rumble::Stopped("stopped at the host's request (Ctrl-C)"));
+    stop = any;
+  }
+  if (stop) {
     *reason = KSP_DIVERGED_ITS;
     return 0;
   }

@@ -1,17 +1,18 @@
 // What the statics' PETSc solvers (petsc_static_solver.hpp, geometric_static_solver.hpp) share
 // around PETSc's CG (the ranks' statics, distributed/distributed_statics.hpp, too): its set-up,
-// the operator's stop check (Ctrl-C) between its iterations, and one static
+// the stop check (Ctrl-C) between its iterations, agreed over the ranks, and one static
 // solve with the warm start, the held DOFs and the failure's message; and the one-process shell
 // product over the step's K with the held DOFs as identity. PETSc's C frames cannot
 // carry a C++ exception, so the check's exception is kept, CG told to stop, and the solve
-// rethrows it after KSPSolve. Included by those solvers' .cpp files only (no header of the room
-// includes PETSc's).
+// rethrows it after KSPSolve. Included by those solvers' .cpp files and the ranks'
+// (distributed/rank_petsc.hpp) only (no header of the statics room includes PETSc's).
 #pragma once
 
 #include <petscksp.h>
 
 #include <Eigen/Core>
 #include <exception>
+#include <functional>
 
 #include "operator/soil_operator.hpp"
 
@@ -19,6 +20,8 @@ namespace rumble::fem {
 
 struct PetscStopTest {
   const SoilOperator* op = nullptr;
+  /// The stop check, when not op's (the ranks': rank 0's asks the host, the others' nothing).
+  std::function<void()> check;
   void* default_test = nullptr;  // KSPConvergedDefault's context
   std::exception_ptr stopped;    // the stop check's exception, rethrown after KSPSolve
 };
@@ -29,8 +32,11 @@ struct PetscStopTest {
 /// Throws std::runtime_error when PETSc fails.
 KSP static_cg(MPI_Comm comm, Mat a, Mat p, double tolerance);
 
-/// ksp's convergence test: op's stop check, then PETSc's default test (stop must outlive ksp).
-/// Throws std::runtime_error when PETSc fails.
+/// ksp's convergence test: the stop check (stop.check, else op's), then PETSc's default test
+/// (stop must outlive ksp). On a communicator of many ranks every rank learns at each iteration
+/// whether any rank's check threw (one MPI_Allreduce), so that all leave CG at the same
+/// iteration and none waits in its next sum: a rank whose own check did not throw keeps a
+/// rumble::Stopped. Throws std::runtime_error when PETSc fails.
 void set_stop_test(KSP ksp, const SoilOperator& op, PetscStopTest& stop);
 
 /// One static solve by ksp (CG with a nonzero initial guess and set_stop_test's test, x and b
