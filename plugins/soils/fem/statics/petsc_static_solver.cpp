@@ -132,6 +132,12 @@ void PetscStaticSolver::make_stepped_product() {
 
 PetscStaticSolver::~PetscStaticSolver() = default;
 
+std::size_t PetscStaticSolver::bytes() const {
+  const Petsc& p = *petsc_;
+  return p.row_start.capacity() * sizeof(PetscInt) + p.column.capacity() * 4 +
+         p.value.capacity() * 8;
+}
+
 void PetscStaticSolver::build_solver(const Eigen::Matrix3Xd& nodes) {
   Petsc& p = *petsc_;
   // The rigid-body modes from the coordinates: 3 translations, 3 rotations, orthonormalised.

@@ -58,6 +58,9 @@ class PetscStaticSolver {
   double setup_seconds() const { return setup_seconds_; }
   /// GAMG's levels, the mesh's included.
   int levels() const { return levels_; }
+  /// K + S's rows this solver took from the operator [bytes] (PETSc's AIJ shares them; its
+  /// hierarchy is not counted).
+  std::size_t bytes() const;
   /// Relative residual CG stops at (of the load on the free DOFs).
   static constexpr double kTolerance = 1e-10;
 

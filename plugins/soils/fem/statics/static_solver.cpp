@@ -25,6 +25,7 @@ void StaticSolver::release() {
 std::size_t StaticSolver::bytes() const {
   std::size_t b = 0;
   if (factor_) b += factor_->llt.cholmod().memory_inuse;
+  if (gamg_) b += gamg_->bytes();
   if (geometric_) b += geometric_->bytes();
   return b;
 }

@@ -53,9 +53,9 @@ class StaticSolver {
   /// plugin does once the statics are done (at the first step: docs/fem-soil.md section 7.2); a
   /// later solve builds them again, the same, and starts CG from rest.
   void release();
-  /// Memory the solves keep now [bytes]: the factor (CHOLMOD's count of its memory in use), the
-  /// geometric multigrid's coarse level and vectors; PETSc's own objects
-  /// (GAMG's matrix, which holds K's taken rows, and its hierarchies) are not counted.
+  /// Memory the solves keep now [bytes]: the factor (CHOLMOD's count of its memory in use), K's
+  /// rows GAMG took from the operator, the geometric multigrid's coarse level and vectors;
+  /// PETSc's own objects (GAMG's hierarchies) are not counted.
   std::size_t bytes() const;
   int last_cg_iterations() const { return cg_iterations_; }
   /// Seconds the multigrid hierarchy took to build (0 before, or with the factor; the geometric
