@@ -103,26 +103,17 @@ void DistributedOperator::blocks_times(const double* x, Finish&& finish) const {
 void DistributedOperator::stepped_product(const double* x, NodeProducts& take) const {
   double* summed = shared_products_.data();
   const std::int32_t shared = shared_;
-  // The interior's products are whole at once: handed over in runs from the stack (a thread's
-  // interior nodes come in ascending runs: the interior is in one process's order, the blocks'
-  // order, between the shared nodes), the shared nodes' kept for their sums over the ranks.
-  constexpr std::int64_t kRun = 64;
-  double run[3 * kRun];
-  std::int64_t first = 0, count = 0;
+  // The interior's products are whole at once: handed over in runs (a thread's interior nodes
+  // come in ascending runs: the interior is in one process's order, the blocks' order, between
+  // the shared nodes), the shared nodes' kept for their sums over the ranks.
+  ProductRuns runs(take);
   blocks_times(x, [&](std::int64_t i, const double* p) {
-    if (i < shared) {
+    if (i < shared)
       std::copy_n(p, 3, summed + 3 * i);
-      return;
-    }
-    if (count == kRun || (count > 0 && i != first + count)) {
-      take.take(first, count, run);
-      count = 0;
-    }
-    if (count == 0) first = i;
-    std::copy_n(p, 3, run + 3 * count);
-    ++count;
+    else
+      runs.add(i, p);
   });
-  if (count > 0) take.take(first, count, run);
+  runs.flush();
 #pragma omp barrier
 #pragma omp master
   {

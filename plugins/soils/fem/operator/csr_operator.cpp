@@ -98,22 +98,10 @@ void CsrOperator::times(const Eigen::VectorXd& x, Eigen::VectorXd& y, bool with_
 }
 
 void CsrOperator::stepped_product(const double* x, NodeProducts& take) const {
-  // The blocks hand a thread its nodes in ascending runs (one per part it owns): they are
-  // gathered in runs of up to kRun nodes (on the stack, in the cache) and handed over together,
-  // so that the virtual call is once per run, not per node.
-  constexpr std::int64_t kRun = 64;
-  double run[3 * kRun];
-  std::int64_t first = 0, count = 0;
-  fused_product(x, [&](std::int64_t i, const double* product) {
-    if (count == kRun || (count > 0 && i != first + count)) {
-      take.take(first, count, run);
-      count = 0;
-    }
-    if (count == 0) first = i;
-    std::copy_n(product, 3, run + 3 * count);
-    ++count;
-  });
-  if (count > 0) take.take(first, count, run);
+  // (the blocks hand a thread its nodes in ascending runs, one per part it owns)
+  ProductRuns runs(take);
+  fused_product(x, [&](std::int64_t i, const double* product) { runs.add(i, product); });
+  runs.flush();
 }
 
 }  // namespace rumble::fem

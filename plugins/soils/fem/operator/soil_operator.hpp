@@ -12,6 +12,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -48,6 +49,30 @@ class NodeProductsOf final : public NodeProducts {
 
  private:
   Finish& finish_;
+};
+
+/// Gathers one thread's node products, which come in ascending runs of nodes, into runs of up
+/// to kRun nodes (on the stack, in the cache) and hands each to `take` at once: the virtual call
+/// once per run, not per node. add() each product in order, then flush().
+class ProductRuns {
+ public:
+  explicit ProductRuns(NodeProducts& take) : take_(take) {}
+  void add(std::int64_t i, const double* product) {
+    if (count_ == kRun || (count_ > 0 && i != first_ + count_)) flush();
+    if (count_ == 0) first_ = i;
+    std::copy_n(product, 3, run_ + 3 * count_);
+    ++count_;
+  }
+  void flush() {
+    if (count_ > 0) take_.take(first_, count_, run_);
+    count_ = 0;
+  }
+
+ private:
+  static constexpr std::int64_t kRun = 64;
+  NodeProducts& take_;
+  double run_[3 * kRun];
+  std::int64_t first_ = 0, count_ = 0;
 };
 
 class SoilOperator {
