@@ -82,6 +82,21 @@ function(expect_match text regex)
   endif()
 endfunction()
 
+# Runs the command line `launch` (its results in `results`), stops it with SIGTERM `delay` s
+# after its log shows `trigger` (whatever the machine's load: a fixed sleep let a fast machine
+# finish first), and fails unless summary.json says "interrupted"; the log in out_var. (Lines,
+# not ';', in the script: it passes through a CMake list.)
+function(stop_mid_run out_var launch trigger delay results)
+  set(log ${results}.log)
+  rumble_run(out code sh -c "${launch} > ${log} 2>&1 & pid=$!\nwhile kill -0 $pid && ! grep -q '${trigger}' ${log}\ndo sleep 0.1\ndone\nsleep ${delay}\nkill -TERM $pid\nwait $pid\ncat ${log}")
+  file(READ ${results}/summary.json summary)
+  string(JSON status GET "${summary}" status)
+  if(NOT status STREQUAL "interrupted")
+    message(FATAL_ERROR "summary.json status '${status}', expected 'interrupted':\n${out}")
+  endif()
+  set(${out_var} "${out}" PARENT_SCOPE)
+endfunction()
+
 # The FEM soil's cases (fem_small.json): one process's run against a run on `ranks` ranks.
 # fields_tolerance: the fields' (csv_agree); the CSVs compared are ${fem_csvs}.
 function(fem_runs ranks fields_tolerance)
@@ -303,15 +318,8 @@ function(fem_case)
     # As interrupt_stops_every_rank, once the FEM soil steps: the ranks agree at each sub-step.
     string(JOIN " " launch ${mpirun} -n 2 ${RUMBLE} run ${fem} --output ${WORK_DIR}/stopped
            --no-plots --set /time/end=0.35 --set /time/macro_step=0.00001)
-    # (stopped 1 s after the soil's first step is logged, whatever the machine's load; lines,
-    # not ';', as above)
-    set(log ${WORK_DIR}/log)
-    rumble_run(out code sh -c "${launch} > ${log} 2>&1 & pid=$!\nwhile kill -0 $pid && ! grep -q 'explicit sub-step' ${log}\ndo sleep 0.2\ndone\nsleep 1\nkill -TERM $pid\nwait $pid\ncat ${log}")
-    file(READ ${WORK_DIR}/stopped/summary.json summary)
-    string(JSON status GET "${summary}" status)
-    if(NOT status STREQUAL "interrupted")
-      message(FATAL_ERROR "summary.json status '${status}', expected 'interrupted':\n${out}")
-    endif()
+    # (stopped 1 s after the soil's first step is logged)
+    stop_mid_run(out "${launch}" "explicit sub-step" 1 ${WORK_DIR}/stopped)
     expect_match("${out}" "the mesh split over 2 ranks")
     # ("interrupted at t = ..." between macro steps, "... inside the step after t = ..." in one)
     expect_match("${out}" "interrupted [^\n]*t = [0-9.e-]+ s")
@@ -324,18 +332,11 @@ function(fem_case)
     # statics.solver gamg named: solved on the ranks even at this size. Richardson with a tiny
     # step never converges (CG could end in a breakdown), so only the stop ends the statics:
     # rank 0 asks the host between the iterations and every rank leaves at the same one
-    # (plugins/soils/fem/statics/petsc_cg.hpp). Without it the ranks iterate on after SIGTERM
-    # and the test times out.
+    # (plugins/soils/fem/statics/petsc_cg.hpp). Without rank 0's check the test fails.
     set(ENV{PETSC_OPTIONS} "-fem_statics_ksp_type richardson -fem_statics_ksp_richardson_scale 1e-4 -fem_statics_ksp_max_it 100000000")
     string(JOIN " " launch ${mpirun} -n 2 ${RUMBLE} run ${fem} --output ${WORK_DIR}/stopped
            --no-plots --set /soil/params/statics/solver=gamg)
-    set(log ${WORK_DIR}/log)
-    rumble_run(out code sh -c "${launch} > ${log} 2>&1 & pid=$!\nwhile kill -0 $pid && ! grep -q 'estimates the run' ${log}\ndo sleep 0.2\ndone\nsleep 2\nkill -TERM $pid\nwait $pid\ncat ${log}")
-    file(READ ${WORK_DIR}/stopped/summary.json summary)
-    string(JSON status GET "${summary}" status)
-    if(NOT status STREQUAL "interrupted")
-      message(FATAL_ERROR "summary.json status '${status}', expected 'interrupted':\n${out}")
-    endif()
+    stop_mid_run(out "${launch}" "estimates the run" 2 ${WORK_DIR}/stopped)
     expect_match("${out}" "interrupted \\(SIGTERM\\) while the static state was solved, before the first step")
   elseif(CASE STREQUAL "fem_too_many_ranks_is_refused")
     # (refused as the run's validation lays the soil out: exit 1, before meshing)
@@ -477,14 +478,7 @@ elseif(CASE STREQUAL "interrupt_stops_every_rank")
   # steps within a 3 s sleep, and the test saw a completed run.
   string(JOIN " " launch ${mpirun} -n 2 ${RUMBLE} run ${scenario} --output ${WORK_DIR}/stopped
          --no-plots --set /time/end=0.5 --set /time/macro_step=2e-6)
-  # Lines, not ';': the script passes through a CMake list.
-  set(log ${WORK_DIR}/stopped.log)
-  rumble_run(out code sh -c "${launch} > ${log} 2>&1 & pid=$!\nwhile kill -0 $pid && ! grep -q 'engine: macro step' ${log}\ndo sleep 0.1\ndone\nsleep 0.5\nkill -TERM $pid\nwait $pid\ncat ${log}")
-  file(READ ${WORK_DIR}/stopped/summary.json summary)
-  string(JSON status GET "${summary}" status)
-  if(NOT status STREQUAL "interrupted")
-    message(FATAL_ERROR "summary.json status '${status}', expected 'interrupted':\n${out}")
-  endif()
+  stop_mid_run(out "${launch}" "engine: macro step" 0.5 ${WORK_DIR}/stopped)
   expect_match("${out}" "interrupted at t = [0-9.e-]+ s")
 elseif(CASE STREQUAL "foreign_launcher_is_refused")
   # Another MPI's launcher (MPICH's hydra sets PMI_SIZE and PMI_RANK): OpenMPI would run each
