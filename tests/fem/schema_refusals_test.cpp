@@ -52,6 +52,17 @@ TEST(FemSchema, RefusesTheRangesTheSettingsNoLongerCheck) {
   EXPECT_NE(refusals(p), "");
 }
 
+// The soil's own multigrid was removed (docs/decisions/0018-petsc-statics.md): a scenario that
+// still names it is refused with the values there are, auto the default.
+TEST(FemSchema, TheRemovedMultigridStaticsAreRefusedWithTheSolversThereAre) {
+  json p = small_soil();
+  p["statics"] = {{"solver", "multigrid"}};
+  EXPECT_EQ(refusals(p),
+            "params/statics/solver: must be one of: auto, gamg, geometric, got \"multigrid\"");
+  p["statics"] = {{"solver", "auto"}};
+  EXPECT_EQ(refusals(p), "");
+}
+
 TEST(FemSchema, AMatchedLayersSettingsUnderAnotherBoundaryAreRefused) {
   // They would be ignored.
   json p = small_soil();
