@@ -8,6 +8,8 @@
 //     largest entry: in single precision only because each entry between shared nodes is summed
 //     whole before it is rounded (summed in pieces, the rounding of each piece would leave
 //     differences near 6e-8);
+//   - the products' halo exchanges allocate nothing in PETSc (the forest made their buffers, so
+//     no rank can fail alone inside one: star_forest.hpp);
 //   - the step's product (stepped_product, on 2 threads) hands every node over once, with the
 //     same value as the product above, and every ghost holds its owner's value bit for bit; it
 //     reads the part's upper blocks, under 0.7 of the bytes of its whole rows; each node not
@@ -27,8 +29,10 @@
 //     ties included) bit for bit;
 //   - the stable step's largest eigenvalue by Lanczos over the ranks (sums in rank order) equals
 //     one process's to 1e-9, its own tolerance, and is the same on every rank.
-// usage: mpirun -n N fem_partition_check   (exit code 0: all held; 1: a check failed)
+// usage: PETSC_OPTIONS=-malloc_debug mpirun -n N fem_partition_check   (exit code 0: all held;
+// 1: a check failed)
 #include <omp.h>
+#include <petscsys.h>
 
 #include <algorithm>
 #include <cmath>
@@ -78,6 +82,14 @@ struct Checks {
     std::printf("fem_partition_check: FAILED %s (%g)\n", what, value);
   }
 };
+
+// The bytes PETSc holds now (its tracing malloc, which the test's PETSC_OPTIONS -malloc_debug
+// turns on; main checks that it is on).
+double petsc_bytes() {
+  PetscLogDouble bytes = 0.0;
+  PetscMallocGetCurrentUsage(&bytes);
+  return bytes;
+}
 
 // max |a - b| / max |b|.
 double relative(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
@@ -188,9 +200,13 @@ int check(MPI_Comm comm, StepPrecision precision, std::vector<std::int32_t>& nod
   const DistributedOperator op(std::move(K), mass, {}, false, std::vector<char>(part.nodes(), 0), 2,
                                precision, part, comm);
   Eigen::VectorXd y;
+  const double petsc_before = petsc_bytes();
   op.stepped_stiffness_times(x, y, false);
   int twice = 0;
   const Eigen::VectorXd handed = stepped(op, x, twice);
+  checks.expect(petsc_bytes() == petsc_before,
+                "the products' exchanges allocate nothing in PETSc (the forest made their buffers)",
+                petsc_bytes() - petsc_before);
   checks.expect(twice == 0, "stepped_product hands every node over once", twice);
   checks.expect(handed == y, "stepped_product equals the product", relative(handed, y));
   // The step reads the part's upper blocks: about half the bytes of its whole rows in the
@@ -461,6 +477,15 @@ int main(int argc, char** argv) {
   int failed = 0;
   {
     const auto session = rumble::fem::PetscSession::get();
+    PetscBool traced = PETSC_FALSE;
+    PetscMallocGetDebug(&traced, nullptr, nullptr);
+    if (!traced) {
+      if (rank_of(MPI_COMM_WORLD) == 0)
+        std::printf(
+            "fem_partition_check: FAILED PETSc's malloc is not traced: run it with "
+            "PETSC_OPTIONS=-malloc_debug, as its test does\n");
+      ++failed;
+    }
     std::vector<std::int32_t> first, second;
     failed += check(MPI_COMM_WORLD, StepPrecision::kDouble, first);
     failed += check(MPI_COMM_WORLD, StepPrecision::kSingle, second);

@@ -38,6 +38,9 @@
 #                                on disk
 #   fem_interrupt_in_the_ranks_statics  mpirun stopped while the ranks' CG runs (made endless by
 #                                PETSC_OPTIONS): every rank leaves it, "interrupted", no hang
+#   fem_product_failure_in_the_ranks_statics  the geometric multigrid's product failing on rank
+#                                1 (RUMBLE_FEM_FAIL_RANK_AT=1:statics): the ranks agree on it in
+#                                PETSc's set-up, exit 3 with rank 1's message, no hang
 #   fem_node_memory_is_refused   the estimate per rank above this machine's memory (made 0.1 GB
 #                                by RUMBLE_FEM_NODE_MEMORY): a clear error before meshing (exit 1)
 #   fem_too_many_ranks_is_refused  a mesh too small for 3 ranks: a clear error before meshing
@@ -338,6 +341,24 @@ function(fem_case)
            --no-plots --set /soil/params/statics/solver=gamg)
     stop_mid_run(out "${launch}" "estimates the run" 2 ${WORK_DIR}/stopped)
     expect_match("${out}" "interrupted \\(SIGTERM\\) while the static state was solved, before the first step")
+  elseif(CASE STREQUAL "fem_product_failure_in_the_ranks_statics")
+    # The fine level's product fails on rank 1 alone, inside PETSc's collective frames (the
+    # smoothers' estimates): it keeps the failure and makes its exchanges, CG's test and the
+    # set-up agree on it (plugins/soils/fem/distributed/geometric_rank_statics.cpp). Before,
+    # rank 1 left PETSc with an error while rank 0 waited in the next sum: a hang.
+    set(ENV{RUMBLE_FEM_FAIL_RANK_AT} "1:statics")
+    rumble_run(out code ${mpirun} -n 2 ${RUMBLE} run ${fem} --output ${WORK_DIR}/failed
+               --no-plots --set /soil/params/mesh/refine=1
+               --set /soil/params/statics={\"solver\":\"geometric\"})
+    if(NOT code EQUAL 3)
+      message(FATAL_ERROR "expected exit code 3 (run failed), got ${code}:\n${out}")
+    endif()
+    expect_match("${out}" "fem: on rank 1: a product failed on purpose in the static solve on rank 1")
+    file(READ ${WORK_DIR}/failed/summary.json summary)
+    string(JSON status GET "${summary}" status)
+    if(NOT status STREQUAL "failed")
+      message(FATAL_ERROR "summary.json status '${status}', expected 'failed':\n${out}")
+    endif()
   elseif(CASE STREQUAL "fem_too_many_ranks_is_refused")
     # (refused as the run's validation lays the soil out: exit 1, before meshing)
     rumble_run(out code ${mpirun} -n 3 ${RUMBLE} run ${fem} --output ${WORK_DIR}/small

@@ -69,10 +69,21 @@ void FemSoil::join_ranks() {
   // Ctrl-C inside the ranks' static solves: rank 0 asks the host, every rank learns it at the
   // same CG iteration (statics/petsc_cg.hpp).
   if (distributed_->root()) distributed_->set_stop_check(throttled_stop_check());
-  if (const char* hook = std::getenv("RUMBLE_FEM_FAIL_RANK_AT")) {
+  if (const char* hook =
+          std::getenv("RUMBLE_FEM_FAIL_RANK_AT")) {  // "rank:seconds", "rank:statics"
     std::istringstream in(hook);
     char colon = 0;
-    in >> fail_rank_ >> colon >> fail_at_;
+    std::string at;
+    in >> fail_rank_ >> colon >> at;
+    if (at == "statics") {  // (the ranks' static solve: a product fails there)
+      if (distributed_->rank() == fail_rank_)
+        distributed_->fail_products_on_purpose(
+            "fem: a product failed on purpose in the static solve on rank " +
+            std::to_string(fail_rank_) + " (RUMBLE_FEM_FAIL_RANK_AT, a test's)");
+      fail_rank_ = -1;
+    } else {
+      std::istringstream(at) >> fail_at_;
+    }
   }
 }
 
@@ -146,7 +157,12 @@ void FemSoil::accept_layout_distributed(const std::vector<rumble::Footprint>& fo
     refuse_count(nodes, "the mesh's", "");
     check_memory(nodes, "the mesh");
   });
-  d.lay_out(d.root() ? &mesh_ : nullptr, settings_, footprints, host_.threads(), refine_on_ranks());
+  // (a rank failing alone inside the split, the refinement or the build stops every rank with
+  // its message rather than leave them waiting: distributed/rank_agreement.hpp)
+  rumble::fem::collective(d.comm(), [&] {
+    d.lay_out(d.root() ? &mesh_ : nullptr, settings_, footprints, host_.threads(),
+              refine_on_ranks());
+  });
   // (statics.solver gamg or geometric named: on the ranks at any size, as asked)
   statics_on_root_ =
       !settings_.statics_named && d.whole_dofs() <= rumble::fem::StaticSolver::kFactorLimit;
@@ -242,7 +258,9 @@ void FemSoil::solve_static_on_ranks(const double* static_force, double* static_u
   rumble::fem::DistributedSoil& d = *distributed_;
   rumble::fem::on_root(d.comm(), [&] { export_if_due(); });
   const auto start = std::chrono::steady_clock::now();
-  const bool first = d.solve_static(static_force, static_average_.data());
+  bool first = false;  // (PETSc's set-up and CG: as the lay-out above)
+  rumble::fem::collective(d.comm(),
+                          [&] { first = d.solve_static(static_force, static_average_.data()); });
   if (!d.root()) return;
   for (std::size_t j = 0; j < footprints_.size(); ++j) static_u[j] = static_average_[j];
   const rumble::fem::RankStatics& statics = *d.statics();
@@ -314,7 +332,12 @@ void FemSoil::advance_distributed(double t, double H, const rumble::Waveform& fo
     step.step(d.state(), d.force(), dt);
     tuner_.record(seconds_since(start));
     if (tuner_.threads() != step.threads()) step.set_threads(tuner_.threads());
-    record_probes(t + tau * H);
+    std::exception_ptr failure;  // (agreed below, as every rank's of this sub-step)
+    try {
+      record_probes(t + tau * H);
+    } catch (...) {
+      failure = std::current_exception();
+    }
     // Every rank learns at the same sub-step whether rank 0 is asked to stop (Ctrl-C, checked
     // every 0.1 s) or a rank failed: each stops there, none waits in the next exchange.
     bool stop = false;
@@ -323,8 +346,7 @@ void FemSoil::advance_distributed(double t, double H, const rumble::Waveform& fo
       stop = host_.stop_requested(tau);
       last_check = std::chrono::steady_clock::now();
     }
-    std::exception_ptr failure;
-    if (d.rank() == fail_rank_ && t + tau * H >= fail_at_)
+    if (!failure && d.rank() == fail_rank_ && t + tau * H >= fail_at_)
       failure = std::make_exception_ptr(std::runtime_error(
           "fem: failed on purpose at t = " + format(t + tau * H, 6) + " s on rank " +
           std::to_string(d.rank()) + " (RUMBLE_FEM_FAIL_RANK_AT, a test's)"));

@@ -3,9 +3,12 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <exception>
 #include <numeric>
+#include <stdexcept>
 #include <utility>
 
+#include "distributed/rank_agreement.hpp"
 #include "distributed/rank_sum.hpp"
 
 namespace rumble::fem {
@@ -116,10 +119,12 @@ void DistributedOperator::stepped_product(const double* x, NodeProducts& take) c
   runs.flush();
 #pragma omp barrier
 #pragma omp master
-  {
+  try {  // (an exception cannot leave an OpenMP region, nor one rank an exchange alone)
     halo_.sum_to_roots_begin(summed, summed, 3);
     halo_.sum_to_roots_end(summed, summed, 3);
     halo_.to_leaves(summed, summed, 3);
+  } catch (const std::exception& e) {
+    stop_every_rank(comm_, e.what());
   }
 #pragma omp barrier
   std::int64_t lo = 0, hi = 0;
@@ -132,18 +137,26 @@ void DistributedOperator::times(const Eigen::VectorXd& x, Eigen::VectorXd& y, bo
   const std::int64_t n = nodes();
   y.resize(x.size());
   double* out = y.data();
-  if (stepped) {
+  std::exception_ptr failure;  // (this rank's part's: rethrown after the exchanges)
+  try {
+    if (!stepped && !failing_.empty()) throw std::runtime_error(failing_);
+    if (stepped) {
 #pragma omp parallel num_threads(threads_)
-    blocks_times(x.data(),
-                 [out](std::int64_t i, const double* p) { std::copy_n(p, 3, out + 3 * i); });
-  } else {
-    const CsrMatrix& K = stiffness();
+      blocks_times(x.data(),
+                   [out](std::int64_t i, const double* p) { std::copy_n(p, 3, out + 3 * i); });
+    } else {
+      const CsrMatrix& K = stiffness();
 #pragma omp parallel for num_threads(threads_) schedule(static)
-    for (std::int64_t i = 0; i < n; ++i)
-      K.node_rows_dot(static_cast<std::int32_t>(i), x.data(), out + 3 * i);
+      for (std::int64_t i = 0; i < n; ++i)
+        K.node_rows_dot(static_cast<std::int32_t>(i), x.data(), out + 3 * i);
+    }
+  } catch (...) {
+    failure = std::current_exception();
+    y.setZero();
   }
   halo_.sum_to_roots(out, out, 3);
   halo_.to_leaves(out, out, 3);
+  if (failure) std::rethrow_exception(failure);
   for (std::int64_t i = 0; i < n; ++i) {
     double* node = out + 3 * i;
     if (fixed_[i]) {

@@ -25,7 +25,11 @@
 // K's compressed rows (in double: the statics' matrix, stiffness_times) are kept until
 // release_stiffness, and built again (collectively) when next asked for.
 //
-// Every product is collective: all ranks call it, in the same order.
+// Every product is collective: all ranks call it, in the same order. None leaves a rank alone
+// inside an exchange: the halo's buffers are made with the forest (star_forest.hpp), so the
+// step's product allocates nothing; stiffness_times makes its exchanges even when this rank's
+// part of the product fails (K's rows built again), then throws, for its caller to agree on
+// (geometric_rank_statics.cpp, rank_agreement.hpp).
 #pragma once
 
 #include <Eigen/Core>
@@ -33,6 +37,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "distributed/mesh_partition.hpp"
@@ -92,6 +97,10 @@ class DistributedOperator final : public SoilOperator {
              const double* node_weight) const override;
   std::int64_t whole_node(std::int64_t i) const override { return global_[i]; }
 
+  /// From now on this rank's part of stiffness_times throws std::runtime_error(why) (its
+  /// exchanges still made): tests/mpi's product failure on one rank (RUMBLE_FEM_FAIL_RANK_AT).
+  void fail_products_on_purpose(std::string why) { failing_ = std::move(why); }
+
  private:
   /// y = K x + S x, summed over the ranks at the shared nodes, 0 on fixed nodes.
   void times(const Eigen::VectorXd& x, Eigen::VectorXd& y, bool with_springs, bool stepped) const;
@@ -116,6 +125,7 @@ class DistributedOperator final : public SoilOperator {
   mutable std::vector<double> shared_products_;  // 3 per shared node
   std::vector<std::int32_t> order_;              // the local nodes in one process's order
   mutable std::vector<double> ordered_x_;        // the product's x in that order
+  std::string failing_;                          // (fail_products_on_purpose's)
 };
 
 }  // namespace rumble::fem

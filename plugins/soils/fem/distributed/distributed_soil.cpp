@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <utility>
 
@@ -82,10 +83,14 @@ void DistributedSoil::build_step(const FemSettings& settings,
   // K's rows are for the statics (their matrix, the geometric multigrid's product): freed once
   // they are done (free_statics), built again on every rank if a later static solve asks.
   op->set_stiffness_source([this, settings] {
-    CsrMatrix again = assemble_stiffness(part_.mesh, settings);
-    complete_shared_entries(part_, again, comm_);
-    return again;
+    // (a rank that cannot build its rows says so on every rank, before the exchange that
+    // completes them)
+    std::optional<CsrMatrix> again;
+    on_every_rank(comm_, [&] { again.emplace(assemble_stiffness(part_.mesh, settings)); });
+    complete_shared_entries(part_, *again, comm_);
+    return std::move(*again);
   });
+  if (!failing_products_.empty()) op->fail_products_on_purpose(failing_products_);
   // Lanczos on the ranks' operator (its sums over the ranks in rank order): every rank gets
   // the same stable step, one process's to rounding (fem_partition_check.cpp).
   step_.emplace(std::move(op), settings.damping.mass_coefficient(),
@@ -166,6 +171,7 @@ void DistributedSoil::set_static(const Eigen::VectorXd* whole) {
 void DistributedSoil::set_probes(const std::vector<Probe>& probes) {
   probes_ = part_probes(comm_, part_, probes);
   probe_count_ = probes.size();
+  probe_rows_.assign(probe_count_ * RUMBLE_PROBE_VALUES, 0.0);
 }
 
 void DistributedSoil::footprint_averages(const Eigen::VectorXd& x, const Eigen::VectorXd& y,
@@ -189,7 +195,9 @@ void DistributedSoil::footprint_averages(const Eigen::VectorXd& x, const Eigen::
 }
 
 void DistributedSoil::sample_probes(double* rows) const {
-  std::vector<double> mine(probe_count_ * RUMBLE_PROBE_VALUES, 0.0);
+  // (set_probes made the rows: nothing here can fail before the reduction the others wait in)
+  std::vector<double>& mine = probe_rows_;
+  std::fill(mine.begin(), mine.end(), 0.0);
   for (const PartProbe& p : probes_) {
     double* out = mine.data() + p.index * RUMBLE_PROBE_VALUES;
     for (int a = 0; a < 4; ++a) {  // (as one process samples it: fem_outputs.cpp)

@@ -88,6 +88,11 @@ class DistributedSoil {
   double peak_estimate() const { return peak_estimate_; }
 
   ExplicitSolver& step() { return *step_; }
+
+  /// The operator's stiffness_times throws std::runtime_error(why) on this rank from its next
+  /// layout on (DistributedOperator::fail_products_on_purpose): RUMBLE_FEM_FAIL_RANK_AT's
+  /// "rank:statics", a test's.
+  void fail_products_on_purpose(std::string why) { failing_products_ = std::move(why); }
   const ExplicitSolver& step() const { return *step_; }
   ExplicitState& state() { return state_; }
   const ExplicitState& state() const { return state_; }
@@ -150,7 +155,9 @@ class DistributedSoil {
   std::unique_ptr<MeshPartition> coarse_;  // statics.solver geometric: the coarse part
   std::vector<PartProbe> probes_;
   std::size_t probe_count_ = 0;
-  double peak_estimate_ = 0.0;  // bytes
+  mutable std::vector<double> probe_rows_;  // sample_probes' rows on this rank
+  double peak_estimate_ = 0.0;              // bytes
+  std::string failing_products_;            // (fail_products_on_purpose's)
 };
 
 }  // namespace rumble::fem

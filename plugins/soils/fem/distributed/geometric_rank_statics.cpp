@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <utility>
 #include <vector>
 
 #include "distributed/rank_agreement.hpp"
@@ -28,7 +29,10 @@ struct GeometricRankStatics::Petsc {
   /// y = (K + S) x over the ranks by the operator's product in double; identity rows and
   /// columns on held DOFs (x's held entries taken out first: the shell is symmetric for any x,
   /// as the smoother's estimate of the spectrum needs, statics/geometric_static_solver.cpp).
-  /// The fine level's MATOP_MULT, collective as MatMult is.
+  /// The fine level's MATOP_MULT, collective as MatMult is. A failed product (it still made its
+  /// exchanges, distributed_operator.hpp) is kept in `stop.failed` and gives y = x: a PETSc error
+  /// here would end MatMult on this rank alone while the others wait in CG's next sum; CG ends
+  /// at the next iteration on every rank instead and the ranks agree on the failure.
   static PetscErrorCode multiply(Mat a, Vec x, Vec y) {
     Petsc* p = nullptr;
     const PetscScalar* in = nullptr;
@@ -39,17 +43,17 @@ struct GeometricRankStatics::Petsc {
     for (std::size_t k = 0; k < owned.size(); ++k)
       for (int c = 0; c < 3; ++c)
         p->in[3 * owned[k] + c] = p->fixed[owned[k]] ? 0.0 : in[3 * k + c];
-    try {  // (a C++ exception must not cross PETSc's C frames: PETSc's error instead)
+    try {  // (a C++ exception must not cross PETSc's C frames)
       p->part->halo->to_leaves(p->in.data(), p->in.data(), 3);  // (the ghosts: their owners')
       p->op->stiffness_times(p->in, p->out, true);
     } catch (...) {
-      VecRestoreArrayRead(x, &in);
-      return PETSC_ERR_LIB;
+      if (!p->stop.failed) p->stop.failed = std::current_exception();
     }
     PetscCall(VecGetArray(y, &out));
     for (std::size_t k = 0; k < owned.size(); ++k)
       for (int c = 0; c < 3; ++c)
-        out[3 * k + c] = p->fixed[owned[k]] ? in[3 * k + c] : p->out[3 * owned[k] + c];
+        out[3 * k + c] =
+            p->fixed[owned[k]] || p->stop.failed ? in[3 * k + c] : p->out[3 * owned[k] + c];
     PetscCall(VecRestoreArray(y, &out));
     PetscCall(VecRestoreArrayRead(x, &in));
     return 0;
@@ -204,6 +208,7 @@ void GeometricRankStatics::build_solver(const MeshPartition& coarse,
     const SetUpOptions options;  // (GAMG's products on the coarse MPIAIJ matrix)
     code = KSPSetUp(p.ksp);
   }
+  agree(p.comm, std::exchange(p.stop.failed, nullptr));  // (the smoothers' estimates' products)
   petsc_check(code, "KSPSetUp (the geometric multigrid's levels on the ranks)");
   levels_ = two_level_multigrid_levels(p.ksp);
 }

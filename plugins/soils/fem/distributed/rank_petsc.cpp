@@ -6,6 +6,7 @@
 #include <string>
 #include <type_traits>
 
+#include "distributed/rank_agreement.hpp"
 #include "statics/petsc_session.hpp"
 
 namespace rumble::fem {
@@ -159,21 +160,25 @@ Eigen::VectorXd solve_on_ranks(KSP ksp, Vec x, Vec b, PetscStopTest& stop,
     petsc_check(VecSet(x, 0.0), "VecSet");
   } else {
     const PetscErrorCode code = KSPSolve(ksp, b, x);
-    if (stop.stopped) std::rethrow_exception(std::exchange(stop.stopped, nullptr));
+    // (every rank left CG at the same iteration, or at its end: the ranks agree why, a rank's
+    // failed product or rank 0's stop, before a failure of PETSc's own is thrown)
+    const MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(ksp));
+    agree(comm, std::exchange(stop.failed, nullptr),
+          std::exchange(stop.stopped, nullptr) != nullptr);
     petsc_check(code, "KSPSolve");
     PetscInt its = 0;
     KSPConvergedReason reason = KSP_CONVERGED_ITERATING;
     KSPGetIterationNumber(ksp, &its);
     KSPGetConvergedReason(ksp, &reason);
     iterations = static_cast<int>(its);
-    if (reason < 0) {  // (the same on every rank: each throws)
+    if (reason < 0) {  // (the same on every rank: rank 0 says it, every rank throws)
       PetscReal residual = 0.0;
       KSPGetResidualNorm(ksp, &residual);
       std::ostringstream m;
       m << "fem: the static solve on the ranks (" << method << ") did not converge after "
         << iterations << " iterations (PETSc's reason " << static_cast<int>(reason) << ", residual "
         << residual << " N): check the soil's parameters";
-      throw std::runtime_error(m.str());
+      on_root(comm, [&m] { throw std::runtime_error(m.str()); });
     }
   }
   Eigen::VectorXd u = Eigen::VectorXd::Zero(3 * static_cast<Eigen::Index>(part.nodes()));

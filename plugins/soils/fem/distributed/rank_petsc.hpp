@@ -64,9 +64,10 @@ class SetUpOptions {
 /// CG's start, and b: vectors of the owned rows): u on every node of the part, owned and ghost,
 /// with (K + S) u = f on the free DOFs, 0 on `fixed` ones (per local node); f: each owned node's
 /// whole load [N] (the ghosts' are not read). `iterations`: CG's (0 at rest, on every rank
-/// alike). Throws std::runtime_error on every rank, naming `method`, when CG does not converge;
-/// rethrows stop's exception (ksp's test, statics/petsc_cg.hpp: on every rank alike) when the
-/// host asked to stop.
+/// alike). Every rank throws (agreed, rank_agreement.hpp) when CG does not converge (naming
+/// `method`), when a rank's product failed (stop.failed: that rank's message) or when rank 0's
+/// stop check threw (stop.stopped: rumble::Stopped), each seen in ksp's test
+/// (statics/petsc_cg.hpp).
 Eigen::VectorXd solve_on_ranks(KSP ksp, Vec x, Vec b, PetscStopTest& stop,
                                const MeshPartition& part, const RankRows& rows,
                                const std::vector<char>& fixed, const Eigen::VectorXd& f,

@@ -2,6 +2,7 @@
 
 #include <petscsf.h>
 
+#include <algorithm>
 #include <map>
 #include <utility>
 
@@ -32,6 +33,20 @@ StarForest::StarForest(MPI_Comm comm, std::int32_t roots, const std::vector<Fore
                               remote.data(), PETSC_COPY_VALUES),
               "PetscSFSetGraph");
   petsc_check(PetscSFSetUp(petsc_->sf), "PetscSFSetUp");
+  // The exchanges of 3 doubles per point made once now: PETSc keeps their buffers (its links)
+  // and our unit types, so later exchanges allocate nothing and cannot fail on one rank alone
+  // (the step's product makes them inside an OpenMP region, distributed_operator.hpp).
+  std::int32_t extent = 0;  // leaf values are indexed by the leaves' local points
+  for (const ForestLeaf& leaf : leaves) extent = std::max(extent, leaf.local + 1);
+  std::vector<double> root_values(3 * static_cast<std::size_t>(roots), 0.0);
+  std::vector<double> leaf_values(3 * static_cast<std::size_t>(extent), 0.0);
+  for (int width = 1; width <= 3; ++width) {
+    unit(MPI_DOUBLE, width);
+    unit(MPI_INT, width);
+  }
+  to_leaves(root_values.data(), leaf_values.data(), 3);
+  sum_to_roots(leaf_values.data(), root_values.data(), 3);
+  copy_to_roots(leaf_values.data(), root_values.data(), 3);
 }
 
 StarForest::~StarForest() {

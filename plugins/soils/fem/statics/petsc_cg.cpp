@@ -1,7 +1,6 @@
 #include "statics/petsc_cg.hpp"
 
 #include <algorithm>
-#include <rumble/plugin.hpp>
 #include <sstream>
 #include <stdexcept>
 #include <utility>
@@ -27,13 +26,10 @@ PetscErrorCode converged_or_stopped(KSP ksp, PetscInt it, PetscReal rnorm,
   const MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(ksp));
   int ranks = 1;
   MPI_Comm_size(comm, &ranks);
-  int stop = test->stopped ? 1 : 0;
+  int stop = test->stopped || test->failed ? 1 : 0;
   if (ranks > 1) {
     int any = 0;
     PetscCallMPI(MPI_Allreduce(&stop, &any, 1, MPI_INT, MPI_MAX, comm));
-    if (any && !test->stopped)
-      test->stopped =
-          std::make_exception_ptr(rumble::Stopped("stopped at the host's request (Ctrl-C)"));
     stop = any;
   }
   if (stop) {

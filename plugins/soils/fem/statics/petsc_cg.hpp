@@ -24,6 +24,10 @@ struct PetscStopTest {
   std::function<void()> check;
   void* default_test = nullptr;  // KSPConvergedDefault's context
   std::exception_ptr stopped;    // the stop check's exception, rethrown after KSPSolve
+  /// A product's failure on this rank (the ranks' shell product keeps it rather than fail inside
+  /// PETSc's collective frames, distributed/geometric_rank_statics.cpp): CG ends at the next
+  /// iteration on every rank, and the ranks agree on it after KSPSolve.
+  std::exception_ptr failed;
 };
 
 /// PETSc's CG on comm for operator a, preconditioned from p: options prefix "fem_statics_", the
@@ -34,9 +38,9 @@ KSP static_cg(MPI_Comm comm, Mat a, Mat p, double tolerance);
 
 /// ksp's convergence test: the stop check (stop.check, else op's), then PETSc's default test
 /// (stop must outlive ksp). On a communicator of many ranks every rank learns at each iteration
-/// whether any rank's check threw (one MPI_Allreduce), so that all leave CG at the same
-/// iteration and none waits in its next sum: a rank whose own check did not throw keeps a
-/// rumble::Stopped. Throws std::runtime_error when PETSc fails.
+/// whether any rank's check threw or product failed (one MPI_Allreduce), so that all leave CG
+/// at the same iteration and none waits in its next sum; the caller then agrees on why
+/// (distributed/rank_petsc.hpp's solve_on_ranks). Throws std::runtime_error when PETSc fails.
 void set_stop_test(KSP ksp, const SoilOperator& op, PetscStopTest& stop);
 
 /// One static solve by ksp (CG with a nonzero initial guess and set_stop_test's test, x and b
