@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "scenario/schema_check.hpp"
 #include "soil_harness.hpp"
@@ -53,12 +54,18 @@ TEST(FemSchema, RefusesTheRangesTheSettingsNoLongerCheck) {
 }
 
 // The soil's own multigrid was removed (docs/decisions/0018-petsc-statics.md): a scenario that
-// still names it is refused with the values there are, auto the default.
-TEST(FemSchema, TheRemovedMultigridStaticsAreRefusedWithTheSolversThereAre) {
+// still names it is refused with the values there are and what replaces it.
+TEST(FemSchema, TheRemovedMultigridStaticsAreRefusedWithWhatReplacesThem) {
   json p = small_soil();
   p["statics"] = {{"solver", "multigrid"}};
   EXPECT_EQ(refusals(p),
             "params/statics/solver: must be one of: auto, gamg, geometric, got \"multigrid\"");
+  const std::vector<scenario::SchemaIssue> issues = fem_schema().check(p);
+  ASSERT_EQ(issues.size(), 1u);
+  EXPECT_EQ(issues[0].hint,  // (the schema's "x-removed", not "did you mean")
+            "\"multigrid\" (the soil's own multigrid) was removed on 2026-12-06: \"auto\" "
+            "replaces it, PETSc's GAMG or the geometric multigrid "
+            "(docs/decisions/0018-petsc-statics.md)");
   p["statics"] = {{"solver", "auto"}};
   EXPECT_EQ(refusals(p), "");
 }

@@ -55,6 +55,19 @@ TEST(ScenarioSchemaCheck, EachRuleIsPhrasedFromTheSchemaKeyword) {
              "/ratio: must be in [0, 0.5) [got]", "/tags: must have at least 1 item, got 0"}));
 }
 
+TEST(ScenarioSchemaCheck, ARemovedEnumValueIsToldWhatReplacesIt) {
+  // "x-removed" (docs/plugin-guide.md): the fix, not "did you mean" a value that merely looks
+  // alike; other values keep the nearest spelling.
+  const char* schema = R"({"enum": ["fast", "exact"],
+                          "x-removed": {"slow": "was removed in 2.0: \"exact\" replaces it"}})";
+  EXPECT_EQ(issues(schema, json("slow")),
+            (Lines{": must be one of: fast, exact [got] | \"slow\" was removed in 2.0: \"exact\" "
+                   "replaces it"}));
+  EXPECT_EQ(issues(schema, json("fats")),
+            (Lines{": must be one of: fast, exact [got] | did you mean \"fast\"?"}));
+  EXPECT_EQ(issues(schema, json("exact")), Lines{});
+}
+
 TEST(ScenarioSchemaCheck, MissingRequiredKeysNameTheKeyAndItsDescription) {
   EXPECT_EQ(issues(kObject, json::object()),
             (Lines{": required key 'mass' is missing | add \"mass\": wheel mass [kg]",

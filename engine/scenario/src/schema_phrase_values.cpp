@@ -166,6 +166,16 @@ void IssueBuilder::phrase_enum(const json& value, SchemaIssue& issue) const {
     if (!ref.node->is_object() || e == ref.node->end() || !e->is_array()) continue;
     if (std::find(e->begin(), e->end(), value) != e->end()) continue;
     issue.message = "must be one of: " + enum_list(*e);
+    // A value the schema lists as removed ("x-removed": {value: what replaces it}, docs/
+    // plugin-guide.md) is told its replacement, not the nearest spelling of another value.
+    const auto removed = ref.node->find("x-removed");
+    if (value.is_string() && removed != ref.node->end() && removed->is_object()) {
+      const auto fix = removed->find(value.get_ref<const std::string&>());
+      if (fix != removed->end() && fix->is_string()) {
+        issue.hint = value.dump() + " " + fix->get<std::string>();
+        break;
+      }
+    }
     if (value.is_string()) {
       std::vector<std::string> names;
       for (const json& x : *e) {
