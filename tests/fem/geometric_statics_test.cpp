@@ -28,6 +28,7 @@
 #include "operator/effective_matrix.hpp"
 #include "operator/elasticity.hpp"
 #include "operator/footprint_loads.hpp"
+#include "sanitizer.hpp"
 #include "settings_from_params.hpp"
 #include "statics/coarse_level.hpp"
 #include "statics/nested_interpolation.hpp"
@@ -196,6 +197,7 @@ TEST(FemGeometricStatics, AgreesWithTheFactorAndStartsFromTheLastSolution) {
 // DOFs); two V-cycles gave 12, 14, 15, 16 but a slower static start there (docs/fem-soil.md
 // §7.1). The count must stay a multigrid's, growing by a few iterations per halving at most.
 TEST(FemGeometricStatics, TheIterationsDoNotGrowAsTheMeshIsRefined) {
+  RUMBLE_SKIP_STUDY_UNDER_ASAN();
   std::vector<int> iterations;
   for (const int n : {2, 4, 8, 16}) {
     RefinedBox box(n, "viscous_spring");

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "boussinesq.hpp"
+#include "sanitizer.hpp"
 #include "soil_harness.hpp"
 
 namespace rumble::test {
@@ -118,6 +119,7 @@ std::vector<double> static_ratios(const std::string& springs) {
 }
 
 TEST(FemStaticFarField, SurfaceReceiversBesideALoadedTrackSettleAsTheHalfSpace) {
+  RUMBLE_SKIP_STUDY_UNDER_ASAN();
   for (double ratio : static_ratios("half_space")) EXPECT_NEAR(ratio, 1.0, 0.03);
   // Liu's springs alone, the former default, hold too little abreast of the wheel (measured
   // 1.10 and 1.13 on the 50 Hz mesh): the check fails on them.
@@ -189,6 +191,7 @@ double square_footing_settlement(double nu, double h_near,
 }
 
 TEST(FemStaticFarField, AFootingsSettlementConvergesFromBelowAtNuPointFour) {
+  RUMBLE_SKIP_STUDY_UNDER_ASAN();
   // Mean settlement of a flexible 1 m square under 100 kPa: 0.946 q B (1 - nu^2) / E
   // (docs/soils.md, Love's rectangle). Compatible linear elements are too stiff, so with a
   // boundary that holds the half-space's static field the settlement rises towards the closed
@@ -205,6 +208,7 @@ TEST(FemStaticFarField, AFootingsSettlementConvergesFromBelowAtNuPointFour) {
 // mesh.refine (docs/fem-soil.md §2): gmsh meshes at 0.5 m and the plugin refines once, which
 // settles as the mesh gmsh makes at 0.25 m does, not as the coarse one.
 TEST(FemStaticFarField, AFootingOnACoarseMeshRefinedOnceSettlesAsOnAFineMesh) {
+  RUMBLE_SKIP_STUDY_UNDER_ASAN();
   const double nu = 0.4, exact = 0.946 * 1e5 * (1.0 - nu * nu) / kMediumE;
   const nlohmann::json h_max = {{"h_max", 1.5}};  // (refined: gmsh's 3 m, R / 4)
   const double coarse = square_footing_settlement(nu, 0.5, h_max) / exact;

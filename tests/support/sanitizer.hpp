@@ -2,6 +2,11 @@
 // count in the process's resident memory and whose allocator keeps freed blocks and ignores
 // mallopt: tests that measure resident memory skip under it. GCC says so by
 // __SANITIZE_ADDRESS__, Clang (the asan preset's compiler) by __has_feature.
+//
+// RUMBLE_SKIP_STUDY_UNDER_ASAN(): a study that runs one code path at several sizes or steps (a
+// convergence or energy series, seconds in the dev build, a minute under the sanitizers) is
+// skipped under AddressSanitizer, where its suite's lighter tests run the same paths; the dev
+// build runs it (docs/toolchain.md, "What runs under the sanitizers").
 #pragma once
 
 namespace rumble::test {
@@ -19,3 +24,8 @@ inline constexpr bool kUnderAddressSanitizer = false;
 #endif
 
 }  // namespace rumble::test
+
+#define RUMBLE_SKIP_STUDY_UNDER_ASAN()                                                     \
+  if (::rumble::test::kUnderAddressSanitizer)                                              \
+  GTEST_SKIP() << "a study of one code path at several sizes: under AddressSanitizer its " \
+                  "suite's lighter tests run the same paths (tests/support/sanitizer.hpp)"
