@@ -21,11 +21,13 @@ std::vector<std::int64_t> exchange(MPI_Comm comm, const std::vector<std::int64_t
   for (std::size_t r = 0; r < ranks; ++r) {
     out_counts[r] = width * send_counts[r];
     in_counts[r] = width * (*receive_counts)[r];
-    if (r > 0) {
-      out_starts[r] = out_starts[r - 1] + out_counts[r - 1];
-      in_starts[r] = in_starts[r - 1] + in_counts[r - 1];
-    }
   }
+  // (the starts as scans of their own: GCC 12.2 at -O3, the release build, computed the last
+  // start as 0 when they were summed in the loop above under `if (r > 0)`, and MPI_Alltoallv
+  // then wrote past `received`: every refined run on the ranks corrupted its heap, docs/
+  // fem-soil.md §8; -O2 and Clang summed them right)
+  std::exclusive_scan(out_counts.begin(), out_counts.end(), out_starts.begin(), 0);
+  std::exclusive_scan(in_counts.begin(), in_counts.end(), in_starts.begin(), 0);
   std::vector<std::int64_t> received(static_cast<std::size_t>(in_starts.back() + in_counts.back()));
   MPI_Alltoallv(send.data(), out_counts.data(), out_starts.data(), MPI_INT64_T, received.data(),
                 in_counts.data(), in_starts.data(), MPI_INT64_T, comm);
