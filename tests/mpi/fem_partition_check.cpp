@@ -8,8 +8,8 @@
 //     largest entry: in single precision only because each entry between shared nodes is summed
 //     whole before it is rounded (summed in pieces, the rounding of each piece would leave
 //     differences near 6e-8);
-//   - the products' halo exchanges allocate nothing in PETSc (the forest made their buffers, so
-//     no rank can fail alone inside one: star_forest.hpp);
+//   - the products' halo exchanges allocate nothing in PETSc (the partition made their buffers,
+//     so no rank can fail alone inside one: StarForest::make_exchange_buffers);
 //   - the step's product (stepped_product, on 2 threads) hands every node over once, with the
 //     same value as the product above, and every ghost holds its owner's value bit for bit; it
 //     reads the part's upper blocks, under 0.7 of the bytes of its whole rows; each node not
@@ -204,9 +204,10 @@ int check(MPI_Comm comm, StepPrecision precision, std::vector<std::int32_t>& nod
   op.stepped_stiffness_times(x, y, false);
   int twice = 0;
   const Eigen::VectorXd handed = stepped(op, x, twice);
-  checks.expect(petsc_bytes() == petsc_before,
-                "the products' exchanges allocate nothing in PETSc (the forest made their buffers)",
-                petsc_bytes() - petsc_before);
+  checks.expect(
+      petsc_bytes() == petsc_before,
+      "the products' exchanges allocate nothing in PETSc (the partition made their buffers)",
+      petsc_bytes() - petsc_before);
   checks.expect(twice == 0, "stepped_product hands every node over once", twice);
   checks.expect(handed == y, "stepped_product equals the product", relative(handed, y));
   // The step reads the part's upper blocks: about half the bytes of its whole rows in the

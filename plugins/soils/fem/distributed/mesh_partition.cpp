@@ -355,6 +355,7 @@ MeshPartition partition_mesh(MPI_Comm comm, const TetMesh* whole, bool named) {
                   .faces = counts[3],
                   .tets = counts[1]};
   part.halo = std::make_unique<StarForest>(comm, part.shared, halo_leaves(dist, nodes, rank));
+  part.halo->make_exchange_buffers();
   DMDestroy(&dist);
   std::vector<ForestLeaf> from_root(nodes.size());
   for (std::size_t k = 0; k < nodes.size(); ++k)

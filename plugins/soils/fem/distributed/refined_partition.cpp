@@ -117,6 +117,7 @@ MeshPartition refine_partition(MPI_Comm comm, const MeshPartition& coarse, int l
             [&](std::int32_t a, std::int32_t b) { return part.global[a] < part.global[b]; });
   number_children(coarse, levels, part);
   part.halo = std::make_unique<StarForest>(comm, part.shared, refined_halo(comm, part, rank));
+  part.halo->make_exchange_buffers();
   std::vector<ForestLeaf> from_root(order.size());
   for (std::size_t k = 0; k < order.size(); ++k)
     from_root[k] = {static_cast<std::int32_t>(k), 0, part.global[k]};

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <map>
+#include <stdexcept>
+#include <string>
 #include <utility>
 
 #include "statics/petsc_session.hpp"
@@ -21,6 +23,7 @@ StarForest::StarForest(MPI_Comm comm, std::int32_t roots, const std::vector<Fore
     : petsc_(std::make_unique<Petsc>()),
       roots_(roots),
       leaves_(static_cast<std::int32_t>(leaves.size())) {
+  check_leaves(comm, roots, leaves);
   petsc_check(PetscSFCreate(comm, &petsc_->sf), "PetscSFCreate");
   std::vector<PetscInt> local(leaves.size());
   std::vector<PetscSFNode> remote(leaves.size());
@@ -28,25 +31,41 @@ StarForest::StarForest(MPI_Comm comm, std::int32_t roots, const std::vector<Fore
     local[k] = leaves[k].local;
     remote[k].rank = leaves[k].rank;
     remote[k].index = leaves[k].remote;
+    extent_ = std::max(extent_, leaves[k].local + 1);
   }
   petsc_check(PetscSFSetGraph(petsc_->sf, roots, leaves_, local.data(), PETSC_COPY_VALUES,
                               remote.data(), PETSC_COPY_VALUES),
               "PetscSFSetGraph");
   petsc_check(PetscSFSetUp(petsc_->sf), "PetscSFSetUp");
-  // The exchanges of 3 doubles per point made once now: PETSc keeps their buffers (its links)
-  // and our unit types, so later exchanges allocate nothing and cannot fail on one rank alone
-  // (the step's product makes them inside an OpenMP region, distributed_operator.hpp).
-  std::int32_t extent = 0;  // leaf values are indexed by the leaves' local points
-  for (const ForestLeaf& leaf : leaves) extent = std::max(extent, leaf.local + 1);
-  std::vector<double> root_values(3 * static_cast<std::size_t>(roots), 0.0);
-  std::vector<double> leaf_values(3 * static_cast<std::size_t>(extent), 0.0);
-  for (int width = 1; width <= 3; ++width) {
+  for (int width = 1; width <= 3; ++width) {  // (the units made now: unit() then only finds)
     unit(MPI_DOUBLE, width);
     unit(MPI_INT, width);
   }
+}
+
+void StarForest::check_leaves(MPI_Comm comm, std::int32_t roots,
+                              const std::vector<ForestLeaf>& leaves) {
+  int ranks = 1;
+  MPI_Comm_size(comm, &ranks);
+  std::vector<std::int32_t> roots_of(static_cast<std::size_t>(ranks));
+  MPI_Allgather(&roots, 1, MPI_INT32_T, roots_of.data(), 1, MPI_INT32_T, comm);
+  for (const ForestLeaf& leaf : leaves)
+    if (leaf.local < 0 || leaf.rank < 0 || leaf.rank >= ranks || leaf.remote < 0 ||
+        leaf.remote >= roots_of[static_cast<std::size_t>(leaf.rank)])
+      throw std::logic_error("fem: a star forest's leaf " + std::to_string(leaf.local) +
+                             " copies point " + std::to_string(leaf.remote) + " of rank " +
+                             std::to_string(leaf.rank) + ", which has " +
+                             (leaf.rank >= 0 && leaf.rank < ranks
+                                  ? std::to_string(roots_of[static_cast<std::size_t>(leaf.rank)])
+                                  : std::string("no")) +
+                             " roots");
+}
+
+void StarForest::make_exchange_buffers() {
+  std::vector<double> root_values(3 * static_cast<std::size_t>(roots_), 0.0);
+  std::vector<double> leaf_values(3 * static_cast<std::size_t>(extent_), 0.0);
   to_leaves(root_values.data(), leaf_values.data(), 3);
   sum_to_roots(leaf_values.data(), root_values.data(), 3);
-  copy_to_roots(leaf_values.data(), root_values.data(), 3);
 }
 
 StarForest::~StarForest() {

@@ -29,9 +29,15 @@ struct ForestLeaf {
 class StarForest {
  public:
   /// roots: this rank's points others may copy (0 .. roots - 1); leaves: this rank's copies.
-  /// Collective over comm. Makes each exchange of 3 doubles per point once, so that later ones
-  /// allocate nothing (PETSc keeps their buffers).
+  /// Collective over comm. Throws std::logic_error for a leaf that copies no root (PETSc's
+  /// optimised build would read and write past the arrays).
   StarForest(MPI_Comm comm, std::int32_t roots, const std::vector<ForestLeaf>& leaves);
+
+  /// Makes the exchanges of 3 doubles per point (to_leaves, sum_to_roots) once, so that later
+  /// ones allocate nothing and cannot fail on one rank alone: PETSc keeps their buffers (a
+  /// point's 24 bytes each way). For the halo, whose exchanges the step's product makes inside
+  /// an OpenMP region (distributed_operator.hpp). Collective.
+  void make_exchange_buffers();
   ~StarForest();
   StarForest(const StarForest&) = delete;
   StarForest& operator=(const StarForest&) = delete;
@@ -67,8 +73,12 @@ class StarForest {
   /// The MPI type of `width` values of `base`, made once per width and kept.
   MPI_Datatype unit(MPI_Datatype base, int width) const;
 
+  static void check_leaves(MPI_Comm comm, std::int32_t roots,
+                           const std::vector<ForestLeaf>& leaves);
+
   std::unique_ptr<Petsc> petsc_;
   std::int32_t roots_ = 0, leaves_ = 0;
+  std::int32_t extent_ = 0;  // the leaves' largest local point + 1
 };
 
 }  // namespace rumble::fem
