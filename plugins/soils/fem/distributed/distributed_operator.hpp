@@ -27,9 +27,9 @@
 //
 // Every product is collective: all ranks call it, in the same order. None leaves a rank alone
 // inside an exchange: the halo's buffers are made with the partition
-// (StarForest::make_exchange_buffers), so the step's product allocates nothing; stiffness_times makes its exchanges even when this rank's
-// part of the product fails (K's rows built again), then throws, for its caller to agree on
-// (geometric_rank_statics.cpp, rank_agreement.hpp).
+// (StarForest::make_exchange_buffers), so the step's product allocates nothing; stiffness_times
+// makes its exchanges even when this rank's part of the product fails (K's rows built again), then
+// throws, for its caller to agree on (geometric_rank_statics.cpp, rank_agreement.hpp).
 #pragma once
 
 #include <Eigen/Core>
