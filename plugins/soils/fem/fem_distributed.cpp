@@ -69,13 +69,14 @@ void FemSoil::join_ranks() {
   // Ctrl-C inside the ranks' static solves: rank 0 asks the host, every rank learns it at the
   // same CG iteration (statics/petsc_cg.hpp).
   if (distributed_->root()) distributed_->set_stop_check(throttled_stop_check());
-  if (const char* hook =
-          std::getenv("RUMBLE_FEM_FAIL_RANK_AT")) {  // "rank:seconds", "rank:statics"
+  // tests/mpi's failures on purpose: "rank:seconds" (its steps from then on) or "rank:statics"
+  // (its products in the static solve)
+  if (const char* hook = std::getenv("RUMBLE_FEM_FAIL_RANK_AT")) {
     std::istringstream in(hook);
     char colon = 0;
     std::string at;
     in >> fail_rank_ >> colon >> at;
-    if (at == "statics") {  // (the ranks' static solve: a product fails there)
+    if (at == "statics") {
       if (distributed_->rank() == fail_rank_)
         distributed_->fail_products_on_purpose(
             "fem: a product failed on purpose in the static solve on rank " +
