@@ -221,7 +221,8 @@ def mark_resolved_band(ax, row, horizontal):
         return ""
     line = ax.axhline if horizontal else ax.axvline
     line(f_resolved, color="red", ls="--", lw=1.0)
-    return f" (* mostly above {f_resolved:.3g} Hz)" if unresolved(row) else ""
+    return (f" (* {UNRESOLVED_SHARE:.0%}+ of it above {f_resolved:.3g} Hz)" if unresolved(row)
+            else "")
 
 
 def scalogram_figure(runs, distance):
@@ -359,19 +360,20 @@ def interface_figure(runs):
 
 # ------------------------------------------------------------------------------------ tables
 # A receiver with more than this share of its vertical energy above the band its soil resolves
-# is marked: its raw indicators are mostly the mesh's (docs/post-processing.md, "The resolved
-# band"; the same threshold warns in post.json).
+# is marked: its raw indicators carry that much of the mesh's response (docs/post-processing.md,
+# "The resolved band"; the same threshold warns in post.json). Whether its PPV is then mostly the
+# mesh's, the PPV within the band beside it says.
 UNRESOLVED_SHARE = 0.2
 
 
 def unresolved(row):
-    """True when the receiver's record is mostly above its resolved band."""
+    """True when more than UNRESOLVED_SHARE of the receiver's energy is above its band."""
     share = number(row.get("energy_z above f_resolved [-]"))
     return not math.isnan(share) and share > UNRESOLVED_SHARE
 
 
 def ppv_cell(row):
-    """Raw PPV_z [mm/s], marked * when mostly unresolved, with the PPV within the band beside."""
+    """Raw PPV_z [mm/s], marked * when unresolved(), with the PPV within the band beside."""
     raw = number(row["PPV_z [m/s]"])
     if math.isnan(raw):
         return "<td>-</td>"
@@ -399,7 +401,8 @@ def ppv_table(runs):
     notes = ("<p>In brackets: the PPV within the band the soil's mesh resolves at that receiver "
              "(zero-phase low-pass at its resolved frequency); <sup>*</sup> and shaded: more than "
              f"{UNRESOLVED_SHARE:.0%} of the receiver's vertical energy lies above that band, so "
-             "its raw PPV is mostly the mesh's, not the ground's. \"no receivers\": the run's soil "
+             "its raw PPV carries the mesh's response; where the bracket is much smaller, the raw "
+             "PPV is mostly the mesh's, not the ground's. \"no receivers\": the run's soil "
              "records none (the reduced soils, Winkler and CLM, have no points but the "
              "footprints).</p>")
     return (f"<table><caption>Vertical PPV [mm/s] by distance from the track [m]</caption>"
@@ -407,18 +410,20 @@ def ppv_table(runs):
 
 
 def resolved_band_verdict(runs):
-    """The first screen's word on the resolved band: which runs' receivers are mostly above it."""
+    """The first screen's word on the resolved band: which runs' receivers have more than
+    UNRESOLVED_SHARE of their energy above it."""
     marked = [f"{r.name} {row.get('receiver', '')} "
               f"({number(row.get('energy_z above f_resolved [-]')):.0%} above "
               f"{number(row.get('f_resolved [Hz]')):.3g} Hz)"
               for r in runs for row in r.ppv if unresolved(row)]
     if not marked:
         known = any(not math.isnan(number(row.get("f_resolved [Hz]"))) for r in runs for row in r.ppv)
-        return ("<p>Every receiver's record lies mostly within the band its soil's mesh resolves "
+        return ("<p>Every receiver's record lies within the band its soil's mesh resolves "
                 "(at most " f"{UNRESOLVED_SHARE:.0%} of its energy above it).</p>" if known else "")
-    return (f"<p class='bad'>{len(marked)} receiver records lie mostly above the band their "
-            "soil's mesh resolves, so their raw PPV, KB and scalograms show the mesh rather than "
-            "the ground: " + html.escape("; ".join(marked)) + ". The tables give the PPV within "
+    return (f"<p class='bad'>{len(marked)} receiver records have more than "
+            f"{UNRESOLVED_SHARE:.0%} of their energy above the band their soil's mesh resolves, so "
+            "their raw PPV, KB and scalograms show the mesh as well as the ground: "
+            + html.escape("; ".join(marked)) + ". The tables give the PPV within "
             "the band beside the raw one; a finer mesh along the path (mesh.f_max, "
             "mesh.near_distance) makes the whole record valid.</p>")
 
@@ -431,8 +436,7 @@ def indicators_table(runs):
     for r in runs:
         for row in r.ppv:
             def cell(key, scale=1.0, fmt="{:.3g}", raw=False):
-                """A value; a raw one (of the whole record) is marked where the record is
-                mostly above the resolved band."""
+                """A value; a raw one (of the whole record) is marked where unresolved()."""
                 v = number(row.get(key))
                 if math.isnan(v):
                     return "<td>-</td>"
@@ -453,9 +457,10 @@ def indicators_table(runs):
     if not rows:
         return ""
     return ("<table><caption>Indicators per receiver (rows at or above the DIN 4150-3 line 3 guide "
-            "value in red; <sup>*</sup> and shaded: of a record mostly above the band its soil's "
-            f"mesh resolves, more than {UNRESOLVED_SHARE:.0%} of its vertical energy, so mostly "
-            "the mesh's)</caption><tr><th>run</th><th>receiver</th><th>PPV_z [mm/s]</th>"
+            "value in red; <sup>*</sup> and shaded: of a record with more than "
+            f"{UNRESOLVED_SHARE:.0%} of its vertical energy above the band its soil's mesh "
+            "resolves, so partly the mesh's: the last column says how much PPV the band keeps)"
+            "</caption><tr><th>run</th><th>receiver</th><th>PPV_z [mm/s]</th>"
             "<th>PPV 3 components [mm/s]</th><th>dominant frequency [Hz]</th>"
             "<th>KB_F,max (DIN 4150-2) [mm/s]</th><th>PPV / DIN 4150-3 line 3</th>"
             "<th>PPV / BS 7385-2 line 2</th><th>resolved band [Hz]</th>"

@@ -15,6 +15,7 @@
 #include <numbers>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "message_of.hpp"
@@ -241,6 +242,58 @@ TEST(PostRun, TheResolvedBandGivesEveryIndicatorOfTheLowPassedRecord) {
   EXPECT_NEAR(band["din4150_3_ratios"][1].get<double>(),
               number(near, "PPV / DIN 4150-3 line 2 resolved [-]"), 1e-9);
   EXPECT_TRUE(report["receivers"][1]["resolved_band"]["kb_f_max_m_s"].is_null());
+}
+
+// The warning about energy above the band judges the PPV by what the band keeps of it (not by the
+// share of energy): a 5 Hz tone with a 50 Hz one of 0.6 its amplitude under a band of 20 Hz has
+// 26.5 % of its energy above the band (0.36 / 1.36), but the band keeps 0.63 of its PPV (A
+// against 1.588 A, the largest sample of the two); a 10 Hz tone under a band of 2 Hz keeps almost
+// none: its PPV is the mesh's.
+TEST(PostRun, TheBandWarningSaysHowMuchOfThePpvTheBandKeeps) {
+  const fs::path dir = fresh_dir();
+  const std::vector<double> s5 = sine_at_fs(kA, 5.0), s50 = sine_at_fs(0.6 * kA, 50.0),
+                            s10 = sine_at_fs(kA, 10.0), zero(kN, 0.0);
+  using Probe = std::pair<const char*, const std::vector<double>*>;
+  std::vector<double> two_tones(kN);
+  for (std::size_t k = 0; k < kN; ++k) two_tones[k] = s5[k] + s50[k];
+  std::vector<std::string> names;
+  std::vector<std::vector<double>> cols;
+  for (const auto& [name, vz] : {Probe{"near", &two_tones}, Probe{"far", &s10}}) {
+    for (const char* c : {"vx [m/s]", "vy [m/s]", "vz [m/s]", "ux [m]", "uy [m]", "uz [m]"})
+      names.push_back(std::string(name) + " " + c);
+    for (const std::vector<double>* v : {&zero, &zero, vz, &zero, &zero, &zero}) cols.push_back(*v);
+  }
+  write_csv(dir / "receivers.csv", names, cols);
+  const json summary = {{"ppv",
+                         {{{"name", "near"},
+                           {"x_m", 24.0},
+                           {"distance_m", 2.5},
+                           {"depth_m", 0.0},
+                           {"resolved_f_hz", 20.0}},
+                          {{"name", "far"},
+                           {"x_m", 24.0},
+                           {"distance_m", 5.0},
+                           {"depth_m", 0.0},
+                           {"resolved_f_hz", 2.0}}}}};
+  std::ofstream(dir / "summary.json") << summary.dump(2);
+  const PostResult r = post_process(dir);
+  ASSERT_EQ(r.warnings.size(), 2u) << ::testing::PrintToString(r.warnings);
+  expect_contains(r.warnings[0],
+                  "receiver 'near': 26.5 % of its vertical velocity's energy "
+                  "lies above 20 Hz, the band its soil's mesh resolves there: "
+                  "its PPV within the band, 0.002");
+  // The fraction kept: A over the two tones' largest sample, 1.588 A (the low-pass leaves 1.5 %
+  // of the 50 Hz tone and rings a little: measured 0.64).
+  const std::size_t is = r.warnings[0].find(" m/s, is ");
+  ASSERT_NE(is, std::string::npos) << r.warnings[0];
+  EXPECT_NEAR(std::stod(r.warnings[0].substr(is + 9)), 1.0 / 1.588, 0.015) << r.warnings[0];
+  expect_contains(r.warnings[0],
+                  "but what it records above 20 Hz (spectrum, band levels, "
+                  "scalogram) is the mesh's. Refine the mesh along the path");
+  EXPECT_EQ(r.warnings[0].find("mostly"), std::string::npos) << r.warnings[0];
+  expect_contains(r.warnings[1],
+                  "lies above 2 Hz, the band its soil's mesh resolves there: its "
+                  "raw PPV (0.002 m/s) is mostly the mesh's; within the band ");
 }
 
 // The older surface receivers: one vertical column "d=<distance> m [m/s]" each, no summary.json

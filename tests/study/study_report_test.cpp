@@ -103,9 +103,9 @@ TEST(StudyReport, RendersInABrowserWithEveryImageAndEveryRun) {
   // The coupling error with the scheme's order (docs/couplers.md), in the table and the figure.
   EXPECT_THAT(dom, HasSubstr("predictor residual (coupling error, the scheme's order)"));
   EXPECT_THAT(dom, HasSubstr("energy, residual and coupling error"));
-  // No raw number of a record mostly above its resolved band without a mark: the PPV table's
-  // cell and the indicators' six raw values (PPV_z, PPV_3c, f_dom, KB, DIN, BS) of each such
-  // receiver are shaded and starred (issue 29; this coarse mesh has such receivers at 5 m).
+  // No raw number of a record with a fifth of its energy above its band without a mark: the PPV
+  // table's cell and the indicators' six raw values (PPV_z, PPV_3c, f_dom, KB, DIN, BS) of each
+  // such receiver are shaded and starred (issue 29; this coarse mesh has such receivers at 5 m).
   const int unresolved =
       mostly_unresolved_receivers(dir / "out" / "two_step" / "post" / "ppv.csv") +
       mostly_unresolved_receivers(dir / "out" / "gs" / "post" / "ppv.csv");

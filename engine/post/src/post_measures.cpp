@@ -48,6 +48,20 @@ void measure_band_indicators(ReceiverResult& rr, const std::vector<std::vector<d
     rr.bs_resolved[l] = check_bs7385_2(kBsLines[l], governing_peak.value, f);
 }
 
+/// What an unresolved share of energy means for rr's PPV: the raw PPV is the mesh's when less
+/// than kResolvedPpvShare of it is left within the band; else only what lies above f is (its
+/// spectrum, band levels and scalogram there), and the PPV holds.
+std::string ppv_verdict(const ReceiverResult& rr, double f) {
+  const std::string raw = number_text(rr.ppv_z, 3), band = number_text(rr.ppv_z_resolved, 3);
+  if (!(rr.ppv_z_resolved >= kResolvedPpvShare * rr.ppv_z))
+    return "its raw PPV (" + raw + " m/s) is mostly the mesh's; within the band " + band +
+           " m/s (ppv.csv, \"resolved\" columns)";
+  const std::string kept = number_text(rr.ppv_z_resolved / rr.ppv_z, 2);
+  return "its PPV within the band, " + band + " m/s, is " + kept + " of the raw one (" + raw +
+         " m/s; ppv.csv, \"resolved\" columns), but what it records above " + number_text(f, 3) +
+         " Hz (spectrum, band levels, scalogram) is the mesh's";
+}
+
 /// The share of rr's vertical energy above its resolved frequency and its indicators below it;
 /// a warning when the share passes kUnresolvedShare.
 void measure_resolved_band(ReceiverResult& rr, double dt, SpectrumAnalyzer& rect,
@@ -63,13 +77,12 @@ void measure_resolved_band(ReceiverResult& rr, double dt, SpectrumAnalyzer& rect
   if (low.size() == 3) rr.ppv_3c_resolved = peak_vector(low[0], low[1], low[2]).value;
   measure_band_indicators(rr, low, dt);
   if (rr.energy_above_resolved > kUnresolvedShare)
-    warnings.push_back(
-        "receiver '" + rr.rx->name + "': " + number_text(100.0 * rr.energy_above_resolved, 3) +
-        " % of its vertical velocity's energy lies above " + number_text(f, 3) +
-        " Hz, the band its soil's mesh resolves there: its raw PPV (" + number_text(rr.ppv_z, 3) +
-        " m/s) is mostly the mesh's; within the band " + number_text(rr.ppv_z_resolved, 3) +
-        " m/s (ppv.csv, \"resolved\" columns). Refine the mesh along the path "
-        "(mesh.f_max, mesh.near_distance) for the whole record");
+    warnings.push_back("receiver '" + rr.rx->name +
+                       "': " + number_text(100.0 * rr.energy_above_resolved, 3) +
+                       " % of its vertical velocity's energy lies above " + number_text(f, 3) +
+                       " Hz, the band its soil's mesh resolves there: " + ppv_verdict(rr, f) +
+                       ". Refine the mesh along the path (mesh.f_max, mesh.near_distance) for "
+                       "the whole record");
 }
 
 /// One velocity component on the grid with its indicators: peak, amplitude spectrum, dominant

@@ -28,9 +28,12 @@ using nlohmann::json;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // A receiver with more than this share of its vertical energy above its resolved band is warned
-// about (docs/post-processing.md, "The resolved band"): its raw indicators are then mostly the
-// mesh's.
+// about (docs/post-processing.md, "The resolved band"): its spectral indicators are then mostly
+// the mesh's above the band.
 constexpr double kUnresolvedShare = 0.2;
+// Its raw PPV is called the mesh's when the PPV within the band is less than this share of it
+// (else the warning says how much of it the band keeps).
+constexpr double kResolvedPpvShare = 0.5;
 constexpr const char* kComponents[3] = {"vx", "vy", "vz"};
 constexpr Din4150Line kDinLines[3] = {Din4150Line::kCommercial, Din4150Line::kDwelling,
                                       Din4150Line::kSensitive};
