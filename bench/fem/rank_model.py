@@ -27,6 +27,7 @@ import re
 import subprocess
 import sys
 import tempfile
+import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 SCENARIO = os.path.join(ROOT, "scenarios", "examples", "stiff_soil_fem.json")
@@ -54,28 +55,43 @@ def header_constant(name):
 HALO_SURFACE, HALO_BYTES_PER_GHOST = header_constant("HaloSurface"), header_constant("HaloBytesPerGhost")
 
 
-def run(build, f_max, ranks, out):
-    """One run of the stiff example: DOFs, largest rank's DOFs, steps, stepping seconds, ghosts."""
+def run(build, f_max, ranks, out, scenario=SCENARIO, end=END, sets=()):
+    """One run (the stiff example unless told): DOFs, largest rank's DOFs, steps, stepping
+    seconds, ghosts; its log goes to out.log. `sets`: more --set POINTER=VALUE."""
     rumble = os.path.join(build, "bin", "rumble")
-    command = [rumble, "run", SCENARIO, "--output", out, "--no-plots", "--yes",
+    command = [rumble, "run", scenario, "--output", out, "--no-plots", "--yes",
                "--set", "/soil/params/mesh/f_max=%g" % f_max,
-               "--set", '/soil/params/mesh/algorithm="hxt"', "--set", "/time/end=%g" % END]
+               "--set", '/soil/params/mesh/algorithm="hxt"', "--set", "/time/end=%g" % end]
+    for s in sets:
+        command += ["--set", s]
     env = dict(os.environ, OMP_WAIT_POLICY="passive", OMPI_ALLOW_RUN_AS_ROOT="1",
                OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
     if ranks > 1:
         command = ["mpirun", "-n", str(ranks), "--bind-to", "core"] + command
         env["OMP_NUM_THREADS"] = "1"
+    started = time.monotonic()
     log = subprocess.run(command, env=env, capture_output=True, text=True)
+    process_s = time.monotonic() - started
+    with open(out + ".log", "w") as f:  # beside the results: a run never shares their folder
+        f.write(log.stderr)
     if log.returncode != 0:
         sys.exit("rank_model: %s failed:\n%s" % (" ".join(command), log.stderr[-3000:]))
+    case = parse(out, f_max, ranks)
+    case["process_s"] = process_s
+    return case
+
+
+def parse(out, f_max, ranks):
+    """What run() returns, from a finished run's out/summary.json and out.log."""
     summary = json.load(open(os.path.join(out, "summary.json")))
+    log = open(out + ".log").read()
     dofs = summary["memory"]["soil_dofs"]
-    sub = int(re.search(r"(\d+) explicit sub-step", log.stderr).group(1))
+    sub = int(re.search(r"(\d+) explicit sub-step", log).group(1))
     largest, ghosts = dofs, 0.0
-    split = re.search(r"nodes (\d+)-(\d+) \(owned \d+-\d+, ghosts \d+-(\d+)\)", log.stderr)
+    split = re.search(r"nodes (\d+)-(\d+) \(owned \d+-\d+, ghosts \d+-(\d+)\)", log)
     if split:
         largest, ghosts = 3.0 * float(split.group(2)), float(split.group(3))
-    steps = sub * round(END / 1e-3)
+    steps = sub * summary["time"]["macro_steps"]
     return {"f_max": f_max, "ranks": ranks, "dofs": dofs, "largest_rank_dofs": largest,
             "ghosts": ghosts, "steps": steps,
             "seconds_per_step": summary["wall_time_s"]["soil/fem"] / steps}
