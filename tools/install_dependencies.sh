@@ -6,7 +6,8 @@ PKGS=(cmake ninja-build g++ pkg-config clang-format
       libgmsh-dev libfftw3-dev libssl-dev libgtest-dev libgmock-dev libbenchmark-dev libvalijson-dev
       liblapacke-dev  # the track's band Cholesky; bench/numerics compares our solvers with LAPACK's
       libopenblas0-pthread python3-matplotlib python3-numpy
-      clang-14 libclang-rt-14-dev llvm-14  # the scenario fuzz target (preset fuzz): libFuzzer, llvm-symbolizer
+      clang-14 libclang-rt-14-dev llvm-14  # the asan preset and the fuzz targets: libFuzzer, llvm-symbolizer
+      lld  # the dev and asan presets link with it (cmake/RumbleLinker.cmake)
       chromium-headless-shell  # the study report's test renders it in a headless browser
       graphviz  # dot: tools/architecture_graph.sh draws docs/architecture.svg
       universal-ctags  # tools/check_function_length.py finds the functions

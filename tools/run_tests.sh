@@ -1,14 +1,13 @@
 #!/usr/bin/env bash
 # The test job (also what CI runs): install what is missing, check formatting, build with
-# warnings as errors and run the test suite, then build and run it again under ASan + UBSan,
-# then build the fuzz targets (clang) and fuzz each for a minute (docs/fuzzing.md).
+# warnings as errors and run the test suite, then build and run it again under ASan + UBSan
+# with the fuzz targets (clang), each fuzzed for a minute among the tests (docs/fuzzing.md).
 #   tools/run_tests.sh            everything (from a clean checkout two full unity builds: dev
 #                                 (GCC) about 23 CPU-minutes, asan (Clang, the tests' own code
-#                                 at -O0, decision 0009) about 15; the five fuzz targets about 3.5,
-#                                 and a minute of fuzzing each, as many at once as there are
-#                                 cores (each fuzzer runs on one); later runs rebuild only what
-#                                 changed)
-#   tools/run_tests.sh --quick    skip the sanitizer builds (asan and fuzz)
+#                                 at -O0, decision 0009, and the five fuzz targets) about 22;
+#                                 the minutes of fuzzing packed with the sanitized tests, each
+#                                 fuzzer on one core; later runs rebuild only what changed)
+#   tools/run_tests.sh --quick    skip the sanitizer build and the fuzzing
 # Tests labelled "validation" (long physics runs) are left out: ctest --preset dev -L validation.
 # Each phase's wall time is printed at the end and kept in build/run_tests_times.txt, so a slow
 # CI run says where its time went.
@@ -34,6 +33,4 @@ phase dev-tests ctest --preset dev -j"$jobs" --timeout 300 -LE validation
 if [ "${1:-}" != "--quick" ]; then
   phase asan-build eval 'cmake --preset asan >/dev/null && cmake --build --preset asan -j"$jobs"'
   phase asan-tests ctest --preset asan -j"$jobs" --timeout 600 -LE validation
-  phase fuzz-build eval 'cmake --preset fuzz >/dev/null && cmake --build --preset fuzz -j"$jobs"'
-  phase fuzz-run ctest --preset fuzz -j"$jobs" --timeout 600
 fi
