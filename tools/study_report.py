@@ -221,8 +221,9 @@ def mark_resolved_band(ax, row, horizontal):
         return ""
     line = ax.axhline if horizontal else ax.axvline
     line(f_resolved, color="red", ls="--", lw=1.0)
-    return (f" (* {UNRESOLVED_SHARE:.0%}+ of it above {f_resolved:.3g} Hz)" if unresolved(row)
-            else "")
+    if not unresolved(row):
+        return ""
+    return f" (* {UNRESOLVED_SHARE:.0%}+ of its energy above {f_resolved:.3g} Hz)"
 
 
 def scalogram_figure(runs, distance):
@@ -418,7 +419,7 @@ def resolved_band_verdict(runs):
               for r in runs for row in r.ppv if unresolved(row)]
     if not marked:
         known = any(not math.isnan(number(row.get("f_resolved [Hz]"))) for r in runs for row in r.ppv)
-        return ("<p>Every receiver's record lies within the band its soil's mesh resolves "
+        return ("<p>Every receiver's record lies mostly within the band its soil's mesh resolves "
                 "(at most " f"{UNRESOLVED_SHARE:.0%} of its energy above it).</p>" if known else "")
     return (f"<p class='bad'>{len(marked)} receiver records have more than "
             f"{UNRESOLVED_SHARE:.0%} of their energy above the band their soil's mesh resolves, so "
