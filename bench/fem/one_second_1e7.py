@@ -6,17 +6,17 @@ The run: the paper's study base (scenarios/paper/study/track_on_fem_soil.json) o
 (E = 10 MPa, near_distance 3 m, as paper.study.json's "soft"), meshed for f_max 62 Hz with
 `mesh.refine` 1 (about 1e7 DOFs), the track lengthened to 50 sleepers so the wheel stays on the
 rail for 1 s. The soft soil reaches 1e7 DOFs at a low f_max (its Rayleigh wavelength is 9x the
-stiff soil's), so its stable step is 8x the stiff example's at the same size (2.5e-4 s); the
+stiff soil's), so its stable step is 8x the stiff example's at the same size (2.7e-4 s); the
 coupling's step of 0.1 ms (Gauss-Seidel diverges at 1 ms here) then sets the sub-step: 1 s is
 1e4 sub-steps, not 7e4.
 
 For each rank count (one process on its default threads; 2 ranks of one thread, bound to cores),
 first a calibration run (the same at f_max 31 Hz, 1.3e6 DOFs, 30 ms) whose rate predicts the
 1e7 run's seconds per sub-step (rank_model.py's model); then the 1e7 run. Written to --out: each
-run's DOFs, largest rank, ghosts, sub-steps, seconds per sub-step (measured and predicted), DOF-updates
-per second, wall time (the process's, and summary.json's phases), peak resident memory per rank
-and per phase, the static solves' CG iterations. Run on an idle machine; 30 minutes per rank
-count (the first call also meshes with gmsh, a few minutes more):
+run's DOFs, largest rank, ghosts, sub-steps, seconds per sub-step (measured and predicted),
+DOF-updates per second, wall time (the process's, and summary.json's phases), peak resident
+memory per rank and per phase, the first static solve's CG iterations. Run on an idle machine;
+about 28 minutes per rank count (the first call also meshes with gmsh, a few minutes more):
 
     bench/fem/one_second_1e7.py [--build build/release] [--ranks 2,1] [--end 1] [--reuse]
                                 [--workdir /tmp/rumble_1e7] [--out results/bench/fem_1e7.json]
@@ -67,7 +67,7 @@ def details(out, ranks):
         "estimate_over_peak": memory["estimate_over_peak"],
         "static_cg_iterations": [int(n) for n in re.findall(r"(\d+) CG iterations", log)],
         "sub_step_s": float(re.search(r"explicit sub-step\(s\) of ([0-9.e+-]+) s", log).group(1)),
-        "threads": ranks == 1 and "default" or "1 per rank",
+        "threads": "default" if ranks == 1 else "1 per rank",
     }
 
 
