@@ -29,32 +29,18 @@
 #include "boundary/absorbing_boundary.hpp"
 #include "mesh/mesh_generator.hpp"
 #include "operator/elasticity.hpp"
-#include "settings_from_params.hpp"
 #include "statics/static_solver.hpp"
+#include "stiff_example.hpp"
 #include "time/explicit_solver.hpp"
 
 namespace {
 
 using namespace rumble::fem;
 using rumble::Footprint;
+using rumble::bench::stiff_example;
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-FemSettings stiff_example(double f_max) {
-  FemSettings s =
-      rumble::test::soil_settings(750e6, 0.3, 1800.0);  // docs/physics.md §1.4: stiff soil
-  s.mesh.radius = 15.0;
-  s.mesh.f_max = f_max;
-  s.mesh.near_distance = 5.0;
-  return s;
-}
-
-std::vector<Footprint> sleepers() {  // 30 at 0.6 m, 2.6 m x 0.26 m, centred on x = 0
-  std::vector<Footprint> fp;
-  for (int i = 0; i < 30; ++i) fp.push_back({(i - 14.5) * 0.6, 0.0, 2.6, 0.26});
-  return fp;
 }
 
 /// A path's solve: the solution and what the path reports after it.
@@ -111,7 +97,7 @@ void time_path(const char* name, const Path& path, const Eigen::VectorXd& f,
 
 void run(double f_max, Eigen::Index factor_limit, const std::string& paths) {
   const FemSettings s = stiff_example(f_max);
-  const std::vector<Footprint> fp = sleepers();
+  const std::vector<Footprint> fp = rumble::bench::stiff_example_sleepers();
   const MeshPlan plan = plan_mesh(s, fp);
   auto start = std::chrono::steady_clock::now();
   const TetMesh mesh = generate_mesh(s, fp, plan);

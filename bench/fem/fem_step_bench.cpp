@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <map>
 #include <memory>
 #include <vector>
 
@@ -22,9 +23,11 @@
 #include "boundary/pml.hpp"
 #include "machine_bounds.hpp"
 #include "mesh/kuhn_box.hpp"
+#include "mesh/mesh_generator.hpp"
 #include "operator/csr_operator.hpp"
 #include "operator/elasticity.hpp"
 #include "settings_from_params.hpp"
+#include "stiff_example.hpp"
 #include "time/explicit_solver.hpp"
 
 namespace {
@@ -70,24 +73,16 @@ StepCost step_cost(const ExplicitSolver& op, bool single, int mechanisms) {
   return {bytes, flops};
 }
 
-/// Medium soil (docs/physics.md §1.4) on a Kuhn box of n^3 cubes; LK dashpots and springs on five
-/// sides, 2 % Rayleigh damping (or over 5-100 Hz by `mechanisms` Maxwell mechanisms): the step
-/// the plugin takes, with K read in double (single 0) or single precision (single 1), by the
-/// SIMD kernel (simd 1, where the processor has one) or the portable one (simd 0).
-void BM_ExplicitStep(benchmark::State& state) {
-  const int n = static_cast<int>(state.range(0));
-  const int threads = static_cast<int>(state.range(1));
-  const bool single = state.range(2) != 0;
-  const int mechanisms = static_cast<int>(state.range(3));
-  const bool simd = state.range(4) != 0 && rumble::fem::block_simd_available();
-  const nlohmann::json maxwell = {{"damping", {{"model", "maxwell"}, {"mechanisms", mechanisms}}}};
-  const rumble::fem::FemSettings s = rumble::test::soil_settings(
-      155e6, 0.3, 1800.0, mechanisms > 0 ? maxwell : nlohmann::json::object());
-  const rumble::fem::TetMesh mesh = rumble::fem::kuhn_box(n, 0.164);
-  const rumble::fem::TrackRegion centre{0.082 * n, 0.082 * n, 0.082 * n, 0.082 * n};
+/// The step on `mesh` with `s` (LK dashpots and springs on its sides, away from `track`), K read
+/// in double or single precision, by the SIMD kernel (where the processor has one) or the
+/// portable one: its time against the machine's bounds, as counters.
+void measure_step(benchmark::State& state, const rumble::fem::TetMesh& mesh,
+                  const rumble::fem::FemSettings& s, const rumble::fem::TrackRegion& track,
+                  int threads, bool single, bool simd) {
+  const int mechanisms = s.damping.maxwell_mechanisms().mechanisms();
   auto soil = std::make_unique<rumble::fem::CsrOperator>(
       rumble::fem::assemble_stiffness(mesh, s), rumble::fem::lumped_mass(mesh, s),
-      rumble::fem::absorbing_boundary(mesh, s, centre), true,
+      rumble::fem::absorbing_boundary(mesh, s, track), true,
       std::vector<char>(mesh.node_count(), 0), static_cast<unsigned>(threads),
       single ? rumble::fem::StepPrecision::kSingle : rumble::fem::StepPrecision::kDouble);
   soil->set_block_kernel(simd ? rumble::fem::BlockKernel::kSimd
@@ -127,6 +122,21 @@ void BM_ExplicitStep(benchmark::State& state) {
   state.counters["bound_fraction"] = steps * std::max(memory_bound, flop_bound) / seconds;
   state.counters["B_per_DOF"] = static_cast<double>(op.bytes()) / static_cast<double>(dofs);
 }
+
+/// Medium soil (docs/physics.md §1.4) on a Kuhn box of n^3 cubes; LK dashpots and springs on five
+/// sides, 2 % Rayleigh damping (or over 5-100 Hz by `mechanisms` Maxwell mechanisms): the step
+/// the plugin takes, with K read in double (single 0) or single precision (single 1), by the
+/// SIMD kernel (simd 1, where the processor has one) or the portable one (simd 0).
+void BM_ExplicitStep(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  const int mechanisms = static_cast<int>(state.range(3));
+  const nlohmann::json maxwell = {{"damping", {{"model", "maxwell"}, {"mechanisms", mechanisms}}}};
+  const rumble::fem::FemSettings s = rumble::test::soil_settings(
+      155e6, 0.3, 1800.0, mechanisms > 0 ? maxwell : nlohmann::json::object());
+  const rumble::fem::TrackRegion centre{0.082 * n, 0.082 * n, 0.082 * n, 0.082 * n};
+  measure_step(state, rumble::fem::kuhn_box(n, 0.164), s, centre, static_cast<int>(state.range(1)),
+               state.range(2) != 0, state.range(4) != 0 && rumble::fem::block_simd_available());
+}
 BENCHMARK(BM_ExplicitStep)
     ->ArgNames({"n", "threads", "single", "mechanisms", "simd"})
     ->Args({20, 1, 0, 0, 1})
@@ -146,6 +156,33 @@ BENCHMARK(BM_ExplicitStep)
     ->Args({46, 2, 0, 0, 0})
     ->Args({46, 1, 1, 0, 0})
     ->Args({46, 2, 1, 0, 0})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+/// The same step on a real mesh: the stiff example's graded gmsh hemisphere
+/// (stiff_example.hpp) meshed for f_max [Hz] by HXT (215 Hz: 1.0e6 DOFs, some 15 s to mesh,
+/// once per f_max), its nodes in Morton order as the plugin's. A block's node j is scattered
+/// there, where a box's lie on a few strides the hardware prefetcher follows (docs/fem-soil.md
+/// §4.3, "Gathers"): this is the step runs take.
+void BM_ExplicitStepGraded(benchmark::State& state) {
+  const double f_max = static_cast<double>(state.range(0));
+  static std::map<double, rumble::fem::TetMesh> meshes;  // (one mesh per f_max for all cases)
+  rumble::fem::FemSettings s = rumble::bench::stiff_example(f_max);
+  s.mesh.fast_algorithm = true;
+  const std::vector<rumble::Footprint> sleepers = rumble::bench::stiff_example_sleepers();
+  if (meshes.count(f_max) == 0)
+    meshes.emplace(f_max,
+                   rumble::fem::generate_mesh(s, sleepers, rumble::fem::plan_mesh(s, sleepers)));
+  measure_step(state, meshes.at(f_max), s, rumble::fem::TrackRegion::of(sleepers),
+               static_cast<int>(state.range(1)), state.range(2) != 0,
+               state.range(3) != 0 && rumble::fem::block_simd_available());
+}
+BENCHMARK(BM_ExplicitStepGraded)
+    ->ArgNames({"f_max", "threads", "single", "simd"})
+    ->Args({215, 1, 1, 1})
+    ->Args({215, 2, 1, 1})
+    ->Args({215, 2, 0, 1})
+    ->Args({215, 2, 1, 0})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
