@@ -44,11 +44,14 @@ inline constexpr double kGamgProcessBytesPerNonzero = 8.7;
 
 /// PETSc's GAMG on many ranks at its peak, beyond what a rank holds after its layout, per nonzero
 /// of the rank's part of K [bytes]: its matrix (AIJ, 12 B per nonzero), the plain aggregation's
-/// prolongators and Galerkin products, each product's intermediates freed once it is formed
-/// (distributed/distributed_statics.cpp). Fitted to the stiff example at 8.8e5 DOFs on 2 ranks
-/// (docs/fem-soil.md §8: 1.11-1.16 GB per rank at the statics); one smoothing of the
-/// prolongator (PETSC_OPTIONS -fem_statics_pc_gamg_agg_nsmooths 1) needs 55 B, 1.68-1.69 GB there.
-inline constexpr double kGamgBytesPerNonzero = 28.0;
+/// prolongators and Galerkin products, each product's intermediates freed once it is formed,
+/// less the part's own rows (about 12 B per nonzero), freed once PETSc's matrix holds them
+/// (distributed/distributed_statics.cpp). Fitted to the stiff example on 2 ranks (docs/fem-soil.md
+/// §8: 0.95-0.99 GB per rank at the statics at 1.0e6 DOFs, 1.26-1.29 GB while the rows were
+/// kept, when this was 28 B; the estimate 1.03 of the peak there, 0.99 refined once at 9.3e5
+/// DOFs); one smoothing of the prolongator
+/// (PETSC_OPTIONS -fem_statics_pc_gamg_agg_nsmooths 1) needs about 27 B more.
+inline constexpr double kGamgBytesPerNonzero = 18.0;
 
 /// The geometric multigrid (statics.solver geometric, mesh.refine 1) at its peak, beyond what the
 /// soil holds into the statics, per nonzero of K [bytes]: it frees K's rows first (12 B per

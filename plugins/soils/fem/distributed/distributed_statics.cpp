@@ -37,6 +37,9 @@ DistributedStatics::DistributedStatics(const MeshPartition& part, const SoilOper
   p.rows = number_rows(part, comm);
   p.fixed = op.fixed();
   p.a = assemble_part_matrix(part, op, p.rows, comm);
+  // PETSc's matrix now holds the rows (completed over the ranks): the part's own are freed
+  // before GAMG's hierarchy is built on top (built again if a later caller asks for them).
+  op.release_stiffness();
   petsc_check(MatCreateVecs(p.a, &p.x, &p.b), "MatCreateVecs");
   petsc_check(VecSet(p.x, 0.0), "VecSet");
   build_solver();
