@@ -23,8 +23,9 @@ struct alignas(32) NodeSum {
 /// How many blocks ahead the kernels ask the cache for the x and the pending sum that a later
 /// block will read (docs/fem-soil.md §4.3, "Gathers"). On a gmsh mesh a block's node j is not
 /// where the hardware prefetcher looks, and the sweep waited on those loads: asking 64 blocks
-/// (about 8 nodes) ahead made the step 1.17x faster on a 1.3e6-DOF mesh (48-128 within 3 %),
-/// and left a structured box's as it was.
+/// (about 8 nodes) ahead made the step 1.14-1.35x faster on the stiff example's 1.0e6-DOF mesh
+/// (48 to 128 blocks within 3 % of each other on a 1.3e6-DOF one), and left a structured box's
+/// as it was.
 inline constexpr std::int64_t kPrefetchAhead = 64;
 
 /// One part of the blocks: its nodes [begin, end), its cross blocks [cross_begin, cross_end)
