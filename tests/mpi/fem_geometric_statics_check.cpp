@@ -8,6 +8,10 @@
 //   - CG's iterations on the ranks at one process's tolerance (1e-10) are within 1.3 times (plus
 //     2) of one process's geometric multigrid (statics/geometric_static_solver.hpp) on the same
 //     box: the same levels, the coarse GAMG split over the ranks;
+//   - GAMG on the same parts (statics.solver gamg under mpirun, distributed_statics.hpp) frees
+//     the part's rows in double once PETSc's matrix holds them (the soil's memory on the ranks,
+//     docs/fem-soil.md §8), builds them again the same to the bit when asked, and its solution
+//     agrees with one process's factor as the geometric multigrid's does;
 // on the viscous-spring boundary (springs at every boundary node), refined once and twice, and
 // on a fixed boundary (held DOFs: identity rows, no interpolation to or from them).
 // usage: mpirun -n N fem_geometric_statics_check   (exit code 0: all held; 1: a check failed)
@@ -19,9 +23,11 @@
 #include <vector>
 
 #include "boundary/absorbing_boundary.hpp"
+#include "distributed/distributed_statics.hpp"
 #include "distributed/geometric_rank_statics.hpp"
 #include "distributed/mesh_partition.hpp"
 #include "distributed/part_operator.hpp"
+#include "distributed/part_stiffness.hpp"
 #include "distributed/refined_partition.hpp"
 #include "fem_settings.hpp"
 #include "mesh/kuhn_box.hpp"
@@ -61,9 +67,37 @@ TetMesh refined_whole(const TetMesh& coarse, int levels) {
 }
 
 struct RanksSolution {
-  Eigen::VectorXd u;  // rank 0: the whole mesh's, in the ranks' numbering
+  Eigen::VectorXd u;       // rank 0: the whole mesh's, in the ranks' numbering
+  Eigen::VectorXd u_gamg;  // the same by GAMG on the ranks
   int iterations = 0, loose_iterations = 0, levels = 0;
+  bool gamg_freed_rows = false, rows_rebuilt_alike = false;  // on every rank
 };
+
+// True on every rank when `mine` holds on each.
+bool on_all(MPI_Comm comm, bool mine) {
+  int here = mine ? 1 : 0, all = 0;
+  MPI_Allreduce(&here, &all, 1, MPI_INT, MPI_MIN, comm);
+  return all == 1;
+}
+
+// GAMG's statics on the ranks' parts (their rows built again as the soil builds them,
+// distributed_soil.cpp), into s: whether the rows were freed, then built again alike, and the
+// solution gathered on rank 0.
+void solve_by_gamg(MPI_Comm comm, const MeshPartition& fine, DistributedOperator& op,
+                   const FemSettings& settings, const Eigen::VectorXd& f, RanksSolution& s) {
+  op.set_stiffness_source([&] {
+    CsrMatrix K = assemble_stiffness(fine.mesh, settings);
+    complete_shared_entries(fine, K, comm);
+    return K;
+  });
+  const std::vector<double> rows = op.stiffness().value();
+  DistributedStatics gamg(fine, op, comm);
+  s.gamg_freed_rows = on_all(comm, !op.holds_stiffness());
+  const Eigen::VectorXd u = gamg.solve(f);
+  s.rows_rebuilt_alike = on_all(comm, op.stiffness().value() == rows);  // (collective)
+  s.u_gamg = Eigen::VectorXd::Zero(rank_of(comm) == 0 ? 3 * fine.global_nodes : 0);
+  fine.from_root->copy_to_roots(u.data(), rank_of(comm) == 0 ? s.u_gamg.data() : nullptr, 3);
+}
 
 // The box split, refined `levels` times on the ranks, solved there at 1e-12 and at 1e-10.
 RanksSolution solve_on_ranks(MPI_Comm comm, const TetMesh& coarse_box, int levels,
@@ -88,6 +122,7 @@ RanksSolution solve_on_ranks(MPI_Comm comm, const TetMesh& coarse_box, int level
   s.loose_iterations = loose.last_iterations();
   s.u = Eigen::VectorXd::Zero(root ? 3 * fine.global_nodes : 0);
   fine.from_root->copy_to_roots(u.data(), root ? s.u.data() : nullptr, 3);
+  solve_by_gamg(comm, fine, *op, settings, f, s);
   return s;
 }
 
@@ -116,14 +151,21 @@ bool check_on_one_process(const TetMesh& coarse_box, int levels, const FemSettin
     return coarse_level(coarse_box, whole, levels, settings, footprints, op.fixed());
   });
   one.solve(f);
+  const double gamg_error =
+      (ranks.u_gamg - exact).cwiseAbs().maxCoeff() / exact.cwiseAbs().maxCoeff();
   const bool ok = residual <= 1.05 * GeometricRankStatics::kTolerance && error < 1e-8 &&
-                  ranks.loose_iterations <= 1.3 * one.last_iterations() + 2;
+                  ranks.loose_iterations <= 1.3 * one.last_iterations() + 2 && gamg_error < 1e-8 &&
+                  ranks.gamg_freed_rows && ranks.rows_rebuilt_alike;
   std::printf(
       "fem_geometric_statics_check (%s, refined %d times, %lld DOFs): %d levels; on the ranks "
       "%d CG iterations to 1e-12, residual %.3g of the load in one process's operator, within "
-      "%.3g of its factor; to 1e-10 %d iterations, one process's geometric multigrid %d: %s\n",
+      "%.3g of its factor; to 1e-10 %d iterations, one process's geometric multigrid %d; GAMG on "
+      "the ranks within %.3g of the factor, the part's rows %s, %s: %s\n",
       name, levels, static_cast<long long>(whole.dof_count()), ranks.levels, ranks.iterations,
-      residual, error, ranks.loose_iterations, one.last_iterations(), ok ? "ok" : "FAILED");
+      residual, error, ranks.loose_iterations, one.last_iterations(), gamg_error,
+      ranks.gamg_freed_rows ? "freed" : "NOT FREED",
+      ranks.rows_rebuilt_alike ? "built again alike" : "NOT BUILT AGAIN ALIKE",
+      ok ? "ok" : "FAILED");
   return ok;
 }
 
