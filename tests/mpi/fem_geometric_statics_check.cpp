@@ -85,7 +85,7 @@ bool on_all(MPI_Comm comm, bool mine) {
 // solution gathered on rank 0.
 void solve_by_gamg(MPI_Comm comm, const MeshPartition& fine, DistributedOperator& op,
                    const FemSettings& settings, const Eigen::VectorXd& f, RanksSolution& s) {
-  op.set_stiffness_source([&] {
+  op.set_stiffness_source([&fine, &settings, comm] {  // (op outlives this call)
     CsrMatrix K = assemble_stiffness(fine.mesh, settings);
     complete_shared_entries(fine, K, comm);
     return K;
