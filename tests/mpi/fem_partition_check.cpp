@@ -29,7 +29,7 @@
 //     ties included) bit for bit;
 //   - the stable step's largest eigenvalue by Lanczos over the ranks (sums in rank order) equals
 //     one process's to 1e-9, its own tolerance, and is the same on every rank.
-// usage: PETSC_OPTIONS=-malloc_debug mpirun -n N fem_partition_check   (exit code 0: all held;
+// usage: PETSC_OPTIONS=-malloc_dump mpirun -n N fem_partition_check   (exit code 0: all held;
 // 1: a check failed)
 #include <omp.h>
 #include <petscsys.h>
@@ -83,7 +83,7 @@ struct Checks {
   }
 };
 
-// The bytes PETSc holds now (its tracing malloc, which the test's PETSC_OPTIONS -malloc_debug
+// The bytes PETSc holds now (its tracing malloc, which the test's PETSC_OPTIONS -malloc_dump
 // turns on; main checks that it is on).
 double petsc_bytes() {
   PetscLogDouble bytes = 0.0;
@@ -484,7 +484,7 @@ int main(int argc, char** argv) {
       if (rank_of(MPI_COMM_WORLD) == 0)
         std::printf(
             "fem_partition_check: FAILED PETSc's malloc is not traced: run it with "
-            "PETSC_OPTIONS=-malloc_debug, as its test does\n");
+            "PETSC_OPTIONS=-malloc_dump, as its test does\n");
       ++failed;
     }
     std::vector<std::int32_t> first, second;
