@@ -170,7 +170,8 @@ TEST(FemStaticFarField, ALoadChangeSettlesAsTheHalfSpace) {
   const double H = 1e-3;
   ASSERT_EQ(soil.api().set_probes(soil.self(), probes.data(), probes.size(), H), RUMBLE_OK);
   soil.initialize(F0);
-  for (double t = 0.0; t < 0.5 - 1e-9; t += H) soil.advance_linear(t, H, F1, F1);
+  for (double t = 0.0; t < 0.5 * kSanitizedShare - 1e-9; t += H) soil.advance_linear(t, H, F1, F1);
+  RUMBLE_PHYSICS_IN_THE_DEV_BUILD_ONLY();
   const std::vector<double> ratios =
       ratios_to_half_space(newest_probe_settlements(soil, probes.size()), F1, "after the change");
   for (double ratio : ratios) EXPECT_NEAR(ratio, 1.0, 0.03);

@@ -3,11 +3,19 @@
 // mallopt: tests that measure resident memory skip under it. GCC says so by
 // __SANITIZE_ADDRESS__, Clang (the asan preset's compiler) by __has_feature.
 //
+// kSanitizedShare and RUMBLE_PHYSICS_IN_THE_DEV_BUILD_ONLY(): a long physics run (a load held
+// 0.5 s, a steady state, thousands of steps for a growing mode) is cut to a tenth of its
+// simulated time under AddressSanitizer, where it checks memory (every path of its step runs in
+// the first steps), and returns before the physics that needs the whole run, which the dev
+// build checks.
+//
 // RUMBLE_SKIP_STUDY_UNDER_ASAN(): a study that runs one code path at several sizes or steps (a
 // convergence or energy series, seconds in the dev build, a minute under the sanitizers) is
 // skipped under AddressSanitizer, where its suite's lighter tests run the same paths; the dev
 // build runs it (docs/toolchain.md, "What runs under the sanitizers").
 #pragma once
+
+#include <cstdio>
 
 namespace rumble::test {
 
@@ -23,7 +31,18 @@ inline constexpr bool kUnderAddressSanitizer = false;
 inline constexpr bool kUnderAddressSanitizer = false;
 #endif
 
+/// The share of a long physics run's simulated time this build runs (see above).
+inline constexpr double kSanitizedShare = kUnderAddressSanitizer ? 0.1 : 1.0;
+
 }  // namespace rumble::test
+
+#define RUMBLE_PHYSICS_IN_THE_DEV_BUILD_ONLY()                                         \
+  if (::rumble::test::kUnderAddressSanitizer) {                                        \
+    std::printf(                                                                       \
+        "[ sanitized ] a tenth of the run for memory; its physics is the dev build's " \
+        "(tests/support/sanitizer.hpp)\n");                                            \
+    return;                                                                            \
+  }
 
 #define RUMBLE_SKIP_STUDY_UNDER_ASAN()                                                     \
   if (::rumble::test::kUnderAddressSanitizer)                                              \
