@@ -6,7 +6,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 set +e
 report=$(git ls-files -z --cached --others --exclude-standard '*.cpp' '*.hpp' '*.h' '*.c' |
-           while IFS= read -r -d '' f; do [ -f "$f" ] && printf '%s\0' "$f"; done |
+           while IFS= read -r -d '' f; do if [ -f "$f" ]; then printf '%s\0' "$f"; fi; done |
            xargs -0 -r -P"$(nproc)" -n 40 clang-format --dry-run -Werror 2>&1)
 status=$?
 set -e
