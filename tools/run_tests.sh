@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The test job (also what CI runs): install what is missing, check formatting, build with
 # warnings as errors and run the test suite, then build and run it again under ASan + UBSan
-# with the fuzz targets (clang), each fuzzed for a minute among the tests (docs/fuzzing.md).
+# with the fuzz targets (clang), each fuzzed for 20 s among the tests (docs/fuzzing.md).
 #   tools/run_tests.sh            everything (from a clean checkout two full unity builds: dev
 #                                 (GCC) about 23 CPU-minutes, asan (Clang, the tests' own code
 #                                 at -O0, decision 0009, and the five fuzz targets) about 22;
