@@ -91,9 +91,9 @@ int main(int argc, char** argv) {
       for (std::int32_t i = 0; i < part->nodes(); ++i) ghosts += part->owns(i, rank) ? 0 : 1;
       solver.emplace(
           std::make_unique<DistributedOperator>(
-              std::move(K), std::move(mass), std::vector<BoundaryNode>{}, false,
-              std::vector<char>(part->nodes(), 0), static_cast<unsigned>(omp_get_max_threads()),
-              precision, *part, MPI_COMM_WORLD),
+              std::move(K), ElementStiffness(part->mesh, settings), std::move(mass),
+              std::vector<BoundaryNode>{}, false, std::vector<char>(part->nodes(), 0),
+              static_cast<unsigned>(omp_get_max_threads()), precision, *part, MPI_COMM_WORLD),
           0.0, 0.0, 1.0, 0);
     }
     ExplicitState state = solver->rest_state();

@@ -59,10 +59,10 @@ TEST(RankPlan, RefinedOnTheRanksRankZeroHoldsTheCoarseMesh) {
             std::string::npos);
 }
 
-// statics.solver geometric on the ranks: its statics at 15 B per nonzero of a share, GAMG's at
-// 55 (memory_model.hpp; docs/fem-soil.md §8, "The geometric multigrid on the ranks"), on the
-// ranks at any size when named (below the factor limit too, where rank 0 would factor); auto's
-// below the limit is rank 0's factor.
+// statics.solver geometric on the ranks: its statics at kGeometricRankBytesPerNonzero per
+// nonzero of a share, GAMG's at kGamgBytesPerNonzero (memory_model.hpp; docs/fem-soil.md §8, "The
+// geometric multigrid on the ranks"), on the ranks at any size when named (below the factor limit
+// too, where rank 0 would factor); auto's below the limit is rank 0's factor.
 TEST(RankPlan, TheGeometricMultigridOnTheRanksCostsItsOwnStatics) {
   namespace memory = rumble::fem::memory;
   const double n = 4e5;  // (1.2e6 DOFs: above the factor limit)

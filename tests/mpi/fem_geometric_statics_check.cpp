@@ -8,6 +8,9 @@
 //   - CG's iterations on the ranks at one process's tolerance (1e-10) are within 1.3 times (plus
 //     2) of one process's geometric multigrid (statics/geometric_static_solver.hpp) on the same
 //     box: the same levels, the coarse GAMG split over the ranks;
+//   - the geometric multigrid on the ranks frees the part's rows in double before its set-up and
+//     solves without them (its fine level's product formed from the part's tetrahedra,
+//     element_stiffness.hpp): the rows are still freed after the solve;
 //   - GAMG on the same parts (statics.solver gamg under mpirun, distributed_statics.hpp) frees
 //     the part's rows in double once PETSc's matrix holds them (the soil's memory on the ranks,
 //     docs/fem-soil.md §8), builds them again the same to the bit when asked, and its solution
@@ -70,6 +73,7 @@ struct RanksSolution {
   Eigen::VectorXd u;       // rank 0: the whole mesh's, in the ranks' numbering
   Eigen::VectorXd u_gamg;  // the same by GAMG on the ranks
   int iterations = 0, loose_iterations = 0, levels = 0;
+  bool geometric_freed_rows = false;                         // on every rank, after the solve
   bool gamg_freed_rows = false, rows_rebuilt_alike = false;  // on every rank
 };
 
@@ -80,16 +84,21 @@ bool on_all(MPI_Comm comm, bool mine) {
   return all == 1;
 }
 
-// GAMG's statics on the ranks' parts (their rows built again as the soil builds them,
-// distributed_soil.cpp), into s: whether the rows were freed, then built again alike, and the
-// solution gathered on rank 0.
-void solve_by_gamg(MPI_Comm comm, const MeshPartition& fine, DistributedOperator& op,
-                   const FemSettings& settings, const Eigen::VectorXd& f, RanksSolution& s) {
+// The part's rows made free to release: built again as the soil builds them
+// (distributed_soil.cpp) when next asked for.
+void set_rows_source(MPI_Comm comm, const MeshPartition& fine, DistributedOperator& op,
+                     const FemSettings& settings) {
   op.set_stiffness_source([&fine, &settings, comm] {  // (op outlives this call)
     CsrMatrix K = assemble_stiffness(fine.mesh, settings);
     complete_shared_entries(fine, K, comm);
     return K;
   });
+}
+
+// GAMG's statics on the ranks' parts, into s: whether the rows were freed, then built again
+// alike, and the solution gathered on rank 0.
+void solve_by_gamg(MPI_Comm comm, const MeshPartition& fine, DistributedOperator& op,
+                   const Eigen::VectorXd& f, RanksSolution& s) {
   const std::vector<double> rows = op.stiffness().value();
   DistributedStatics gamg(fine, op, comm);
   s.gamg_freed_rows = on_all(comm, !op.holds_stiffness());
@@ -113,8 +122,10 @@ RanksSolution solve_on_ranks(MPI_Comm comm, const TetMesh& coarse_box, int level
   for (std::int32_t i = 0; i < fine.nodes(); ++i)
     for (int c = 0; c < 3; ++c) f[3 * i + c] = load_at(fine.global[i], c);
   RanksSolution s;
+  set_rows_source(comm, fine, *op, settings);
   GeometricRankStatics tight(fine, *op, coarse, *coarse_op, levels, comm);
   const Eigen::VectorXd u = tight.solve(f);
+  s.geometric_freed_rows = on_all(comm, !op->holds_stiffness());
   s.iterations = tight.last_iterations();
   s.levels = tight.levels();
   GeometricRankStatics loose(fine, *op, coarse, *coarse_op, levels, comm, 1e-10);
@@ -122,7 +133,7 @@ RanksSolution solve_on_ranks(MPI_Comm comm, const TetMesh& coarse_box, int level
   s.loose_iterations = loose.last_iterations();
   s.u = Eigen::VectorXd::Zero(root ? 3 * fine.global_nodes : 0);
   fine.from_root->copy_to_roots(u.data(), root ? s.u.data() : nullptr, 3);
-  solve_by_gamg(comm, fine, *op, settings, f, s);
+  solve_by_gamg(comm, fine, *op, f, s);
   return s;
 }
 
@@ -155,14 +166,16 @@ bool check_on_one_process(const TetMesh& coarse_box, int levels, const FemSettin
       (ranks.u_gamg - exact).cwiseAbs().maxCoeff() / exact.cwiseAbs().maxCoeff();
   const bool ok = residual <= 1.05 * GeometricRankStatics::kTolerance && error < 1e-8 &&
                   ranks.loose_iterations <= 1.3 * one.last_iterations() + 2 && gamg_error < 1e-8 &&
-                  ranks.gamg_freed_rows && ranks.rows_rebuilt_alike;
+                  ranks.geometric_freed_rows && ranks.gamg_freed_rows && ranks.rows_rebuilt_alike;
   std::printf(
       "fem_geometric_statics_check (%s, refined %d times, %lld DOFs): %d levels; on the ranks "
-      "%d CG iterations to 1e-12, residual %.3g of the load in one process's operator, within "
+      "(the part's rows %s) %d CG iterations to 1e-12, residual %.3g of the load in one process's "
+      "operator, within "
       "%.3g of its factor; to 1e-10 %d iterations, one process's geometric multigrid %d; GAMG on "
       "the ranks within %.3g of the factor, the part's rows %s, %s: %s\n",
-      name, levels, static_cast<long long>(whole.dof_count()), ranks.levels, ranks.iterations,
-      residual, error, ranks.loose_iterations, one.last_iterations(), gamg_error,
+      name, levels, static_cast<long long>(whole.dof_count()), ranks.levels,
+      ranks.geometric_freed_rows ? "freed" : "NOT FREED", ranks.iterations, residual, error,
+      ranks.loose_iterations, one.last_iterations(), gamg_error,
       ranks.gamg_freed_rows ? "freed" : "NOT FREED",
       ranks.rows_rebuilt_alike ? "built again alike" : "NOT BUILT AGAIN ALIKE",
       ok ? "ok" : "FAILED");

@@ -197,8 +197,8 @@ int check(MPI_Comm comm, StepPrecision precision, std::vector<std::int32_t>& nod
   Eigen::VectorXd x(3 * part.nodes());
   for (std::int32_t i = 0; i < part.nodes(); ++i)
     for (int c = 0; c < 3; ++c) x[3 * i + c] = value_at(part.global[i], c);
-  const DistributedOperator op(std::move(K), mass, {}, false, std::vector<char>(part.nodes(), 0), 2,
-                               precision, part, comm);
+  const DistributedOperator op(std::move(K), ElementStiffness(part.mesh, settings), mass, {}, false,
+                               std::vector<char>(part.nodes(), 0), 2, precision, part, comm);
   Eigen::VectorXd y;
   const double petsc_before = petsc_bytes();
   op.stepped_stiffness_times(x, y, false);
@@ -430,9 +430,9 @@ void check_stable_step(MPI_Comm comm, MeshPartition& part, const TetMesh& whole,
   Eigen::VectorXd mass = lumped_mass(part.mesh, settings);
   complete_mass(part, mass);
   const ExplicitSolver ranks(
-      std::make_unique<DistributedOperator>(std::move(K), std::move(mass), std::move(mine), true,
-                                            std::vector<char>(part.nodes(), 0), 1,
-                                            StepPrecision::kDouble, part, comm),
+      std::make_unique<DistributedOperator>(
+          std::move(K), ElementStiffness(part.mesh, settings), std::move(mass), std::move(mine),
+          true, std::vector<char>(part.nodes(), 0), 1, StepPrecision::kDouble, part, comm),
       0.0, 0.0);
   const double lambda = ranks.largest_eigenvalue();
   double lowest = 0.0, highest = 0.0;

@@ -350,7 +350,8 @@ function(fem_case)
     expect_match("${out}" "interrupted \\(SIGTERM\\) while the static state was solved, before the first step")
   elseif(CASE STREQUAL "fem_product_failure_in_the_ranks_statics")
     # The fine level's product fails on rank 1 alone, inside PETSc's collective frames (the
-    # smoothers' estimates): it keeps the failure and makes its exchanges, CG's test and the
+    # smoothers' estimates, which read K as the step does: the hook fails both products): it
+    # keeps the failure and makes its exchanges, CG's test and the
     # set-up agree on it (plugins/soils/fem/distributed/geometric_rank_statics.cpp). Before,
     # rank 1 left PETSc with an error while rank 0 waited in the next sum: a hang.
     set(ENV{RUMBLE_FEM_FAIL_RANK_AT} "1:statics")

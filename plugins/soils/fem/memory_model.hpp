@@ -66,10 +66,11 @@ inline constexpr double kGeometricBytesPerNonzero = -2.2;
 /// at its peak, beyond what a rank holds after its layout, per nonzero of the rank's part of K
 /// [bytes]: the coarse part's operator and its MPIAIJ K + S (1/8 of the part's), GAMG's
 /// hierarchy on it, the interpolation, the fine level's diagonal and the CG, smoother and shell
-/// vectors (distributed/geometric_rank_statics.hpp; the part's K is kept: the step and the
-/// shell's product read it). Fitted to the stiff example refined once, 9.33e5 DOFs on 2 ranks
-/// (docs/fem-soil.md §8: 0.77-0.80 GB per rank at the statics, GAMG's 1.74-1.75 GB).
-inline constexpr double kGeometricRankBytesPerNonzero = 15.0;
+/// vectors (distributed/geometric_rank_statics.hpp), less the part's rows in double (12 B per
+/// nonzero), freed before the set-up: the fine product forms K from the tetrahedra. Fitted to
+/// the stiff example refined once, 9.33e5 DOFs on 2 ranks (docs/fem-soil.md §8, "K without its
+/// rows": 0.53-0.55 GB per rank at the statics; 15 B and 0.77-0.80 GB while the rows were kept).
+inline constexpr double kGeometricRankBytesPerNonzero = 3.0;
 
 /// The whole mesh's nodes and tetrahedra as rank 0 keeps them on many ranks, per DOF [bytes]:
 /// 24 B per node and 16 B per tetrahedron, about 5.5 tetrahedra per node (docs/fem-soil.md §8,

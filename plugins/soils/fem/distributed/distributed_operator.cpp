@@ -24,13 +24,14 @@ void share(std::int64_t begin, std::int64_t end, std::int64_t& lo, std::int64_t&
 
 }  // namespace
 
-DistributedOperator::DistributedOperator(CsrMatrix K, Eigen::VectorXd mass,
-                                         std::vector<BoundaryNode> boundary, bool springs,
-                                         std::vector<char> fixed, unsigned threads,
+DistributedOperator::DistributedOperator(CsrMatrix K, ElementStiffness elements,
+                                         Eigen::VectorXd mass, std::vector<BoundaryNode> boundary,
+                                         bool springs, std::vector<char> fixed, unsigned threads,
                                          StepPrecision precision, const MeshPartition& part,
                                          MPI_Comm comm)
     : SoilOperator(std::move(mass), std::move(boundary), springs, std::move(fixed), threads),
       K_(std::move(K)),
+      elements_(std::move(elements)),
       scratch_(static_cast<std::size_t>(part.nodes()), NodeSum{}),
       shared_(part.shared),
       halo_(*part.halo),
@@ -66,9 +67,9 @@ const CsrMatrix& DistributedOperator::stiffness() const {
 }
 
 std::size_t DistributedOperator::bytes() const {
-  return (K_ ? K_->bytes() : 0) + stepped_bytes() + scratch_.size() * sizeof(NodeSum) +
-         shared_products_.size() * 8 + owned_.size() + order_.size() * 4 + ordered_x_.size() * 8 +
-         node_bytes();
+  return (K_ ? K_->bytes() : 0) + elements_.bytes() + stepped_bytes() +
+         scratch_.size() * sizeof(NodeSum) + shared_products_.size() * 8 + owned_.size() +
+         order_.size() * 4 + ordered_x_.size() * 8 + node_bytes();
 }
 
 double DistributedOperator::dot(const Eigen::VectorXd& x, const Eigen::VectorXd& y,
@@ -139,16 +140,17 @@ void DistributedOperator::times(const Eigen::VectorXd& x, Eigen::VectorXd& y, bo
   double* out = y.data();
   std::exception_ptr failure;  // (this rank's part's: rethrown after the exchanges)
   try {
-    if (!stepped && !failing_.empty()) throw std::runtime_error(failing_);
+    if (!failing_.empty()) throw std::runtime_error(failing_);
     if (stepped) {
 #pragma omp parallel num_threads(threads_)
       blocks_times(x.data(),
                    [out](std::int64_t i, const double* p) { std::copy_n(p, 3, out + 3 * i); });
-    } else {
-      const CsrMatrix& K = stiffness();
+    } else if (K_) {
 #pragma omp parallel for num_threads(threads_) schedule(static)
       for (std::int64_t i = 0; i < n; ++i)
-        K.node_rows_dot(static_cast<std::int32_t>(i), x.data(), out + 3 * i);
+        K_->node_rows_dot(static_cast<std::int32_t>(i), x.data(), out + 3 * i);
+    } else {  // (the rows released: not built again for a product)
+      elements_.times(x.data(), out, threads_);
     }
   } catch (...) {
     failure = std::current_exception();

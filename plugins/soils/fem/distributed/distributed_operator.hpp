@@ -22,8 +22,11 @@
 // blocks and force, so the copies of a node stay equal bit for bit and the step needs no
 // exchange of its own. The explicit step (time/explicit_solver.hpp) runs unchanged on it.
 //
-// K's compressed rows (in double: the statics' matrix, stiffness_times) are kept until
-// release_stiffness, and built again (collectively) when next asked for.
+// K's compressed rows (in double: GAMG's matrix) are kept until release_stiffness, and built
+// again (collectively) when next asked for. The product in double (stiffness_times: the
+// geometric multigrid's fine level on the ranks) reads them while they are held, and without
+// them forms each of the part's tetrahedra's products from its nodes (element_stiffness.hpp):
+// the statics need not hold the rows (docs/fem-soil.md §8, "K without its rows").
 //
 // Every product is collective: all ranks call it, in the same order. None leaves a rank alone
 // inside an exchange: the halo's buffers are made with the partition
@@ -44,6 +47,7 @@
 #include "distributed/star_forest.hpp"
 #include "operator/boundary_blocks.hpp"
 #include "operator/csr_matrix.hpp"
+#include "operator/element_stiffness.hpp"
 #include "operator/soil_operator.hpp"
 #include "operator/symmetric_blocks.hpp"
 
@@ -51,12 +55,14 @@ namespace rumble::fem {
 
 class DistributedOperator final : public SoilOperator {
  public:
-  /// K: the part's rows (part_stiffness.hpp); mass, boundary, fixed: per local node, whole;
-  /// part: the partition (its halo over the nodes [0, part.shared), its owners and whole
-  /// numbers; kept alive by the caller); comm: its ranks.
-  DistributedOperator(CsrMatrix K, Eigen::VectorXd mass, std::vector<BoundaryNode> boundary,
-                      bool springs, std::vector<char> fixed, unsigned threads,
-                      StepPrecision precision, const MeshPartition& part, MPI_Comm comm);
+  /// K: the part's rows (part_stiffness.hpp); elements: the same K's product from the part's
+  /// tetrahedra; mass, boundary, fixed: per local node, whole; part: the partition (its halo
+  /// over the nodes [0, part.shared), its owners and whole numbers; kept alive by the caller);
+  /// comm: its ranks.
+  DistributedOperator(CsrMatrix K, ElementStiffness elements, Eigen::VectorXd mass,
+                      std::vector<BoundaryNode> boundary, bool springs, std::vector<char> fixed,
+                      unsigned threads, StepPrecision precision, const MeshPartition& part,
+                      MPI_Comm comm);
 
   void set_threads(unsigned threads) override;
   void stiffness_times(const Eigen::VectorXd& x, Eigen::VectorXd& y,
@@ -74,6 +80,8 @@ class DistributedOperator final : public SoilOperator {
   /// The part's rows (not K's whole rows at the shared nodes). Collective where they were
   /// released (every rank builds its own again): every rank calls it then, in the same order.
   const CsrMatrix& stiffness() const override;
+  /// From the part's tetrahedra (the rows not built again): this rank's part of K's diagonal.
+  Eigen::VectorXd stiffness_diagonal() const override { return elements_.diagonal(); }
   std::size_t bytes() const override;
   /// The bytes of K the step reads (its upper blocks, their indices and the parts' lists).
   std::size_t stepped_bytes() const {
@@ -97,8 +105,9 @@ class DistributedOperator final : public SoilOperator {
              const double* node_weight) const override;
   std::int64_t whole_node(std::int64_t i) const override { return global_[i]; }
 
-  /// From now on this rank's part of stiffness_times throws std::runtime_error(why) (its
-  /// exchanges still made): tests/mpi's product failure on one rank (RUMBLE_FEM_FAIL_RANK_AT).
+  /// From now on this rank's part of stiffness_times and stepped_stiffness_times (the statics'
+  /// products, not the step's) throws std::runtime_error(why) (its exchanges still made):
+  /// tests/mpi's product failure on one rank (RUMBLE_FEM_FAIL_RANK_AT).
   void fail_products_on_purpose(std::string why) { failing_ = std::move(why); }
 
  private:
@@ -113,6 +122,7 @@ class DistributedOperator final : public SoilOperator {
 
   mutable std::optional<CsrMatrix> K_;  // (a cache: released between the statics)
   std::function<CsrMatrix()> assemble_;
+  ElementStiffness elements_;  // (K x without the rows)
   // The part's upper blocks as the step reads them: rounded to float, or in double (one of two).
   std::optional<SymmetricBlocks<float>> single_blocks_;
   std::optional<SymmetricBlocks<double>> double_blocks_;

@@ -90,11 +90,13 @@ void DistributedSoil::build_step(const FemSettings& settings,
     complete_shared_entries(part_, *again, comm_);
     return std::move(*again);
   });
-  if (!failing_products_.empty()) op->fail_products_on_purpose(failing_products_);
+  DistributedOperator& soil = *op;  // (owned by the step from here)
   // Lanczos on the ranks' operator (its sums over the ranks in rank order): every rank gets
   // the same stable step, one process's to rounding (fem_partition_check.cpp).
   step_.emplace(std::move(op), settings.damping.mass_coefficient(),
                 settings.damping.stiffness_coefficient());
+  // (after the stable step's products: the hook is for the statics')
+  if (!failing_products_.empty()) soil.fail_products_on_purpose(failing_products_);
   if (settings.damping.maxwell) step_->set_maxwell_damping(settings.damping.maxwell_mechanisms());
 }
 

@@ -89,9 +89,9 @@ class DistributedSoil {
 
   ExplicitSolver& step() { return *step_; }
 
-  /// The operator's stiffness_times throws std::runtime_error(why) on this rank from its next
-  /// layout on (DistributedOperator::fail_products_on_purpose): RUMBLE_FEM_FAIL_RANK_AT's
-  /// "rank:statics", a test's.
+  /// The operator's statics products throw std::runtime_error(why) on this rank from its next
+  /// layout's stable step on (DistributedOperator::fail_products_on_purpose):
+  /// RUMBLE_FEM_FAIL_RANK_AT's "rank:statics", a test's.
   void fail_products_on_purpose(std::string why) { failing_products_ = std::move(why); }
   const ExplicitSolver& step() const { return *step_; }
   ExplicitState& state() { return state_; }

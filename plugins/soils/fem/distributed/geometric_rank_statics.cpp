@@ -24,15 +24,18 @@ struct GeometricRankStatics::Petsc {
     MatDestroy(&interpolation);
     MatDestroy(&node_interpolation);
     MatDestroy(&coarse);
+    MatDestroy(&smoothed);
     MatDestroy(&fine);
   }
-  /// y = (K + S) x over the ranks by the operator's product in double; identity rows and
-  /// columns on held DOFs (x's held entries taken out first: the shell is symmetric for any x,
-  /// as the smoother's estimate of the spectrum needs, statics/geometric_static_solver.cpp).
+  /// y = (K + S) x over the ranks by the operator's product, K in double (kStepped false: CG's
+  /// operator) or as the step reads it (true: the smoother's); identity rows and columns on held
+  /// DOFs (x's held entries taken out first: the shell is symmetric for any x, as the smoother's
+  /// estimate of the spectrum needs, statics/geometric_static_solver.cpp).
   /// The fine level's MATOP_MULT, collective as MatMult is. A failed product (it still made its
   /// exchanges, distributed_operator.hpp) is kept in `stop.failed` and gives y = x: a PETSc error
   /// here would end MatMult on this rank alone while the others wait in CG's next sum; CG ends
   /// at the next iteration on every rank instead and the ranks agree on the failure.
+  template <bool kStepped>
   static PetscErrorCode multiply(Mat a, Vec x, Vec y) {
     Petsc* p = nullptr;
     const PetscScalar* in = nullptr;
@@ -45,7 +48,10 @@ struct GeometricRankStatics::Petsc {
         p->in[3 * owned[k] + c] = p->fixed[owned[k]] ? 0.0 : in[3 * k + c];
     try {  // (a C++ exception must not cross PETSc's C frames)
       p->part->halo->to_leaves(p->in.data(), p->in.data(), 3);  // (the ghosts: their owners')
-      p->op->stiffness_times(p->in, p->out, true);
+      if constexpr (kStepped)
+        p->op->stepped_stiffness_times(p->in, p->out, true);
+      else
+        p->op->stiffness_times(p->in, p->out, true);
     } catch (...) {
       if (!p->stop.failed) p->stop.failed = std::current_exception();
     }
@@ -73,13 +79,13 @@ struct GeometricRankStatics::Petsc {
   const MeshPartition* part = nullptr;
   const SoilOperator* op = nullptr;
   RankRows rows;
-  std::vector<char> fixed;   // per local node: held
-  Eigen::VectorXd diagonal;  // per owned DOF
-  Eigen::VectorXd in, out;   // per local DOF, the shell's
-  Mat fine = nullptr, coarse = nullptr;
-  Mat node_interpolation = nullptr;  // owned fine nodes x coarse nodes
-  Mat interpolation = nullptr;       // the same on each of a node's 3 DOFs (MAIJ)
-  Vec x = nullptr, b = nullptr;      // x: the last solution (CG's start)
+  std::vector<char> fixed;                                   // per local node: held
+  Eigen::VectorXd diagonal;                                  // per owned DOF
+  Eigen::VectorXd in, out;                                   // per local DOF, the shell's
+  Mat fine = nullptr, smoothed = nullptr, coarse = nullptr;  // smoothed: K as the step reads it
+  Mat node_interpolation = nullptr;                          // owned fine nodes x coarse nodes
+  Mat interpolation = nullptr;   // the same on each of a node's 3 DOFs (MAIJ)
+  Vec x = nullptr, b = nullptr;  // x: the last solution (CG's start)
   KSP ksp = nullptr;
   PetscStopTest stop;
 };
@@ -87,14 +93,10 @@ struct GeometricRankStatics::Petsc {
 namespace {
 
 /// The diagonal of K + S on the owned DOFs of rows, from op's part of K (a shared node's
-/// diagonal block summed over the ranks that hold pieces of it), 1 on held DOFs.
+/// diagonal summed over the ranks that hold pieces of it), 1 on held DOFs.
 Eigen::VectorXd owned_diagonal(const MeshPartition& part, const SoilOperator& op,
                                const RankRows& rows) {
-  const CsrMatrix& K = op.stiffness();
-  Eigen::VectorXd d = Eigen::VectorXd::Zero(op.dofs());
-  for (Eigen::Index r = 0; r < d.size(); ++r)
-    for (std::int64_t k = K.row_start()[r]; k < K.row_start()[r + 1]; ++k)
-      if (K.column()[k] == r) d[r] = K.value()[k];
+  Eigen::VectorXd d = op.stiffness_diagonal();
   part.halo->sum_to_roots(d.data(), d.data(), 3);
   for (const BoundaryNode& b : op.boundary())  // (each copy holds the node's whole block)
     for (int c = 0; c < 3; ++c) d[3 * b.node + c] += b.spring(c, c);
@@ -117,6 +119,10 @@ GeometricRankStatics::GeometricRankStatics(const MeshPartition& fine, const Soil
   p.comm = comm;
   p.part = &fine;
   p.op = &op;
+  // Nothing here reads K's rows: the fine level's product forms them from the part's
+  // tetrahedra without them (distributed_operator.hpp), and they are 0.4 kB per DOF of the
+  // part, a quarter of the rank's peak at 1e6 DOFs (docs/fem-soil.md §8).
+  op.release_stiffness();
   p.rows = number_rows(fine, comm);
   p.fixed = op.fixed();
   p.diagonal = owned_diagonal(fine, op, p.rows);
@@ -138,16 +144,19 @@ void GeometricRankStatics::make_fine_level() {
   const auto n = 3 * static_cast<PetscInt>(p.rows.owned.size());
   p.in = Eigen::VectorXd::Zero(p.op->dofs());
   p.out = Eigen::VectorXd::Zero(p.op->dofs());
-  petsc_check(MatCreateShell(p.comm, n, n, PETSC_DETERMINE, PETSC_DETERMINE, &p, &p.fine),
-              "MatCreateShell");
-  petsc_check(
-      MatShellSetOperation(p.fine, MATOP_MULT, reinterpret_cast<void (*)(void)>(&Petsc::multiply)),
-      "MatShellSetOperation");
-  petsc_check(MatShellSetOperation(p.fine, MATOP_GET_DIAGONAL,
-                                   reinterpret_cast<void (*)(void)>(&Petsc::get_diagonal)),
-              "MatShellSetOperation");
-  petsc_check(MatSetBlockSize(p.fine, 3), "MatSetBlockSize");
-  petsc_check(MatSetOption(p.fine, MAT_SPD, PETSC_TRUE), "MatSetOption");
+  const auto shell = [&p, n](Mat& m, PetscErrorCode (*multiply)(Mat, Vec, Vec)) {
+    petsc_check(MatCreateShell(p.comm, n, n, PETSC_DETERMINE, PETSC_DETERMINE, &p, &m),
+                "MatCreateShell");
+    petsc_check(MatShellSetOperation(m, MATOP_MULT, reinterpret_cast<void (*)(void)>(multiply)),
+                "MatShellSetOperation");
+    petsc_check(MatShellSetOperation(m, MATOP_GET_DIAGONAL,
+                                     reinterpret_cast<void (*)(void)>(&Petsc::get_diagonal)),
+                "MatShellSetOperation");
+    petsc_check(MatSetBlockSize(m, 3), "MatSetBlockSize");
+    petsc_check(MatSetOption(m, MAT_SPD, PETSC_TRUE), "MatSetOption");
+  };
+  shell(p.fine, &Petsc::multiply<false>);
+  shell(p.smoothed, &Petsc::multiply<true>);
   petsc_check(MatCreateVecs(p.fine, &p.x, &p.b), "MatCreateVecs");
   petsc_check(VecSet(p.x, 0.0), "VecSet");
 }
@@ -198,7 +207,7 @@ void GeometricRankStatics::build_solver(const MeshPartition& coarse,
   p.coarse = assemble_part_matrix(coarse, coarse_op, rows, p.comm);
   set_rigid_body_modes(p.coarse, coarse, rows, p.comm);
   p.ksp = static_cg(p.comm, p.fine, p.fine, tolerance_);
-  set_two_level_multigrid(p.ksp, p.fine, p.coarse, p.interpolation);
+  set_two_level_multigrid(p.ksp, p.smoothed, p.coarse, p.interpolation);
   petsc_check(KSPSetFromOptions(p.ksp), "KSPSetFromOptions");
   PetscReal asked = tolerance_;  // (PETSC_OPTIONS' -fem_statics_ksp_rtol, if given, for the log)
   petsc_check(KSPGetTolerances(p.ksp, &asked, nullptr, nullptr, nullptr), "KSPGetTolerances");

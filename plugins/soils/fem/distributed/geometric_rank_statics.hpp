@@ -3,18 +3,24 @@
 // process's solver (statics/geometric_static_solver.hpp) with each level split as the ranks
 // split the meshes. With mesh.refine each rank refined its own part of gmsh's coarse mesh
 // (refined_partition.hpp), so the coarse part a rank's fine nodes came from is on that rank:
-// - the fine level: a PETSc shell matrix (rows: the ranks' owned nodes) over the ranks'
-//   operator's product in double (distributed_operator.hpp: each rank's part, the shared
-//   nodes' sums exchanged by the halo), held DOFs as identity rows and columns, smoothed by
-//   Chebyshev(2) with Jacobi from its diagonal (statics/two_level_multigrid.hpp);
+// - the fine level: PETSc shell matrices (rows: the ranks' owned nodes) over the ranks'
+//   operator's products (distributed_operator.hpp: each rank's part, the shared nodes' sums
+//   exchanged by the halo), held DOFs as identity rows and columns. CG's operator is K in
+//   double, formed from the part's tetrahedra (the part's rows are freed before the set-up:
+//   operator/element_stiffness.hpp); the smoother, Chebyshev(2) with Jacobi from the diagonal
+//   (statics/two_level_multigrid.hpp), and the multigrid's residual read K as the step does
+//   (its float blocks): the preconditioner is a fixed linear operator within 6e-8 of K's, CG's
+//   residual is K's in double, so the solution is K's to CG's tolerance (docs/fem-soil.md §8,
+//   "K without its rows");
 // - the coarse level: K + S assembled on the coarse parts as MPIAIJ (rank_petsc.hpp, as GAMG's
 //   matrix on the ranks), solved by one V-cycle of GAMG over the ranks;
 // - the interpolation: each owned fine node's row of the nested linear elements' dyadic weights
 //   (statics/nested_interpolation.hpp) from the coarse tetrahedron on its own rank around it,
 //   its columns the coarse nodes (owned or ghosts, in the coarse matrix's numbering), the three
 //   components alike (MAIJ); rows of held fine nodes and columns of held coarse nodes left out.
-// The fine matrix is never assembled: the statics hold the coarse level (1/8 of the fine DOFs
-// per level), the interpolation, the diagonal and CG's vectors. CG stops at 1e-12 of the load,
+// The fine matrix is never assembled and the part's rows are not held: the statics hold the
+// coarse level (1/8 of the fine DOFs per level), the interpolation, the diagonal and CG's
+// vectors beside the step's float blocks. CG stops at 1e-12 of the load,
 // as GAMG on the ranks (distributed_statics.hpp): the same K in double, so whole runs agree with
 // one process's to 1e-10. Every call is collective; PETSc's errors and CG's failure throw on
 // every rank.

@@ -27,9 +27,9 @@ std::unique_ptr<DistributedOperator> part_operator(const MeshPartition& part,
   });
   complete_shared_entries(part, *K, comm);
   complete_mass(part, mass);
-  return std::make_unique<DistributedOperator>(std::move(*K), std::move(mass), std::move(boundary),
-                                               settings.boundary.springs(), std::move(fixed),
-                                               threads, precision, part, comm);
+  return std::make_unique<DistributedOperator>(
+      std::move(*K), ElementStiffness(part.mesh, settings), std::move(mass), std::move(boundary),
+      settings.boundary.springs(), std::move(fixed), threads, precision, part, comm);
 }
 
 }  // namespace rumble::fem

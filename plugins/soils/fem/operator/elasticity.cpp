@@ -12,6 +12,10 @@ const soils::SoilProperties& tet_properties(const TetMesh& mesh, const FemSettin
   return layer < settings.layers.size() ? settings.layers[layer].properties : settings.half_space;
 }
 
+Lame lame_of(const soils::SoilProperties& p, double relaxed) {
+  return {relaxed * p.E * p.nu / ((1.0 + p.nu) * (1.0 - 2.0 * p.nu)), relaxed * p.shear_modulus()};
+}
+
 TetGradients tet_gradients(const TetMesh& mesh, const Tetrahedron& t) {
   // The barycentric coordinates of nodes 1..3 are J^-1 (x - x0), J = [x1-x0 x2-x0 x3-x0]: their
   // gradients are the rows of J^-1; node 0's is minus their sum.
@@ -39,9 +43,7 @@ CsrMatrix assemble_stiffness(const TetMesh& mesh, const FemSettings& settings) {
         << " m^3; the mesh is degenerate (remesh, or check a user mesh for inverted elements)";
       throw std::invalid_argument(m.str());
     }
-    const soils::SoilProperties& p = tet_properties(mesh, settings, e);
-    const double mu = relaxed * p.shear_modulus();
-    const double lambda = relaxed * p.E * p.nu / ((1.0 + p.nu) * (1.0 - 2.0 * p.nu));  // Lame [Pa]
+    const auto [lambda, mu] = lame_of(tet_properties(mesh, settings, e), relaxed);
     // K_ab = V (lambda g_a g_b^T + mu g_b g_a^T + mu (g_a . g_b) I).
     for (int a = 0; a < 4; ++a)
       for (int b = 0; b < 4; ++b) {

@@ -26,6 +26,13 @@ CsrMatrix assemble_stiffness(const TetMesh& mesh, const FemSettings& settings);
 /// Lumped mass per node [kg].
 Eigen::VectorXd lumped_mass(const TetMesh& mesh, const FemSettings& settings);
 
+/// Lame's constants [Pa] of a soil, its modulus scaled by `relaxed` (the relaxed modulus under
+/// the Maxwell mechanisms: DampingRequest::relaxed_modulus_factor).
+struct Lame {
+  double lambda = 0.0, mu = 0.0;
+};
+Lame lame_of(const soils::SoilProperties& p, double relaxed);
+
 /// The layer's properties of tetrahedron e.
 const soils::SoilProperties& tet_properties(const TetMesh& mesh, const FemSettings& settings,
                                             std::size_t e);

@@ -58,13 +58,9 @@ struct GeometricStaticSolver::Petsc {
 
 namespace {
 
-/// The diagonal of K + S from K's rows (1 on held DOFs).
+/// The diagonal of K + S (1 on held DOFs).
 Eigen::VectorXd stiffness_diagonal(const SoilOperator& op) {
-  const CsrMatrix& K = op.stiffness();
-  Eigen::VectorXd d = Eigen::VectorXd::Zero(op.dofs());
-  for (Eigen::Index r = 0; r < d.size(); ++r)
-    for (std::int64_t k = K.row_start()[r]; k < K.row_start()[r + 1]; ++k)
-      if (K.column()[k] == r) d[r] = K.value()[k];
+  Eigen::VectorXd d = op.stiffness_diagonal();
   for (const BoundaryNode& b : op.boundary())
     for (int c = 0; c < 3; ++c) d[3 * b.node + c] += b.spring(c, c);
   for (Eigen::Index r = 0; r < d.size(); ++r)
