@@ -98,6 +98,13 @@ PmlLayer::PmlLayer(const TetMesh& mesh, const FemSettings& settings, const PmlPr
 void PmlLayer::update_tetrahedra(const double* w, double dt, double* memory, double* forces) const {
   const std::int64_t count = static_cast<std::int64_t>(tets_.size());
   const double half = 0.5 * dt, decay = std::exp(-shift_ * dt);
+#pragma omp single
+  if (decays_dt_ != dt || decays_.size() != tets_.size()) {  // (a barrier follows: all see it)
+    decays_.resize(tets_.size());
+    for (std::size_t e = 0; e < tets_.size(); ++e)
+      for (int k = 0; k < 3; ++k) decays_[e][k] = std::exp(-(shift_ + tets_[e].d[k]) * dt);
+    decays_dt_ = dt;
+  }
 #pragma omp for schedule(static)
   for (std::int64_t e = 0; e < count; ++e) {
     const Tet& t = tets_[e];
@@ -109,7 +116,7 @@ void PmlLayer::update_tetrahedra(const double* w, double dt, double* memory, dou
     double A[9];  // the S / s_k^2 operator on g_kc
     for (int k = 0; k < 3; ++k) {
       const double dk = t.d[k], dl = t.d[(k + 1) % 3], dm = t.d[(k + 2) % 3];
-      const double decay_k = std::exp(-(shift_ + dk) * dt);
+      const double decay_k = decays_[e][k];
       for (int c = 0; c < 3; ++c) {
         const int i = 3 * k + c;
         m[kPhiG + i] = filter(m[kPhiG + i], m[kGradient + i], g[i], decay, half);
@@ -209,8 +216,9 @@ void PmlLayer::frequency_domain(
 std::size_t PmlLayer::bytes() const {
   // Geometry and forces per tetrahedron, mass terms and incidence offsets per node, and the
   // memory variables the state holds for it (ExplicitState::pml).
-  return tets_.size() * (sizeof(Tet) + 12 * 8) + local_.size() * 4 + mass_terms_.size() * (40 + 8) +
-         incidence_.size() * 4 + static_cast<std::size_t>(memory_size()) * 8;
+  return tets_.size() * (sizeof(Tet) + 12 * 8 + 3 * 8) + local_.size() * 4 +
+         mass_terms_.size() * (40 + 8) + incidence_.size() * 4 +
+         static_cast<std::size_t>(memory_size()) * 8;
 }
 
 }  // namespace rumble::fem
