@@ -6,8 +6,8 @@
 // bound reported); the elements' is reported in ns per tetrahedron and as a ratio to the rows'
 // time on the same mesh and threads, the figure that says what freeing the rows costs the
 // statics on the ranks (one double product per CG iteration there).
-//   build/release/bin/fem_bench --benchmark_filter=BM_StiffnessProduct \
-//       --benchmark_counters_tabular=true
+//   build/release/bin/fem_bench --benchmark_counters_tabular=true
+//       --benchmark_filter=BM_StiffnessProduct   (one command line)
 #include <benchmark/benchmark.h>
 
 #include <Eigen/Core>

@@ -5,7 +5,8 @@
 //
 // kSanitizedShare and RUMBLE_PHYSICS_IN_THE_DEV_BUILD_ONLY(): a long physics run (a load held
 // 0.5 s, a steady state, thousands of steps for a growing mode) is cut to a tenth of its
-// simulated time under AddressSanitizer, where it checks memory (every path of its step runs in
+// simulated time under AddressSanitizer, or run once where the dev build runs it at several
+// steps or speeds, or on a coarser mesh, where it checks memory (every path of its step runs in
 // the first steps), and returns before the physics that needs the whole run, which the dev
 // build checks.
 //
@@ -36,12 +37,12 @@ inline constexpr double kSanitizedShare = kUnderAddressSanitizer ? 0.1 : 1.0;
 
 }  // namespace rumble::test
 
-#define RUMBLE_PHYSICS_IN_THE_DEV_BUILD_ONLY()                                         \
-  if (::rumble::test::kUnderAddressSanitizer) {                                        \
-    std::printf(                                                                       \
-        "[ sanitized ] a tenth of the run for memory; its physics is the dev build's " \
-        "(tests/support/sanitizer.hpp)\n");                                            \
-    return;                                                                            \
+#define RUMBLE_PHYSICS_IN_THE_DEV_BUILD_ONLY()                                               \
+  if (::rumble::test::kUnderAddressSanitizer) {                                              \
+    std::printf(                                                                             \
+        "[ sanitized ] a shorter or smaller run for memory; its physics is the dev build's " \
+        "(tests/support/sanitizer.hpp)\n");                                                  \
+    return;                                                                                  \
   }
 
 #define RUMBLE_SKIP_STUDY_UNDER_ASAN()                                                     \
