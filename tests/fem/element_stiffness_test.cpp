@@ -2,7 +2,7 @@
 // element_stiffness.hpp; the ranks' statics use it once the rows are freed) against the
 // assembled rows' product: the same operator to rounding, on a layered box with the Maxwell
 // mechanisms' relaxed modulus (so the layer table and the modulus' scaling are both checked), on
-// one thread and on two, run after run the same to the bit.
+// one thread and on two, run after run the same to the bit, and again once its copy is freed.
 #include "operator/element_stiffness.hpp"
 
 #include <gtest/gtest.h>
@@ -55,6 +55,11 @@ TEST(ElementStiffness, IsTheAssembledRowsProductToRounding) {
   Eigen::VectorXd again(m.dof_count());
   elements.times(x.data(), again.data(), 2);
   EXPECT_EQ(again, two);  // (the threads' copies added in one order)
+  const std::size_t held = elements.bytes();
+  elements.release();  // (the sorted tetrahedra freed, made again at the next product)
+  EXPECT_LT(elements.bytes(), held / 10);
+  elements.times(x.data(), again.data(), 2);
+  EXPECT_EQ(again, two);
   Eigen::VectorXd diagonal(m.dof_count());
   for (Eigen::Index r = 0; r < diagonal.size(); ++r)
     for (std::int64_t k = K.row_start()[r]; k < K.row_start()[r + 1]; ++k)

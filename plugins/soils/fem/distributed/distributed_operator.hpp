@@ -92,8 +92,11 @@ class DistributedOperator final : public SoilOperator {
   void set_stiffness_source(std::function<CsrMatrix()> assemble) override {
     assemble_ = std::move(assemble);
   }
+  /// Frees the rows (with a source) and the element product's sorted tetrahedra (made again at
+  /// its next product): what the statics' products hold, once they are done.
   void release_stiffness() const override {
     if (assemble_) K_.reset();
+    elements_.release();
   }
   bool holds_stiffness() const override { return K_.has_value(); }
 

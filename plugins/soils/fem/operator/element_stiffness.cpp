@@ -124,6 +124,12 @@ Eigen::VectorXd ElementStiffness::diagonal() const {
   return d;
 }
 
+void ElementStiffness::release() const {
+  std::vector<Tetrahedron>().swap(tets_);
+  std::vector<std::uint16_t>().swap(layer_);
+  std::vector<double>().swap(copies_);
+}
+
 std::size_t ElementStiffness::bytes() const {
   return lame_.size() * sizeof(Lame) + tets_.size() * (sizeof(Tetrahedron) + 2) +
          copies_.capacity() * sizeof(double);

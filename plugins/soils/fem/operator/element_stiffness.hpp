@@ -37,8 +37,10 @@ class ElementStiffness {
   void times(const double* x, double* y, unsigned threads) const;
   /// K's diagonal from the same elements.
   Eigen::VectorXd diagonal() const;
-  /// Memory held [bytes]: the table and the threads' copies of y.
+  /// Memory held [bytes]: the table, the sorted tetrahedra and the threads' copies of y.
   std::size_t bytes() const;
+  /// Frees the sorted tetrahedra and the threads' copies (made again at the next product).
+  void release() const;
 
  private:
   const TetMesh& mesh_;
