@@ -520,6 +520,8 @@ TEST_P(FemPml, APulseLeavesTheBoxAndCheckpointsKeepTheLayer) {
   ASSERT_EQ(life.checkpoint_restore(soil.self(), 0), RUMBLE_OK);
   steps(20, 60);
   EXPECT_EQ(soil.velocity()[0], first[0]);
+  // (the pulse leaving over 0.34 s more: 28-30 s of the sanitized suite for each damping)
+  RUMBLE_PHYSICS_IN_THE_DEV_BUILD_ONLY();
   steps(60, 400);
   RecordProperty("velocity_left", std::to_string(std::abs(soil.velocity()[0]) / peak));
   EXPECT_TRUE(std::isfinite(soil.velocity()[0]));
