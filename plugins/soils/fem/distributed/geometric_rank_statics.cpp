@@ -119,9 +119,9 @@ GeometricRankStatics::GeometricRankStatics(const MeshPartition& fine, const Soil
   p.comm = comm;
   p.part = &fine;
   p.op = &op;
-  // Nothing here reads K's rows: the fine level's product forms them from the part's
-  // tetrahedra without them (distributed_operator.hpp), and they are 0.4 kB per DOF of the
-  // part, a quarter of the rank's peak at 1e6 DOFs (docs/fem-soil.md §8).
+  // Nothing here reads K's rows: CG's product in double forms K from the part's tetrahedra
+  // (distributed_operator.hpp), and the rows are about 0.5 kB per DOF of the part (12 B a
+  // nonzero), 29 % of a rank's peak at 9.3e5 DOFs when they were kept (docs/fem-soil.md §8).
   op.release_stiffness();
   p.rows = number_rows(fine, comm);
   p.fixed = op.fixed();

@@ -43,11 +43,12 @@ class ElementStiffness {
   void release() const;
 
  private:
-  const TetMesh& mesh_;
-  std::vector<Lame> lame_;  // per layer; the last the half-space's
   /// Copies the tetrahedra into tets_ and layer_ at the first product (a back end that keeps
   /// its rows never pays for them).
   void sort_tetrahedra() const;
+
+  const TetMesh& mesh_;
+  std::vector<Lame> lame_;  // per layer; the last the half-space's
 
   // The tetrahedra and their layers, copied in the order of their lowest node: the nodes are in
   // Morton order (mesh/node_order.hpp), so consecutive tetrahedra read and add to nearby nodes
