@@ -61,6 +61,14 @@ CsrMatrix::Rows CsrMatrix::release_rows() && {
   return r;
 }
 
+std::vector<double> CsrMatrix::diagonal() const {
+  std::vector<double> d(static_cast<std::size_t>(rows()), 0.0);
+  for (std::int64_t r = 0; r < rows(); ++r)
+    for (std::int64_t k = row_start_[r]; k < row_start_[r + 1]; ++k)
+      if (column_[k] == r) d[r] = value_[k];
+  return d;
+}
+
 void CsrMatrix::multiply_rows(const double* x, double* y, std::int64_t begin,
                               std::int64_t end) const {
   for (std::int64_t r = begin; r < end; ++r) y[r] = row_dot(r, x);

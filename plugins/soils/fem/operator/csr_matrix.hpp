@@ -21,6 +21,8 @@ class CsrMatrix {
   /// The 3 x 3 block (node i, node j) as 3 pointers to its rows (each 3 contiguous values).
   /// j must be a neighbour of i (they share a tetrahedron), else std::out_of_range.
   double* block_row(std::int32_t i, std::int32_t j, int c);
+  /// The diagonal's entries, one per row.
+  std::vector<double> diagonal() const;
   /// y = A x over rows [begin, end); x, y of size rows().
   void multiply_rows(const double* x, double* y, std::int64_t begin, std::int64_t end) const;
   /// Row r's product with x.

@@ -124,12 +124,8 @@ class SoilOperator {
   /// K's diagonal in double (on a rank, its part's: summed over the ranks by the caller): the
   /// multigrids' Jacobi. By default read from stiffness()'s rows.
   virtual Eigen::VectorXd stiffness_diagonal() const {
-    const CsrMatrix& K = stiffness();
-    Eigen::VectorXd d = Eigen::VectorXd::Zero(dofs());
-    for (Eigen::Index r = 0; r < d.size(); ++r)
-      for (std::int64_t k = K.row_start()[r]; k < K.row_start()[r + 1]; ++k)
-        if (K.column()[k] == r) d[r] = K.value()[k];
-    return d;
+    const std::vector<double> d = stiffness().diagonal();
+    return Eigen::Map<const Eigen::VectorXd>(d.data(), static_cast<Eigen::Index>(d.size()));
   }
   /// Memory held [bytes], the node data included.
   virtual std::size_t bytes() const = 0;
