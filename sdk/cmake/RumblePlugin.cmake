@@ -14,6 +14,14 @@
 # then runs many times slower inside every co-simulation step with nothing to tell why. So the
 # plugin gets -O2 in that case only; an explicit build type or an -O flag of the user's in
 # CMAKE_CXX_FLAGS is left alone.
+#
+# After each link the plugin's manifest, <name>.so.manifest.json, is written next to it (and
+# installed with it) by `rumble plugins --manifest`: the engine then knows the plugin's types
+# without loading it, and loads it only for a scenario that uses one of them
+# (docs/plugin-guide.md, "The manifest"). The rumble that writes it: RUMBLE_MANIFEST_COMMAND
+# when set (a command list; the engine's own build sets it), else the rumble installed with this
+# SDK (Rumble_EXECUTABLE). Without either there is no manifest and the engine loads the plugin
+# at start-up, as it loads every plugin without one.
 
 function(rumble_add_plugin name)
   cmake_parse_arguments(ARG "" "" "SOURCES" ${ARGN})
@@ -52,4 +60,36 @@ function(rumble_add_plugin name)
   endif()
   target_link_options(${name} PRIVATE ${no_undefined} -Wl,--version-script=${version_script})
   set_property(TARGET ${name} APPEND PROPERTY LINK_DEPENDS ${version_script})
+  _rumble_plugin_manifest(${name})
+endfunction()
+
+function(_rumble_plugin_manifest name)
+  set(command ${RUMBLE_MANIFEST_COMMAND})
+  if(NOT command AND Rumble_EXECUTABLE AND EXISTS "${Rumble_EXECUTABLE}")
+    set(command "${Rumble_EXECUTABLE}")
+  endif()
+  if(NOT command)
+    return()
+  endif()
+  # Where the library goes (OUTPUT may not name the target's file by a generator expression).
+  get_target_property(dir ${name} LIBRARY_OUTPUT_DIRECTORY)
+  if(NOT dir)
+    set(dir ${CMAKE_CURRENT_BINARY_DIR})
+  endif()
+  get_property(multi_config GLOBAL PROPERTY GENERATOR_IS_MULTI_CONFIG)
+  if(multi_config)
+    string(APPEND dir "/$<CONFIG>")
+  endif()
+  set(manifest "${dir}/${name}${CMAKE_SHARED_MODULE_SUFFIX}.manifest.json")
+  add_custom_command(OUTPUT ${manifest}
+    COMMAND ${command} plugins --manifest $<TARGET_FILE:${name}> --output ${manifest}
+    DEPENDS ${name} ${RUMBLE_MANIFEST_DEPENDS}
+    COMMENT "Writing the manifest of plugin ${name}"
+    VERBATIM)
+  add_custom_target(${name}_manifest ALL DEPENDS ${manifest})
+  if(RUMBLE_PLUGIN_INSTALL_DIR)
+    install(FILES ${manifest} DESTINATION ${RUMBLE_PLUGIN_INSTALL_DIR})
+  else()
+    install(FILES ${manifest} DESTINATION lib/rumble/plugins)
+  endif()
 endfunction()

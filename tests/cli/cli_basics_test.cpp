@@ -64,6 +64,26 @@ TEST(Cli, PluginsListsInTreeTypes) {
   EXPECT_TRUE(nlohmann::json::accept(j.output)) << j.output;
 }
 
+// Commands other than `rumble plugins` load a plugin only when the scenario uses one of its
+// types (its manifest says which): validating a Winkler scenario never loads the FEM soil, whose
+// gmsh and PETSc took 0.3 s of every command.
+TEST(Cli, ValidateLoadsOnlyThePluginsTheScenarioUses) {
+  const auto dir = scratch_directory("loads_what_it_uses");
+  const auto scenario = write_scenario(dir, small_scenario()).string();
+  const CliResult r = run_rumble({"--log-level", "debug", "validate", scenario});
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("winkler.so at its first use"));
+  EXPECT_THAT(r.output, HasSubstr("single_wheel.so at its first use"));
+  EXPECT_THAT(r.output, Not(HasSubstr("fem.so")));
+}
+
+TEST(Cli, PluginsManifestNeedsAnOutput) {
+  const CliResult r = run_rumble({"plugins", "--manifest", "x.so"});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.output, HasSubstr("--manifest x.so needs --output FILE: where to write the "
+                                  "manifest"));
+}
+
 TEST(Cli, SchemaShowsUnitsAndSuggestsTypes) {
   const CliResult r = run_rumble({"schema", "single_wheel"});
   EXPECT_EQ(r.exit_code, 0);

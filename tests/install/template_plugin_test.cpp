@@ -25,14 +25,14 @@ class TemplatePlugin : public testing::Test {
     registry_.load_library(TEMPLATE_PLUGIN);
     const rumble::ComponentType* type = registry_.find(RUMBLE_KIND_SOIL, "template_soil");
     ASSERT_NE(type, nullptr) << "template_soil.so provides no soil type 'template_soil'";
-    api_ = static_cast<const rumble_soil_api*>(type->factory->api);
+    api_ = static_cast<const rumble_soil_api*>(type->factory().api);
     host_.struct_size = sizeof(rumble_host);
     host_.abi_minor = RUMBLE_ABI_MINOR;
     host_.scenario_dir = ".";
     const std::string params = "{\"stiffness\": " + std::to_string(kStiffness) +
                                ", \"damping\": " + std::to_string(kDamping) + "}";
     const char* error = nullptr;
-    ASSERT_EQ(type->factory->create(params.c_str(), &host_, &instance_, &error), RUMBLE_OK)
+    ASSERT_EQ(type->factory().create(params.c_str(), &host_, &instance_, &error), RUMBLE_OK)
         << (error != nullptr ? error : "");
     const std::vector<rumble_footprint> fp{{0.0, 0.0, 2.6, 0.25}, {0.6, 0.0, 2.6, 0.25}};
     ASSERT_EQ(api_->accept_layout(instance_, fp.data(), fp.size()), RUMBLE_OK);

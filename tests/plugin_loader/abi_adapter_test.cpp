@@ -79,7 +79,7 @@ ComponentType type_of(const rumble_factory& f, std::uint32_t abi_minor) {
   ComponentType t;
   t.kind = static_cast<rumble_kind>(f.kind);
   t.type_name = f.type_name;
-  t.factory = &f;
+  t.unlisted_factory = &f;
   t.abi_minor = abi_minor;
   t.capabilities = abi::capabilities_of(t.kind, f);
   return t;

@@ -28,7 +28,7 @@ class FaultySoil : public testing::Test {
     registry_.load_library(fixture::faulty);
     type_ = registry_.find(RUMBLE_KIND_SOIL, "loader_test_faulty");
     ASSERT_NE(type_, nullptr);
-    api_ = static_cast<const rumble_soil_api*>(type_->factory->api);
+    api_ = static_cast<const rumble_soil_api*>(type_->factory().api);
   }
   void TearDown() override {
     if (instance_ != nullptr) api_->common.destroy(instance_);
@@ -37,7 +37,7 @@ class FaultySoil : public testing::Test {
   /// create() with params; returns its status, the error text in error_.
   rumble_status create(const char* params) {
     const char* error = nullptr;
-    const rumble_status s = type_->factory->create(params, &host_.host, &instance_, &error);
+    const rumble_status s = type_->factory().create(params, &host_.host, &instance_, &error);
     error_ = error != nullptr ? error : "";
     return s;
   }

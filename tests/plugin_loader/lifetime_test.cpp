@@ -25,7 +25,7 @@ TEST(PluginLifetime, RawInstanceOutlivesRegistry) {
   ASSERT_NE(type, nullptr);
   // What an owner of an instance keeps: the library, and pointers into the library's own data.
   std::shared_ptr<const rumble::LoadedLibrary> library = type->library;
-  const rumble_factory* factory = type->factory;
+  const rumble_factory* factory = &type->factory();
   const auto* api = static_cast<const rumble_soil_api*>(factory->api);
   rumble::test::RecordingHost host;
   rumble_instance* instance = nullptr;

@@ -207,7 +207,7 @@ TEST(PluginLoadErrors, UnforgedCDescriptorLoads) {
   PluginRegistry registry;
   ASSERT_NO_THROW(registry.load_library(fixture::forged_ok));
   ASSERT_NE(registry.find(RUMBLE_KIND_SOIL, "loader_test_forged"), nullptr);
-  EXPECT_EQ(registry.libraries().at(0)->descriptor->abi_major, unsigned{RUMBLE_ABI_MAJOR});
+  EXPECT_EQ(registry.libraries().at(0)->identity.abi_major, unsigned{RUMBLE_ABI_MAJOR});
 }
 
 TEST(PluginLoadErrors, DuplicateTypeAcrossLibraries) {

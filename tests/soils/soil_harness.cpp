@@ -71,7 +71,7 @@ const ComponentType& soil_type(const std::string& type) {
 }
 
 const rumble_factory& soil_factory(const std::string& type) {
-  return *soil_type(type).factory;
+  return soil_type(type).factory();
 }
 
 std::string creation_error(const std::string& type, const std::string& params_json) {

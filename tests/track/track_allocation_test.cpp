@@ -81,11 +81,11 @@ TEST(TrackAllocation, TheCounterSeesAllocationsInPlugins) {
   long allocations = 0;
   {
     const testing::AllocationCounter counter;
-    ASSERT_EQ(type->factory->create(params.c_str(), &host, &instance, &error), RUMBLE_OK)
+    ASSERT_EQ(type->factory().create(params.c_str(), &host, &instance, &error), RUMBLE_OK)
         << (error != nullptr ? error : "");
     allocations = counter.count();
   }
-  static_cast<const rumble_vehicle_api*>(type->factory->api)->common.destroy(instance);
+  static_cast<const rumble_vehicle_api*>(type->factory().api)->common.destroy(instance);
   EXPECT_GE(allocations, 1);
 }
 

@@ -23,7 +23,7 @@ const PluginRegistry& registry() {
 const rumble_factory& factory(const std::string& type) {
   const ComponentType* t = registry().find(RUMBLE_KIND_VEHICLE, type);
   if (t == nullptr) throw std::runtime_error("vehicle type not registered: " + type);
-  return *t->factory;
+  return t->factory();
 }
 
 rumble_host make_host(const std::string& scenario_dir) {

@@ -67,8 +67,14 @@ Lists the plugin libraries found (the engine's plugin directory, RUMBLE_PLUGIN_P
 came from, the types each provides and their capabilities, and the libraries that could not be
 loaded (skipped, with the reason).
 
+Other commands load a library only when a scenario uses one of its types: they learn its types
+from its manifest, <library>.manifest.json, which the plugin's build writes (rumble_add_plugin()).
+
 options:
   --format text|json        (default: text; json: one array of libraries on stdout)
+  --manifest LIB --output FILE
+                            write the manifest of the plugin library LIB to FILE (what
+                            rumble_add_plugin() runs after each link)
 )";
 
 constexpr const char kSchemaHelp[] = R"(usage: rumble schema [TYPE] [options]

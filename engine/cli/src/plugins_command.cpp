@@ -1,16 +1,22 @@
 // `rumble plugins`: the plugin libraries found and the types each provides.
+#include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "cli/arguments.hpp"
 #include "cli/commands.hpp"
 #include "cli/exit_codes.hpp"
 #include "parallel/mpi_session.hpp"
 #include "plugin/capabilities.hpp"
+#include "plugin/manifest.hpp"
 #include "plugin/registry.hpp"
 
 namespace rumble::cli {
 namespace {
+
+namespace fs = std::filesystem;
 
 /// The MPI the engine would start for a distributed soil (docs/decisions/0012), without starting
 /// it; and, under a launcher, the rank count it was given.
@@ -21,12 +27,37 @@ std::string mpi_line() {
   return line + "launched on " + std::to_string(parallel::launched_size()) + " ranks";
 }
 
+/// `--manifest LIB --output FILE`: the library loaded alone and its manifest written to FILE
+/// (manifest.hpp; rumble_add_plugin() runs this after each link of a plugin). Written to a
+/// temporary name and renamed, so that a reader never finds half a manifest.
+int write_manifest(const std::string& library_file, const std::optional<std::string>& output) {
+  if (!output) {
+    throw UsageError("--manifest " + library_file +
+                     " needs --output FILE: where to write the manifest (rumble_add_plugin() "
+                     "writes <library>.manifest.json)");
+  }
+  PluginRegistry registry(PluginRegistry::Manifests::kIgnore);
+  registry.load_library(library_file);
+  const fs::path file = *output;
+  const fs::path partial = file.string() + ".partial";
+  {
+    std::ofstream out(partial);
+    out << manifest_text(*registry.libraries().front(), registry.types());
+    if (!out.flush()) throw std::runtime_error("cannot write " + partial.string());
+  }
+  fs::rename(partial, file);
+  return kExitOk;
+}
+
 }  // namespace
 
 int plugins_command(const std::vector<std::string>& args) {
-  const Arguments a(args, {}, {"format"});
+  const Arguments a(args, {}, {"format", "manifest", "output"});
+  if (const auto library = a.value("manifest")) return write_manifest(*library, a.value("output"));
   const std::string format = a.choice("format", {"text", "json"}, "text");
-  PluginRegistry registry;
+  // Every library loaded, so that one which cannot be (a dependency missing) is listed as such
+  // here, not only when a scenario first uses it.
+  PluginRegistry registry(PluginRegistry::Manifests::kIgnore);
   registry.load_default_directories();
   if (format == "json") {
     nlohmann::json out = nlohmann::json::array();
@@ -45,11 +76,11 @@ int plugins_command(const std::vector<std::string>& args) {
                  {"max_macro_step_s", t.capabilities.max_macro_step},
                  {"participants",
                   nlohmann::json::parse(t.capabilities.participants_json, nullptr, false)}}}});
-      const auto* d = lib->descriptor;
-      out.push_back({{"plugin", d->plugin_name},
-                     {"version", d->plugin_version},
-                     {"abi", std::to_string(d->abi_major) + "." + std::to_string(d->abi_minor)},
-                     {"build", d->build_fingerprint},
+      const PluginIdentity& id = lib->identity;
+      out.push_back({{"plugin", id.name},
+                     {"version", id.version},
+                     {"abi", id.abi()},
+                     {"build", id.build_fingerprint},
                      {"path", lib->path.string()},
                      {"origin", lib->origin},
                      {"types", types}});
@@ -64,11 +95,11 @@ int plugins_command(const std::vector<std::string>& args) {
     std::cout << "no plugins found; build the project, or set RUMBLE_PLUGIN_PATH\n";
   }
   for (const auto& lib : registry.libraries()) {
-    const auto* d = lib->descriptor;
+    const PluginIdentity& id = lib->identity;
     std::cout << '\n'
-              << d->plugin_name << ' ' << d->plugin_version << "  (ABI " << d->abi_major << '.'
-              << d->abi_minor << ")  " << lib->path.string() << "  (from " << lib->origin << ")\n"
-              << "  built with: " << d->build_fingerprint << '\n';
+              << id.name << ' ' << id.version << "  (ABI " << id.abi() << ")  "
+              << lib->path.string() << "  (from " << lib->origin << ")\n"
+              << "  built with: " << id.build_fingerprint << '\n';
     for (const ComponentType& t : registry.types()) {
       if (t.library != lib) continue;
       std::cout << "  " << kind_name(t.kind) << ' ' << t.type_name << ": " << t.summary << '\n';

@@ -13,7 +13,7 @@ namespace {
 /// states), the entries appended since zero, i.e. null.
 template <class Api>
 Api current_table(const ComponentType& type) {
-  const auto* plugin = static_cast<const Api*>(type.factory->api);
+  const auto* plugin = static_cast<const Api*>(type.factory().api);
   const std::size_t n = std::min({static_cast<std::size_t>(plugin->struct_size),
                                   table_size(type.kind, type.abi_minor), sizeof(Api)});
   Api table{};
@@ -88,11 +88,11 @@ const rumble_lifecycle_api* lifecycle_of(const ComponentType& type) {
   if (type.abi_minor < 1) return nullptr;
   switch (type.kind) {
     case RUMBLE_KIND_VEHICLE:
-      return static_cast<const rumble_vehicle_api*>(type.factory->api)->lifecycle;
+      return static_cast<const rumble_vehicle_api*>(type.factory().api)->lifecycle;
     case RUMBLE_KIND_SOIL:
-      return static_cast<const rumble_soil_api*>(type.factory->api)->lifecycle;
+      return static_cast<const rumble_soil_api*>(type.factory().api)->lifecycle;
     case RUMBLE_KIND_COUPLER:
-      return static_cast<const rumble_coupler_api*>(type.factory->api)->lifecycle;
+      return static_cast<const rumble_coupler_api*>(type.factory().api)->lifecycle;
   }
   return nullptr;
 }
@@ -108,7 +108,7 @@ rumble_coupler_api current_coupler_table(const ComponentType& type) {
 // ---------------------------------------------------------------- vehicle
 
 VehicleCalls::VehicleCalls(const ComponentType& type)
-    : VehicleCalls(*static_cast<const rumble_vehicle_api*>(type.factory->api), type.abi_minor,
+    : VehicleCalls(*static_cast<const rumble_vehicle_api*>(type.factory().api), type.abi_minor,
                    type.capabilities) {}
 
 VehicleCalls::VehicleCalls(const rumble_vehicle_api& api, std::uint32_t abi_minor,

@@ -21,11 +21,11 @@ std::atomic<int> planned_ranks{0};  // set_planned_ranks
 const rumble_common_api* common_table(const ComponentType& type) {
   switch (type.kind) {
     case RUMBLE_KIND_VEHICLE:
-      return &static_cast<const rumble_vehicle_api*>(type.factory->api)->common;
+      return &static_cast<const rumble_vehicle_api*>(type.factory().api)->common;
     case RUMBLE_KIND_SOIL:
-      return &static_cast<const rumble_soil_api*>(type.factory->api)->common;
+      return &static_cast<const rumble_soil_api*>(type.factory().api)->common;
     case RUMBLE_KIND_COUPLER:
-      return &static_cast<const rumble_coupler_api*>(type.factory->api)->common;
+      return &static_cast<const rumble_coupler_api*>(type.factory().api)->common;
   }
   throw PluginLoadError("unknown component kind " + std::to_string(type.kind));
 }
@@ -105,7 +105,7 @@ void Instance::create_here(const std::string& params_text) {
   const char* error = nullptr;
   rumble_status s = RUMBLE_ERROR;
   try {  // a plugin written against abi.h directly may let an exception escape
-    s = type_.factory->create(params_text.c_str(), &host_, &handle_, &error);
+    s = type_.factory().create(params_text.c_str(), &host_, &handle_, &error);
   } catch (const std::exception& e) {
     throw_escaped("create", e.what());
   } catch (...) {

@@ -6,6 +6,8 @@
 #include <cstddef>
 #include <cstdlib>
 #include <nlohmann/json.hpp>
+#include <optional>
+#include <span>
 #include <sstream>
 
 #include "core/errors.hpp"
@@ -14,6 +16,7 @@
 #include "core/malloc_policy.hpp"
 #include "plugin/abi_adapter.hpp"
 #include "plugin/function_table.hpp"
+#include "plugin/manifest.hpp"
 
 namespace rumble {
 namespace {
@@ -194,10 +197,10 @@ void check_factory(const rumble_factory& f, std::uint64_t i, const rumble_plugin
 }
 
 /// Throws when a type of the name is among those loaded before or added from this library.
-void check_unique_type(const char* type_name, const std::vector<ComponentType>& loaded_before,
-                       const std::vector<ComponentType>& added, const fs::path& path) {
-  for (const auto* existing : {&loaded_before, &added}) {
-    for (const ComponentType& t : *existing) {
+void check_unique_type(const std::string& type_name, std::span<const ComponentType> loaded_before,
+                       std::span<const ComponentType> added, const fs::path& path) {
+  for (const auto existing : {loaded_before, added}) {
+    for (const ComponentType& t : existing) {
       if (t.type_name == type_name) {
         throw PluginLoadError("plugin " + quoted(path) + ": type '" + type_name +
                               "' is already provided by " +
@@ -209,18 +212,60 @@ void check_unique_type(const char* type_name, const std::vector<ComponentType>& 
   }
 }
 
-ComponentType component_type(const rumble_factory& f, std::uint32_t abi_minor,
-                             const std::shared_ptr<LoadedLibrary>& library) {
+ComponentType component_type(const rumble_factory& f, std::size_t index, std::uint32_t abi_minor) {
   ComponentType t;
   t.kind = kind_of(f);
   t.type_name = f.type_name;
   t.summary = f.summary != nullptr ? f.summary : "";
-  t.params_schema = f.params_schema != nullptr ? f.params_schema : "{}";
-  t.factory = &f;
-  t.library = library;
+  t.schema_declared = f.params_schema != nullptr;
+  t.params_schema = t.schema_declared ? f.params_schema : "{}";
+  t.index = index;
   t.abi_minor = abi_minor;
   t.capabilities = abi::capabilities_of(t.kind, f);
   return t;
+}
+
+/// A library loaded and checked: its handle, identity, factories and their types (`library`
+/// not set).
+struct OpenedLibrary {
+  std::shared_ptr<dll::shared_library> library;
+  PluginIdentity identity;
+  std::vector<const rumble_factory*> factories;
+  std::vector<ComponentType> types;
+};
+
+OpenedLibrary open_library(const fs::path& path) {
+  OpenedLibrary opened;
+  opened.library = open_plugin_library(path);
+  const rumble_plugin_descriptor* d = plugin_descriptor(*opened.library, path);
+  opened.identity = {d->plugin_name != nullptr ? d->plugin_name : "",
+                     d->plugin_version != nullptr ? d->plugin_version : "",
+                     d->build_fingerprint != nullptr ? d->build_fingerprint : "", d->abi_major,
+                     d->abi_minor};
+  for (std::uint64_t i = 0; i < d->n_factories; ++i) {
+    const rumble_factory& f = factory_at(*d, i);
+    check_factory(f, i, *d, path);
+    opened.factories.push_back(&f);
+    opened.types.push_back(component_type(f, opened.types.size(), d->abi_minor));
+  }
+  return opened;
+}
+
+/// Throws when the library, loaded, is not what its manifest listed.
+void check_listed(const fs::path& path, const std::vector<ComponentType>& listed,
+                  const std::vector<ComponentType>& found) {
+  std::string difference;
+  if (listed.size() != found.size()) {
+    difference = "it lists " + std::to_string(listed.size()) + " types, the library has " +
+                 std::to_string(found.size());
+  }
+  for (std::size_t i = 0; i < listed.size() && difference.empty(); ++i)
+    difference = manifest_difference(listed[i], found[i]);
+  if (difference.empty()) return;
+  throw PluginLoadError("plugin " + quoted(path) + ": not what its manifest " +
+                        quoted(manifest_path(path)) + " lists (" + difference +
+                        "); rebuild the plugin, whose build writes the manifest, or delete the "
+                        "manifest");
 }
 
 }  // namespace
@@ -247,26 +292,56 @@ bool PluginRegistry::already_loaded(const fs::path& canonical) const {
                      [&](const auto& lib) { return lib->path == canonical; });
 }
 
+LoadedLibrary::LoadedLibrary(fs::path path_in, std::string origin_in, PluginIdentity identity_in)
+    : path(std::move(path_in)), origin(std::move(origin_in)), identity(std::move(identity_in)) {}
+
+LoadedLibrary::~LoadedLibrary() = default;
+
+const rumble_factory& LoadedLibrary::factory(std::size_t index) const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  if (!library_) load();
+  return *factories_.at(index);
+}
+
+bool LoadedLibrary::loaded() const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  return library_ != nullptr;
+}
+
+void LoadedLibrary::load() const {
+  OpenedLibrary opened = open_library(path);
+  check_listed(path, listed_, opened.types);
+  factories_ = std::move(opened.factories);
+  library_ = std::move(opened.library);
+  logger("plugins")->debug("loaded {} at its first use", path.string());
+}
+
 void PluginRegistry::load_library(const fs::path& requested, const std::string& origin) {
   const fs::path path = regular_library_file(requested);
   if (already_loaded(path)) return;
-  const std::shared_ptr<dll::shared_library> library = open_plugin_library(path);
-  const rumble_plugin_descriptor* d = plugin_descriptor(*library, path);
-
-  auto loaded = std::make_shared<LoadedLibrary>();
-  loaded->path = path;
-  loaded->library = library;
-  loaded->descriptor = d;
-  loaded->origin = origin;
-  std::vector<ComponentType> added;
-  for (std::uint64_t i = 0; i < d->n_factories; ++i) {
-    const rumble_factory& f = factory_at(*d, i);
-    check_factory(f, i, *d, path);
-    check_unique_type(f.type_name, types_, added, path);
-    added.push_back(component_type(f, d->abi_minor, loaded));
+  if (manifests_ == Manifests::kUse) {
+    if (std::optional<Manifest> manifest = read_manifest(path)) {
+      auto library = std::make_shared<LoadedLibrary>(path, origin, manifest->identity);
+      library->listed_ = manifest->types;
+      add(library, std::move(manifest->types));
+      return;
+    }
   }
-  libraries_.push_back(loaded);
-  types_.insert(types_.end(), added.begin(), added.end());
+  OpenedLibrary opened = open_library(path);
+  auto library = std::make_shared<LoadedLibrary>(path, origin, opened.identity);
+  library->factories_ = std::move(opened.factories);
+  library->library_ = std::move(opened.library);
+  add(library, std::move(opened.types));
+}
+
+void PluginRegistry::add(const std::shared_ptr<LoadedLibrary>& library,
+                         std::vector<ComponentType> types) {
+  for (std::size_t i = 0; i < types.size(); ++i) {
+    check_unique_type(types[i].type_name, types_, std::span(types).first(i), library->path);
+    types[i].library = library;
+  }
+  libraries_.push_back(library);
+  types_.insert(types_.end(), types.begin(), types.end());
 }
 
 void PluginRegistry::load_directory(const fs::path& dir) {

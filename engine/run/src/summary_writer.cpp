@@ -45,13 +45,13 @@ SummaryWriter::SummaryWriter(ResultsDirectory& results, const scenario::RunSpec&
   summary_["process"] = {{"pid", ::getpid()}, {"host", host}, {"cpus", usable_cpu_list()}};
   nlohmann::json plugins = nlohmann::json::array();
   for (const Instance* inst : components.instances()) {
-    const auto* d = inst->type().library->descriptor;
+    const PluginIdentity& id = inst->type().library->identity;
     plugins.push_back({{"type", inst->type_name()},
                        {"kind", kind_name(inst->type().kind)},
                        {"at", inst->label()},
-                       {"plugin", d->plugin_name},
-                       {"version", d->plugin_version},
-                       {"abi", std::to_string(d->abi_major) + "." + std::to_string(d->abi_minor)},
+                       {"plugin", id.name},
+                       {"version", id.version},
+                       {"abi", id.abi()},
                        {"path", inst->type().library->path.string()}});
   }
   summary_["plugins"] = plugins;

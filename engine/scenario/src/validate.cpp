@@ -204,8 +204,14 @@ void check_component(Document& doc, const Positions& at, const PluginRegistry& r
     return;
   }
   const std::string plugin = t->library ? t->library->path.string() : std::string("?");
-  const bool declared = t->factory == nullptr || t->factory->params_schema != nullptr;
-  if (!declared || blank(t->params_schema)) {
+  try {  // a library known from its manifest is loaded here, so that valid means it loads
+    t->factory();
+  } catch (const PluginLoadError& e) {
+    out.push_back(at.make(type_pointer, e.what(),
+                          "fix or rebuild the plugin; `rumble plugins` lists what loads"));
+    return;
+  }
+  if (!t->schema_declared || blank(t->params_schema)) {
     out.push_back(
         at.make(type_pointer,
                 kind + " type \"" + name +

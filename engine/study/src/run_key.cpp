@@ -75,9 +75,8 @@ std::string run_key(const PlannedRun& run, const scenario::Document& resolved,
     for (const rumble_kind kind : {RUMBLE_KIND_VEHICLE, RUMBLE_KIND_SOIL, RUMBLE_KIND_COUPLER}) {
       const ComponentType* type = registry.find(kind, t);
       if (type == nullptr) continue;
-      const auto* d = type->library->descriptor;
-      piece(h, std::string("plugin ") + kind_name(kind) + " " + t,
-            std::string(d->plugin_name) + " " + d->plugin_version);
+      const PluginIdentity& id = type->library->identity;
+      piece(h, std::string("plugin ") + kind_name(kind) + " " + t, id.name + " " + id.version);
     }
   }
   return h.hex();

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -23,13 +24,48 @@ namespace rumble {
 /// "vehicle", "soil", "coupler".
 const char* kind_name(rumble_kind kind);
 
-struct LoadedLibrary {
-  std::filesystem::path path;
-  std::shared_ptr<boost::dll::shared_library> library;
-  const rumble_plugin_descriptor* descriptor = nullptr;  // static data inside the library
+/// What a plugin library says of itself: its descriptor's header (abi.h).
+struct PluginIdentity {
+  std::string name;
+  std::string version;
+  std::string build_fingerprint;
+  std::uint32_t abi_major = 0;
+  std::uint32_t abi_minor = 0;
+  std::string abi() const { return std::to_string(abi_major) + "." + std::to_string(abi_minor); }
+};
+
+struct ComponentType;
+
+/// A plugin library the registry knows: loaded, or known from its manifest (manifest.hpp) and
+/// loaded at the first use of one of its factories. Once loaded it stays loaded while anything
+/// holds this object: every ComponentType, and through it every instance, holds it. Thread-safe.
+class LoadedLibrary {
+ public:
+  LoadedLibrary(std::filesystem::path path, std::string origin, PluginIdentity identity);
+  ~LoadedLibrary();
+  LoadedLibrary(const LoadedLibrary&) = delete;
+  LoadedLibrary& operator=(const LoadedLibrary&) = delete;
+
+  const std::filesystem::path path;
   /// Where the path came from: "engine plugin directory", "RUMBLE_PLUGIN_PATH",
   /// "scenario /plugins/0", or "named directly" (tests, tools).
-  std::string origin;
+  const std::string origin;
+  const PluginIdentity identity;
+
+  /// The descriptor's factory `index`. Loads the library first if it is not loaded, and then
+  /// throws PluginLoadError when it cannot be loaded or is no longer what its manifest listed.
+  const rumble_factory& factory(std::size_t index) const;
+  bool loaded() const;
+
+ private:
+  friend class PluginRegistry;  // sets what the load or the manifest gave
+  void load() const;            // with mutex_ held
+  mutable std::mutex mutex_;
+  mutable std::shared_ptr<boost::dll::shared_library> library_;
+  mutable std::vector<const rumble_factory*> factories_;
+  /// The types its manifest listed (without `library`), checked against the factories when it
+  /// is loaded.
+  std::vector<ComponentType> listed_;
 };
 
 /// A library or RUMBLE_PLUGIN_PATH entry of the default search that could not be loaded: it is
@@ -56,18 +92,32 @@ struct ComponentType {
   rumble_kind kind{};
   std::string type_name;
   std::string summary;
-  std::string params_schema;  // JSON Schema text, as the plugin declared it
-  const rumble_factory* factory = nullptr;
+  std::string params_schema = "{}";  // JSON Schema text, as the plugin declared it
+  bool schema_declared = false;      // false: the factory gave none ("{}" above)
   std::shared_ptr<const LoadedLibrary> library;
+  std::size_t index = 0;  // the factory's place in the library's descriptor
+  /// A type made in code without a library (tests of the adapter): its factory.
+  const rumble_factory* unlisted_factory = nullptr;
   Capabilities capabilities;
   std::uint32_t abi_minor = 0;  // the ABI minor the plugin was built for
+
+  /// The plugin's factory; loads its library at the first use (LoadedLibrary::factory).
+  const rumble_factory& factory() const {
+    return library ? library->factory(index) : *unlisted_factory;
+  }
 };
 
 class PluginRegistry {
  public:
-  /// Loads one library and registers its types. Throws PluginLoadError with the exact reason:
-  /// file not found, not a Rumble plugin, ABI major mismatch, newer minor, duplicate type.
-  /// Only regular files are loaded (a FIFO or device would block or mislead dlopen).
+  /// How libraries with a manifest are taken: from it, loaded at their first use (the default),
+  /// or loaded at once (`rumble plugins`, which reports every library that cannot load).
+  enum class Manifests { kUse, kIgnore };
+  explicit PluginRegistry(Manifests manifests = Manifests::kUse) : manifests_(manifests) {}
+
+  /// Registers one library's types, from its manifest or else by loading it. Throws
+  /// PluginLoadError with the exact reason: file not found, not a Rumble plugin, ABI major
+  /// mismatch, newer minor, duplicate type. Only regular files are loaded (a FIFO or device
+  /// would block or mislead dlopen).
   void load_library(const std::filesystem::path& path,
                     const std::string& origin = "named directly");
   /// Loads every *.so in each directory (non-existent directories are skipped); throws at the
@@ -90,6 +140,8 @@ class PluginRegistry {
 
  private:
   bool already_loaded(const std::filesystem::path& canonical) const;
+  void add(const std::shared_ptr<LoadedLibrary>& library, std::vector<ComponentType> types);
+  Manifests manifests_;
   void skip(const std::filesystem::path& path, const std::string& origin, std::string reason);
   std::vector<std::shared_ptr<const LoadedLibrary>> libraries_;
   std::vector<ComponentType> types_;
