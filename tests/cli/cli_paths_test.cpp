@@ -162,7 +162,7 @@ fs::path exporting_scenario(const fs::path& dir, const std::string& path) {
 }
 
 /// What `dir` holds, every level, as paths relative to it, each with its size.
-std::string listing(const fs::path& dir) {
+std::string listing_with_sizes(const fs::path& dir) {
   std::vector<std::string> lines;
   for (const auto& e : fs::recursive_directory_iterator(dir)) {
     const auto status = fs::symlink_status(e.path());
@@ -228,10 +228,10 @@ TEST(CliPaths, AMeshExportNeverGoesThroughALinkInTheResults) {
   fs::create_directories(dir / "s" / "results");
   fs::create_directory_symlink(dir / "elsewhere", dir / "s" / "results" / "meshes");
   const auto through = exporting_scenario(dir, "meshes/soil.msh");
-  const std::string before = listing(dir / "s");
+  const std::string before = listing_with_sizes(dir / "s");
   const CliResult valid = run_rumble({"validate", through.string()}, cache_in(dir));
   EXPECT_EQ(valid.exit_code, 0) << valid.output;
-  EXPECT_EQ(listing(dir / "s"), before);
+  EXPECT_EQ(listing_with_sizes(dir / "s"), before);
   const CliResult run =
       run_rumble({"run", through.string(), "--no-progress", "--overwrite"}, cache_in(dir));
   EXPECT_NE(run.exit_code, 0) << run.output;
@@ -272,10 +272,10 @@ TEST(CliPaths, AMeshExportNeverGoesThroughALinkInTheResults) {
 TEST(CliPaths, AMeshExportIsWrittenByARunIntoItsResults) {
   const auto dir = scratch_directory("paths_export_run");
   const auto path = exporting_scenario(dir, "meshes/soil.msh");
-  const std::string before = listing(dir / "s");
+  const std::string before = listing_with_sizes(dir / "s");
   const CliResult valid = run_rumble({"validate", path.string()}, cache_in(dir));
   EXPECT_EQ(valid.exit_code, 0) << valid.output;
-  EXPECT_EQ(listing(dir / "s"), before);
+  EXPECT_EQ(listing_with_sizes(dir / "s"), before);
   for (int k = 0; k < 2; ++k) {  // the rerun removes the first run's file and writes it again
     const CliResult run = run_rumble({"run", path.string(), "--no-progress"}, cache_in(dir));
     ASSERT_EQ(run.exit_code, 0) << run.output;

@@ -28,7 +28,7 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-constexpr double kDt = 1e-3;      // s
+constexpr double kRunDt = 1e-3;   // s
 constexpr std::size_t kN = 2000;  // 2 s
 constexpr double kA = 2e-3;       // m/s
 
@@ -53,7 +53,7 @@ void write_csv(const fs::path& file, const std::vector<std::string>& names,
   out << "\n";
   for (std::size_t k = 0; k < columns.front().size(); ++k) {
     char buf[32];
-    std::snprintf(buf, sizeof buf, "%.9g", static_cast<double>(k) * kDt);
+    std::snprintf(buf, sizeof buf, "%.9g", static_cast<double>(k) * kRunDt);
     out << buf;
     for (const auto& c : columns) {
       std::snprintf(buf, sizeof buf, "%.9g", c[k]);
@@ -66,7 +66,7 @@ void write_csv(const fs::path& file, const std::vector<std::string>& names,
 std::vector<double> sine_at_fs(double a, double f) {
   std::vector<double> v(kN);
   for (std::size_t k = 0; k < kN; ++k)
-    v[k] = a * std::sin(2.0 * std::numbers::pi * f * static_cast<double>(k) * kDt);
+    v[k] = a * std::sin(2.0 * std::numbers::pi * f * static_cast<double>(k) * kRunDt);
   return v;
 }
 
@@ -195,7 +195,7 @@ TEST(PostRun, ProbeReceiversGiveTheClosedFormNumbers) {
   // post.json carries the same numbers.
   const json report = json::parse(std::ifstream(dir / "post" / "post.json"));
   EXPECT_EQ(report["source"]["form"], "probes");
-  EXPECT_DOUBLE_EQ(report["sampling"]["dt_s"].get<double>(), kDt);
+  EXPECT_DOUBLE_EQ(report["sampling"]["dt_s"].get<double>(), kRunDt);
   EXPECT_EQ(report["sampling"]["samples"], kN);
   const json& rx = report["receivers"][0];
   EXPECT_EQ(rx["name"], "d=2.5 m");
