@@ -168,6 +168,7 @@ TEST(Stability, TheGrowthIsTheRunsOnAMasslessSoil) {
   s["outputs"] = {{"directory", "results"}, {"plots", false}};
   s["coupling"]["divergence"] = {{"action", "continue"}};
   const nlohmann::json p = stability("stability_massless_clm", s, "1e-3,5e-4");
+  RUMBLE_PHYSICS_IN_THE_DEV_BUILD_ONLY();  // (the run of 1.4 s: CLM's code, as other tests')
   const auto dir = scratch_directory("stability_massless_clm_run");
   const CliResult r = run_rumble({"run", write_scenario(dir, s).string(), "--no-progress"});
   EXPECT_EQ(r.exit_code, 0) << r.output;

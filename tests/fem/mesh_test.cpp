@@ -15,6 +15,7 @@
 #include "mesh/mesh_generator.hpp"
 #include "mesh/uniform_refinement.hpp"
 #include "operator/footprint_loads.hpp"
+#include "sanitizer.hpp"
 #include "settings_from_params.hpp"
 
 namespace rumble::fem {
@@ -119,7 +120,13 @@ TEST(FemMesh, PlanRefusesANearZoneTooFineToMeshInAWideDomain) {
 // makes, on a hemisphere and on a box with its matched layer.
 TEST(FemMesh, EstimateIsWithinTwiceTheMesh) {
   const std::vector<Footprint> fp = sleepers(5);
-  for (const FemSettings& s : {stiff_soil(12.0, 80.0), box_with_layer(2.0)}) {
+  // Under AddressSanitizer the box alone: the hemisphere meshed for 80 Hz took 20 s there, for
+  // an estimate that is arithmetic, and smaller hemispheres are meshed by the tests below.
+  const std::vector<FemSettings> settings =
+      rumble::test::kUnderAddressSanitizer
+          ? std::vector<FemSettings>{box_with_layer(2.0)}
+          : std::vector<FemSettings>{stiff_soil(12.0, 80.0), box_with_layer(2.0)};
+  for (const FemSettings& s : settings) {
     const MeshPlan plan = plan_mesh(s, fp);
     const auto nodes = static_cast<double>(generate_mesh(s, fp, plan).node_count());
     std::cout << "[ measured ] estimated " << plan.estimated_nodes << " nodes, meshed " << nodes
