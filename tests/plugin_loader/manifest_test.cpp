@@ -47,10 +47,16 @@ void write(const fs::path& file, const std::string& text) {
   std::ofstream(file) << text;
 }
 
-TEST(PluginManifest, TheTypesComeFromItAndTheLibraryLoadsAtItsFirstUse) {
-  const fs::path dir = scratch("lazy");
+/// A copy of the faulty fixture with its manifest beside it, in `dir`.
+fs::path faulty_with_its_manifest(const fs::path& dir) {
   const fs::path library = copy_of(fixture::faulty, dir, "faulty.so");
   write(rumble::manifest_path(library), manifest_of(library));
+  return library;
+}
+
+TEST(PluginManifest, TheTypesComeFromItAndTheLibraryLoadsAtItsFirstUse) {
+  const fs::path dir = scratch("lazy");
+  const fs::path library = faulty_with_its_manifest(dir);
 
   PluginRegistry eager(PluginRegistry::Manifests::kIgnore);
   eager.load_library(library);
@@ -113,8 +119,7 @@ TEST(PluginManifest, ALibraryThatDiffersFromItIsRefusedAtItsFirstUse) {
 
 TEST(PluginManifest, IgnoredWhereEveryLibraryMustBeLoaded) {
   const fs::path dir = scratch("kignore");
-  const fs::path library = copy_of(fixture::faulty, dir, "faulty.so");
-  write(rumble::manifest_path(library), manifest_of(library));
+  const fs::path library = faulty_with_its_manifest(dir);
   PluginRegistry registry(PluginRegistry::Manifests::kIgnore);
   registry.load_library(library);
   EXPECT_TRUE(registry.libraries().front()->loaded());
