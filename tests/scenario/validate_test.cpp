@@ -6,6 +6,8 @@
 #include <fstream>
 
 #include "core/errors.hpp"
+#include "plugin/manifest.hpp"
+#include "plugin/registry.hpp"
 #include "scenario/report.hpp"
 #include "test_support.hpp"
 
@@ -33,6 +35,38 @@ std::string text_of(const Document& doc, const std::vector<Diagnostic>& diags) {
   std::ostringstream os;
   print_diagnostics(os, &doc, doc.path, diags, Format::kText);
   return os.str();
+}
+
+// A library known from its manifest is loaded when a scenario uses one of its types; one that
+// cannot be (here: it differs from its manifest) is reported at the type, not at the run.
+TEST(ScenarioValidate, ATypesLibraryThatDoesNotLoadIsReportedAtTheType) {
+  const fs::path dir = fs::temp_directory_path() / "rumble_validate_unloadable";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path winkler = dir / "winkler.so";
+  fs::copy_file(fs::path(RUMBLE_TEST_PLUGIN_DIR) / "winkler.so", winkler);
+  {
+    PluginRegistry eager(PluginRegistry::Manifests::kIgnore);
+    eager.load_library(winkler);
+    json manifest = json::parse(manifest_text(*eager.libraries().front(), eager.types()));
+    manifest["types"][0]["summary"] = "an older build's";
+    std::ofstream(manifest_path(winkler)) << manifest.dump();
+  }
+  PluginRegistry registry;
+  for (const char* other : {"single_wheel.so", "gauss_seidel.so"})
+    registry.load_library(fs::path(RUMBLE_TEST_PLUGIN_DIR) / other);
+  registry.load_library(winkler);
+  Document doc = minimal_document();
+  const auto diags = validate(doc, registry);
+  const std::string text = text_of(doc, diags);
+  ASSERT_EQ(diags.size(), 1u) << text;
+  EXPECT_EQ(diags[0].pointer, "/soil/type");
+  EXPECT_NE(text.find("not what its manifest"), std::string::npos) << text;
+  EXPECT_NE(text.find("its summary differs"), std::string::npos) << text;
+  EXPECT_NE(text.find("fix or rebuild the plugin; `rumble plugins` lists what loads"),
+            std::string::npos)
+      << text;
+  fs::remove_all(dir);
 }
 
 TEST(ScenarioValidate, MinimalScenarioIsValidAndGetsItsDefaults) {
