@@ -1,8 +1,10 @@
 // Plugin loading (Boost.DLL) and the registry of component types found in plugin libraries.
 //
-// A library, once loaded, stays loaded for the life of the process: the registry owns it and
-// every instance created from it holds a shared_ptr to it as well (see instance.hpp), so code is
-// never unmapped while an object made by it lives.
+// A library with a manifest (manifest.hpp) is registered from it and loaded only when one of its
+// factories is first used; one without is loaded when it is registered. A library, once loaded,
+// stays loaded while anything holds it: the registry does, and every instance created from it
+// holds a shared_ptr to it as well (see instance.hpp), so code is never unmapped while an object
+// made by it lives.
 #pragma once
 
 #include <rumble/abi.h>
@@ -96,7 +98,8 @@ struct ComponentType {
   bool schema_declared = false;      // false: the factory gave none ("{}" above)
   std::shared_ptr<const LoadedLibrary> library;
   std::size_t index = 0;  // the factory's place in the library's descriptor
-  /// A type made in code without a library (tests of the adapter): its factory.
+  /// A type made in code without a library (tests of the adapter): its factory. One of it and
+  /// `library` is set.
   const rumble_factory* unlisted_factory = nullptr;
   Capabilities capabilities;
   std::uint32_t abi_minor = 0;  // the ABI minor the plugin was built for
