@@ -27,8 +27,8 @@ struct alignas(32) NodeSum {
 /// (48 to 128 blocks within 3 % of each other on a 1.3e6-DOF one), and left a structured box's
 /// as it was. K's values are a plain stream, but among the sweep's dozen others (x and the pending
 /// sums on each neighbour's stride, the node's vectors) the hardware prefetcher did not keep up
-/// with it on an AVX-512 EPYC: asking for them too made the step in single precision 1.3x faster
-/// on the box and 1.1x on the gmsh mesh (§4.3, "K's values ahead").
+/// with it on an AVX-512 EPYC: asking for them too made the step in single precision 1.27x faster
+/// on the box and 1.05x on the gmsh mesh (§4.3, "K's values ahead").
 inline constexpr std::int64_t kPrefetchAhead = 64;
 
 /// One part of the blocks: its nodes [begin, end), its cross blocks [cross_begin, cross_end)
