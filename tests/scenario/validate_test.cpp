@@ -1,9 +1,11 @@
 #include "scenario/validate.hpp"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
+#include <string>
 
 #include "core/errors.hpp"
 #include "plugin/manifest.hpp"
@@ -40,7 +42,9 @@ std::string text_of(const Document& doc, const std::vector<Diagnostic>& diags) {
 // A library known from its manifest is loaded when a scenario uses one of its types; one that
 // cannot be (here: it differs from its manifest) is reported at the type, not at the run.
 TEST(ScenarioValidate, ATypesLibraryThatDoesNotLoadIsReportedAtTheType) {
-  const fs::path dir = fs::temp_directory_path() / "rumble_validate_unloadable";
+  // (one per process: the dev and sanitized suites may run side by side)
+  const fs::path dir =
+      fs::temp_directory_path() / ("rumble_validate_unloadable_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
   const fs::path winkler = dir / "winkler.so";
