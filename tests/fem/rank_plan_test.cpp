@@ -28,7 +28,7 @@ TEST(FieldPieces, ArePathsBesideTheIndexNumberedByRank) {
 }
 
 TEST(RankPlan, OneRankIsOneProcessWithoutHalo) {
-  const RankPlan p = plan_ranks(1e5, 1, false);
+  const RankPlan p = plan_ranks(1e5, 1);
   EXPECT_EQ(p.ghosts, 0.0);
   EXPECT_EQ(p.largest_nodes, 1e5);
   EXPECT_DOUBLE_EQ(p.root_bytes, rumble::fem::memory::run_peak_bytes(3e5));
@@ -36,7 +36,7 @@ TEST(RankPlan, OneRankIsOneProcessWithoutHalo) {
 
 TEST(RankPlan, HaloGrowsAsTheSurfacesOfRecursiveBisection) {
   const double n = 1e6;  // (n^(2/3) = 1e4)
-  const RankPlan two = plan_ranks(n, 2, false), eight = plan_ranks(n, 8, false);
+  const RankPlan two = plan_ranks(n, 2), eight = plan_ranks(n, 8);
   EXPECT_NEAR(two.ghosts, rumble::fem::kHaloSurface * 1e4, 1e-6);
   // 8 parts: the cuts of 1, 2 and 4 parts of n, n/2, n/4 nodes: 1 + 2^(1/3) + 2^(2/3) planes.
   EXPECT_NEAR(eight.ghosts / two.ghosts, 1.0 + std::cbrt(2.0) + std::cbrt(4.0), 1e-12);
@@ -49,7 +49,7 @@ TEST(RankPlan, HaloGrowsAsTheSurfacesOfRecursiveBisection) {
 // 40 B per DOF, the rest of its estimate as before (docs/fem-soil.md §8).
 TEST(RankPlan, RefinedOnTheRanksRankZeroHoldsTheCoarseMesh) {
   const double n = 4e5;  // (1.2e6 DOFs: above the factor limit, the statics on the ranks)
-  const RankPlan whole = plan_ranks(n, 2, false), refined = plan_ranks(n, 2, false, 1);
+  const RankPlan whole = plan_ranks(n, 2), refined = plan_ranks(n, 2, {.refine = 1});
   EXPECT_NEAR(whole.root_bytes - refined.root_bytes,
               rumble::fem::memory::kMeshBytesPerDof * 3.0 * n * (1.0 - 1.0 / 8.0), 1e-3);
   EXPECT_EQ(whole.rank_bytes, refined.rank_bytes);
@@ -66,16 +66,17 @@ TEST(RankPlan, RefinedOnTheRanksRankZeroHoldsTheCoarseMesh) {
 TEST(RankPlan, TheGeometricMultigridOnTheRanksCostsItsOwnStatics) {
   namespace memory = rumble::fem::memory;
   const double n = 4e5;  // (1.2e6 DOFs: above the factor limit)
-  const RankPlan gamg = plan_ranks(n, 2, true, 1), geometric = plan_ranks(n, 2, false, 1, true);
+  const RankPlan gamg = plan_ranks(n, 2, {.named = true, .refine = 1}),
+                 geometric = plan_ranks(n, 2, {.refine = 1, .geometric = true});
   const double nonzeros = memory::kNonzerosPerDof * 3.0 * gamg.largest_nodes;
   EXPECT_NEAR(gamg.rank_bytes - geometric.rank_bytes,
               (memory::kGamgBytesPerNonzero - memory::kGeometricRankBytesPerNonzero) * nonzeros,
               1e-3);
   EXPECT_NEAR(gamg.root_bytes - geometric.root_bytes, gamg.rank_bytes - geometric.rank_bytes, 1e-3);
   const double small = 2e4;  // (6e4 DOFs: below the factor limit)
-  const RankPlan factored = plan_ranks(small, 2, false, 1),
-                 on_ranks = plan_ranks(small, 2, true, 1, true),
-                 auto_geometric = plan_ranks(small, 2, false, 1, true);
+  const RankPlan factored = plan_ranks(small, 2, {.refine = 1}),
+                 on_ranks = plan_ranks(small, 2, {.named = true, .refine = 1, .geometric = true}),
+                 auto_geometric = plan_ranks(small, 2, {.refine = 1, .geometric = true});
   EXPECT_EQ(auto_geometric.rank_bytes, factored.rank_bytes);
   EXPECT_EQ(auto_geometric.root_bytes, factored.root_bytes);
   EXPECT_NEAR(on_ranks.rank_bytes - factored.rank_bytes,
@@ -84,8 +85,26 @@ TEST(RankPlan, TheGeometricMultigridOnTheRanksCostsItsOwnStatics) {
               1e-3);
 }
 
+// integrator.scheme implicit on the ranks: each rank holds its share of the steps' factor (MUMPS,
+// memory_model.hpp's rank_factor_bytes, fitted on 2 ranks: docs/fem-soil.md §8) once the statics
+// are done, rank 0 beside the whole mesh; fewer each on more ranks.
+TEST(RankPlan, TheImplicitSchemeCostsEachRankItsShareOfTheFactor) {
+  namespace memory = rumble::fem::memory;
+  const double n = 2e4;  // (6e4 DOFs: below the factor limit, rank 0 factors the statics)
+  const RankPlan explicit_two = plan_ranks(n, 2),
+                 implicit_two = plan_ranks(n, 2, {.implicit = true});
+  const double share = memory::rank_factor_bytes(3.0 * n, 2);
+  EXPECT_NEAR(implicit_two.rank_bytes - explicit_two.rank_bytes, share, 1e-3);
+  EXPECT_GT(share, 100e6);  // (17.5 B per nonzero of half of 4.7 n^1.45 nonzeros: 0.35 GB)
+  EXPECT_LT(share, 1e9);
+  // Rank 0's statics factor (one process's, whole) is larger than its share of the steps'.
+  EXPECT_EQ(implicit_two.root_bytes, explicit_two.root_bytes);
+  const RankPlan implicit_four = plan_ranks(n, 4, {.implicit = true});
+  EXPECT_LT(implicit_four.rank_bytes - plan_ranks(n, 4).rank_bytes, 0.55 * share);
+}
+
 TEST(RankPlan, AMachineTooSmallForItsRanksIsRefusedWithTheNumbers) {
-  const RankPlan p = plan_ranks(1e6, 4, false);
+  const RankPlan p = plan_ranks(1e6, 4);
   const double root_machine = p.root_bytes + p.rank_bytes;  // rank 0 and one more
   EXPECT_NO_THROW(rumble::fem::check_node_memory(
       p, {{2, true, 1.01 * root_machine}, {2, false, 2.01 * p.rank_bytes}}, 50.0));

@@ -58,7 +58,7 @@ int halo_as_estimated(MPI_Comm comm) {
   MPI_Allreduce(&mine, &ghosts, 1, MPI_LONG_LONG, MPI_SUM, comm);
   int ranks = 1;
   MPI_Comm_size(comm, &ranks);
-  const double estimate = rumble::fem::plan_ranks(static_cast<double>(nodes), ranks, false).ghosts;
+  const double estimate = rumble::fem::plan_ranks(static_cast<double>(nodes), ranks).ghosts;
   const double ratio = estimate / static_cast<double>(ghosts);
   const bool ok = ratio <= kWithin && ratio >= 1.0 / kWithin;
   if (rank_of(comm) == 0)

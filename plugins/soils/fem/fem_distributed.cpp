@@ -98,10 +98,6 @@ void FemSoil::refuse_on_many_ranks() const {
            "the perfectly matched layer runs on one process only for now (its tetrahedra's "
            "forces are not yet summed over the ranks); use boundary.type \"viscous_spring\" "
            "under mpirun, or run without mpirun, got \"pml\"");
-  if (settings_.implicit)
-    refuse("integrator/scheme",
-           "the implicit scheme factors the whole mesh on one process; use integrator.scheme "
-           "\"explicit\" under mpirun, or run without mpirun, got \"implicit\"");
   if (settings_.local_steps > 1)
     refuse("integrator/local_steps",
            "local time stepping runs on one process only for now; set local_steps 1 under "
@@ -141,9 +137,7 @@ void FemSoil::accept_layout_distributed(const std::vector<rumble::Footprint>& fo
     // Each machine's memory for its ranks, against the estimate per rank (distributed/
     // rank_plan.hpp): before meshing from the plan, again from the mesh.
     const auto check_memory = [&](double nodes, const char* source) {
-      const rumble::fem::RankPlan plan =
-          rumble::fem::plan_ranks(nodes, d.ranks(), settings_.statics_named, refine_on_ranks(),
-                                  settings_.geometric_statics);
+      const rumble::fem::RankPlan plan = rumble::fem::plan_ranks(nodes, d.ranks(), plan_choices());
       host_.info(rumble::fem::describe(plan, source));
       rumble::fem::check_node_memory(plan, machines, settings_.mesh.f_max);
     };
@@ -304,22 +298,28 @@ void FemSoil::follow_far_field_distributed(const rumble::Waveform& force, double
 void FemSoil::advance_distributed(double t, double H, const rumble::Waveform& force) {
   rumble::fem::DistributedSoil& d = *distributed_;
   rumble::fem::ExplicitSolver& step = d.step();
+  rumble::fem::ImplicitSolver* implicit = d.implicit();
+  const char* scheme = implicit ? "implicit" : "explicit";
   tuner_.grant(host_.threads());
   step.set_threads(tuner_.threads());
-  // (every rank has the same stable step, from Lanczos over the ranks: the same sub-steps)
-  const double count = std::ceil(H / (settings_.courant * step.stable_step()) - 1e-9);
+  // (every rank has the same stable step, from Lanczos over the ranks, or the same implicit
+  // step from the settings: the same sub-steps)
+  const double longest =
+      implicit ? settings_.implicit_step : settings_.courant * step.stable_step();
+  const double count = std::ceil(H / longest - 1e-9);
   if (!(count <= kMostSubStepsOnRanks))
     throw std::invalid_argument("fem: a macro step of " + format(H) + " s is " + format(count) +
-                                " explicit sub-steps, more than " + format(kMostSubStepsOnRanks) +
-                                "; lower /time/macro_step");
+                                " " + scheme + " sub-steps, more than " +
+                                format(kMostSubStepsOnRanks) + "; lower /time/macro_step");
   const int sub_steps = std::max(1, static_cast<int>(count));
   const double dt = H / sub_steps;
   if (H != reported_macro_step_ && d.root())
     host_.log(reported_macro_step_ < 0.0 ? RUMBLE_LOG_INFO : RUMBLE_LOG_DEBUG,
-              "fem: " + std::to_string(sub_steps) + " explicit sub-step(s) of " + format(dt) +
+              "fem: " + std::to_string(sub_steps) + " " + scheme + " sub-step(s) of " + format(dt) +
                   " s per macro step of " + format(H) + " s on each of " +
                   std::to_string(d.ranks()) + " ranks, " + std::to_string(step.threads()) +
-                  " thread(s) on rank 0");
+                  " thread(s) on rank 0" +
+                  (implicit ? " (each solved by MUMPS's Cholesky factor over the ranks)" : ""));
   reported_macro_step_ = H;
   distributed_forces(force, 0.0, d.force_jump(), force_last_.data());
   if (d.has_far_field() && settings_.boundary.far_field_follows)
@@ -330,9 +330,13 @@ void FemSoil::advance_distributed(double t, double H, const rumble::Waveform& fo
     const double tau = static_cast<double>(k) / sub_steps;
     distributed_forces(force, tau, d.force(), force_static_.data());
     const auto start = std::chrono::steady_clock::now();
-    step.step(d.state(), d.force(), dt);
-    tuner_.record(seconds_since(start));
-    if (tuner_.threads() != step.threads()) step.set_threads(tuner_.threads());
+    if (implicit) {  // (K's product and the factor's solve: collective, a failure every rank's)
+      rumble::fem::collective(d.comm(), [&] { implicit->step(d.state(), d.force(), dt); });
+    } else {
+      step.step(d.state(), d.force(), dt);
+      tuner_.record(seconds_since(start));
+      if (tuner_.threads() != step.threads()) step.set_threads(tuner_.threads());
+    }
     std::exception_ptr failure;  // (agreed below, as every rank's of this sub-step)
     try {
       record_probes(t + tau * H);
@@ -359,10 +363,13 @@ void FemSoil::advance_distributed(double t, double H, const rumble::Waveform& fo
   if (!d.root()) return;  // (rank 0 checks the sums: the last collective call is behind)
   for (std::size_t j = 0; j < footprints_.size(); ++j)
     if (!std::isfinite(w[j]) || !std::isfinite(v[j]))
-      throw std::runtime_error("fem: the motion of footprint " + std::to_string(j) +
-                               " is not finite at t = " + format(t + H) + " s: the explicit step " +
-                               format(dt) + " s is unstable (lower params/courant, now " +
-                               format(settings_.courant) + ") or the forces are not finite");
+      throw std::runtime_error(
+          "fem: the motion of footprint " + std::to_string(j) +
+          " is not finite at t = " + format(t + H) + " s: " +
+          (implicit
+               ? std::string("the forces are not finite")
+               : "the explicit step " + format(dt) + " s is unstable (lower params/courant, now " +
+                     format(settings_.courant) + ") or the forces are not finite"));
 }
 
 void FemSoil::motion_distributed(double* u, double* v) const {

@@ -223,10 +223,8 @@ std::function<void()> FemSoil::throttled_stop_check() {
 void FemSoil::report_ranks(double nodes, const char* source) const {
   const int ranks = host_.planned_ranks();  // (`rumble mesh --ranks N` on one process)
   if (ranks > 1 && !distributed_)
-    host_.info(rumble::fem::describe(
-        rumble::fem::plan_ranks(nodes, ranks, settings_.statics_named, refine_on_ranks(),
-                                settings_.geometric_statics),
-        source));
+    host_.info(
+        rumble::fem::describe(rumble::fem::plan_ranks(nodes, ranks, plan_choices()), source));
 }
 
 void FemSoil::report_split() const {
@@ -240,8 +238,7 @@ void FemSoil::report_split() const {
   host_.info(rumble::fem::describe(
       split, rumble::fem::plan_split(static_cast<double>(split.nodes), ranks,
                                      static_cast<double>(split.ghosts),
-                                     static_cast<double>(split.largest()), settings_.statics_named,
-                                     refine_on_ranks(), settings_.geometric_statics)));
+                                     static_cast<double>(split.largest()), plan_choices())));
 }
 
 void FemSoil::hint_fast_meshing() const {

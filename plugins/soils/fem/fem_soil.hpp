@@ -20,6 +20,7 @@
 
 #include "boundary/static_far_field.hpp"
 #include "distributed/distributed_soil.hpp"
+#include "distributed/rank_plan.hpp"
 #include "fem_settings.hpp"
 #include "frequency/impulse_receptance.hpp"
 #include "frequency/receptance.hpp"
@@ -181,6 +182,11 @@ class FemSoil final : public rumble::Soil {
   /// mesh.refine on many ranks: the levels each rank refines its part by after the split (0:
   /// none, or a mesh.file).
   int refine_on_ranks() const { return settings_.mesh.file.empty() ? settings_.mesh.refine : 0; }
+  /// What the settings choose that a rank's memory depends on (distributed/rank_plan.hpp).
+  rumble::fem::PlanChoices plan_choices() const {
+    return {settings_.statics_named, refine_on_ranks(), settings_.geometric_statics,
+            settings_.implicit};
+  }
   /// The refined mesh's node count, from rank 0's coarse mesh (numbered_refinement.hpp).
   double refined_node_count() const;
   /// Rank 0, below the factor limit with mesh.refine on the ranks: the whole coarse mesh refined

@@ -33,6 +33,17 @@ inline double factor_nonzeros(double dofs) {
 /// is given.
 inline constexpr double kFactorBytesPerNonzero = 11.5;
 
+/// The implicit step's factor on one of `ranks` ranks at its peak, beyond what the rank holds
+/// for its explicit steps [bytes] (MUMPS's Cholesky through PETSc, distributed/
+/// rank_effective_system.hpp): 17.5 B per nonzero of the rank's even share of the whole factor
+/// (factor_nonzeros: one process's count) and 15 MB (MUMPS's libraries and buffers), which
+/// includes PETSc's matrix of K_eff. Fitted to fem_small.json's hemisphere on 2 ranks
+/// (docs/fem-soil.md §8, "The implicit scheme on the ranks": 77-83, 418-489 and 1533-1568 MB per
+/// rank at 1.9e4, 6.8e4 and 1.7e5 DOFs; CHOLMOD's 11.5 B per nonzero on one process).
+inline double rank_factor_bytes(double whole_dofs, int ranks) {
+  return 17.5 * factor_nonzeros(whole_dofs) / ranks + 15e6;
+}
+
 /// PETSc's GAMG on one process (statics.solver gamg or auto without mesh.refine) at its peak,
 /// beyond what the soil holds into the statics, per nonzero of K [bytes]: its matrix is K's own
 /// rows with the springs added in place (no copy), so this is the plain aggregation's graph,

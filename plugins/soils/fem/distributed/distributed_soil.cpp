@@ -14,6 +14,7 @@
 #include "distributed/part_operator.hpp"
 #include "distributed/part_stiffness.hpp"
 #include "distributed/rank_agreement.hpp"
+#include "distributed/rank_effective_system.hpp"
 #include "distributed/refined_partition.hpp"
 #include "memory_model.hpp"
 #include "mesh/mesh_memory.hpp"
@@ -29,7 +30,8 @@ DistributedSoil::DistributedSoil(MPI_Comm comm) : petsc_(PetscSession::get()), c
 void DistributedSoil::lay_out(const TetMesh* mesh, const FemSettings& settings,
                               const std::vector<Footprint>& footprints, unsigned threads,
                               int refine) {
-  statics_.reset();  // (they refer to the old partition)
+  statics_.reset();   // (they refer to the old partition)
+  implicit_.reset();  // (it refers to the old step)
   step_.reset();
   part_ = {};
   coarse_.reset();
@@ -98,6 +100,10 @@ void DistributedSoil::build_step(const FemSettings& settings,
   // (after the stable step's products: the hook is for the statics')
   if (!failing_products_.empty()) soil.fail_products_on_purpose(failing_products_);
   if (settings.damping.maxwell) step_->set_maxwell_damping(settings.damping.maxwell_mechanisms());
+  if (settings.implicit)
+    implicit_ = std::make_unique<ImplicitSolver>(
+        *step_, settings.damping.mass_coefficient(), settings.damping.stiffness_coefficient(),
+        std::make_unique<RankEffectiveSystem>(part_, step_->soil(), comm_));
 }
 
 double DistributedSoil::estimate_peak() const {
@@ -109,6 +115,9 @@ double DistributedSoil::estimate_peak() const {
   const double per_nonzero =
       coarse_ ? memory::kGeometricRankBytesPerNonzero : memory::kGamgBytesPerNonzero;
   double mine = std::max(resident.peak, resident.now + per_nonzero * nonzeros);
+  if (implicit_)  // (the steps' factor, after the statics have freed theirs)
+    mine = std::max(
+        mine, resident.now + memory::rank_factor_bytes(static_cast<double>(whole_dofs()), ranks_));
   if (resident.now == 0.0) mine = 0.0;  // (no /proc: nothing to start from)
   double most = 0.0;
   MPI_Allreduce(&mine, &most, 1, MPI_DOUBLE, MPI_MAX, comm_);

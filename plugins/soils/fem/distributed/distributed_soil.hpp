@@ -28,6 +28,7 @@
 #include "output/probe_locator.hpp"
 #include "statics/petsc_session.hpp"
 #include "time/explicit_solver.hpp"
+#include "time/implicit_solver.hpp"
 
 namespace rumble::fem {
 
@@ -88,6 +89,9 @@ class DistributedSoil {
   double peak_estimate() const { return peak_estimate_; }
 
   ExplicitSolver& step() { return *step_; }
+  /// Newmark's implicit step on the ranks where the settings ask for it (integrator.scheme
+  /// implicit: K_eff factored by MUMPS over the ranks, rank_effective_system.hpp), else null.
+  ImplicitSolver* implicit() { return implicit_.get(); }
 
   /// The operator's statics products throw std::runtime_error(why) on this rank from its next
   /// layout's stable step on (DistributedOperator::fail_products_on_purpose):
@@ -142,6 +146,7 @@ class DistributedSoil {
   int refine_ = 0;           // mesh.refine on the ranks
   std::int64_t coarse_nodes_ = 0;  // rank 0's mesh, split
   std::optional<ExplicitSolver> step_;
+  std::unique_ptr<ImplicitSolver> implicit_;  // (over step_'s operators)
   ExplicitState state_;
   Eigen::VectorXd u_static_, f_, df_;
   FootprintWeights weights_;        // local nodes, owned and ghost

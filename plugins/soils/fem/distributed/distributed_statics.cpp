@@ -11,21 +11,8 @@
 
 namespace rumble::fem {
 
-struct DistributedStatics::Petsc {
-  ~Petsc() {  // (errors ignored: a destructor)
-    KSPDestroy(&ksp);
-    VecDestroy(&x);
-    VecDestroy(&b);
-    MatDestroy(&a);
-  }
-  std::shared_ptr<PetscSession> session = PetscSession::get();
-  MPI_Comm comm = MPI_COMM_NULL;
-  RankRows rows;
-  std::vector<char> fixed;  // per local node: fixed (a zero load)
-  Mat a = nullptr;
-  Vec x = nullptr, b = nullptr;  // x: the last solution (CG's start)
-  KSP ksp = nullptr;
-  PetscStopTest stop;
+struct DistributedStatics::Petsc : RankSolve {  // (x: the last solution, CG's start)
+  std::vector<char> fixed;                      // per local node: fixed (a zero load)
 };
 
 DistributedStatics::DistributedStatics(const MeshPartition& part, const SoilOperator& op,
@@ -81,7 +68,7 @@ void DistributedStatics::build_solver() {
 Eigen::VectorXd DistributedStatics::solve(const Eigen::VectorXd& f) {
   Petsc& p = *petsc_;
   return solve_on_ranks(p.ksp, p.x, p.b, p.stop, part_, p.rows, p.fixed, f, iterations_,
-                        "PETSc's CG with GAMG");
+                        "the static solve on the ranks (PETSc's CG with GAMG)");
 }
 
 }  // namespace rumble::fem

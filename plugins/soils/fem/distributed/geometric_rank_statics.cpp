@@ -225,7 +225,7 @@ void GeometricRankStatics::build_solver(const MeshPartition& coarse,
 Eigen::VectorXd GeometricRankStatics::solve(const Eigen::VectorXd& f) {
   Petsc& p = *petsc_;
   return solve_on_ranks(p.ksp, p.x, p.b, p.stop, part_, p.rows, p.fixed, f, iterations_,
-                        "PETSc's CG with the geometric multigrid");
+                        "the static solve on the ranks (PETSc's CG with the geometric multigrid)");
 }
 
 }  // namespace rumble::fem

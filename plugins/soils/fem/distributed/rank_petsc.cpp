@@ -17,28 +17,44 @@ static_assert(std::is_same_v<PetscScalar, double>, "a real, double PETSc");
 namespace {
 
 // Each rank's part's blocks (K's rows of its nodes, row-major per node as CsrMatrix keeps them)
-// and, at its owned boundary nodes, S: into m by block rows and columns, added.
+// times c.stiffness and, at its owned nodes, c.mass M and the boundary's blocks of c: into m by
+// block rows and columns, added.
 void add_blocks(Mat m, const SoilOperator& op, const std::vector<PetscInt>& row,
-                const std::vector<int>& owner, int rank) {
+                const std::vector<int>& owner, int rank, const Combination& c) {
   const CsrMatrix& K = op.stiffness();
   std::vector<PetscInt> columns;
+  std::vector<double> scaled;  // (a node's block row times c.stiffness, where it is not 1)
   for (std::int32_t i = 0; i < static_cast<std::int32_t>(row.size()); ++i) {
     const std::int64_t degree = K.degree(i);
     columns.resize(static_cast<std::size_t>(degree));
     for (std::int64_t p = 0; p < degree; ++p) columns[p] = row[K.neighbours(i)[p]];
     // (node i's three rows hold 3 x degree values each: one block row, row-oriented)
+    const double* values = K.value().data() + K.row_start()[3 * i];
+    if (c.stiffness != 1.0) {
+      scaled.assign(values, values + 9 * degree);
+      for (double& v : scaled) v *= c.stiffness;
+      values = scaled.data();
+    }
     petsc_check(MatSetValuesBlocked(m, 1, &row[i], static_cast<PetscInt>(degree), columns.data(),
-                                    K.value().data() + K.row_start()[3 * i], ADD_VALUES),
+                                    values, ADD_VALUES),
                 "MatSetValuesBlocked");
   }
+  // (each copy of a node holds its whole mass and block: added by its owner alone)
   for (const BoundaryNode& node : op.boundary()) {
-    if (owner[node.node] != rank) continue;  // (each copy holds the whole block: added once)
-    double spring[9];
-    for (int c = 0; c < 3; ++c)
-      for (int d = 0; d < 3; ++d) spring[3 * c + d] = node.spring(c, d);
-    petsc_check(MatSetValuesBlocked(m, 1, &row[node.node], 1, &row[node.node], spring, ADD_VALUES),
+    if (owner[node.node] != rank) continue;
+    double block[9];
+    boundary_block(node, c, block);
+    petsc_check(MatSetValuesBlocked(m, 1, &row[node.node], 1, &row[node.node], block, ADD_VALUES),
                 "MatSetValuesBlocked");
   }
+  if (c.mass != 0.0)
+    for (std::int32_t i = 0; i < static_cast<std::int32_t>(row.size()); ++i) {
+      if (owner[i] != rank) continue;
+      const double m_i = c.mass * op.mass()[i];
+      const double block[9] = {m_i, 0.0, 0.0, 0.0, m_i, 0.0, 0.0, 0.0, m_i};
+      petsc_check(MatSetValuesBlocked(m, 1, &row[i], 1, &row[i], block, ADD_VALUES),
+                  "MatSetValuesBlocked");
+    }
   petsc_check(MatAssemblyBegin(m, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
   petsc_check(MatAssemblyEnd(m, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
 }
@@ -74,6 +90,13 @@ void preallocate(Mat m, const CsrMatrix& K, const MeshPartition& part, const Ran
 
 }  // namespace
 
+void RankSolve::clear() {
+  KSPDestroy(&ksp);
+  VecDestroy(&x);
+  VecDestroy(&b);
+  MatDestroy(&a);
+}
+
 RankRows number_rows(const MeshPartition& part, MPI_Comm comm) {
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
@@ -93,6 +116,11 @@ RankRows number_rows(const MeshPartition& part, MPI_Comm comm) {
 
 Mat assemble_part_matrix(const MeshPartition& part, const SoilOperator& op, const RankRows& rows,
                          MPI_Comm comm) {
+  return assemble_part_combination(part, op, rows, {.stiffness = 1.0, .springs = true}, comm);
+}
+
+Mat assemble_part_combination(const MeshPartition& part, const SoilOperator& op,
+                              const RankRows& rows, const Combination& combination, MPI_Comm comm) {
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
   const auto count = static_cast<PetscInt>(rows.owned.size());
@@ -103,7 +131,7 @@ Mat assemble_part_matrix(const MeshPartition& part, const SoilOperator& op, cons
               "MatSetSizes");
   petsc_check(MatSetBlockSize(m, 3), "MatSetBlockSize");
   preallocate(m, op.stiffness(), part, rows, rank);
-  add_blocks(m, op, rows.row, part.owner, rank);
+  add_blocks(m, op, rows.row, part.owner, rank, combination);
   std::vector<PetscInt> fixed;  // the owned fixed nodes' DOFs: identity rows and columns
   for (const std::int32_t i : rows.owned)
     if (op.fixed()[i])
@@ -175,9 +203,9 @@ Eigen::VectorXd solve_on_ranks(KSP ksp, Vec x, Vec b, PetscStopTest& stop,
       PetscReal residual = 0.0;
       KSPGetResidualNorm(ksp, &residual);
       std::ostringstream m;
-      m << "fem: the static solve on the ranks (" << method << ") did not converge after "
-        << iterations << " iterations (PETSc's reason " << static_cast<int>(reason) << ", residual "
-        << residual << " N): check the soil's parameters";
+      m << "fem: " << method << " did not converge after " << iterations
+        << " iterations (PETSc's reason " << static_cast<int>(reason) << ", residual " << residual
+        << " N): check the soil's parameters";
       on_root(comm, [&m] { throw std::runtime_error(m.str()); });
     }
   }

@@ -12,7 +12,7 @@ namespace rumble::fem {
 namespace {
 
 /// The memory per rank of `p` (its nodes, ranks and largest rank's nodes set).
-void plan_memory(RankPlan& p, bool named, bool geometric) {
+void plan_memory(RankPlan& p, const PlanChoices& choices) {
   const double share = memory::kHeldBytesPerDof * 3.0 * p.largest_nodes;
   if (p.ranks == 1) {
     p.root_bytes = memory::run_peak_bytes(3.0 * p.nodes);
@@ -22,24 +22,27 @@ void plan_memory(RankPlan& p, bool named, bool geometric) {
   // limit, or at any size when named: each rank its part's; below it rank 0 factors the whole
   // (small) operator and frees it.
   const double whole = 3.0 * p.nodes;
-  const bool on_ranks = named || whole > memory::kFactorLimitDofs;
+  const bool on_ranks = choices.named || whole > memory::kFactorLimitDofs;
   const double per_nonzero =
-      geometric ? memory::kGeometricRankBytesPerNonzero : memory::kGamgBytesPerNonzero;
+      choices.geometric ? memory::kGeometricRankBytesPerNonzero : memory::kGamgBytesPerNonzero;
   const double share_statics =
       on_ranks ? per_nonzero * memory::kNonzerosPerDof * 3.0 * p.largest_nodes : 0.0;
-  p.rank_bytes = memory::kProcessBytes + share + share_statics;
+  // The implicit steps' factor, each rank its share, once the statics are done.
+  const double share_steps = choices.implicit ? memory::rank_factor_bytes(whole, p.ranks) : 0.0;
+  p.rank_bytes = memory::kProcessBytes + share + std::max(share_statics, share_steps);
   // Rank 0: its share and the whole mesh (not the operator; with mesh.refine on the ranks the
   // coarse mesh), or the factor's whole operator (below the limit with mesh.refine rank 0
   // refines the whole mesh for the factor: the operator's bytes per DOF count it).
   const double root_statics =
       on_ranks ? share_statics : memory::kHeldBytesPerDof * whole + memory::factor_bytes(whole);
   p.root_bytes = memory::kProcessBytes + share +
-                 memory::kMeshBytesPerDof * whole / std::pow(8.0, p.refine) + root_statics;
+                 memory::kMeshBytesPerDof * whole / std::pow(8.0, choices.refine) +
+                 std::max(root_statics, share_steps);
 }
 
 }  // namespace
 
-RankPlan plan_ranks(double nodes, int ranks, bool named, int refine, bool geometric) {
+RankPlan plan_ranks(double nodes, int ranks, const PlanChoices& choices) {
   RankPlan p;
   p.ranks = std::max(1, ranks);
   p.nodes = nodes;
@@ -49,21 +52,21 @@ RankPlan plan_ranks(double nodes, int ranks, bool named, int refine, bool geomet
   }
   p.largest_nodes = (nodes + p.ghosts) / p.ranks;
   p.halo_bytes = kHaloBytesPerGhost * p.ghosts;
-  p.refine = refine;
-  plan_memory(p, named, geometric);
+  p.refine = choices.refine;
+  plan_memory(p, choices);
   return p;
 }
 
-RankPlan plan_split(double nodes, int ranks, double ghosts, double largest_nodes, bool named,
-                    int refine, bool geometric) {
+RankPlan plan_split(double nodes, int ranks, double ghosts, double largest_nodes,
+                    const PlanChoices& choices) {
   RankPlan p;
   p.ranks = std::max(1, ranks);
   p.nodes = nodes;
   p.ghosts = ghosts;
   p.largest_nodes = largest_nodes;
   p.halo_bytes = kHaloBytesPerGhost * ghosts;
-  p.refine = refine;
-  plan_memory(p, named, geometric);
+  p.refine = choices.refine;
+  plan_memory(p, choices);
   return p;
 }
 

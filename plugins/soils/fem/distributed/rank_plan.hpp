@@ -36,19 +36,30 @@ struct RankPlan {
   int refine = 0;              // mesh.refine on the ranks: rank 0 holds the coarse mesh only
 };
 
-/// The plan for a mesh of `nodes` nodes on `ranks` >= 1 ranks; named: the statics solved on the
-/// ranks at any size (statics.solver named), else only above the factor limit, rank 0 factoring
-/// below it; refine: the levels each rank refines its part by after the split (mesh.refine),
-/// rank 0 holding the coarse mesh, 8^-refine of the whole's nodes and tetrahedra (a refinement
-/// into eight has about 8 times the nodes); geometric: the ranks' statics by the geometric
-/// multigrid (statics.solver geometric, or auto with mesh.refine), its memory rather than GAMG's.
-RankPlan plan_ranks(double nodes, int ranks, bool named, int refine = 0, bool geometric = false);
+/// What the run's settings choose that a rank's memory depends on.
+struct PlanChoices {
+  /// The statics solved on the ranks at any size (statics.solver named), else only above the
+  /// factor limit, rank 0 factoring below it.
+  bool named = false;
+  /// The levels each rank refines its part by after the split (mesh.refine), rank 0 holding the
+  /// coarse mesh, 8^-refine of the whole's nodes and tetrahedra (a refinement into eight has
+  /// about 8 times the nodes).
+  int refine = 0;
+  /// The ranks' statics by the geometric multigrid (statics.solver geometric, or auto with
+  /// mesh.refine), its memory rather than GAMG's.
+  bool geometric = false;
+  /// The implicit scheme (integrator.scheme implicit): each rank holds its share of the steps'
+  /// factor (memory_model.hpp, rank_factor_bytes) once the statics are done.
+  bool implicit = false;
+};
+
+/// The plan for a mesh of `nodes` nodes on `ranks` >= 1 ranks with the settings' `choices`.
+RankPlan plan_ranks(double nodes, int ranks, const PlanChoices& choices = {});
 
 /// The plan for an actual split (split_plan.hpp): its ghosts over all ranks and the largest
-/// rank's nodes, owned and ghost, in place of the estimates; the memory per rank from them
-/// (refine as plan_ranks's).
-RankPlan plan_split(double nodes, int ranks, double ghosts, double largest_nodes, bool named,
-                    int refine = 0, bool geometric = false);
+/// rank's nodes, owned and ghost, in place of the estimates; the memory per rank from them.
+RankPlan plan_split(double nodes, int ranks, double ghosts, double largest_nodes,
+                    const PlanChoices& choices = {});
 
 /// One line for the log: nodes and DOFs on the largest rank, the halo (ghosts, bytes per
 /// sub-step), the memory of rank 0 and of each other rank; `source` says where the node count

@@ -1,5 +1,6 @@
 #include "operator/effective_matrix.hpp"
 
+#include <algorithm>
 #include <limits>
 #include <stdexcept>
 #include <vector>
@@ -34,20 +35,22 @@ void for_each_entry(const SoilOperator& op, const Combination& c, Visit visit) {
 
 }  // namespace
 
+void boundary_block(const BoundaryNode& b, const Combination& c, double out[9]) {
+  std::fill_n(out, 9, 0.0);
+  for (int d = 0; d < 3; ++d) {
+    double unit[3] = {0.0, 0.0, 0.0}, column[3] = {0.0, 0.0, 0.0};
+    unit[d] = 1.0;
+    if (c.springs) b.apply_spring(unit, column);
+    b.apply_dashpot(unit, column, c.dashpots);
+    for (int r = 0; r < 3; ++r) out[3 * r + d] = column[r];
+  }
+  for (int r = 0; r < 3; ++r)
+    for (int d = r + 1; d < 3; ++d) out[3 * r + d] = out[3 * d + r];
+}
+
 std::vector<double> boundary_blocks(const SoilOperator& op, const Combination& c) {
   std::vector<double> block(9 * op.mass().size(), 0.0);
-  for (const BoundaryNode& b : op.boundary())
-    for (int d = 0; d < 3; ++d) {
-      double unit[3] = {0.0, 0.0, 0.0}, column[3] = {0.0, 0.0, 0.0};
-      unit[d] = 1.0;
-      if (c.springs) b.apply_spring(unit, column);
-      b.apply_dashpot(unit, column, c.dashpots);
-      for (int r = 0; r < 3; ++r) block[9 * b.node + 3 * r + d] += column[r];
-    }
-  // Symmetric to the bit (n_r n_d and n_d n_r may round apart): the upper part copies the lower.
-  for (const BoundaryNode& b : op.boundary())
-    for (int r = 0; r < 3; ++r)
-      for (int d = r + 1; d < 3; ++d) block[9 * b.node + 3 * r + d] = block[9 * b.node + 3 * d + r];
+  for (const BoundaryNode& b : op.boundary()) boundary_block(b, c, block.data() + 9 * b.node);
   return block;
 }
 

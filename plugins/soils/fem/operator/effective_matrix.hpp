@@ -31,8 +31,11 @@ struct Combination {
   double dashpots = 0.0;   // d [1/s]
 };
 
+/// One boundary node's block of the combination, row-major 3 x 3: c.springs S + c.dashpots D,
+/// symmetric to the bit (its upper part copies the lower: n_r n_d and n_d n_r may round apart).
+void boundary_block(const BoundaryNode& b, const Combination& c, double out[9]);
 /// The boundary's blocks of the combination per node, row-major 3 x 3 (9 per node, zero off the
-/// truncation surface): c.springs S + c.dashpots D, symmetric to the bit.
+/// truncation surface): boundary_block at each boundary node.
 std::vector<double> boundary_blocks(const SoilOperator& op, const Combination& c);
 
 /// The lower triangle of the combination, CSC (for CHOLMOD).

@@ -10,15 +10,36 @@
 namespace rumble::fem {
 
 namespace {
-constexpr double kBeta = 0.25, kGamma = 0.5;
-}
 
-struct ImplicitSolver::Factor {
-  Eigen::CholmodSupernodalLLT<LongSparse, Eigen::Lower> llt;
+constexpr double kBeta = 0.25, kGamma = 0.5;
+
+class CholmodSystem final : public EffectiveSystem {
+ public:
+  explicit CholmodSystem(const SoilOperator& soil) : soil_(soil) {}
+  void build(const Combination& c, double dt) override {
+    llt_.compute(lower_combination(soil_, c));
+    if (llt_.info() == Eigen::Success) return;
+    std::ostringstream m;
+    m << "fem: the implicit step's matrix could not be factored at dt = " << dt
+      << " s (CHOLMOD: out of memory, or not positive definite); use the explicit scheme";
+    throw std::runtime_error(m.str());
+  }
+  Eigen::VectorXd solve(const Eigen::VectorXd& r) override { return llt_.solve(r); }
+
+ private:
+  const SoilOperator& soil_;
+  Eigen::CholmodSupernodalLLT<LongSparse, Eigen::Lower> llt_;
 };
 
-ImplicitSolver::ImplicitSolver(const ExplicitSolver& op, double a0, double a1)
-    : op_(op), a0_(a0), a1_(a1), factor_(std::make_unique<Factor>()) {}
+}  // namespace
+
+std::unique_ptr<EffectiveSystem> cholmod_system(const SoilOperator& soil) {
+  return std::make_unique<CholmodSystem>(soil);
+}
+
+ImplicitSolver::ImplicitSolver(const ExplicitSolver& op, double a0, double a1,
+                               std::unique_ptr<EffectiveSystem> system)
+    : op_(op), a0_(a0), a1_(a1), system_(system ? std::move(system) : cholmod_system(op.soil())) {}
 
 ImplicitSolver::~ImplicitSolver() = default;
 
@@ -43,17 +64,11 @@ void ImplicitSolver::step(ExplicitState& s, const Eigen::VectorXd& f, double dt)
     memory_stiffness += maxwell.weights[l] * gain[l];
   }
   if (dt != factored_dt_) {
-    factor_->llt.compute(
-        lower_combination(op_.soil(), {.stiffness = 1.0 + c1 * a1_ + memory_stiffness,
-                                       .mass = c0 + c1 * a0_,
-                                       .springs = op_.springs_act(),
-                                       .dashpots = c1}));
-    if (factor_->llt.info() != Eigen::Success) {
-      std::ostringstream m;
-      m << "fem: the implicit step's matrix could not be factored at dt = " << dt
-        << " s (CHOLMOD: out of memory, or not positive definite); use the explicit scheme";
-      throw std::runtime_error(m.str());
-    }
+    system_->build({.stiffness = 1.0 + c1 * a1_ + memory_stiffness,
+                    .mass = c0 + c1 * a0_,
+                    .springs = op_.springs_act(),
+                    .dashpots = c1},
+                   dt);
     factored_dt_ = dt;
     ++factorizations_;
   }
@@ -73,7 +88,7 @@ void ImplicitSolver::step(ExplicitState& s, const Eigen::VectorXd& f, double dt)
                         rhs_.data() + 3 * b.node);
   for (Eigen::Index k = 0; k < n; ++k)
     if (op_.fixed()[k / 3]) rhs_[k] = 0.0;
-  const Eigen::VectorXd w_new = factor_->llt.solve(rhs_);
+  const Eigen::VectorXd w_new = system_->solve(rhs_);
   for (Eigen::Index k = 0; k < n; ++k) {
     for (int l = 0; l < mechanisms; ++l) {
       float& z = s.maxwell[mechanisms * k + l];
