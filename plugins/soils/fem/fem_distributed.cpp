@@ -21,10 +21,12 @@
 #define OMPI_SKIP_MPICXX 1
 #include <mpi.h>
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -93,11 +95,6 @@ void FemSoil::refuse_on_many_ranks() const {
     throw std::invalid_argument("fem: params/" + key + ": " + why +
                                 " (docs/fem-soil.md, \"On many ranks\")");
   };
-  if (settings_.boundary.kind == rumble::fem::BoundaryKind::kPml)
-    refuse("boundary/type",
-           "the perfectly matched layer runs on one process only for now (its tetrahedra's "
-           "forces are not yet summed over the ranks); use boundary.type \"viscous_spring\" "
-           "under mpirun, or run without mpirun, got \"pml\"");
   if (settings_.local_steps > 1)
     refuse("integrator/local_steps",
            "local time stepping runs on one process only for now; set local_steps 1 under "
@@ -154,9 +151,23 @@ void FemSoil::accept_layout_distributed(const std::vector<rumble::Footprint>& fo
   });
   // (a rank failing alone inside the split, the refinement or the build stops every rank with
   // its message rather than leave them waiting: distributed/rank_agreement.hpp)
+  // The matched layer's box: rank 0's plan, the same on every rank.
+  std::optional<rumble::fem::PmlProfile> pml;
+  if (settings_.boundary.kind == rumble::fem::BoundaryKind::kPml) {
+    pml = d.root() ? pml_profile() : rumble::fem::PmlProfile{};
+    std::array<double, 9> box{pml->low[0],    pml->low[1],     pml->low[2],
+                              pml->high[0],   pml->high[1],    pml->high[2],
+                              pml->thickness, pml->reflection, pml->shift};
+    MPI_Bcast(box.data(), static_cast<int>(box.size()), MPI_DOUBLE, 0, d.comm());
+    pml->low = {box[0], box[1], box[2]};
+    pml->high = {box[3], box[4], box[5]};
+    pml->thickness = box[6];
+    pml->reflection = box[7];
+    pml->shift = box[8];
+  }
   rumble::fem::collective(d.comm(), [&] {
     d.lay_out(d.root() ? &mesh_ : nullptr, settings_, footprints, host_.threads(),
-              refine_on_ranks());
+              refine_on_ranks(), pml ? &*pml : nullptr);
   });
   // (statics.solver gamg or geometric named: on the ranks at any size, as asked)
   statics_on_root_ =

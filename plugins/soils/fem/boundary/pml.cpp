@@ -95,6 +95,15 @@ PmlLayer::PmlLayer(const TetMesh& mesh, const FemSettings& settings, const PmlPr
       incidence_[fill[local_[tets_[e].nodes[a]]]++] = static_cast<std::int32_t>(4 * e + a);
 }
 
+void PmlLayer::add_nodes(const std::vector<std::int32_t>& nodes) {
+  for (const std::int32_t a : nodes) {
+    if (local_[a] >= 0) continue;
+    local_[a] = static_cast<std::int32_t>(mass_terms_.size());
+    mass_terms_.push_back({});
+    incidence_offset_.push_back(incidence_offset_.back());  // (none of its tetrahedra here)
+  }
+}
+
 void PmlLayer::update_tetrahedra(const double* w, double dt, double* memory, double* forces) const {
   const std::int64_t count = static_cast<std::int64_t>(tets_.size());
   const double half = 0.5 * dt, decay = std::exp(-shift_ * dt);

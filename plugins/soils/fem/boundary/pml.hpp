@@ -80,6 +80,16 @@ class PmlLayer {
 
   /// The largest damping d_i [1/s] of the layer.
   double max_damping() const { return max_damping_; }
+
+  // On a part of a mesh split over ranks (distributed/part_pml.hpp): a layer node on the part's
+  // border may have its layer tetrahedra on another rank alone, and its mass side is summed over
+  // the ranks' tetrahedra.
+  /// Makes each of `nodes` a layer node where it is not one (no tetrahedron here, zero terms).
+  void add_nodes(const std::vector<std::int32_t>& nodes);
+  /// Layer node `local`'s mass-side coefficients (damping(local) is the first), to be summed.
+  std::array<double, 5>& mass_terms(std::int32_t local) { return mass_terms_[local]; }
+  /// The largest damping over the ranks' layers (the step's bound, kStableDampingStep).
+  void set_max_damping(double d) { max_damping_ = d; }
   /// The explicit step's bound from the layer: d_max dt at most this. Measured, not derived
   /// (docs/fem-soil.md section 3.1): with alpha = 2 pi 5 Hz the discrete layer stays bounded over
   /// 2 s at d_max dt = 0.46 and grows slowly at 0.51 (structured meshes, R 1e-3 and 1e-2, 8 and

@@ -133,6 +133,15 @@ void DistributedOperator::stepped_product(const double* x, NodeProducts& take) c
   if (hi > lo) take.take(lo, hi - lo, summed + 3 * lo);
 }
 
+void DistributedOperator::sum_shared_nodes(double* values, int width) const {
+  try {  // (an exception cannot leave an OpenMP region, nor one rank an exchange alone)
+    halo_.sum_to_roots(values, values, width);
+    halo_.to_leaves(values, values, width);
+  } catch (const std::exception& e) {
+    stop_every_rank(comm_, e.what());
+  }
+}
+
 void DistributedOperator::times(const Eigen::VectorXd& x, Eigen::VectorXd& y, bool with_springs,
                                 bool stepped) const {
   const std::int64_t n = nodes();

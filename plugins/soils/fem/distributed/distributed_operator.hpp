@@ -107,6 +107,10 @@ class DistributedOperator final : public SoilOperator {
   double dot(const Eigen::VectorXd& x, const Eigen::VectorXd& y,
              const double* node_weight) const override;
   std::int64_t whole_node(std::int64_t i) const override { return global_[i]; }
+  bool spans_ranks() const override { return true; }
+  std::int32_t shared_nodes() const override { return shared_; }
+  /// (a failed exchange stops every rank: it is called inside the step's OpenMP region)
+  void sum_shared_nodes(double* values, int width) const override;
 
   /// From now on this rank's part of stiffness_times and stepped_stiffness_times (the statics'
   /// products, not the step's) throws std::runtime_error(why) (its exchanges still made):

@@ -12,6 +12,7 @@
 #include "distributed/distributed_statics.hpp"
 #include "distributed/geometric_rank_statics.hpp"
 #include "distributed/part_operator.hpp"
+#include "distributed/part_pml.hpp"
 #include "distributed/part_stiffness.hpp"
 #include "distributed/rank_agreement.hpp"
 #include "distributed/rank_effective_system.hpp"
@@ -29,7 +30,7 @@ DistributedSoil::DistributedSoil(MPI_Comm comm) : petsc_(PetscSession::get()), c
 
 void DistributedSoil::lay_out(const TetMesh* mesh, const FemSettings& settings,
                               const std::vector<Footprint>& footprints, unsigned threads,
-                              int refine) {
+                              int refine, const PmlProfile* pml) {
   statics_.reset();   // (they refer to the old partition)
   implicit_.reset();  // (it refers to the old step)
   step_.reset();
@@ -49,7 +50,7 @@ void DistributedSoil::lay_out(const TetMesh* mesh, const FemSettings& settings,
     coarse_nodes_ = part_.global_nodes;
   }
   split_peak_ = resident_memory().peak;
-  build_step(settings, footprints, threads);
+  build_step(settings, footprints, threads, pml);
   state_ = step_->rest_state();
   const Eigen::Index n = step_->dofs();
   u_static_ = Eigen::VectorXd::Zero(n);
@@ -78,7 +79,8 @@ void DistributedSoil::lay_out(const TetMesh* mesh, const FemSettings& settings,
 }
 
 void DistributedSoil::build_step(const FemSettings& settings,
-                                 const std::vector<Footprint>& footprints, unsigned threads) {
+                                 const std::vector<Footprint>& footprints, unsigned threads,
+                                 const PmlProfile* pml) {
   std::unique_ptr<DistributedOperator> op = part_operator(
       part_, settings, footprints, threads,
       settings.single_precision_step ? StepPrecision::kSingle : StepPrecision::kDouble, comm_);
@@ -100,6 +102,7 @@ void DistributedSoil::build_step(const FemSettings& settings,
   // (after the stable step's products: the hook is for the statics')
   if (!failing_products_.empty()) soil.fail_products_on_purpose(failing_products_);
   if (settings.damping.maxwell) step_->set_maxwell_damping(settings.damping.maxwell_mechanisms());
+  if (pml) step_->set_pml(part_pml(part_, settings, *pml, comm_));
   if (settings.implicit)
     implicit_ = std::make_unique<ImplicitSolver>(
         *step_, settings.damping.mass_coefficient(), settings.damping.stiffness_coefficient(),

@@ -24,6 +24,7 @@
 #include "distributed/part_pieces.hpp"
 #include "distributed/rank_statics.hpp"
 #include "fem_settings.hpp"
+#include "mesh/pml_profile.hpp"
 #include "operator/footprint_loads.hpp"
 #include "output/probe_locator.hpp"
 #include "statics/petsc_session.hpp"
@@ -51,8 +52,11 @@ class DistributedSoil {
   /// on the ranks): rank 0's mesh is the coarse mesh, split as it is, and each rank refines its
   /// part `refine` times after the split (refined_partition.hpp); with statics.solver geometric
   /// each rank keeps its coarse part, the multigrid's coarse level (geometric_rank_statics.hpp).
+  /// pml: the matched layer's box (boundary.type pml: the whole mesh's, the same on every rank;
+  /// part_pml.hpp), or null.
   void lay_out(const TetMesh* mesh, const FemSettings& settings,
-               const std::vector<Footprint>& footprints, unsigned threads, int refine = 0);
+               const std::vector<Footprint>& footprints, unsigned threads, int refine = 0,
+               const PmlProfile* pml = nullptr);
   /// The whole mesh's DOFs.
   std::int64_t whole_dofs() const { return 3 * part_.global_nodes; }
   /// The levels each rank refined its part by (0: rank 0's mesh split as it is).
@@ -130,7 +134,7 @@ class DistributedSoil {
   };
   /// This rank's operator and explicit step on its part (lay_out's second half).
   void build_step(const FemSettings& settings, const std::vector<Footprint>& footprints,
-                  unsigned threads);
+                  unsigned threads, const PmlProfile* pml);
   void set_loaded_nodes();
   /// The largest rank's estimate of its run's peak [bytes] from what it holds now.
   double estimate_peak() const;

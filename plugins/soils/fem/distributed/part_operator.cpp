@@ -3,6 +3,7 @@
 #include <optional>
 #include <utility>
 
+#include "boundary/absorbing_boundary.hpp"
 #include "distributed/part_pieces.hpp"
 #include "distributed/part_stiffness.hpp"
 #include "distributed/rank_agreement.hpp"
@@ -16,9 +17,8 @@ std::unique_ptr<DistributedOperator> part_operator(const MeshPartition& part,
                                                    unsigned threads, StepPrecision precision,
                                                    MPI_Comm comm) {
   std::vector<BoundaryNode> boundary = part_boundary(part, settings, footprints);
-  std::vector<char> fixed(static_cast<std::size_t>(part.nodes()), 0);
-  if (settings.boundary.kind == BoundaryKind::kFixed)  // (the matched layer is refused here)
-    for (const BoundaryNode& b : boundary) fixed[b.node] = 1;
+  // (held as on one process: the fixed boundary's nodes, or the matched layer's outer surface)
+  std::vector<char> fixed = held_nodes(part.nodes(), boundary, settings);
   std::optional<CsrMatrix> K;
   Eigen::VectorXd mass;
   on_every_rank(comm, [&] {  // (a degenerate tetrahedron throws on its rank alone)

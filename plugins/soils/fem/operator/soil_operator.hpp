@@ -163,6 +163,22 @@ class SoilOperator {
   virtual std::int64_t whole_node(std::int64_t i) const {
     return i;
   }
+  /// Whether the operator is one rank's part of a mesh split over ranks, whose nodes
+  /// [0, shared_nodes()) other ranks hold too (false on one process: none).
+  virtual bool spans_ranks() const {
+    return false;
+  }
+  virtual std::int32_t shared_nodes() const {
+    return 0;
+  }
+  /// Sums `width` values per node over the ranks at the shared nodes (values[width i + c] for
+  /// i < shared_nodes()), each copy then holding the sum: a step's own per-node terms (the
+  /// matched layer's forces, time/explicit_solver.cpp). Collective over the ranks; called by one
+  /// thread. Nothing to sum on one process.
+  virtual void sum_shared_nodes(double* values, int width) const {
+    (void)values;
+    (void)width;
+  }
 
  protected:
   SoilOperator(Eigen::VectorXd mass, std::vector<BoundaryNode> boundary, bool springs,

@@ -70,6 +70,7 @@ void ExplicitSolver::set_maxwell_damping(MaxwellDamping d) {
 void ExplicitSolver::set_pml(PmlLayer layer) {
   pml_.emplace(std::move(layer));
   pml_forces_.assign(12 * pml_->tetrahedra(), 0.0);
+  pml_shared_.assign(3 * static_cast<std::size_t>(op_->shared_nodes()), 0.0);
   if (pml_->max_damping() > 0.0) pml_step_ = PmlLayer::kStableDampingStep / pml_->max_damping();
 }
 
@@ -333,6 +334,7 @@ void ExplicitSolver::step(ExplicitState& s, const Eigen::VectorXd& f, double dt)
     predict(s, dt);
     // (the implicit barrier of omp for: every w and y is updated before K reads them)
     if (pml_) pml_->update_tetrahedra(w, dt, memory, pml_forces_.data());  // (omp for: barrier)
+    if (pml_ && op_->spans_ranks()) sum_pml_over_ranks();
     // Each node once the product has handed over its K y: the residual, then the node's velocity
     // and acceleration, or at the halo under local steps the residual kept for the filter below.
     // (always inlined into the product's loop: a call per node costs more than the update)
@@ -367,6 +369,20 @@ void ExplicitSolver::step(ExplicitState& s, const Eigen::VectorXd& f, double dt)
   }
 }
 
+void ExplicitSolver::sum_pml_over_ranks() const {
+  const auto shared = static_cast<std::int64_t>(pml_shared_.size() / 3);
+  double* summed = pml_shared_.data();
+#pragma omp for schedule(static)
+  for (std::int64_t i = 0; i < shared; ++i) {
+    std::fill_n(summed + 3 * i, 3, 0.0);
+    if (const std::int32_t p = pml_->layer_node(i); p >= 0)
+      pml_->gather(p, pml_forces_.data(), summed + 3 * i);
+  }
+#pragma omp master
+  op_->sum_shared_nodes(summed, 3);
+#pragma omp barrier
+}
+
 void ExplicitSolver::residual(std::int64_t i, const double* w, const Eigen::VectorXd& f,
                               double out[3]) const {
   if (const std::int32_t b = springs_ ? boundary_of_[i] : -1; b >= 0) {
@@ -388,7 +404,10 @@ void ExplicitSolver::finish_node(std::int64_t i, const double residual[3], doubl
   double inertia = m * (1.0 + half * a0_);
   if (const std::int32_t p = pml_ ? pml_->layer_node(i) : -1; p >= 0) {
     double stretched[3] = {0.0, 0.0, 0.0};
-    pml_->gather(p, pml_forces_.data(), stretched);
+    if (3 * static_cast<std::size_t>(i) < pml_shared_.size())  // (summed over the ranks)
+      std::copy_n(pml_shared_.data() + 3 * i, 3, stretched);
+    else
+      pml_->gather(p, pml_forces_.data(), stretched);
     double w_old[3];
     for (int c = 0; c < 3; ++c) w_old[c] = w[3 * i + c] - dt * v[3 * i + c];  // v is v+ here
     pml_->add_node_forces(p, w_old, w + 3 * i, dt, memory, stretched);

@@ -194,6 +194,9 @@ class ExplicitSolver {
   /// v+ = v + dt/2 a, w += dt v+ and y = w + a1 v+ (with the Maxwell mechanisms, their memories
   /// stepped and y = w + sum_l c_l z_l), at every free node.
   void predict(ExplicitState& s, double dt) const;
+  /// On a rank's part, inside the step's team after the layer's tetrahedra: their forces at the
+  /// nodes other ranks hold too, gathered and summed over the ranks (pml_shared_).
+  void sum_pml_over_ranks() const;
   /// Node i's residual force K y + S w - f [N] (y = w + a1 v+) from its K y in `out`.
   void residual(std::int64_t i, const double* w, const Eigen::VectorXd& f, double out[3]) const;
   /// Node i's velocity and acceleration update from its residual (filtered by the local steps
@@ -223,6 +226,9 @@ class ExplicitSolver {
   mutable Eigen::VectorXd y_;  // scratch: w + a1 v+
   std::optional<PmlLayer> pml_;
   mutable std::vector<double> pml_forces_;  // scratch: 12 per layer tetrahedron [N]
+  // On a rank's part: the layer's forces gathered at the nodes other ranks hold too, 3 per node
+  // [N], summed over the ranks each step (their tetrahedra are split over the ranks).
+  mutable std::vector<double> pml_shared_;
   // Local time stepping; mutable: its coefficients follow the step size the caller asks for.
   mutable std::optional<LocalTimeStepping> lts_;
   std::vector<std::int32_t> halo_of_;        // per node: its place in lts_->halo(), or -1
