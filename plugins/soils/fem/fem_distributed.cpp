@@ -21,7 +21,6 @@
 #define OMPI_SKIP_MPICXX 1
 #include <mpi.h>
 
-#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -34,6 +33,7 @@
 
 #include "distributed/field_pieces.hpp"
 #include "distributed/node_memory.hpp"
+#include "distributed/part_pml.hpp"
 #include "distributed/rank_agreement.hpp"
 #include "fem_soil.hpp"
 #include "frequency/resolved_band.hpp"
@@ -149,22 +149,12 @@ void FemSoil::accept_layout_distributed(const std::vector<rumble::Footprint>& fo
     refuse_count(nodes, "the mesh's", "");
     check_memory(nodes, "the mesh");
   });
-  // (a rank failing alone inside the split, the refinement or the build stops every rank with
-  // its message rather than leave them waiting: distributed/rank_agreement.hpp)
   // The matched layer's box: rank 0's plan, the same on every rank.
   std::optional<rumble::fem::PmlProfile> pml;
-  if (settings_.boundary.kind == rumble::fem::BoundaryKind::kPml) {
-    pml = d.root() ? pml_profile() : rumble::fem::PmlProfile{};
-    std::array<double, 9> box{pml->low[0],    pml->low[1],     pml->low[2],
-                              pml->high[0],   pml->high[1],    pml->high[2],
-                              pml->thickness, pml->reflection, pml->shift};
-    MPI_Bcast(box.data(), static_cast<int>(box.size()), MPI_DOUBLE, 0, d.comm());
-    pml->low = {box[0], box[1], box[2]};
-    pml->high = {box[3], box[4], box[5]};
-    pml->thickness = box[6];
-    pml->reflection = box[7];
-    pml->shift = box[8];
-  }
+  if (settings_.boundary.kind == rumble::fem::BoundaryKind::kPml)
+    pml = rumble::fem::from_root(d.root() ? pml_profile() : rumble::fem::PmlProfile{}, d.comm());
+  // (a rank failing alone inside the split, the refinement or the build stops every rank with
+  // its message rather than leave them waiting: distributed/rank_agreement.hpp)
   rumble::fem::collective(d.comm(), [&] {
     d.lay_out(d.root() ? &mesh_ : nullptr, settings_, footprints, host_.threads(),
               refine_on_ranks(), pml ? &*pml : nullptr);

@@ -7,6 +7,21 @@
 
 namespace rumble::fem {
 
+PmlProfile from_root(const PmlProfile& profile, MPI_Comm comm) {
+  static_assert(sizeof(PmlProfile) == 9 * sizeof(double), "a field of PmlProfile is not sent");
+  std::array<double, 9> box{profile.low[0],    profile.low[1],     profile.low[2],
+                            profile.high[0],   profile.high[1],    profile.high[2],
+                            profile.thickness, profile.reflection, profile.shift};
+  MPI_Bcast(box.data(), static_cast<int>(box.size()), MPI_DOUBLE, 0, comm);
+  PmlProfile p;
+  p.low = {box[0], box[1], box[2]};
+  p.high = {box[3], box[4], box[5]};
+  p.thickness = box[6];
+  p.reflection = box[7];
+  p.shift = box[8];
+  return p;
+}
+
 PmlLayer part_pml(const MeshPartition& part, const FemSettings& settings, const PmlProfile& profile,
                   MPI_Comm comm) {
   PmlLayer layer(part.mesh, settings, profile);

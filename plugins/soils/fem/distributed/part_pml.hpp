@@ -17,6 +17,9 @@
 
 namespace rumble::fem {
 
+/// Rank 0's `profile` on every rank (the others' argument is not read). Collective.
+PmlProfile from_root(const PmlProfile& profile, MPI_Comm comm);
+
 /// The layer of part's tetrahedra whose centroid lies beyond `profile`'s physical box (the whole
 /// mesh's, the same on every rank), completed over the ranks as above; its largest damping is
 /// the ranks' largest, so that every rank bounds its step alike.
