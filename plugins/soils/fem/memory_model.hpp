@@ -40,8 +40,10 @@ inline constexpr double kFactorBytesPerNonzero = 11.5;
 /// includes PETSc's matrix of K_eff. Fitted to fem_small.json's hemisphere on 2 ranks
 /// (docs/fem-soil.md §8, "The implicit scheme on the ranks": 77-83, 418-489 and 1533-1568 MB per
 /// rank at 1.9e4, 6.8e4 and 1.7e5 DOFs; CHOLMOD's 11.5 B per nonzero on one process).
+inline constexpr double kRankFactorBytesPerNonzero = 17.5;
+inline constexpr double kRankFactorBytes = 15e6;
 inline double rank_factor_bytes(double whole_dofs, int ranks) {
-  return 17.5 * factor_nonzeros(whole_dofs) / ranks + 15e6;
+  return kRankFactorBytesPerNonzero * factor_nonzeros(whole_dofs) / ranks + kRankFactorBytes;
 }
 
 /// PETSc's GAMG on one process (statics.solver gamg or auto without mesh.refine) at its peak,
