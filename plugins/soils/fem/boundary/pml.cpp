@@ -69,7 +69,7 @@ PmlLayer::PmlLayer(const TetMesh& mesh, const FemSettings& settings, const PmlPr
     const double D1 = d.sum(), D2 = d[0] * d[1] + d[0] * d[2] + d[1] * d[2], D3 = d.prod();
     // u' , u, phi u, phi^2 u, phi^3 u (pml.hpp)
     const double alpha2 = alpha * alpha;
-    const std::array<double, 5> terms = {
+    const std::array<double, kMassTerms> terms = {
         share * D1, share * (D2 - alpha * D1), share * (alpha2 * D1 - 2.0 * alpha * D2 + D3),
         share * (alpha2 * D2 - 2.0 * alpha * D3), share * alpha2 * D3};
     for (std::int32_t a : t) {
@@ -165,7 +165,7 @@ void PmlLayer::gather(std::int32_t local, const double* forces, double* out) con
 void PmlLayer::add_node_forces(std::int32_t local, const double* w_old, const double* w_new,
                                double dt, double* memory, double* out) const {
   const double half = 0.5 * dt, decay = std::exp(-shift_ * dt);
-  const std::array<double, 5>& c = mass_terms_[local];
+  const std::array<double, kMassTerms>& c = mass_terms_[local];
   double* phi = memory + kPerTet * static_cast<Eigen::Index>(tets_.size()) + kPerNode * local;
   for (int j = 0; j < 3; ++j) {
     const double phi1 = filter(phi[j], w_old[j], w_new[j], decay, half);
@@ -216,7 +216,7 @@ void PmlLayer::frequency_domain(
   // The mass side: c0 u' + c1 u + c2 phi u + c3 phi^2 u + c4 phi^3 u (add_node_forces).
   for (std::size_t node = 0; node < local_.size(); ++node) {
     if (local_[node] < 0) continue;
-    const std::array<double, 5>& c = mass_terms_[local_[node]];
+    const std::array<double, kMassTerms>& c = mass_terms_[local_[node]];
     add_node(static_cast<std::int32_t>(node),
              iw * c[0] + c[1] + c[2] * q + c[3] * q * q + c[4] * q * q * q);
   }

@@ -86,8 +86,10 @@ class PmlLayer {
   // the ranks' tetrahedra.
   /// Makes each of `nodes` a layer node where it is not one (no tetrahedron here, zero terms).
   void add_nodes(const std::vector<std::int32_t>& nodes);
+  /// The mass side's coefficients per layer node: of u', u, phi u, phi^2 u and phi^3 u.
+  static constexpr int kMassTerms = 5;
   /// Layer node `local`'s mass-side coefficients (damping(local) is the first), to be summed.
-  std::array<double, 5>& mass_terms(std::int32_t local) { return mass_terms_[local]; }
+  std::array<double, kMassTerms>& mass_terms(std::int32_t local) { return mass_terms_[local]; }
   /// The largest damping over the ranks' layers (the step's bound, kStableDampingStep).
   void set_max_damping(double d) { max_damping_ = d; }
   /// The explicit step's bound from the layer: d_max dt at most this. Measured, not derived
@@ -113,10 +115,10 @@ class PmlLayer {
   // again when dt changes (update_tetrahedra).
   mutable std::vector<std::array<double, 3>> decays_;
   mutable double decays_dt_ = 0.0;
-  std::vector<std::int32_t> local_;                // per mesh node
-  std::vector<std::array<double, 5>> mass_terms_;  // per layer node: the 5 coefficients [SI]
-  std::vector<std::int64_t> incidence_offset_;     // per layer node, into incidence_
-  std::vector<std::int32_t> incidence_;            // 4 tet + corner, per incidence
+  std::vector<std::int32_t> local_;                         // per mesh node
+  std::vector<std::array<double, kMassTerms>> mass_terms_;  // per layer node [SI]
+  std::vector<std::int64_t> incidence_offset_;              // per layer node, into incidence_
+  std::vector<std::int32_t> incidence_;                     // 4 tet + corner, per incidence
 };
 
 }  // namespace rumble::fem

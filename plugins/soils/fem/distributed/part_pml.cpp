@@ -36,7 +36,7 @@ PmlLayer part_pml(const MeshPartition& part, const FemSettings& settings, const 
     if (in_layer[i] > 0.0 && layer.layer_node(i) < 0) added.push_back(i);
   layer.add_nodes(added);
   // Their mass side summed over the ranks' tetrahedra (the owner's sum copied to each ghost).
-  constexpr int kTerms = 5;
+  constexpr int kTerms = PmlLayer::kMassTerms;
   std::vector<double> terms(static_cast<std::size_t>(kTerms) * shared, 0.0);
   for (std::int32_t i = 0; i < shared; ++i)
     if (const std::int32_t p = layer.layer_node(i); p >= 0)
