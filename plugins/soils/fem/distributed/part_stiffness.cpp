@@ -5,6 +5,8 @@
 #include <unordered_map>
 #include <vector>
 
+#include "distributed/keyed_exchange.hpp"
+
 namespace rumble::fem {
 
 namespace {
@@ -15,54 +17,15 @@ struct BlockAt {
   std::int64_t position = 0;
 };
 
-// What one rank sends or receives in an all-to-all: per rank a count of blocks, in rank order.
-struct Exchange {
-  std::vector<int> counts, starts;  // per rank, in blocks
-  std::vector<int> keys;            // 2 per block: its two nodes in rank 0's mesh
-  std::vector<double> values;       // `width` per block
-};
-
-void set_starts(Exchange& e) {
-  e.starts.assign(e.counts.size(), 0);
-  for (std::size_t r = 1; r < e.counts.size(); ++r) e.starts[r] = e.starts[r - 1] + e.counts[r - 1];
-}
-
-// Sends `width` doubles per block (and with keys, 2 ints) from out to each rank; in gets what
-// every rank sent here, in rank order (counts first).
-void all_to_all(MPI_Comm comm, const Exchange& out, Exchange& in, int width, bool keys) {
-  const auto ranks = out.counts.size();
-  if (keys) {
-    in.counts.assign(ranks, 0);
-    MPI_Alltoall(out.counts.data(), 1, MPI_INT, in.counts.data(), 1, MPI_INT, comm);
-    set_starts(in);
-  }
-  const auto scaled = [](const std::vector<int>& v, int by) {
-    std::vector<int> s(v);
-    for (int& x : s) x *= by;
-    return s;
-  };
-  const int blocks = in.starts.empty() ? 0 : in.starts.back() + in.counts.back();
-  if (keys) {
-    in.keys.assign(static_cast<std::size_t>(2 * blocks), 0);
-    MPI_Alltoallv(out.keys.data(), scaled(out.counts, 2).data(), scaled(out.starts, 2).data(),
-                  MPI_INT, in.keys.data(), scaled(in.counts, 2).data(), scaled(in.starts, 2).data(),
-                  MPI_INT, comm);
-  }
-  in.values.assign(static_cast<std::size_t>(width) * blocks, 0.0);
-  MPI_Alltoallv(out.values.data(), scaled(out.counts, width).data(),
-                scaled(out.starts, width).data(), MPI_DOUBLE, in.values.data(),
-                scaled(in.counts, width).data(), scaled(in.starts, width).data(), MPI_DOUBLE, comm);
-}
-
 // This rank's pieces of the blocks between two shared nodes, each sent to its row node's owner
 // (the block's home, where its pieces are summed), with where each sits here.
-Exchange shared_pieces(const MeshPartition& part, const CsrMatrix& K, int ranks,
-                       std::vector<BlockAt>& at) {
+KeyedExchange shared_pieces(const MeshPartition& part, const CsrMatrix& K, int ranks,
+                            std::vector<BlockAt>& at) {
   std::vector<std::vector<BlockAt>> to(static_cast<std::size_t>(ranks));
   for (std::int32_t i = 0; i < part.shared; ++i)
     for (std::int64_t p = 0; p < K.degree(i); ++p)
       if (K.neighbours(i)[p] < part.shared) to[part.owner[i]].push_back({i, p});
-  Exchange out;
+  KeyedExchange out;
   for (const std::vector<BlockAt>& blocks : to) {
     out.counts.push_back(static_cast<int>(blocks.size()));
     for (const BlockAt& b : blocks) {
@@ -73,13 +36,13 @@ Exchange shared_pieces(const MeshPartition& part, const CsrMatrix& K, int ranks,
         for (int d = 0; d < 3; ++d) out.values.push_back(K.block_entry(b.row, b.position, c, d));
     }
   }
-  set_starts(out);
+  out.set_starts();
   return out;
 }
 
 // At the home: each block's pieces summed in rank order, and its keeper (the lowest rank that
 // sent a piece); the reply to each piece is its block's sum (9) and keeper (1).
-Exchange sum_pieces(const Exchange& in) {
+KeyedExchange sum_pieces(const KeyedExchange& in) {
   std::unordered_map<std::int64_t, std::size_t> slot;
   std::vector<double> sums;
   std::vector<int> keeper;
@@ -96,7 +59,7 @@ Exchange sum_pieces(const Exchange& in) {
       for (int v = 0; v < 9; ++v) sums[9 * it->second + v] += in.values[9 * k + v];
       slot_of.push_back(it->second);
     }
-  Exchange reply{in.counts, in.starts, {}, {}};
+  KeyedExchange reply{in.counts, in.starts, {}, {}};
   for (const std::size_t s : slot_of) {
     reply.values.insert(reply.values.end(), sums.begin() + 9 * s, sums.begin() + 9 * s + 9);
     reply.values.push_back(keeper[s]);
@@ -124,11 +87,11 @@ void complete_shared_entries(const MeshPartition& part, CsrMatrix& K, MPI_Comm c
   MPI_Comm_size(comm, &ranks);
   MPI_Comm_rank(comm, &rank);
   std::vector<BlockAt> at;
-  const Exchange out = shared_pieces(part, K, ranks, at);
-  Exchange in;
+  const KeyedExchange out = shared_pieces(part, K, ranks, at);
+  KeyedExchange in;
   all_to_all(comm, out, in, 9, true);
-  const Exchange reply = sum_pieces(in);
-  Exchange back{out.counts, out.starts, {}, {}};
+  const KeyedExchange reply = sum_pieces(in);
+  KeyedExchange back{out.counts, out.starts, {}, {}};
   all_to_all(comm, reply, back, 10, false);
   for (std::size_t k = 0; k < at.size(); ++k) {
     const double* whole = back.values.data() + 10 * k;
