@@ -27,6 +27,9 @@
 //     node's faces summed in another order); the footprints' weights (their faces weighed in the
 //     whole mesh's order) and the receivers' tetrahedra and weights (the same tetrahedron chosen,
 //     ties included) bit for bit;
+//   - what the local time stepping's choice reads of K's whole rows (whole_rows.hpp): each
+//     node's magnitude sums within 1e-14 of one process's, its flagged neighbours exactly, the
+//     same at every copy of a node;
 //   - the stable step's largest eigenvalue by Lanczos over the ranks (sums in rank order) equals
 //     one process's to 1e-9, its own tolerance, and is the same on every rank.
 // usage: PETSC_OPTIONS=-malloc_dump mpirun -n N fem_partition_check   (exit code 0: all held;
@@ -180,6 +183,50 @@ Eigen::VectorXd one_process_product(const TetMesh& whole, const FemSettings& set
   return y_whole;
 }
 
+// What the local time stepping's choice reads of K's whole rows (distributed/whole_rows.hpp)
+// at every rank's nodes, gathered on rank 0, against one process's K on the whole mesh: the
+// magnitude sums to 1e-14 of the largest (the shared entries summed in another order) and the
+// flagged neighbours (flags from each node's number) exactly.
+void check_whole_rows(MPI_Comm comm, const DistributedOperator& op, const MeshPartition& part,
+                      const TetMesh& whole, const FemSettings& settings, Checks& checks) {
+  const auto flag_of = [](std::int32_t global) { return static_cast<char>(global % 3 == 0); };
+  std::vector<char> flag(static_cast<std::size_t>(part.nodes()));
+  for (std::int32_t i = 0; i < part.nodes(); ++i) flag[i] = flag_of(part.global[i]);
+  const std::vector<double> sums = op.row_magnitude_sums();
+  const std::vector<std::int32_t> counted = op.flagged_neighbours(flag);
+  std::vector<double> counts(counted.begin(), counted.end());
+  const bool root = rank_of(comm) == 0;
+  const std::int64_t n = root ? whole.node_count() : 0;
+  std::vector<double> sums_whole(static_cast<std::size_t>(3 * n), -1.0);
+  std::vector<double> counts_whole(static_cast<std::size_t>(n), -1.0);
+  part.from_root->copy_to_roots(sums.data(), sums_whole.data(), 3);
+  part.from_root->copy_to_roots(counts.data(), counts_whole.data(), 1);
+  // Every copy of a node holds the same values (the counts exactly, the sums to the bit).
+  std::vector<double> ghosts = sums, ghost_counts = counts;
+  part.halo->to_leaves(sums.data(), ghosts.data(), 3);
+  part.halo->to_leaves(counts.data(), ghost_counts.data(), 1);
+  checks.expect(ghosts == sums && ghost_counts == counts,
+                "every copy of a node has its owner's whole-row sums and counts", 0.0);
+  if (!root) return;
+  const CsrMatrix K = assemble_stiffness(whole, settings);
+  std::vector<char> whole_flag(static_cast<std::size_t>(n));
+  for (std::int32_t g = 0; g < n; ++g) whole_flag[g] = flag_of(g);
+  const std::vector<double> one_sums = K.magnitude_sums();
+  const std::vector<std::int32_t> one_counts = K.flagged_neighbours(whole_flag);
+  const double largest = *std::max_element(one_sums.begin(), one_sums.end());
+  double differ = 0.0;
+  for (std::size_t k = 0; k < one_sums.size(); ++k)
+    differ = std::max(differ, std::abs(sums_whole[k] - one_sums[k]) / largest);
+  int wrong = 0;
+  for (std::int64_t g = 0; g < n; ++g) wrong += counts_whole[g] != one_counts[g] ? 1 : 0;
+  checks.expect(differ <= 1e-14, "K's whole rows' magnitude sums as one process's", differ);
+  checks.expect(wrong == 0, "K's whole rows' flagged neighbours as one process's", wrong);
+  std::printf(
+      "fem_partition_check: K's whole rows on the ranks: magnitude sums within %.2g of one "
+      "process's, flagged neighbours %d of %lld nodes wrong\n",
+      differ, wrong, static_cast<long long>(n));
+}
+
 // refine > 0: a coarser box split, each rank's part refined `refine` times after the split.
 int check(MPI_Comm comm, StepPrecision precision, std::vector<std::int32_t>& nodes,
           int refine = 0) {
@@ -218,6 +265,7 @@ int check(MPI_Comm comm, StepPrecision precision, std::vector<std::int32_t>& nod
   const double rows = nonzeros * value_bytes + nonzeros / 9.0 * 4.0;
   const double upper = static_cast<double>(op.stepped_bytes()) / rows;
   checks.expect(upper < 0.7, "the step reads about half of the part's rows' bytes", upper);
+  check_whole_rows(comm, op, part, whole, settings, checks);
   Eigen::VectorXd ghosts = y;  // each ghost's value replaced by its owner's
   part.halo->to_leaves(y.data(), ghosts.data(), 3);
   checks.expect(ghosts == y, "every ghost holds its owner's product", relative(ghosts, y));

@@ -14,10 +14,10 @@
 // (distributed/geometric_rank_statics.hpp: statics.solver geometric, or auto with mesh.refine);
 // else, below the limit with auto, rank 0 factors the whole (small) operator as one process
 // does, then frees it. What needs the
-// whole operator (the receptance, the linear matrices) is refused on many ranks, and what does not
-// run on many ranks yet is refused when the soil is made, before any work: the matched layer, the
-// local steps and the implicit scheme (each names its parameter and the fix), and so is a mesh
-// whose estimate per rank outgrows a machine's memory.
+// whole operator (the receptance, the linear matrices) is refused on many ranks, and what cannot
+// run there is refused when the soil is made, before any work: the refined mesh's export (it
+// names its parameter and the fix), and so is a mesh whose estimate per rank outgrows a machine's
+// memory.
 #define OMPI_SKIP_MPICXX 1
 #include <mpi.h>
 
@@ -95,11 +95,6 @@ void FemSoil::refuse_on_many_ranks() const {
     throw std::invalid_argument("fem: params/" + key + ": " + why +
                                 " (docs/fem-soil.md, \"On many ranks\")");
   };
-  if (settings_.local_steps > 1)
-    refuse("integrator/local_steps",
-           "local time stepping runs on one process only for now; set local_steps 1 under "
-           "mpirun, or run without mpirun, got " +
-               std::to_string(settings_.local_steps));
   if (refine_on_ranks() > 0 && !settings_.mesh.export_file.empty())
     refuse("mesh/export",
            "with mesh.refine " + std::to_string(refine_on_ranks()) +
@@ -303,6 +298,10 @@ void FemSoil::advance_distributed(double t, double H, const rumble::Waveform& fo
   const char* scheme = implicit ? "implicit" : "explicit";
   tuner_.grant(host_.threads());
   step.set_threads(tuner_.threads());
+  if (settings_.local_steps > 1 && !implicit && !local_steps_chosen_) {
+    enable_local_steps(step, H, d.root());  // (collective: the same choice on every rank)
+    local_steps_chosen_ = true;
+  }
   // (every rank has the same stable step, from Lanczos over the ranks, or the same implicit
   // step from the settings: the same sub-steps)
   const double longest =

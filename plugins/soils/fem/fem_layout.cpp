@@ -307,13 +307,13 @@ void FemSoil::report(double mesh_seconds, double setup_seconds) const {
         "footprint force makes the whole soil drift");
 }
 
-void FemSoil::enable_local_steps(double H) {
-  const double single = op_->single_rate_step(), layer_limit = op_->layer_step_limit();
+void FemSoil::enable_local_steps(rumble::fem::ExplicitSolver& step, double H, bool speak) {
+  const double single = step.single_rate_step(), layer_limit = step.layer_step_limit();
   std::ostringstream m;
   m << "fem: local time stepping (integrator.local_steps " << settings_.local_steps << "): ";
   const auto start = std::chrono::steady_clock::now();
   const rumble::fem::LocalTimeStepping* lts =
-      op_->enable_local_steps(settings_.local_steps, H, settings_.courant) ? op_->local_steps()
+      step.enable_local_steps(settings_.local_steps, H, settings_.courant) ? step.local_steps()
                                                                            : nullptr;
   const double seconds = seconds_since(start);
   if (lts == nullptr) {
@@ -335,19 +335,20 @@ void FemSoil::enable_local_steps(double H) {
         << " s pays on this mesh (too many nodes would have to be fine, or the step needed is "
            "beyond local_steps times one rate's); the soil steps on one rate (set local_steps 1 "
            "to skip this search)";
-    host_.warn(m.str());
+    if (speak) host_.warn(m.str());
     return;
   }
-  m << lts->fine_nodes() << " fine nodes ("
-    << format(100.0 * static_cast<double>(lts->fine_nodes()) / mesh_.node_count(), 2) << " % of "
-    << mesh_.node_count() << "; " << lts->halo().size() << " with their neighbours) take "
-    << lts->substeps() << " steps per soil step; stable step " << format(op_->stable_step())
-    << " s against " << format(single) << " s on one rate (x"
-    << format(op_->stable_step() / single, 3) << "): " << std::ceil(H / max_step() - 1e-9)
+  const rumble::fem::ExplicitSolver::LocalStepNodes nodes =
+      step.local_step_nodes();  // (collective)
+  m << nodes.fine << " fine nodes (" << format(100.0 * nodes.fine / nodes.nodes, 2) << " % of "
+    << nodes.nodes << "; " << nodes.halo << " with their neighbours) take " << lts->substeps()
+    << " steps per soil step; stable step " << format(step.stable_step()) << " s against "
+    << format(single) << " s on one rate (x" << format(step.stable_step() / single, 3)
+    << "): " << std::ceil(H / (settings_.courant * step.stable_step()) - 1e-9)
     << " sub-steps per macro step of " << format(H) << " s instead of "
     << std::ceil(H / (settings_.courant * single) - 1e-9) << " (chosen in " << format(seconds, 2)
     << " s)";
-  host_.info(m.str());
+  if (speak) host_.info(m.str());
 }
 
 }  // namespace rumble::fem

@@ -224,9 +224,10 @@ class FemSoil final : public rumble::Soil {
   /// (`rumble validate`, a study's checks, soil-frf, calibrate).
   void export_if_due();
 
-  /// Chooses the local steps for macro steps of H [s] (the first one's: later changes of H keep
-  /// them, stable at any shorter step) and logs the choice or why there is none.
-  void enable_local_steps(double H);
+  /// Chooses step's local steps for macro steps of H [s] (the first one's: later changes of H
+  /// keep them, stable at any shorter step) and logs the choice or why there is none (`speak`:
+  /// on many ranks rank 0 alone). Collective on many ranks.
+  void enable_local_steps(rumble::fem::ExplicitSolver& step, double H, bool speak);
 
   void report(double mesh_seconds, double setup_seconds) const;
   /// The run's peak resident memory [bytes], estimated from what is resident now, the peak so far

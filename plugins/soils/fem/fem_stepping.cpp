@@ -95,7 +95,7 @@ void FemSoil::advance(double t, double H, const rumble::Waveform& force) {
   tuner_.grant(host_.threads());
   op_->set_threads(implicit_ ? host_.threads() : tuner_.threads());
   if (settings_.local_steps > 1 && !implicit_ && !local_steps_chosen_) {
-    enable_local_steps(H);
+    enable_local_steps(*op_, H, true);
     local_steps_chosen_ = true;
   }
   // The statics are done once the steps begin (a later static solve builds again what it needs).

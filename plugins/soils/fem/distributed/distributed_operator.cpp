@@ -34,6 +34,7 @@ DistributedOperator::DistributedOperator(CsrMatrix K, ElementStiffness elements,
       elements_(std::move(elements)),
       scratch_(static_cast<std::size_t>(part.nodes()), NodeSum{}),
       shared_(part.shared),
+      part_(part),
       halo_(*part.halo),
       global_(part.global),
       owned_(static_cast<std::size_t>(part.nodes()), 0),
@@ -81,6 +82,20 @@ double DistributedOperator::dot(const Eigen::VectorXd& x, const Eigen::VectorXd&
     for (std::int64_t k = 3 * i; k < 3 * i + 3; ++k) mine += w * x[k] * y[k];
   }
   return sum_in_rank_order(comm_, mine);
+}
+
+double DistributedOperator::sum_over_nodes(const std::vector<double>& per_node) const {
+  double mine = 0.0;
+  for (std::int64_t i = 0; i < nodes(); ++i)
+    if (owned_[i]) mine += per_node[i];
+  return sum_in_rank_order(comm_, mine);
+}
+
+double DistributedOperator::max_over_nodes(const std::vector<double>& per_node) const {
+  double mine = per_node.empty() ? 0.0 : *std::max_element(per_node.begin(), per_node.end());
+  double largest = 0.0;  // (a maximum is the same in any order)
+  MPI_Allreduce(&mine, &largest, 1, MPI_DOUBLE, MPI_MAX, comm_);
+  return largest;
 }
 
 void DistributedOperator::gather_x(const double* x) const {

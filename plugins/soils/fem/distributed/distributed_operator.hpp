@@ -45,6 +45,7 @@
 
 #include "distributed/mesh_partition.hpp"
 #include "distributed/star_forest.hpp"
+#include "distributed/whole_rows.hpp"
 #include "operator/boundary_blocks.hpp"
 #include "operator/csr_matrix.hpp"
 #include "operator/element_stiffness.hpp"
@@ -106,6 +107,16 @@ class DistributedOperator final : public SoilOperator {
   /// every rank gets the same value, run after run.
   double dot(const Eigen::VectorXd& x, const Eigen::VectorXd& y,
              const double* node_weight) const override;
+  /// Over the nodes this rank owns, then in rank order (as dot).
+  double sum_over_nodes(const std::vector<double>& per_node) const override;
+  double max_over_nodes(const std::vector<double>& per_node) const override;
+  /// From the part's rows, completed over the ranks at the shared nodes (whole_rows.hpp).
+  std::vector<double> row_magnitude_sums() const override {
+    return whole_magnitude_sums(part_, stiffness());
+  }
+  std::vector<std::int32_t> flagged_neighbours(const std::vector<char>& flag) const override {
+    return whole_flagged_neighbours(part_, stiffness(), flag, comm_);
+  }
   std::int64_t whole_node(std::int64_t i) const override { return global_[i]; }
   bool spans_ranks() const override { return true; }
   std::int32_t shared_nodes() const override { return shared_; }
@@ -135,6 +146,7 @@ class DistributedOperator final : public SoilOperator {
   std::optional<SymmetricBlocks<double>> double_blocks_;
   mutable std::vector<NodeSum> scratch_;  // the blocks' pending sums; zero between products
   std::int32_t shared_;
+  const MeshPartition& part_;
   const StarForest& halo_;
   const std::vector<std::int32_t>& global_;  // per local node: its node in the whole mesh
   std::vector<char> owned_;                  // per local node: this rank owns it

@@ -1,6 +1,7 @@
 #include "operator/csr_matrix.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <utility>
 
@@ -67,6 +68,21 @@ std::vector<double> CsrMatrix::diagonal() const {
     for (std::int64_t k = row_start_[r]; k < row_start_[r + 1]; ++k)
       if (column_[k] == r) d[r] = value_[k];
   return d;
+}
+
+std::vector<double> CsrMatrix::magnitude_sums() const {
+  std::vector<double> sums(static_cast<std::size_t>(rows()), 0.0);
+  for (std::int64_t r = 0; r < rows(); ++r)
+    for (std::int64_t k = row_start_[r]; k < row_start_[r + 1]; ++k) sums[r] += std::abs(value_[k]);
+  return sums;
+}
+
+std::vector<std::int32_t> CsrMatrix::flagged_neighbours(const std::vector<char>& flag) const {
+  const auto nodes = static_cast<std::int32_t>(neighbour_start_.size()) - 1;
+  std::vector<std::int32_t> count(static_cast<std::size_t>(nodes), 0);
+  for (std::int32_t i = 0; i < nodes; ++i)
+    for (std::int64_t q = 0; q < degree(i); ++q) count[i] += flag[neighbours(i)[q]] ? 1 : 0;
+  return count;
 }
 
 void CsrMatrix::multiply_rows(const double* x, double* y, std::int64_t begin,

@@ -23,6 +23,11 @@ class CsrMatrix {
   double* block_row(std::int32_t i, std::int32_t j, int c);
   /// The diagonal's entries, one per row.
   std::vector<double> diagonal() const;
+  /// Per row, the sum of its entries' magnitudes (Gershgorin's bound on the eigenvalues).
+  std::vector<double> magnitude_sums() const;
+  /// Per node i, how many of its neighbours j (i itself included) have flag[j] set (flag: per
+  /// node).
+  std::vector<std::int32_t> flagged_neighbours(const std::vector<char>& flag) const;
   /// y = A x over rows [begin, end); x, y of size rows().
   void multiply_rows(const double* x, double* y, std::int64_t begin, std::int64_t end) const;
   /// Row r's product with x.

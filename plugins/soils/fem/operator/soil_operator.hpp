@@ -158,6 +158,29 @@ class SoilOperator {
     for (std::int64_t k = 0; k < n; ++k) s += node_weight[k / 3] * x[k] * y[k];
     return s;
   }
+  /// The sum and the largest over the soil's nodes of a per-node value that every copy of a
+  /// node holds alike: on many ranks each node counted once (by its owner), the same value on
+  /// every rank. Collective there. For the local time stepping's choice (time/
+  /// local_steps_choice.cpp), whose counts must be one process's on any number of ranks.
+  virtual double sum_over_nodes(const std::vector<double>& per_node) const {
+    double s = 0.0;
+    for (const double v : per_node) s += v;
+    return s;
+  }
+  virtual double max_over_nodes(const std::vector<double>& per_node) const {
+    return per_node.empty() ? 0.0 : *std::max_element(per_node.begin(), per_node.end());
+  }
+  /// What the local time stepping's choice reads of K's whole rows (in double), which a rank's
+  /// part holds only in part at its shared nodes. Collective on many ranks.
+  /// Per DOF k: sum_j |K_kj| (Gershgorin's bound on M^-1 K's eigenvalues, divided by the mass).
+  virtual std::vector<double> row_magnitude_sums() const {
+    return stiffness().magnitude_sums();
+  }
+  /// Per node i: how many nodes j with flag[j] (per node, alike at every copy) K's pattern
+  /// couples it to, i itself included.
+  virtual std::vector<std::int32_t> flagged_neighbours(const std::vector<char>& flag) const {
+    return stiffness().flagged_neighbours(flag);
+  }
   /// Node i's number in the whole mesh: the eigenvalue iterations' start follows it, so that
   /// a split soil starts where one process does.
   virtual std::int64_t whole_node(std::int64_t i) const {

@@ -95,8 +95,15 @@ class ExplicitSolver {
   /// and one rate's limit keeps the caller's margin). Returns false (and stays single
   /// rate) when no longer step was found; substeps < 2 switches it off. After set_pml (the
   /// layer's nodes and their neighbours are never fine).
+  /// Collective on many ranks (every rank calls it, in the same order).
   bool enable_local_steps(int substeps, double macro_step = 0.0, double courant = 1.0);
   const LocalTimeStepping* local_steps() const { return lts_ ? &*lts_ : nullptr; }
+  /// With local time stepping, over the whole soil (on many ranks each node counted once, the
+  /// same on every rank: collective): its fine nodes, those with their neighbours, all nodes.
+  struct LocalStepNodes {
+    double fine = 0.0, halo = 0.0, nodes = 0.0;
+  };
+  LocalStepNodes local_step_nodes() const;
 
   /// Damps by the Maxwell mechanisms (constructed with a0 = a1 = 0; before enable_local_steps):
   /// the stable step becomes the unrelaxed stiffness's, omega_max x sqrt(d.unrelaxed()).

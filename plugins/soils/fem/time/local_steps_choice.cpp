@@ -14,12 +14,14 @@ namespace rumble::fem {
 /// Which nodes a step makes fine, from each node's Gershgorin bound of M^-1 K scaled so that the
 /// largest is the mesh's largest eigenvalue, and what their extra sub-steps cost.
 struct ExplicitSolver::FineGuess {
-  const CsrMatrix& K;
+  const SoilOperator& op;
   const char* fixed;
   double a1;
-  std::vector<double> bound;      // per node [1/s^2], unscaled
-  double scale = 0.0;             // lambda_max / the largest bound
-  std::vector<char> may_be_fine;  // per node
+  std::vector<double> bound;         // per node [1/s^2], unscaled
+  double scale = 0.0;                // lambda_max / the largest bound
+  std::vector<char> may_be_fine;     // per node
+  std::vector<std::int32_t> degree;  // per node: the blocks in its row of K (whole rows)
+  double blocks = 0.0;               // K's blocks
 
   static constexpr double kSafety = 0.7;  // a node is fine above this share of the coarse limit
 
@@ -38,50 +40,46 @@ struct ExplicitSolver::FineGuess {
   /// The work of one extra sub-step relative to a pass over K: its product reads K's blocks at
   /// the halo's rows (the fine nodes and their neighbours) and the fine nodes' columns, and its
   /// vector updates cost about a quarter of a pass over the halo's rows (measured on the 1e6-DOF
-  /// medium mesh: 7.5 % per step for a halo of 18.6 % of the nodes, 3.5 % fine, p = 2).
+  /// medium mesh: 7.5 % per step for a halo of 18.6 % of the nodes, 3.5 % fine, p = 2). Counted
+  /// on K's whole rows and each node once, so the same on any number of ranks (collective).
   double extra_work(const std::vector<char>& fine) const {
-    std::int64_t blocks = 0, halo_blocks = 0;
-    const auto n = static_cast<std::int64_t>(bound.size());
-    for (std::int64_t i = 0; i < n; ++i) {
-      const auto node = static_cast<std::int32_t>(i);
-      const std::int32_t* nb = K.neighbours(node);
-      std::int64_t fine_columns = 0;
-      for (std::int64_t q = 0; q < K.degree(node); ++q) fine_columns += fine[nb[q]];
-      blocks += K.degree(node);
-      if (fine_columns > 0 && !fixed[i]) halo_blocks += fine_columns + K.degree(node) / 4;
-    }
-    return static_cast<double>(halo_blocks) / static_cast<double>(blocks);
+    const std::vector<std::int32_t> fine_columns = op.flagged_neighbours(fine);
+    std::vector<double> halo_blocks(bound.size(), 0.0);
+    for (std::size_t i = 0; i < bound.size(); ++i)
+      if (fine_columns[i] > 0 && !fixed[i])
+        halo_blocks[i] = fine_columns[i] + degree[i] / 4;  // (integer division)
+    return op.sum_over_nodes(halo_blocks) / blocks;
   }
 };
 
 ExplicitSolver::FineGuess ExplicitSolver::guess_fine_nodes() const {
+  // From K's whole rows (on many ranks completed over them: SoilOperator's row_magnitude_sums,
+  // flagged_neighbours), each node's Gershgorin bound and the counts are one process's, so the
+  // ranks choose its fine nodes and step (docs/fem-soil.md §8).
   const std::int64_t n = op_->nodes();
-  const CsrMatrix& K = op_->stiffness();
-  FineGuess g{K, fixed_, a1_, std::vector<double>(n, 0.0), 0.0, std::vector<char>(n, 1)};
-  const std::vector<std::int64_t>& start = K.row_start();
-  const std::vector<double>& value = K.value();
+  FineGuess g{*op_, fixed_, a1_, std::vector<double>(n, 0.0), 0.0, std::vector<char>(n, 1),
+              {},   0.0};
+  const std::vector<double> sums = op_->row_magnitude_sums();
   for (std::int64_t i = 0; i < n; ++i) {
     if (fixed_[i]) continue;
-    for (std::int64_t r = 3 * i; r < 3 * i + 3; ++r) {
-      double sum = 0.0;
-      for (std::int64_t k = start[r]; k < start[r + 1]; ++k) sum += std::abs(value[k]);
-      g.bound[i] = std::max(g.bound[i], sum / mass_[i]);
-    }
+    for (std::int64_t r = 3 * i; r < 3 * i + 3; ++r)
+      g.bound[i] = std::max(g.bound[i], sums[r] / mass_[i]);
   }
-  const double lambda_max = omega_max_ * omega_max_;
-  double largest_bound = 0.0;
-  for (const double b : g.bound) largest_bound = std::max(largest_bound, b);
-  g.scale = lambda_max / largest_bound;
+  g.scale = omega_max_ * omega_max_ / op_->max_over_nodes(g.bound);  // lambda_max / largest
+  g.degree = op_->flagged_neighbours(std::vector<char>(n, 1));
+  g.blocks = op_->sum_over_nodes(std::vector<double>(g.degree.begin(), g.degree.end()));
   // Never fine: fixed nodes, the truncation surface's (its springs and dashpots stay outside the
   // recurrence, which keeps K_p symmetric), and the matched layer's and their neighbours (the
   // layer's forces stay outside too).
+  std::vector<char> layer(n, 0);
   for (std::int64_t i = 0; i < n; ++i) {
-    const auto node = static_cast<std::int32_t>(i);
     if (fixed_[i] || boundary_of_[i] >= 0) g.may_be_fine[i] = 0;
-    if (!pml_) continue;
-    const std::int32_t* nb = K.neighbours(node);
-    for (std::int64_t q = 0; q < K.degree(node); ++q)
-      if (pml_->layer_node(nb[q]) >= 0) g.may_be_fine[i] = 0;
+    layer[i] = pml_ && pml_->layer_node(i) >= 0;
+  }
+  if (pml_) {
+    const std::vector<std::int32_t> near_layer = op_->flagged_neighbours(layer);
+    for (std::int64_t i = 0; i < n; ++i)
+      if (near_layer[i] > 0) g.may_be_fine[i] = 0;
   }
   return g;
 }
@@ -152,8 +150,14 @@ bool ExplicitSolver::verify_local_steps(const FineGuess& guess,
       fine = guess.fine_at(dt, candidates[next].safety);
       ++next;
     }
-    lts_.emplace(guess.K, recurrence_mass, fine, op_->fixed(), substeps,
+    const std::vector<char> halo =
+        LocalTimeStepping::halo_flags(fine, op_->fixed(), op_->flagged_neighbours(fine));
+    lts_.emplace(op_->stiffness(), recurrence_mass, fine, halo, op_->fixed(), substeps,
                  precision() == StepPrecision::kSingle);
+    if (op_->spans_ranks())
+      lts_->sum_over_ranks(op_->shared_nodes(), [op = op_.get()](double* values, int width) {
+        op->sum_shared_nodes(values, width);
+      });
     halo_of_.assign(n, -1);
     for (std::size_t h = 0; h < lts_->halo().size(); ++h)
       halo_of_[lts_->halo()[h]] = static_cast<std::int32_t>(h);
@@ -169,6 +173,17 @@ bool ExplicitSolver::verify_local_steps(const FineGuess& guess,
     dt = macro_step == 0.0 && 0.97 * allowed > 1.05 * single_rate_step_ ? 0.97 * allowed : 0.0;
   }
   return false;
+}
+
+ExplicitSolver::LocalStepNodes ExplicitSolver::local_step_nodes() const {
+  const std::int64_t n = op_->nodes();
+  std::vector<double> fine(n, 0.0), halo(n, 0.0);
+  if (lts_)
+    for (std::size_t h = 0; h < lts_->halo().size(); ++h)
+      (static_cast<std::int64_t>(h) < lts_->fine_nodes() ? fine : halo)[lts_->halo()[h]] = 1.0;
+  const double fine_nodes = op_->sum_over_nodes(fine);
+  return {fine_nodes, fine_nodes + op_->sum_over_nodes(halo),
+          op_->sum_over_nodes(std::vector<double>(n, 1.0))};
 }
 
 void ExplicitSolver::drop_local_steps() {

@@ -1,13 +1,43 @@
 #include "time/local_time_stepping.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 
 namespace rumble::fem {
+
+namespace {
+
+// The free fine nodes.
+std::vector<char> free_fine(const std::vector<char>& fine, const std::vector<char>& fixed) {
+  std::vector<char> f(fine.size(), 0);
+  for (std::size_t i = 0; i < fine.size(); ++i) f[i] = fine[i] && !fixed[i];
+  return f;
+}
+
+}  // namespace
 
 LocalTimeStepping::LocalTimeStepping(const CsrMatrix& K, const Eigen::VectorXd& mass,
                                      const std::vector<char>& fine, const std::vector<char>& fixed,
                                      int substeps, bool single_precision)
+    : LocalTimeStepping(K, mass, fine,
+                        halo_flags(fine, fixed, K.flagged_neighbours(free_fine(fine, fixed))),
+                        fixed, substeps, single_precision) {}
+
+std::vector<char> LocalTimeStepping::halo_flags(const std::vector<char>& fine,
+                                                const std::vector<char>& fixed,
+                                                const std::vector<std::int32_t>& fine_neighbours) {
+  std::vector<char> halo(fine.size(), 0);
+  for (std::size_t i = 0; i < fine.size(); ++i)
+    halo[i] = !fixed[i] && (fine[i] || fine_neighbours[i] > 0);
+  return halo;
+}
+
+LocalTimeStepping::LocalTimeStepping(const CsrMatrix& K, const Eigen::VectorXd& mass,
+                                     const std::vector<char>& fine, const std::vector<char>& halo,
+                                     const std::vector<char>& fixed, int substeps,
+                                     bool single_precision)
     : p_(substeps), t_(static_cast<std::size_t>(substeps) + 1, 1.0) {
   if (p_ < 2) throw std::invalid_argument("local time stepping needs at least 2 sub-steps");
   const auto n = static_cast<std::int32_t>(mass.size());
@@ -18,16 +48,11 @@ LocalTimeStepping::LocalTimeStepping(const CsrMatrix& K, const Eigen::VectorXd& 
       halo_.push_back(i);
     }
   fine_count_ = static_cast<std::int64_t>(halo_.size());
-  for (std::int32_t i = 0; i < n; ++i) {
-    if (position[i] >= 0 || fixed[i]) continue;
-    const std::int32_t* nb = K.neighbours(i);
-    for (std::int64_t q = 0; q < K.degree(i); ++q)
-      if (position[nb[q]] >= 0 && position[nb[q]] < fine_count_) {
-        position[i] = static_cast<std::int32_t>(halo_.size());
-        halo_.push_back(i);
-        break;
-      }
-  }
+  for (std::int32_t i = 0; i < n; ++i)
+    if (position[i] < 0 && halo[i]) {
+      position[i] = static_cast<std::int32_t>(halo_.size());
+      halo_.push_back(i);
+    }
   start_.assign(1, 0);
   for (const std::int32_t i : halo_) {
     inv_mass_.push_back(1.0 / mass[i]);
@@ -88,6 +113,15 @@ void LocalTimeStepping::set_step(double dt, double tau) {
   for (int k = 0; k <= p_; ++k) t_[k] = std::cosh(k * c.theta);
 }
 
+void LocalTimeStepping::sum_over_ranks(std::int32_t shared_nodes,
+                                       std::function<void(double*, int)> sum) {
+  shared_halo_.clear();
+  for (std::size_t h = 0; h < halo_.size(); ++h)
+    if (halo_[h] < shared_nodes) shared_halo_.push_back(static_cast<std::int32_t>(h));
+  shared_products_.assign(3 * static_cast<std::size_t>(shared_nodes), 0.0);
+  sum_ = std::move(sum);
+}
+
 void LocalTimeStepping::apply(double* forces) const {
   // S_k = s_k(A P) A y with T_k(w0 - w1 l) = T_k(w0) + l s_k(l):
   //   S_0 = 0, S_1 = -w1 g, S_(k+1) = 2 w0 S_k - 2 w1 A P S_k - S_(k-1) - 2 w1 T_k(w0) g,
@@ -104,25 +138,49 @@ void LocalTimeStepping::apply(double* forces) const {
       buffer[0][k] = 0.0;
       buffer[1][k] = -w1_ * g[k];
     }
+  double* product = product_.data();
   for (int step = 1; step < p_; ++step) {
     const double* previous = buffer[(step - 1) % 3];
     const double* current = buffer[step % 3];
     double* next = buffer[(step + 1) % 3];
-#pragma omp for schedule(static)
-    for (std::int64_t h = 0; h < halo; ++h) {
-      double sum[3] = {0.0, 0.0, 0.0};
+    // Halo node h's row of K at the fine columns times S_k, and its S_(k+1) from that.
+    const auto row_product = [&](std::int64_t h, double sum[3]) {
+      sum[0] = sum[1] = sum[2] = 0.0;
       for (std::int64_t e = start_[h]; e < start_[h + 1]; ++e) {
         const double* b = block_.data() + 9 * e;
         const double* x = current + 3 * static_cast<std::int64_t>(column_[e]);
         for (int c = 0; c < 3; ++c)
           sum[c] += b[3 * c] * x[0] + b[3 * c + 1] * x[1] + b[3 * c + 2] * x[2];
       }
+    };
+    const auto update = [&](std::int64_t h, const double sum[3]) {
       for (int c = 0; c < 3; ++c) {
         const std::int64_t k = 3 * h + c;
         next[k] = 2.0 * w0_ * current[k] - 2.0 * w1_ * inv_mass_[h] * sum[c] - previous[k] -
                   2.0 * w1_ * t_[step] * g[k];
       }
+    };
+    if (!sum_) {
+#pragma omp for schedule(static)
+      for (std::int64_t h = 0; h < halo; ++h) {
+        double sum[3];
+        row_product(h, sum);
+        update(h, sum);
+      }
+      continue;
     }
+#pragma omp for schedule(static)
+    for (std::int64_t h = 0; h < halo; ++h) row_product(h, product + 3 * h);
+#pragma omp single
+    {  // the shared nodes' products summed over the ranks (one thread; the barrier after)
+      for (const std::int32_t h : shared_halo_)
+        std::copy_n(product + 3 * h, 3, shared_products_.data() + 3 * halo_[h]);
+      sum_(shared_products_.data(), 3);
+      for (const std::int32_t h : shared_halo_)
+        std::copy_n(shared_products_.data() + 3 * halo_[h], 3, product + 3 * h);
+    }
+#pragma omp for schedule(static)
+    for (std::int64_t h = 0; h < halo; ++h) update(h, product + 3 * h);
   }
   const double* last = buffer[p_ % 3];
   const double scale = -2.0 / (dt_ * dt_ * tau_);
@@ -133,7 +191,7 @@ void LocalTimeStepping::apply(double* forces) const {
 
 std::size_t LocalTimeStepping::bytes() const {
   return halo_.size() * (4 + 8 + 5 * 3 * 8) + start_.size() * 8 + column_.size() * 4 +
-         block_.size() * 8;
+         block_.size() * 8 + shared_halo_.size() * 4 + shared_products_.size() * 8;
 }
 
 }  // namespace rumble::fem

@@ -23,6 +23,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "operator/csr_matrix.hpp"
@@ -33,9 +34,23 @@ class LocalTimeStepping {
  public:
   /// fine: per node, takes the p sub-steps (fixed nodes never do). substeps p >= 2.
   /// single_precision: K's blocks rounded to float, as the step reads them (StepPrecision), so
-  /// that K_p stays symmetric.
+  /// that K_p stays symmetric. The halo from K's rows (whole on one process).
   LocalTimeStepping(const CsrMatrix& K, const Eigen::VectorXd& mass, const std::vector<char>& fine,
                     const std::vector<char>& fixed, int substeps, bool single_precision = false);
+  /// The same with the halo given: per node, halo_flags() of K's whole rows, which a rank's part
+  /// holds only in part at its shared nodes (SoilOperator::flagged_neighbours).
+  LocalTimeStepping(const CsrMatrix& K, const Eigen::VectorXd& mass, const std::vector<char>& fine,
+                    const std::vector<char>& halo, const std::vector<char>& fixed, int substeps,
+                    bool single_precision);
+  /// Per node: in the halo (a free node that is fine or K couples to a free fine node), from
+  /// fine_neighbours, per node the free fine nodes K couples it to.
+  static std::vector<char> halo_flags(const std::vector<char>& fine, const std::vector<char>& fixed,
+                                      const std::vector<std::int32_t>& fine_neighbours);
+  /// On a rank's part, whose rows at its shared nodes [0, shared_nodes) are partial
+  /// (distributed/part_stiffness.hpp): each of the recurrence's products summed over the ranks
+  /// there by `sum` (SoilOperator::sum_shared_nodes: 3 values per shared node; called by one
+  /// thread of the team), so that every copy of a halo node holds K's whole product.
+  void sum_over_ranks(std::int32_t shared_nodes, std::function<void(double*, int)> sum);
 
   int substeps() const { return p_; }
   std::int64_t fine_nodes() const { return fine_count_; }
@@ -60,6 +75,7 @@ class LocalTimeStepping {
   /// filtered form -(2 / dt^2) M R(A P) M^-1 forces; for K y that is K_p y. The step passes its
   /// whole residual K y + S w - f, so that a held load settles where K u = f. Uses orphaned
   /// OpenMP loops: inside a parallel region its threads share the work, outside it runs alone.
+  /// On a rank's part (sum_over_ranks), collective: every rank calls it with its halo's forces.
   void apply(double* forces) const;
 
   std::size_t bytes() const;
@@ -77,6 +93,11 @@ class LocalTimeStepping {
   double dt_ = 0.0, tau_ = 1.0, w0_ = 1.0, w1_ = 0.0;
   std::vector<double> t_;                                              // T_k(w0), k = 0..p
   mutable std::vector<double> g_, s_prev_, s_cur_, s_next_, product_;  // 3 per halo node
+  // On a rank's part (sum_over_ranks): the halo's shared nodes (their place in halo_), their
+  // products gathered per shared node (3 each, zero elsewhere) and the sum over the ranks.
+  std::vector<std::int32_t> shared_halo_;
+  mutable std::vector<double> shared_products_;
+  std::function<void(double*, int)> sum_;
 };
 
 }  // namespace rumble::fem
