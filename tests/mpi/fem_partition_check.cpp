@@ -183,12 +183,14 @@ Eigen::VectorXd one_process_product(const TetMesh& whole, const FemSettings& set
   return y_whole;
 }
 
-// What the local time stepping's choice reads of K's whole rows (distributed/whole_rows.hpp)
-// at every rank's nodes, gathered on rank 0, against one process's K on the whole mesh: the
-// magnitude sums to 1e-14 of the largest (the shared entries summed in another order) and the
-// flagged neighbours (flags from each node's number) exactly.
+// What the local time stepping's choice reads of K's whole rows (SoilOperator::
+// row_magnitude_sums, flagged_neighbours: distributed/whole_rows.hpp) at every rank's nodes,
+// gathered on rank 0, against one process's operator on the whole mesh in the same precision:
+// the magnitude sums to 1e-14 of the largest (the shared entries summed in another order) and
+// the flagged neighbours (flags from each node's number) exactly.
 void check_whole_rows(MPI_Comm comm, const DistributedOperator& op, const MeshPartition& part,
-                      const TetMesh& whole, const FemSettings& settings, Checks& checks) {
+                      const TetMesh& whole, const FemSettings& settings, StepPrecision precision,
+                      Checks& checks) {
   const auto flag_of = [](std::int32_t global) { return static_cast<char>(global % 3 == 0); };
   std::vector<char> flag(static_cast<std::size_t>(part.nodes()));
   for (std::int32_t i = 0; i < part.nodes(); ++i) flag[i] = flag_of(part.global[i]);
@@ -208,11 +210,23 @@ void check_whole_rows(MPI_Comm comm, const DistributedOperator& op, const MeshPa
   checks.expect(ghosts == sums && ghost_counts == counts,
                 "every copy of a node has its owner's whole-row sums and counts", 0.0);
   if (!root) return;
-  const CsrMatrix K = assemble_stiffness(whole, settings);
+  const CsrOperator one(assemble_stiffness(whole, settings), lumped_mass(whole, settings), {},
+                        false, std::vector<char>(static_cast<std::size_t>(n), 0), 1, precision);
   std::vector<char> whole_flag(static_cast<std::size_t>(n));
   for (std::int32_t g = 0; g < n; ++g) whole_flag[g] = flag_of(g);
-  const std::vector<double> one_sums = K.magnitude_sums();
-  const std::vector<std::int32_t> one_counts = K.flagged_neighbours(whole_flag);
+  const std::vector<double> one_sums = one.row_magnitude_sums();
+  const std::vector<std::int32_t> one_counts = one.flagged_neighbours(whole_flag);
+  // (and one process's own two readings of K agree: its rows in double against the step's
+  // blocks, to the step's rounding)
+  const std::vector<double> rows = one.stiffness().magnitude_sums();
+  double read = 0.0;
+  for (std::size_t k = 0; k < rows.size(); ++k)
+    read = std::max(read, std::abs(rows[k] - one_sums[k]) / rows[k]);
+  checks.expect(read <= (precision == StepPrecision::kSingle ? 6e-8 : 1e-15),
+                "the step's blocks' magnitude sums as K's rows', to the step's rounding", read);
+  checks.expect(
+      one.flagged_neighbours(whole_flag) == one.stiffness().flagged_neighbours(whole_flag),
+      "the step's blocks' pattern as K's rows'", 0.0);
   const double largest = *std::max_element(one_sums.begin(), one_sums.end());
   double differ = 0.0;
   for (std::size_t k = 0; k < one_sums.size(); ++k)
@@ -265,7 +279,7 @@ int check(MPI_Comm comm, StepPrecision precision, std::vector<std::int32_t>& nod
   const double rows = nonzeros * value_bytes + nonzeros / 9.0 * 4.0;
   const double upper = static_cast<double>(op.stepped_bytes()) / rows;
   checks.expect(upper < 0.7, "the step reads about half of the part's rows' bytes", upper);
-  check_whole_rows(comm, op, part, whole, settings, checks);
+  check_whole_rows(comm, op, part, whole, settings, precision, checks);
   Eigen::VectorXd ghosts = y;  // each ghost's value replaced by its owner's
   part.halo->to_leaves(y.data(), ghosts.data(), 3);
   checks.expect(ghosts == y, "every ghost holds its owner's product", relative(ghosts, y));

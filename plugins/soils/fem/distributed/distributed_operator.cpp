@@ -84,6 +84,17 @@ double DistributedOperator::dot(const Eigen::VectorXd& x, const Eigen::VectorXd&
   return sum_in_rank_order(comm_, mine);
 }
 
+void DistributedOperator::for_each_step_block(const BlockVisit& visit) const {
+  // (the blocks' nodes are places in one process's order, order_)
+  if (double_blocks_)
+    return double_blocks_->for_each_block(
+        [&](std::int32_t i, std::int32_t j, const double* b) { visit(order_[i], order_[j], b); });
+  single_blocks_->for_each_block([&](std::int32_t i, std::int32_t j, const float* b) {
+    const double block[9] = {b[0], b[1], b[2], b[3], b[4], b[5], b[6], b[7], b[8]};
+    visit(order_[i], order_[j], block);
+  });
+}
+
 double DistributedOperator::sum_over_nodes(const std::vector<double>& per_node) const {
   double mine = 0.0;
   for (std::int64_t i = 0; i < nodes(); ++i)

@@ -110,12 +110,16 @@ class DistributedOperator final : public SoilOperator {
   /// Over the nodes this rank owns, then in rank order (as dot).
   double sum_over_nodes(const std::vector<double>& per_node) const override;
   double max_over_nodes(const std::vector<double>& per_node) const override;
-  /// From the part's rows, completed over the ranks at the shared nodes (whole_rows.hpp).
+  /// The part's upper blocks as the step reads them, in the part's own node numbers.
+  void for_each_step_block(const BlockVisit& visit) const override;
+  /// The part's, completed over the ranks at the shared nodes (whole_rows.hpp).
   std::vector<double> row_magnitude_sums() const override {
-    return whole_magnitude_sums(part_, stiffness());
+    std::vector<double> sums = SoilOperator::row_magnitude_sums();
+    sum_shared_nodes(sums.data(), 3);  // (each entry whole on one rank: part_stiffness.hpp)
+    return sums;
   }
   std::vector<std::int32_t> flagged_neighbours(const std::vector<char>& flag) const override {
-    return whole_flagged_neighbours(part_, stiffness(), flag, comm_);
+    return whole_flagged_neighbours(part_, *this, flag, comm_);
   }
   std::int64_t whole_node(std::int64_t i) const override { return global_[i]; }
   bool spans_ranks() const override { return true; }

@@ -6,31 +6,27 @@
 
 namespace rumble::fem {
 
-std::vector<double> whole_magnitude_sums(const MeshPartition& part, const CsrMatrix& K) {
-  std::vector<double> sums = K.magnitude_sums();
-  part.halo->sum_to_roots(sums.data(), sums.data(), 3);
-  part.halo->to_leaves(sums.data(), sums.data(), 3);
-  return sums;
-}
-
-std::vector<std::int32_t> whole_flagged_neighbours(const MeshPartition& part, const CsrMatrix& K,
+std::vector<std::int32_t> whole_flagged_neighbours(const MeshPartition& part,
+                                                   const SoilOperator& blocks,
                                                    const std::vector<char>& flag, MPI_Comm comm) {
   int ranks = 1;
   MPI_Comm_size(comm, &ranks);
   std::vector<double> count(static_cast<std::size_t>(part.nodes()), 0.0);   // (the halo's sums)
   std::vector<std::vector<int>> pairs_to(static_cast<std::size_t>(ranks));  // 2 keys per pair
-  for (std::int32_t i = 0; i < part.nodes(); ++i)
-    for (std::int64_t q = 0; q < K.degree(i); ++q) {
-      const std::int32_t j = K.neighbours(i)[q];
-      if (!flag[j]) continue;
-      if (i >= part.shared || j >= part.shared) {
-        count[i] += 1.0;  // (on this rank alone)
-        continue;
-      }
-      std::vector<int>& to = pairs_to[part.owner[i]];
-      to.push_back(part.global[i]);
-      to.push_back(part.global[j]);
+  const auto entry = [&](std::int32_t i, std::int32_t j) {                  // K_ij, its row i
+    if (!flag[j]) return;
+    if (i >= part.shared || j >= part.shared) {
+      count[i] += 1.0;  // (on this rank alone)
+      return;
     }
+    std::vector<int>& to = pairs_to[part.owner[i]];
+    to.push_back(part.global[i]);
+    to.push_back(part.global[j]);
+  };
+  blocks.for_each_step_block([&](std::int32_t i, std::int32_t j, const double*) {
+    entry(i, j);
+    if (j != i) entry(j, i);
+  });
   KeyedExchange out, in;
   for (const std::vector<int>& to : pairs_to) {
     out.counts.push_back(static_cast<int>(to.size() / 2));

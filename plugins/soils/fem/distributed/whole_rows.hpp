@@ -11,20 +11,17 @@
 #include <vector>
 
 #include "distributed/mesh_partition.hpp"
-#include "operator/csr_matrix.hpp"
+#include "operator/soil_operator.hpp"
 
 namespace rumble::fem {
 
-/// Per DOF of the part's nodes: sum_j |K_kj| over K's whole row, the part's sums added over the
-/// ranks at the shared nodes (each entry whole on one rank). Collective over the partition's
-/// ranks.
-std::vector<double> whole_magnitude_sums(const MeshPartition& part, const CsrMatrix& K);
-
 /// Per node of the part: how many nodes j with flag[j] (per local node, alike at every copy) K's
-/// whole row couples it to, i itself included, as one process counts them. An entry between two
-/// shared nodes may sit in several ranks' patterns, so those are counted at the row's owner,
-/// once per distinct pair of nodes; the others on the one rank that holds them. Collective.
-std::vector<std::int32_t> whole_flagged_neighbours(const MeshPartition& part, const CsrMatrix& K,
+/// whole row couples it to, i itself included, as one process counts them, from the part's
+/// blocks (part.for_each_step_block). An entry between two shared nodes sits in the pattern of
+/// every rank that holds a tetrahedron of both, so those are counted at the row's owner, once
+/// per distinct pair of nodes; the others on the one rank that holds them. Collective.
+std::vector<std::int32_t> whole_flagged_neighbours(const MeshPartition& part,
+                                                   const SoilOperator& blocks,
                                                    const std::vector<char>& flag, MPI_Comm comm);
 
 }  // namespace rumble::fem

@@ -29,6 +29,14 @@ void CsrOperator::set_block_kernel(BlockKernel kernel) {
   if (double_blocks_) double_blocks_->set_kernel(kernel);
 }
 
+void CsrOperator::for_each_step_block(const BlockVisit& visit) const {
+  if (double_blocks_) return double_blocks_->for_each_block(visit);
+  single_blocks_->for_each_block([&](std::int32_t i, std::int32_t j, const float* b) {
+    const double block[9] = {b[0], b[1], b[2], b[3], b[4], b[5], b[6], b[7], b[8]};
+    visit(i, j, block);
+  });
+}
+
 std::size_t CsrOperator::bytes() const {
   const std::lock_guard<std::mutex> lock(K_mutex_);
   return (K_ ? K_->bytes() : 0) +

@@ -39,6 +39,8 @@ class CsrOperator final : public SoilOperator {
     return single_blocks_ ? StepPrecision::kSingle : StepPrecision::kDouble;
   }
   const CsrMatrix& stiffness() const override;
+  /// From the step's upper blocks (no rows assembled).
+  void for_each_step_block(const BlockVisit& visit) const override;
   std::size_t bytes() const override;
   /// The kernel of the step's product (symmetric_blocks.hpp): by default the SIMD one where the
   /// processor runs it; the portable one on request (benchmarks, tests).

@@ -13,6 +13,7 @@
 
 #include <Eigen/Core>
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -118,8 +119,8 @@ class SoilOperator {
   virtual void stepped_product(const double* x, NodeProducts& take) const = 0;
   virtual StepPrecision precision() const = 0;
   /// K's assembled rows in double (CSR, 3 DOFs per node): what the direct solvers factor
-  /// (effective_matrix.hpp), the matrices the plugin exports (linear_matrices.hpp), the
-  /// receptance's, and the local time stepping's set-up read.
+  /// (effective_matrix.hpp), the matrices the plugin exports (linear_matrices.hpp) and the
+  /// receptance's.
   virtual const CsrMatrix& stiffness() const = 0;
   /// K's diagonal in double (on a rank, its part's: summed over the ranks by the caller): the
   /// multigrids' Jacobi. By default read from stiffness()'s rows.
@@ -170,16 +171,47 @@ class SoilOperator {
   virtual double max_over_nodes(const std::vector<double>& per_node) const {
     return per_node.empty() ? 0.0 : *std::max_element(per_node.begin(), per_node.end());
   }
-  /// What the local time stepping's choice reads of K's whole rows (in double), which a rank's
-  /// part holds only in part at its shared nodes. Collective on many ranks.
-  /// Per DOF k: sum_j |K_kj| (Gershgorin's bound on M^-1 K's eigenvalues, divided by the mass).
+  /// K as the step reads it (precision()), block by block, each once: visit(i, j, block) with
+  /// K_ij's 9 values row-major [N/m], for the diagonal (j == i) and for each pair of neighbours
+  /// in one of its two orders (K_ji is the transpose). What the local time stepping's set-up
+  /// reads, so that it needs no assembled rows (on the ranks they would be built again for it:
+  /// 0.7 kB per DOF of a rank's share at its peak). By default from stiffness()'s rows.
+  using BlockVisit = std::function<void(std::int32_t, std::int32_t, const double*)>;
+  virtual void for_each_step_block(const BlockVisit& visit) const {
+    const CsrMatrix& K = stiffness();
+    double block[9];
+    for (std::int32_t i = 0; i < static_cast<std::int32_t>(nodes()); ++i)
+      for (std::int64_t q = 0; q < K.degree(i); ++q) {
+        const std::int32_t j = K.neighbours(i)[q];
+        if (j < i) continue;
+        for (int c = 0; c < 3; ++c)
+          for (int d = 0; d < 3; ++d) block[3 * c + d] = K.block_entry(i, q, c, d);
+        visit(i, j, block);
+      }
+  }
+  /// From K's whole rows as the step reads them (for_each_step_block; a rank's part holds them
+  /// only in part at its shared nodes and completes them over the ranks). Collective there.
+  /// Per DOF k: sum_j |K_kj| (Gershgorin's bound on M^-1 K's eigenvalues, over the mass).
   virtual std::vector<double> row_magnitude_sums() const {
-    return stiffness().magnitude_sums();
+    std::vector<double> sums(static_cast<std::size_t>(dofs()), 0.0);
+    for_each_step_block([&](std::int32_t i, std::int32_t j, const double* b) {
+      for (int c = 0; c < 3; ++c)
+        for (int d = 0; d < 3; ++d) {
+          sums[3 * static_cast<std::size_t>(i) + c] += std::abs(b[3 * c + d]);
+          if (j != i) sums[3 * static_cast<std::size_t>(j) + d] += std::abs(b[3 * c + d]);
+        }
+    });
+    return sums;
   }
   /// Per node i: how many nodes j with flag[j] (per node, alike at every copy) K's pattern
   /// couples it to, i itself included.
   virtual std::vector<std::int32_t> flagged_neighbours(const std::vector<char>& flag) const {
-    return stiffness().flagged_neighbours(flag);
+    std::vector<std::int32_t> count(static_cast<std::size_t>(nodes()), 0);
+    for_each_step_block([&](std::int32_t i, std::int32_t j, const double*) {
+      count[i] += flag[j] ? 1 : 0;
+      if (j != i) count[j] += flag[i] ? 1 : 0;
+    });
+    return count;
   }
   /// Node i's number in the whole mesh: the eigenvalue iterations' start follows it, so that
   /// a split soil starts where one process does.

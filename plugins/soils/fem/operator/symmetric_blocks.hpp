@@ -61,6 +61,16 @@ class SymmetricBlocks {
   /// std::invalid_argument.
   void set_kernel(BlockKernel kernel);
 
+  /// Each block once, in ascending order: visit(i, j, values) for the diagonal (j == i) and
+  /// each block (i, j) with j after i, K_ij's 9 values row-major (K_ji is its transpose); i and
+  /// j are places in the order where one was given. For set-ups that read K as the step does.
+  template <class Visit>
+  void for_each_block(Visit&& visit) const {
+    for (std::int64_t i = 0; i < nodes(); ++i)
+      for (std::int64_t q = block_start_[i]; q < block_start_[i + 1]; ++q)
+        visit(static_cast<std::int32_t>(i), column_[q], value_.data() + 9 * q);
+  }
+
   /// For each node i: out = (K x) at node i's 3 DOFs, handed to finish(i, out) by the thread
   /// that owns node i's part, in ascending order. Called by every thread of an OpenMP team (of
   /// any size; the parts are shared out among them). x must be complete before (a barrier) and

@@ -152,8 +152,8 @@ bool ExplicitSolver::verify_local_steps(const FineGuess& guess,
     }
     const std::vector<char> halo =
         LocalTimeStepping::halo_flags(fine, op_->fixed(), op_->flagged_neighbours(fine));
-    lts_.emplace(op_->stiffness(), recurrence_mass, fine, halo, op_->fixed(), substeps,
-                 precision() == StepPrecision::kSingle);
+    lts_.emplace([this](const SoilOperator::BlockVisit& visit) { op_->for_each_step_block(visit); },
+                 recurrence_mass, fine, halo, op_->fixed(), substeps);
     if (op_->spans_ranks())
       lts_->sum_over_ranks(op_->shared_nodes(), [op = op_.get()](double* values, int width) {
         op->sum_shared_nodes(values, width);

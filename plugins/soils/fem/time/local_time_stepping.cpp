@@ -21,9 +21,21 @@ std::vector<char> free_fine(const std::vector<char>& fine, const std::vector<cha
 LocalTimeStepping::LocalTimeStepping(const CsrMatrix& K, const Eigen::VectorXd& mass,
                                      const std::vector<char>& fine, const std::vector<char>& fixed,
                                      int substeps, bool single_precision)
-    : LocalTimeStepping(K, mass, fine,
-                        halo_flags(fine, fixed, K.flagged_neighbours(free_fine(fine, fixed))),
-                        fixed, substeps, single_precision) {}
+    : LocalTimeStepping(
+          [&](const SoilOperator::BlockVisit& visit) {
+            double block[9];
+            for (std::int32_t i = 0; i < static_cast<std::int32_t>(mass.size()); ++i)
+              for (std::int64_t q = 0; q < K.degree(i); ++q) {
+                if (K.neighbours(i)[q] < i) continue;
+                for (int e = 0; e < 9; ++e) {
+                  const double k = K.block_entry(i, q, e / 3, e % 3);
+                  block[e] = single_precision ? static_cast<double>(static_cast<float>(k)) : k;
+                }
+                visit(i, K.neighbours(i)[q], block);
+              }
+          },
+          mass, fine, halo_flags(fine, fixed, K.flagged_neighbours(free_fine(fine, fixed))), fixed,
+          substeps) {}
 
 std::vector<char> LocalTimeStepping::halo_flags(const std::vector<char>& fine,
                                                 const std::vector<char>& fixed,
@@ -34,10 +46,9 @@ std::vector<char> LocalTimeStepping::halo_flags(const std::vector<char>& fine,
   return halo;
 }
 
-LocalTimeStepping::LocalTimeStepping(const CsrMatrix& K, const Eigen::VectorXd& mass,
+LocalTimeStepping::LocalTimeStepping(const Blocks& blocks, const Eigen::VectorXd& mass,
                                      const std::vector<char>& fine, const std::vector<char>& halo,
-                                     const std::vector<char>& fixed, int substeps,
-                                     bool single_precision)
+                                     const std::vector<char>& fixed, int substeps)
     : p_(substeps), t_(static_cast<std::size_t>(substeps) + 1, 1.0) {
   if (p_ < 2) throw std::invalid_argument("local time stepping needs at least 2 sub-steps");
   const auto n = static_cast<std::int32_t>(mass.size());
@@ -53,22 +64,35 @@ LocalTimeStepping::LocalTimeStepping(const CsrMatrix& K, const Eigen::VectorXd& 
       position[i] = static_cast<std::int32_t>(halo_.size());
       halo_.push_back(i);
     }
-  start_.assign(1, 0);
-  for (const std::int32_t i : halo_) {
-    inv_mass_.push_back(1.0 / mass[i]);
-    const std::int32_t* nb = K.neighbours(i);
-    for (std::int64_t q = 0; q < K.degree(i); ++q) {
-      const std::int32_t f = position[nb[q]];
-      if (f < 0 || f >= fine_count_) continue;
-      column_.push_back(f);
-      for (int c = 0; c < 3; ++c)
-        for (int d = 0; d < 3; ++d) {
-          const double k = K.block_entry(i, q, c, d);
-          block_.push_back(single_precision ? static_cast<double>(static_cast<float>(k)) : k);
-        }
+  for (const std::int32_t i : halo_) inv_mass_.push_back(1.0 / mass[i]);
+  // K's blocks at halo rows and fine columns, each row's in the order the blocks come (its
+  // columns ascending: a row's transposed blocks come from earlier nodes, then its own): counted
+  // first, then filled.
+  const auto in_row = [&](std::int32_t row, std::int32_t column) {
+    return position[row] >= 0 && position[column] >= 0 && position[column] < fine_count_;
+  };
+  start_.assign(halo_.size() + 1, 0);
+  blocks([&](std::int32_t i, std::int32_t j, const double*) {
+    if (in_row(i, j)) ++start_[position[i] + 1];
+    if (j != i && in_row(j, i)) ++start_[position[j] + 1];
+  });
+  for (std::size_t h = 0; h < halo_.size(); ++h) start_[h + 1] += start_[h];
+  column_.assign(static_cast<std::size_t>(start_.back()), 0);
+  block_.assign(9 * static_cast<std::size_t>(start_.back()), 0.0);
+  std::vector<std::int64_t> next(start_.begin(), start_.end() - 1);
+  blocks([&](std::int32_t i, std::int32_t j, const double* b) {
+    if (in_row(i, j)) {
+      const std::int64_t e = next[position[i]]++;
+      column_[e] = position[j];
+      std::copy_n(b, 9, block_.data() + 9 * e);
     }
-    start_.push_back(static_cast<std::int64_t>(column_.size()));
-  }
+    if (j != i && in_row(j, i)) {  // K_ji = K_ij^T
+      const std::int64_t e = next[position[j]]++;
+      column_[e] = position[i];
+      for (int c = 0; c < 3; ++c)
+        for (int d = 0; d < 3; ++d) block_[9 * e + 3 * c + d] = b[3 * d + c];
+    }
+  });
   const std::size_t size = 3 * halo_.size();
   for (auto* v : {&g_, &s_prev_, &s_cur_, &s_next_, &product_}) v->assign(size, 0.0);
 }

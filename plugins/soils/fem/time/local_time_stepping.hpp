@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "operator/csr_matrix.hpp"
+#include "operator/soil_operator.hpp"
 
 namespace rumble::fem {
 
@@ -37,11 +38,14 @@ class LocalTimeStepping {
   /// that K_p stays symmetric. The halo from K's rows (whole on one process).
   LocalTimeStepping(const CsrMatrix& K, const Eigen::VectorXd& mass, const std::vector<char>& fine,
                     const std::vector<char>& fixed, int substeps, bool single_precision = false);
-  /// The same with the halo given: per node, halo_flags() of K's whole rows, which a rank's part
-  /// holds only in part at its shared nodes (SoilOperator::flagged_neighbours).
-  LocalTimeStepping(const CsrMatrix& K, const Eigen::VectorXd& mass, const std::vector<char>& fine,
-                    const std::vector<char>& halo, const std::vector<char>& fixed, int substeps,
-                    bool single_precision);
+  /// K's blocks, each once, in SoilOperator::for_each_step_block's form: blocks(visit).
+  using Blocks = std::function<void(const SoilOperator::BlockVisit&)>;
+  /// The same from K as the step reads it, block by block (`blocks`: a rank's part's, partial at
+  /// its shared nodes; no rows assembled), with the halo given: per node, halo_flags() of K's
+  /// whole rows (SoilOperator::flagged_neighbours).
+  LocalTimeStepping(const Blocks& blocks, const Eigen::VectorXd& mass,
+                    const std::vector<char>& fine, const std::vector<char>& halo,
+                    const std::vector<char>& fixed, int substeps);
   /// Per node: in the halo (a free node that is fine or K couples to a free fine node), from
   /// fine_neighbours, per node the free fine nodes K couples it to.
   static std::vector<char> halo_flags(const std::vector<char>& fine, const std::vector<char>& fixed,
