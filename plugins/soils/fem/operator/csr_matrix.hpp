@@ -23,6 +23,18 @@ class CsrMatrix {
   double* block_row(std::int32_t i, std::int32_t j, int c);
   /// The diagonal's entries, one per row.
   std::vector<double> diagonal() const;
+  /// Each block (i, j >= i) once, in ascending order: visit(i, j, values), K_ij's 9 values
+  /// row-major (K_ji is the transpose of a symmetric matrix's).
+  template <class Visit>
+  void for_each_upper_block(Visit&& visit) const {
+    double block[9];
+    for (std::int32_t i = 0; i + 1 < static_cast<std::int32_t>(neighbour_start_.size()); ++i)
+      for (std::int64_t q = 0; q < degree(i); ++q) {
+        if (neighbours(i)[q] < i) continue;
+        for (int e = 0; e < 9; ++e) block[e] = block_entry(i, q, e / 3, e % 3);
+        visit(i, neighbours(i)[q], static_cast<const double*>(block));
+      }
+  }
   /// Per row, the sum of its entries' magnitudes (Gershgorin's bound on the eigenvalues).
   std::vector<double> magnitude_sums() const;
   /// Per node i, how many of its neighbours j (i itself included) have flag[j] set (flag: per

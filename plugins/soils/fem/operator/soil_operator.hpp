@@ -178,16 +178,7 @@ class SoilOperator {
   /// 0.7 kB per DOF of a rank's share at its peak). By default from stiffness()'s rows.
   using BlockVisit = std::function<void(std::int32_t, std::int32_t, const double*)>;
   virtual void for_each_step_block(const BlockVisit& visit) const {
-    const CsrMatrix& K = stiffness();
-    double block[9];
-    for (std::int32_t i = 0; i < static_cast<std::int32_t>(nodes()); ++i)
-      for (std::int64_t q = 0; q < K.degree(i); ++q) {
-        const std::int32_t j = K.neighbours(i)[q];
-        if (j < i) continue;
-        for (int c = 0; c < 3; ++c)
-          for (int d = 0; d < 3; ++d) block[3 * c + d] = K.block_entry(i, q, c, d);
-        visit(i, j, block);
-      }
+    stiffness().for_each_upper_block(visit);
   }
   /// From K's whole rows as the step reads them (for_each_step_block; a rank's part holds them
   /// only in part at its shared nodes and completes them over the ranks). Collective there.

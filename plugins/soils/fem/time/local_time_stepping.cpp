@@ -23,16 +23,13 @@ LocalTimeStepping::LocalTimeStepping(const CsrMatrix& K, const Eigen::VectorXd& 
                                      int substeps, bool single_precision)
     : LocalTimeStepping(
           [&](const SoilOperator::BlockVisit& visit) {
-            double block[9];
-            for (std::int32_t i = 0; i < static_cast<std::int32_t>(mass.size()); ++i)
-              for (std::int64_t q = 0; q < K.degree(i); ++q) {
-                if (K.neighbours(i)[q] < i) continue;
-                for (int e = 0; e < 9; ++e) {
-                  const double k = K.block_entry(i, q, e / 3, e % 3);
-                  block[e] = single_precision ? static_cast<double>(static_cast<float>(k)) : k;
-                }
-                visit(i, K.neighbours(i)[q], block);
-              }
+            K.for_each_upper_block([&](std::int32_t i, std::int32_t j, const double* b) {
+              double rounded[9];  // (as the step reads them, so that K_p stays symmetric)
+              for (int e = 0; e < 9; ++e)
+                rounded[e] =
+                    single_precision ? static_cast<double>(static_cast<float>(b[e])) : b[e];
+              visit(i, j, rounded);
+            });
           },
           mass, fine, halo_flags(fine, fixed, K.flagged_neighbours(free_fine(fine, fixed))), fixed,
           substeps) {}
