@@ -24,7 +24,7 @@ class CsrMatrix {
   /// The diagonal's entries, one per row.
   std::vector<double> diagonal() const;
   /// Each block (i, j >= i) once, in ascending order: visit(i, j, values), K_ij's 9 values
-  /// row-major (K_ji is the transpose of a symmetric matrix's).
+  /// row-major (for a symmetric K, K_ji is its transpose).
   template <class Visit>
   void for_each_upper_block(Visit&& visit) const {
     double block[9];
