@@ -17,7 +17,7 @@ namespace rumble::fem {
 
 /// Per node of the part: how many nodes j with flag[j] (per local node, alike at every copy) K's
 /// whole row couples it to, i itself included, as one process counts them, from the part's
-/// blocks (part.for_each_step_block). An entry between two shared nodes sits in the pattern of
+/// blocks (blocks.for_each_step_block). An entry between two shared nodes sits in the pattern of
 /// every rank that holds a tetrahedron of both, so those are counted at the row's owner, once
 /// per distinct pair of nodes; the others on the one rank that holds them. Collective.
 std::vector<std::int32_t> whole_flagged_neighbours(const MeshPartition& part,

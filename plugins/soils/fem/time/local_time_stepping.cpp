@@ -91,7 +91,7 @@ LocalTimeStepping::LocalTimeStepping(const Blocks& blocks, const Eigen::VectorXd
     }
   });
   const std::size_t size = 3 * halo_.size();
-  for (auto* v : {&g_, &s_prev_, &s_cur_, &s_next_, &product_}) v->assign(size, 0.0);
+  for (auto* v : {&g_, &s_prev_, &s_cur_, &s_next_}) v->assign(size, 0.0);
 }
 
 double LocalTimeStepping::tau_for(double dt, double a1, double margin) {
@@ -140,6 +140,7 @@ void LocalTimeStepping::sum_over_ranks(std::int32_t shared_nodes,
   for (std::size_t h = 0; h < halo_.size(); ++h)
     if (halo_[h] < shared_nodes) shared_halo_.push_back(static_cast<std::int32_t>(h));
   shared_products_.assign(3 * static_cast<std::size_t>(shared_nodes), 0.0);
+  product_.assign(3 * halo_.size(), 0.0);
   sum_ = std::move(sum);
 }
 
@@ -211,8 +212,9 @@ void LocalTimeStepping::apply(double* forces) const {
 }
 
 std::size_t LocalTimeStepping::bytes() const {
-  return halo_.size() * (4 + 8 + 5 * 3 * 8) + start_.size() * 8 + column_.size() * 4 +
-         block_.size() * 8 + shared_halo_.size() * 4 + shared_products_.size() * 8;
+  return halo_.size() * (4 + 8 + 4 * 3 * 8) + start_.size() * 8 + column_.size() * 4 +
+         block_.size() * 8 + product_.size() * 8 + shared_halo_.size() * 4 +
+         shared_products_.size() * 8;
 }
 
 }  // namespace rumble::fem

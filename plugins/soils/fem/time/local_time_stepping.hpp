@@ -95,8 +95,9 @@ class LocalTimeStepping {
   std::vector<std::int32_t> column_;
   std::vector<double> block_;
   double dt_ = 0.0, tau_ = 1.0, w0_ = 1.0, w1_ = 0.0;
-  std::vector<double> t_;                                              // T_k(w0), k = 0..p
-  mutable std::vector<double> g_, s_prev_, s_cur_, s_next_, product_;  // 3 per halo node
+  std::vector<double> t_;                                    // T_k(w0), k = 0..p
+  mutable std::vector<double> g_, s_prev_, s_cur_, s_next_;  // 3 per halo node
+  mutable std::vector<double> product_;  // 3 per halo node on a rank's part (sum_over_ranks)
   // On a rank's part (sum_over_ranks): the halo's shared nodes (their place in halo_), their
   // products gathered per shared node (3 each, zero elsewhere) and the sum over the ranks.
   std::vector<std::int32_t> shared_halo_;
