@@ -59,7 +59,8 @@ TEST(FemSchema, TheRemovedMultigridStaticsAreRefusedWithWhatReplacesThem) {
   json p = small_soil();
   p["statics"] = {{"solver", "multigrid"}};
   EXPECT_EQ(refusals(p),
-            "params/statics/solver: must be one of: auto, gamg, geometric, got \"multigrid\"");
+            "params/statics/solver: must be one of: auto, gamg, geometric, aggregation, got "
+            "\"multigrid\"");
   const std::vector<scenario::SchemaIssue> issues = fem_schema().check(p);
   ASSERT_EQ(issues.size(), 1u);
   EXPECT_EQ(issues[0].hint,  // (the schema's "x-removed", not "did you mean")

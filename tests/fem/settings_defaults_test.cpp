@@ -35,20 +35,31 @@ TEST(FemSettingsDefaults, UnfilledParamsReadTheSchemasDefaults) {
   EXPECT_EQ(unfilled.local_steps, host.local_steps);
   EXPECT_EQ(unfilled.geometric_statics, host.geometric_statics);
   EXPECT_EQ(unfilled.statics_named, host.statics_named);
-  // statics.solver "auto": GAMG without mesh.refine's nested meshes (docs/fem-soil.md §7.1), not
-  // named, so under mpirun rank 0 factors below the limit.
+  // statics.solver "auto": without mesh.refine's nested meshes GAMG on one process and the
+  // aggregation multigrid on the ranks (docs/fem-soil.md §7.1, §8), not named, so under mpirun
+  // rank 0 factors below the limit.
   EXPECT_FALSE(host.geometric_statics);
+  EXPECT_TRUE(host.aggregation_statics);
   EXPECT_FALSE(host.statics_named);
   const fem::FemSettings gamg = fem::read_settings(
       json{{"E", 750e6}, {"nu", 0.3}, {"rho", 1800.0}, {"statics", {{"solver", "gamg"}}}}.dump());
   EXPECT_FALSE(gamg.geometric_statics);
+  EXPECT_FALSE(gamg.aggregation_statics);  // (GAMG on PETSc's copy of K on the ranks too)
   EXPECT_TRUE(gamg.statics_named);
+  const fem::FemSettings aggregation = fem::read_settings(json{
+      {"E", 750e6},
+      {"nu", 0.3},
+      {"rho", 1800.0},
+      {"statics", {{"solver", "aggregation"}}}}.dump());
+  EXPECT_TRUE(aggregation.aggregation_statics);
+  EXPECT_TRUE(aggregation.statics_named);
 }
 
 TEST(FemSettingsDefaults, AutoStaticsTakeTheGeometricMultigridWhereTheMeshIsRefined) {
   const json refined = {{"E", 750e6}, {"nu", 0.3}, {"rho", 1800.0}, {"mesh", {{"refine", 1}}}};
   const fem::FemSettings s = fem::read_settings(refined.dump());
   EXPECT_TRUE(s.geometric_statics);
+  EXPECT_FALSE(s.aggregation_statics);
   EXPECT_FALSE(s.statics_named);
   json named = refined;
   named["statics"] = {{"solver", "gamg"}};  // (named: as asked, on the refined mesh too)

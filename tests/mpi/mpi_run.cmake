@@ -29,6 +29,10 @@
 #   fem_gamg_statics_on_3_ranks  statics.solver gamg: the static state solved on the 3 ranks by
 #                                GAMG (one process factors it): the fields within 1e-10, GAMG's
 #                                levels and iterations said
+#   fem_aggregation_statics_on_N_ranks  statics.solver aggregation: the static state solved on
+#                                the N ranks by CG with the aggregation multigrid, no assembled
+#                                fine matrix (one process factors it): fields within 1e-10, the
+#                                levels and iterations said
 #   fem_implicit_coupler_on_2_ranks  the same with the implicit coupler, which iterates each
 #                                macro step from the soil's checkpoints: the same iterations,
 #                                the fields to 1e-10
@@ -348,6 +352,13 @@ function(fem_case)
     list(APPEND fem_csvs interface)
     fem_runs(3 1e-10 --set /soil/params/statics/solver=gamg)
     expect_match("${fem_many_out}" "static solves by PETSc's CG with GAMG on 3 ranks \\(to 1e-12 of the load\\): [0-9]+ levels.* [0-9]+ CG iterations")
+  elseif(CASE MATCHES "^fem_aggregation_statics_on_([23])_ranks$")
+    # statics.solver aggregation: one process factors, the ranks solve by CG with the aggregation
+    # multigrid (no assembled fine matrix) to 1e-12 of the load: whole runs within 1e-10.
+    set(ranks ${CMAKE_MATCH_1})
+    list(APPEND fem_csvs interface)
+    fem_runs(${ranks} 1e-10 --set /soil/params/statics/solver=aggregation)
+    expect_match("${fem_many_out}" "static solves by PETSc's CG with the aggregation multigrid on ${ranks} ranks \\(to 1e-12 of the load\\): [0-9]+ levels.* [0-9]+ CG iterations")
   elseif(CASE MATCHES "^fem_implicit_scheme_on_([23])_ranks$")
     # Each step's solve is a factor's, exact to rounding on any number of ranks (MUMPS's order
     # of elimination differs from CHOLMOD's): 1e-12 asked, as of the explicit steps (measured

@@ -116,8 +116,12 @@ struct FemSettings {
   // on mesh.refine's nested meshes (statics.solver, whose "auto" takes the geometric multigrid
   // where those meshes exist: docs/fem-soil.md §7.1).
   bool geometric_statics{};  // the geometric multigrid, else GAMG
-  bool statics_named{};      // statics.solver named, not "auto": under mpirun solved on the
-                             // ranks at any size (auto: by rank 0's factor below its limit)
+  // Under mpirun without the geometric multigrid: the aggregation multigrid on the unassembled
+  // K (statics.solver aggregation, or auto; docs/fem-soil.md §8), else GAMG on PETSc's copy of
+  // K + S. One process solves by GAMG either way (its GAMG shares K's rows, §7.1).
+  bool aggregation_statics{};
+  bool statics_named{};  // statics.solver named, not "auto": under mpirun solved on the
+                         // ranks at any size (auto: by rank 0's factor below its limit)
   unsigned mesh_threads{};
 
   /// The properties at depth z [m] (>= 0).

@@ -185,7 +185,7 @@ class FemSoil final : public rumble::Soil {
   /// What the settings choose that a rank's memory depends on (distributed/rank_plan.hpp).
   rumble::fem::PlanChoices plan_choices() const {
     return {settings_.statics_named, refine_on_ranks(), settings_.geometric_statics,
-            settings_.implicit};
+            settings_.implicit, settings_.aggregation_statics};
   }
   /// The refined mesh's node count, from rank 0's coarse mesh (numbered_refinement.hpp).
   double refined_node_count() const;

@@ -85,6 +85,18 @@ inline constexpr double kGeometricBytesPerNonzero = -2.2;
 /// rows": 0.53-0.55 GB per rank at the statics; 15 B and 0.77-0.80 GB while the rows were kept).
 inline constexpr double kGeometricRankBytesPerNonzero = 3.0;
 
+/// The aggregation multigrid on many ranks (statics.solver aggregation, or auto without
+/// mesh.refine) at its peak, beyond what a rank holds after its layout, per nonzero of the rank's
+/// part of K [bytes]: the mesh's node graph while the aggregates are made, the prolongator (18
+/// nonzeros per node), the coarse level's MPIAIJ matrix (six DOFs per aggregate) and GAMG's
+/// hierarchy on it, the fine level's diagonal and the CG, smoother and shell vectors
+/// (distributed/aggregation_rank_statics.hpp), less the part's rows in double (12 B per
+/// nonzero), freed before the set-up: about what it adds. Fitted to the stiff example at 1.0e6
+/// DOFs on 2 ranks (docs/fem-soil.md §8, "The statics on the ranks without an assembled
+/// matrix"): rank 0 held about 0.602 GB after its layout (GAMG's estimate on the same split, less
+/// its 18 B per nonzero) and peaked at 0.595 GB in these statics, -0.3 B per nonzero; 0 taken.
+inline constexpr double kAggregationRankBytesPerNonzero = 0.0;
+
 /// The whole mesh's nodes and tetrahedra as rank 0 keeps them on many ranks, per DOF [bytes]:
 /// 24 B per node and 16 B per tetrahedron, about 5.5 tetrahedra per node (docs/fem-soil.md §8,
 /// "What rank 0 keeps").

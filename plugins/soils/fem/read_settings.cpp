@@ -268,6 +268,8 @@ FemSettings read_settings(const std::string& params_json) {
   s.statics_named = statics_solver != "auto";
   s.geometric_statics = statics_solver == "geometric" ||
                         (statics_solver == "auto" && s.mesh.refine >= 1 && s.mesh.file.empty());
+  s.aggregation_statics =
+      statics_solver == "aggregation" || (statics_solver == "auto" && !s.geometric_statics);
   check_pml_needs(s);
   check_geometric_needs(s);
   return s;

@@ -8,6 +8,7 @@
 #include <sstream>
 #include <utility>
 
+#include "distributed/aggregation_rank_statics.hpp"
 #include "distributed/distributed_operator.hpp"
 #include "distributed/distributed_statics.hpp"
 #include "distributed/geometric_rank_statics.hpp"
@@ -37,6 +38,7 @@ void DistributedSoil::lay_out(const TetMesh* mesh, const FemSettings& settings,
   part_ = {};
   coarse_.reset();
   refine_ = refine;
+  aggregation_statics_ = settings.aggregation_statics;
   if (refine > 0) {
     MeshPartition coarse = partition_mesh(comm_, mesh, true);
     coarse_nodes_ = coarse.global_nodes;
@@ -69,6 +71,9 @@ void DistributedSoil::lay_out(const TetMesh* mesh, const FemSettings& settings,
   }
   set_loaded_nodes();
   make_statics_ = [this, settings, footprints, refine]() -> std::unique_ptr<RankStatics> {
+    if (!coarse_ && settings.aggregation_statics)
+      return std::make_unique<AggregationRankStatics>(
+          part_, step_->soil(), ElementStiffness(part_.mesh, settings), comm_);
     if (!coarse_) return std::make_unique<DistributedStatics>(part_, step_->soil(), comm_);
     const std::unique_ptr<DistributedOperator> coarse_op =
         part_operator(*coarse_, settings, footprints, 1, StepPrecision::kDouble, comm_);
@@ -115,8 +120,9 @@ double DistributedSoil::estimate_peak() const {
   // geometric multigrid builds its coarse level (memory_model.hpp): the statics' peak on every
   // rank above the factor limit.
   const auto nonzeros = static_cast<double>(step_->stiffness().nonzeros());
-  const double per_nonzero =
-      coarse_ ? memory::kGeometricRankBytesPerNonzero : memory::kGamgBytesPerNonzero;
+  const double per_nonzero = coarse_                ? memory::kGeometricRankBytesPerNonzero
+                             : aggregation_statics_ ? memory::kAggregationRankBytesPerNonzero
+                                                    : memory::kGamgBytesPerNonzero;
   double mine = std::max(resident.peak, resident.now + per_nonzero * nonzeros);
   if (implicit_)  // (the steps' factor, after the statics have freed theirs)
     mine = std::max(

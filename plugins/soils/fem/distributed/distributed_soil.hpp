@@ -148,7 +148,8 @@ class DistributedSoil {
   MeshPartition part_;
   double split_peak_ = 0.0;  // bytes: this rank's VmHWM once split (rank 0's: meshing included)
   int refine_ = 0;           // mesh.refine on the ranks
-  std::int64_t coarse_nodes_ = 0;  // rank 0's mesh, split
+  bool aggregation_statics_ = false;  // the statics by aggregation_rank_statics.hpp
+  std::int64_t coarse_nodes_ = 0;     // rank 0's mesh, split
   std::optional<ExplicitSolver> step_;
   std::unique_ptr<ImplicitSolver> implicit_;  // (over step_'s operators)
   ExplicitState state_;

@@ -3,15 +3,10 @@
 // process's solver (statics/geometric_static_solver.hpp) with each level split as the ranks
 // split the meshes. With mesh.refine each rank refined its own part of gmsh's coarse mesh
 // (refined_partition.hpp), so the coarse part a rank's fine nodes came from is on that rank:
-// - the fine level: PETSc shell matrices (rows: the ranks' owned nodes) over the ranks'
-//   operator's products (distributed_operator.hpp: each rank's part, the shared nodes' sums
-//   exchanged by the halo), held DOFs as identity rows and columns. CG's operator is K in
-//   double, formed from the part's tetrahedra (the part's rows are freed before the set-up:
-//   operator/element_stiffness.hpp); the smoother, Chebyshev(2) with Jacobi from the diagonal
-//   (statics/two_level_multigrid.hpp), and the multigrid's residual read K as the step does
-//   (its float blocks): the preconditioner is a fixed linear operator within 6e-8 of K's, CG's
-//   residual is K's in double, so the solution is K's to CG's tolerance (docs/fem-soil.md §8,
-//   "K without its rows");
+// - the fine level: rank_fine_level.hpp's shells over the ranks' operator (CG's K in double
+//   from the part's tetrahedra, the smoother's as the step reads it; the part's rows freed),
+//   smoothed by Chebyshev(2) with Jacobi (statics/two_level_multigrid.hpp): the solution is K's
+//   to CG's tolerance (docs/fem-soil.md §8, "K without its rows");
 // - the coarse level: K + S assembled on the coarse parts as MPIAIJ (rank_petsc.hpp, as GAMG's
 //   matrix on the ranks), solved by one V-cycle of GAMG over the ranks;
 // - the interpolation: each owned fine node's row of the nested linear elements' dyadic weights
@@ -59,7 +54,6 @@ class GeometricRankStatics final : public RankStatics {
 
  private:
   struct Petsc;
-  void make_fine_level();
   void make_interpolation(const MeshPartition& coarse, const SoilOperator& coarse_op, int levels);
   void build_solver(const MeshPartition& coarse, const SoilOperator& coarse_op);
 

@@ -18,13 +18,14 @@ void plan_memory(RankPlan& p, const PlanChoices& choices) {
     p.root_bytes = memory::run_peak_bytes(3.0 * p.nodes);
     return;
   }
-  // On many ranks the statics run on the ranks (GAMG or the geometric multigrid) above the factor
+  // On many ranks the statics run on the ranks (a multigrid of three) above the factor
   // limit, or at any size when named: each rank its part's; below it rank 0 factors the whole
   // (small) operator and frees it.
   const double whole = 3.0 * p.nodes;
   const bool on_ranks = choices.named || whole > memory::kFactorLimitDofs;
-  const double per_nonzero =
-      choices.geometric ? memory::kGeometricRankBytesPerNonzero : memory::kGamgBytesPerNonzero;
+  const double per_nonzero = choices.geometric     ? memory::kGeometricRankBytesPerNonzero
+                             : choices.aggregation ? memory::kAggregationRankBytesPerNonzero
+                                                   : memory::kGamgBytesPerNonzero;
   const double share_statics =
       on_ranks ? per_nonzero * memory::kNonzerosPerDof * 3.0 * p.largest_nodes : 0.0;
   // The implicit steps' factor, each rank its share, once the statics are done.

@@ -51,6 +51,9 @@ struct PlanChoices {
   /// The implicit scheme (integrator.scheme implicit): each rank holds its share of the steps'
   /// factor (memory_model.hpp, rank_factor_bytes) once the statics are done.
   bool implicit = false;
+  /// Without the geometric multigrid: the aggregation multigrid's memory (statics.solver
+  /// aggregation, or auto) rather than GAMG's on PETSc's copy of K (statics.solver gamg).
+  bool aggregation = false;
 };
 
 /// The plan for a mesh of `nodes` nodes on `ranks` >= 1 ranks with the settings' `choices`.

@@ -124,6 +124,20 @@ Eigen::VectorXd ElementStiffness::diagonal() const {
   return d;
 }
 
+Eigen::Matrix<double, 12, 12> ElementStiffness::element_matrix(std::size_t e) const {
+  const TetGradients g = tet_gradients(mesh_, mesh_.tets[e]);
+  const Lame& m = lame_[std::min<std::size_t>(mesh_.layer[e], lame_.size() - 1)];
+  Eigen::Matrix<double, 12, 12> k;
+  for (int a = 0; a < 4; ++a)
+    for (int b = 0; b < 4; ++b) {
+      const Eigen::Vector3d ga = g.gradient.col(a), gb = g.gradient.col(b);
+      k.block<3, 3>(3 * a, 3 * b) =
+          g.volume * (m.lambda * ga * gb.transpose() + m.mu * gb * ga.transpose() +
+                      m.mu * ga.dot(gb) * Eigen::Matrix3d::Identity());
+    }
+  return k;
+}
+
 void ElementStiffness::release() const {
   std::vector<Tetrahedron>().swap(tets_);
   std::vector<std::uint16_t>().swap(layer_);

@@ -1,0 +1,276 @@
+#include "distributed/aggregation_rank_statics.hpp"
+
+#include <petscksp.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <chrono>
+#include <utility>
+#include <vector>
+
+#include "distributed/rank_fine_level.hpp"
+#include "distributed/rank_petsc.hpp"
+#include "operator/effective_matrix.hpp"
+#include "statics/node_aggregates.hpp"
+#include "statics/petsc_cg.hpp"
+#include "statics/petsc_session.hpp"
+
+namespace rumble::fem {
+
+struct AggregationRankStatics::Petsc {
+  Petsc(const MeshPartition& part, const SoilOperator& op, MPI_Comm comm) : level(part, op, comm) {}
+  ~Petsc() {  // (errors ignored: a destructor)
+    KSPDestroy(&ksp);
+    MatDestroy(&interpolation);
+    MatDestroy(&coarse);
+  }
+  RankFineLevel level;
+  Mat coarse = nullptr;         // A_c = P^T (K + S) P, block size 6
+  Mat interpolation = nullptr;  // P: owned fine DOFs x this rank's coarse DOFs
+  KSP ksp = nullptr;
+};
+
+/// The aggregates and P on this rank's part (local numbers), until the coarse matrix is made.
+struct AggregationRankStatics::Coarse {
+  NodeGraph graph;
+  NodeAggregates aggregates;   // on this rank's owned free nodes
+  PetscInt first = 0;          // this rank's first aggregate over the ranks
+  PetscInt total = 0;          // the aggregates over the ranks
+  std::vector<PetscInt> base;  // per local node: its aggregate's first coarse DOF, -1: none
+  RigidProlongator p;          // its blocks on every local node (a ghost's from its owner)
+};
+
+namespace {
+
+constexpr int kCarried = 1 + 3 * kModes;  // a shared node's base and block, to its ghosts
+
+// The distinct coarse blocks (aggregates over the ranks) of node i and its neighbours.
+int distinct_blocks(const NodeGraph& g, const std::vector<PetscInt>& base, std::int32_t i,
+                    std::vector<PetscInt>& scratch) {
+  scratch.clear();
+  if (base[i] >= 0) scratch.push_back(base[i] / kModes);
+  for (std::int32_t k = 0; k < g.degree(i); ++k)
+    if (base[g.of(i)[k]] >= 0) scratch.push_back(base[g.of(i)[k]] / kModes);
+  std::sort(scratch.begin(), scratch.end());
+  return static_cast<int>(std::unique(scratch.begin(), scratch.end()) - scratch.begin());
+}
+
+}  // namespace
+
+AggregationRankStatics::AggregationRankStatics(const MeshPartition& part, const SoilOperator& op,
+                                               const ElementStiffness& elements, MPI_Comm comm,
+                                               double tolerance)
+    : part_(part), tolerance_(tolerance) {
+  const auto start = std::chrono::steady_clock::now();
+  petsc_ = std::make_unique<Petsc>(part, op, comm);
+  make_coarse_matrix(make_prolongator(), elements);
+  build_solver();
+  set_stop_test(petsc_->ksp, op, petsc_->level.stop);
+  setup_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+AggregationRankStatics::~AggregationRankStatics() = default;
+
+void AggregationRankStatics::set_stop_check(std::function<void()> check) {
+  petsc_->level.stop.check = std::move(check);
+}
+
+AggregationRankStatics::Coarse AggregationRankStatics::make_prolongator() {
+  RankFineLevel& f = petsc_->level;
+  int rank = 0;
+  MPI_Comm_rank(f.comm, &rank);
+  const std::int32_t n = part_.nodes();
+  std::vector<char> candidate(static_cast<std::size_t>(n), 0);  // owned and free
+  for (std::int32_t i = 0; i < n; ++i) candidate[i] = part_.owns(i, rank) && !f.fixed[i];
+  Coarse c;
+  c.graph = node_graph(part_.mesh);
+  c.aggregates = aggregate_nodes(c.graph, candidate);
+  c.p = rigid_prolongator(part_.mesh.nodes, c.aggregates);
+  const PetscInt count = c.aggregates.count;
+  MPI_Exscan(&count, &c.first, 1, MPIU_INT, MPI_SUM, f.comm);
+  if (rank == 0) c.first = 0;  // (MPI_Exscan leaves rank 0's undefined)
+  MPI_Allreduce(&count, &c.total, 1, MPIU_INT, MPI_SUM, f.comm);
+  coarse_dofs_ = static_cast<long long>(kModes) * c.total;
+  c.base.assign(static_cast<std::size_t>(n), -1);
+  for (std::int32_t i = 0; i < n; ++i)
+    if (c.aggregates.of[i] >= 0) c.base[i] = kModes * (c.first + c.aggregates.of[i]);
+  // a ghost's aggregate and block are its owner's
+  std::vector<double> carried(kCarried * static_cast<std::size_t>(part_.shared), 0.0);
+  for (std::int32_t i = 0; i < part_.shared; ++i) {
+    carried[kCarried * i] = static_cast<double>(c.base[i]);  // (exact: below 2^53)
+    std::copy_n(c.p.blocks.data() + 3 * kModes * i, 3 * kModes, carried.data() + kCarried * i + 1);
+  }
+  part_.halo->to_leaves(carried.data(), carried.data(), kCarried);
+  for (std::int32_t i = 0; i < part_.shared; ++i) {
+    if (part_.owns(i, rank)) continue;
+    c.base[i] = static_cast<PetscInt>(carried[kCarried * i]);
+    std::copy_n(carried.data() + kCarried * i + 1, 3 * kModes, c.p.blocks.data() + 3 * kModes * i);
+  }
+  // P: each owned free node's 3 rows, its aggregate's columns (all on this rank)
+  const auto owned = static_cast<PetscInt>(f.rows.owned.size());
+  std::vector<PetscInt> per_row(3 * f.rows.owned.size(), kModes), none(per_row.size(), 0);
+  Mat& P = petsc_->interpolation;
+  petsc_check(MatCreate(f.comm, &P), "MatCreate");
+  petsc_check(MatSetType(P, MATAIJ), "MatSetType");
+  petsc_check(MatSetSizes(P, 3 * owned, kModes * count, PETSC_DETERMINE, PETSC_DETERMINE),
+              "MatSetSizes");
+  petsc_check(MatXAIJSetPreallocation(P, 1, per_row.data(), none.data(), nullptr, nullptr),
+              "MatXAIJSetPreallocation");
+  PetscInt columns[kModes];
+  double values[kModes];
+  for (const std::int32_t i : f.rows.owned) {
+    if (c.base[i] < 0) continue;  // (a held node takes no correction)
+    for (int r = 0; r < 3; ++r) {
+      int used = 0;
+      for (int k = 0; k < kModes; ++k) {
+        if (c.p.dropped[c.base[i] - kModes * c.first + k]) continue;
+        columns[used] = c.base[i] + k;
+        values[used++] = c.p.blocks[3 * kModes * static_cast<std::size_t>(i) + kModes * r + k];
+      }
+      const PetscInt row = 3 * f.rows.row[i] + r;
+      petsc_check(MatSetValues(P, 1, &row, used, columns, values, INSERT_VALUES), "MatSetValues");
+    }
+  }
+  petsc_check(MatAssemblyBegin(P, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+  petsc_check(MatAssemblyEnd(P, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+  return c;
+}
+
+void AggregationRankStatics::make_coarse_matrix(const Coarse& c, const ElementStiffness& elements) {
+  RankFineLevel& f = petsc_->level;
+  int rank = 0;
+  MPI_Comm_rank(f.comm, &rank);
+  const PetscInt count = c.aggregates.count;
+  // Preallocation in 6 x 6 blocks: an aggregate's row holds the aggregates of its nodes and
+  // their neighbours here, and what other ranks' tetrahedra add at its shared nodes (each ghost
+  // copy's distinct neighbouring aggregates, summed to the owner: an upper bound, added to both
+  // counts, as the ranks' K is preallocated, rank_petsc.cpp).
+  std::vector<std::vector<PetscInt>> blocks(static_cast<std::size_t>(count));
+  std::vector<PetscInt> scratch;
+  for (std::int32_t i = 0; i < part_.nodes(); ++i) {
+    const std::int32_t a = c.aggregates.of[i];
+    if (a < 0) continue;
+    const int distinct = distinct_blocks(c.graph, c.base, i, scratch);
+    blocks[a].insert(blocks[a].end(), scratch.begin(), scratch.begin() + distinct);
+  }
+  std::vector<double> others(static_cast<std::size_t>(part_.shared), 0.0);
+  for (std::int32_t i = 0; i < part_.shared; ++i)
+    if (!part_.owns(i, rank) && c.base[i] >= 0)
+      others[i] = distinct_blocks(c.graph, c.base, i, scratch);
+  part_.halo->sum_to_roots(others.data(), others.data(), 1);
+  std::vector<PetscInt> diagonal(blocks.size(), 0), off(blocks.size(), 0);
+  for (std::size_t a = 0; a < blocks.size(); ++a) {
+    std::sort(blocks[a].begin(), blocks[a].end());
+    const auto end = std::unique(blocks[a].begin(), blocks[a].end());
+    for (auto b = blocks[a].begin(); b != end; ++b)
+      ++(*b >= c.first && *b < c.first + count ? diagonal[a] : off[a]);
+    std::vector<PetscInt>().swap(blocks[a]);
+  }
+  for (std::int32_t i = 0; i < part_.shared; ++i)
+    if (c.aggregates.of[i] >= 0) {
+      const auto extra = static_cast<PetscInt>(others[i]);
+      diagonal[c.aggregates.of[i]] += extra;
+      off[c.aggregates.of[i]] += extra;
+    }
+  for (std::size_t a = 0; a < blocks.size(); ++a) {
+    diagonal[a] = std::min(diagonal[a], count);
+    off[a] = std::min(off[a], c.total - count);
+  }
+  Mat& A = petsc_->coarse;
+  petsc_check(MatCreate(f.comm, &A), "MatCreate");
+  petsc_check(MatSetType(A, MATAIJ), "MatSetType");
+  petsc_check(MatSetSizes(A, kModes * count, kModes * count, PETSC_DETERMINE, PETSC_DETERMINE),
+              "MatSetSizes");
+  petsc_check(MatSetBlockSize(A, kModes), "MatSetBlockSize");
+  petsc_check(MatXAIJSetPreallocation(A, kModes, diagonal.data(), off.data(), nullptr, nullptr),
+              "MatXAIJSetPreallocation");
+  // P_e^T K_e P_e over this rank's tetrahedra, by the aggregates among each one's nodes
+  using Block = Eigen::Map<const Eigen::Matrix<double, 3, kModes, Eigen::RowMajor>>;
+  using Dense = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  Dense KP, C;
+  for (std::size_t e = 0; e < part_.mesh.tets.size(); ++e) {
+    const Tetrahedron& t = part_.mesh.tets[e];
+    PetscInt at[4];
+    int slot[4], used = 0;
+    for (int k = 0; k < 4; ++k) {
+      slot[k] = -1;
+      if (c.base[t[k]] < 0) continue;
+      const PetscInt b = c.base[t[k]] / kModes;
+      slot[k] = static_cast<int>(std::find(at, at + used, b) - at);
+      if (slot[k] == used) at[used++] = b;
+    }
+    if (used == 0) continue;
+    const Eigen::Matrix<double, 12, 12> K = elements.element_matrix(e);
+    KP = Dense::Zero(12, kModes * used);
+    for (int l = 0; l < 4; ++l)
+      if (slot[l] >= 0)
+        KP.middleCols<kModes>(kModes * slot[l]) +=
+            K.middleCols<3>(3 * l) * Block(c.p.blocks.data() + 3 * kModes * t[l]);
+    C = Dense::Zero(kModes * used, kModes * used);
+    for (int k = 0; k < 4; ++k)
+      if (slot[k] >= 0)
+        C.middleRows<kModes>(kModes * slot[k]) +=
+            Block(c.p.blocks.data() + 3 * kModes * t[k]).transpose() * KP.middleRows<3>(3 * k);
+    petsc_check(MatSetValuesBlocked(A, used, at, used, at, C.data(), ADD_VALUES),
+                "MatSetValuesBlocked");
+  }
+  // P_i^T S_i P_i at the boundary nodes (each copy holds the node's whole block: its owner's)
+  for (const BoundaryNode& node : f.op->boundary()) {
+    if (!part_.owns(node.node, rank) || c.base[node.node] < 0) continue;
+    double s[9];
+    boundary_block(node, {.stiffness = 1.0, .springs = true}, s);
+    const Block p(c.p.blocks.data() + 3 * kModes * node.node);
+    const Eigen::Matrix<double, kModes, kModes, Eigen::RowMajor> block =
+        p.transpose() * Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(s) * p;
+    const PetscInt b = c.base[node.node] / kModes;
+    petsc_check(MatSetValuesBlocked(A, 1, &b, 1, &b, block.data(), ADD_VALUES),
+                "MatSetValuesBlocked");
+  }
+  petsc_check(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+  petsc_check(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+  // an aggregate's dropped DOFs carry nothing: identity rows, so that A_c stays definite
+  std::vector<PetscInt> dropped;
+  for (std::size_t k = 0; k < c.p.dropped.size(); ++k)
+    if (c.p.dropped[k]) dropped.push_back(kModes * c.first + static_cast<PetscInt>(k));
+  petsc_check(MatZeroRowsColumns(A, static_cast<PetscInt>(dropped.size()), dropped.data(), 1.0,
+                                 nullptr, nullptr),
+              "MatZeroRowsColumns");
+  petsc_check(MatSetOption(A, MAT_SPD, PETSC_TRUE), "MatSetOption");
+  // GAMG's near-null space on A_c: the rigid-body modes' coarse vectors, orthonormalized
+  Vec modes[kModes];
+  for (int j = 0; j < kModes; ++j) {
+    petsc_check(MatCreateVecs(A, &modes[j], nullptr), "MatCreateVecs");
+    PetscScalar* v = nullptr;
+    petsc_check(VecGetArray(modes[j], &v), "VecGetArray");
+    for (PetscInt a = 0; a < count; ++a)
+      for (int k = 0; k < kModes; ++k)
+        v[kModes * a + k] = c.p.modes[kModes * kModes * a + kModes * j + k];
+    petsc_check(VecRestoreArray(modes[j], &v), "VecRestoreArray");
+    for (int i = 0; i < j; ++i) {
+      PetscScalar along = 0.0;
+      petsc_check(VecDot(modes[j], modes[i], &along), "VecDot");
+      petsc_check(VecAXPY(modes[j], -along, modes[i]), "VecAXPY");
+    }
+    petsc_check(VecNormalize(modes[j], nullptr), "VecNormalize");
+  }
+  MatNullSpace space = nullptr;
+  petsc_check(MatNullSpaceCreate(f.comm, PETSC_FALSE, kModes, modes, &space), "MatNullSpaceCreate");
+  petsc_check(MatSetNearNullSpace(A, space), "MatSetNearNullSpace");
+  MatNullSpaceDestroy(&space);  // (the matrix holds it)
+  for (Vec& v : modes) VecDestroy(&v);
+}
+
+void AggregationRankStatics::build_solver() {
+  Petsc& p = *petsc_;
+  p.ksp =
+      p.level.two_level_cg(p.coarse, p.interpolation, tolerance_, levels_, "aggregation multigrid");
+}
+
+Eigen::VectorXd AggregationRankStatics::solve(const Eigen::VectorXd& f) {
+  Petsc& p = *petsc_;
+  return solve_on_ranks(
+      p.ksp, p.level.x, p.level.b, p.level.stop, part_, p.level.rows, p.level.fixed, f, iterations_,
+      "the static solve on the ranks (PETSc's CG with the aggregation multigrid)");
+}
+
+}  // namespace rumble::fem
