@@ -358,7 +358,7 @@ function(fem_case)
     set(ranks ${CMAKE_MATCH_1})
     list(APPEND fem_csvs interface)
     fem_runs(${ranks} 1e-10 --set /soil/params/statics/solver=aggregation)
-    expect_match("${fem_many_out}" "static solves by PETSc's CG with the aggregation multigrid on ${ranks} ranks \\(to 1e-12 of the load\\): [0-9]+ levels.* [0-9]+ CG iterations")
+    expect_match("${fem_many_out}" "static solves by PETSc's CG with the aggregation multigrid on ${ranks} ranks \\(to 1e-12 of the load\\): [0-9]+ levels \\(the first coarse level [0-9]+ DOFs, 6 per aggregate, [0-9]+ times fewer than the mesh's\\).* [0-9]+ CG iterations")
   elseif(CASE MATCHES "^fem_implicit_scheme_on_([23])_ranks$")
     # Each step's solve is a factor's, exact to rounding on any number of ranks (MUMPS's order
     # of elimination differs from CHOLMOD's): 1e-12 asked, as of the explicit steps (measured

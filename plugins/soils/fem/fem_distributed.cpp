@@ -260,9 +260,9 @@ void FemSoil::solve_static_on_ranks(const double* static_force, double* static_u
   if (first)
     host_.info("fem: static solves by PETSc's " + std::string(statics.method()) + " on " +
                std::to_string(d.ranks()) + " ranks (to " + format(statics.tolerance()) +
-               " of the load): " + std::to_string(statics.levels()) + " levels, set up in " +
-               format(statics.setup_seconds(), 2) + " s; the first solve, set-up included, " +
-               solved);
+               " of the load): " + std::to_string(statics.levels()) + " levels" +
+               statics.levels_detail() + ", set up in " + format(statics.setup_seconds(), 2) +
+               " s; the first solve, set-up included, " + solved);
   else
     host_.log(RUMBLE_LOG_DEBUG,
               "fem: static solve (" + std::string(statics.method()) + " on the ranks) " + solved);

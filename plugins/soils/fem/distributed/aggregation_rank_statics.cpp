@@ -5,6 +5,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <utility>
 #include <vector>
 
@@ -91,6 +92,7 @@ AggregationRankStatics::Coarse AggregationRankStatics::make_prolongator() {
   if (rank == 0) c.first = 0;  // (MPI_Exscan leaves rank 0's undefined)
   MPI_Allreduce(&count, &c.total, 1, MPIU_INT, MPI_SUM, f.comm);
   coarse_dofs_ = static_cast<long long>(kModes) * c.total;
+  fine_dofs_ = 3LL * f.rows.total;
   c.base.assign(static_cast<std::size_t>(n), -1);
   for (std::int32_t i = 0; i < n; ++i)
     if (c.aggregates.of[i] >= 0) c.base[i] = kModes * (c.first + c.aggregates.of[i]);
@@ -264,6 +266,13 @@ void AggregationRankStatics::build_solver() {
   Petsc& p = *petsc_;
   p.ksp =
       p.level.two_level_cg(p.coarse, p.interpolation, tolerance_, levels_, "aggregation multigrid");
+}
+
+std::string AggregationRankStatics::levels_detail() const {
+  const double fewer =
+      static_cast<double>(fine_dofs_) / static_cast<double>(std::max(1LL, coarse_dofs_));
+  return " (the first coarse level " + std::to_string(coarse_dofs_) + " DOFs, 6 per aggregate, " +
+         std::to_string(std::llround(fewer)) + " times fewer than the mesh's)";
 }
 
 Eigen::VectorXd AggregationRankStatics::solve(const Eigen::VectorXd& f) {

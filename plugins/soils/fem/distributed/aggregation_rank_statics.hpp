@@ -24,6 +24,7 @@
 #include <mpi.h>
 
 #include <memory>
+#include <string>
 
 #include "distributed/mesh_partition.hpp"
 #include "distributed/rank_statics.hpp"
@@ -49,8 +50,8 @@ class AggregationRankStatics final : public RankStatics {
   void set_stop_check(std::function<void()> check) override;
   /// `tolerance`, or PETSC_OPTIONS' -fem_statics_ksp_rtol.
   double tolerance() const override { return tolerance_; }
-  /// The coarse level's DOFs over the ranks (6 per aggregate).
-  long long coarse_dofs() const { return coarse_dofs_; }
+  /// The first coarse level's DOFs over the ranks (6 per aggregate), against the fine level's.
+  std::string levels_detail() const override;
   static constexpr double kTolerance = 1e-12;
 
  private:
@@ -63,7 +64,7 @@ class AggregationRankStatics final : public RankStatics {
   const MeshPartition& part_;
   std::unique_ptr<Petsc> petsc_;
   double tolerance_;
-  long long coarse_dofs_ = 0;
+  long long coarse_dofs_ = 0, fine_dofs_ = 0;  // over the ranks
 };
 
 }  // namespace rumble::fem

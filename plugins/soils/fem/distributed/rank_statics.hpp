@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 #include <functional>
+#include <string>
 
 namespace rumble::fem {
 
@@ -28,6 +29,8 @@ class RankStatics {
   int last_iterations() const { return iterations_; }
   /// The multigrid's levels.
   int levels() const { return levels_; }
+  /// What the log adds after the levels' count ("" for nothing more).
+  virtual std::string levels_detail() const { return ""; }
   /// Seconds the solver took to build.
   double setup_seconds() const { return setup_seconds_; }
 
