@@ -31,8 +31,13 @@ struct AggregationRankStatics::Petsc {
   KSP ksp = nullptr;
 };
 
+namespace {
+
 /// The aggregates and P on this rank's part (local numbers), until the coarse matrix is made.
-struct AggregationRankStatics::Coarse {
+struct FirstLevel {
+  const MeshPartition* part = nullptr;
+  const RankFineLevel* fine = nullptr;
+  int rank = 0;
   NodeGraph graph;
   NodeAggregates aggregates;   // on this rank's owned free nodes
   PetscInt first = 0;          // this rank's first aggregate over the ranks
@@ -40,8 +45,6 @@ struct AggregationRankStatics::Coarse {
   std::vector<PetscInt> base;  // per local node: its aggregate's first coarse DOF, -1: none
   RigidProlongator p;          // its blocks on every local node (a ghost's from its owner)
 };
-
-namespace {
 
 constexpr int kCarried = 1 + 3 * kModes;  // a shared node's base and block, to its ghosts
 
@@ -56,62 +59,49 @@ int distinct_blocks(const NodeGraph& g, const std::vector<PetscInt>& base, std::
   return static_cast<int>(std::unique(scratch.begin(), scratch.end()) - scratch.begin());
 }
 
-}  // namespace
-
-AggregationRankStatics::AggregationRankStatics(const MeshPartition& part, const SoilOperator& op,
-                                               const ElementStiffness& elements, MPI_Comm comm,
-                                               double tolerance)
-    : part_(part), tolerance_(tolerance) {
-  const auto start = std::chrono::steady_clock::now();
-  petsc_ = std::make_unique<Petsc>(part, op, comm);
-  make_coarse_matrix(make_prolongator(), elements);
-  build_solver();
-  set_stop_test(petsc_->ksp, op, petsc_->level.stop);
-  setup_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-AggregationRankStatics::~AggregationRankStatics() = default;
-
-void AggregationRankStatics::set_stop_check(std::function<void()> check) {
-  petsc_->level.stop.check = std::move(check);
-}
-
-AggregationRankStatics::Coarse AggregationRankStatics::make_prolongator() {
-  RankFineLevel& f = petsc_->level;
+/// The aggregates of this rank's owned free nodes, their blocks of P, a ghost's from its owner.
+FirstLevel first_level(const MeshPartition& part, const RankFineLevel& f) {
   int rank = 0;
   MPI_Comm_rank(f.comm, &rank);
-  const std::int32_t n = part_.nodes();
+  const std::int32_t n = part.nodes();
   std::vector<char> candidate(static_cast<std::size_t>(n), 0);  // owned and free
-  for (std::int32_t i = 0; i < n; ++i) candidate[i] = part_.owns(i, rank) && !f.fixed[i];
-  Coarse c;
-  c.graph = node_graph(part_.mesh);
+  for (std::int32_t i = 0; i < n; ++i) candidate[i] = part.owns(i, rank) && !f.fixed[i];
+  FirstLevel c;
+  c.part = &part;
+  c.fine = &f;
+  c.rank = rank;
+  c.graph = node_graph(part.mesh);
   c.aggregates = aggregate_nodes(c.graph, candidate);
-  c.p = rigid_prolongator(part_.mesh.nodes, c.aggregates);
+  c.p = rigid_prolongator(part.mesh.nodes, c.aggregates);
   const PetscInt count = c.aggregates.count;
   MPI_Exscan(&count, &c.first, 1, MPIU_INT, MPI_SUM, f.comm);
   if (rank == 0) c.first = 0;  // (MPI_Exscan leaves rank 0's undefined)
   MPI_Allreduce(&count, &c.total, 1, MPIU_INT, MPI_SUM, f.comm);
-  coarse_dofs_ = static_cast<long long>(kModes) * c.total;
-  fine_dofs_ = 3LL * f.rows.total;
   c.base.assign(static_cast<std::size_t>(n), -1);
   for (std::int32_t i = 0; i < n; ++i)
     if (c.aggregates.of[i] >= 0) c.base[i] = kModes * (c.first + c.aggregates.of[i]);
   // a ghost's aggregate and block are its owner's
-  std::vector<double> carried(kCarried * static_cast<std::size_t>(part_.shared), 0.0);
-  for (std::int32_t i = 0; i < part_.shared; ++i) {
+  std::vector<double> carried(kCarried * static_cast<std::size_t>(part.shared), 0.0);
+  for (std::int32_t i = 0; i < part.shared; ++i) {
     carried[kCarried * i] = static_cast<double>(c.base[i]);  // (exact: below 2^53)
     std::copy_n(c.p.blocks.data() + 3 * kModes * i, 3 * kModes, carried.data() + kCarried * i + 1);
   }
-  part_.halo->to_leaves(carried.data(), carried.data(), kCarried);
-  for (std::int32_t i = 0; i < part_.shared; ++i) {
-    if (part_.owns(i, rank)) continue;
+  part.halo->to_leaves(carried.data(), carried.data(), kCarried);
+  for (std::int32_t i = 0; i < part.shared; ++i) {
+    if (part.owns(i, rank)) continue;
     c.base[i] = static_cast<PetscInt>(carried[kCarried * i]);
     std::copy_n(carried.data() + kCarried * i + 1, 3 * kModes, c.p.blocks.data() + 3 * kModes * i);
   }
-  // P: each owned free node's 3 rows, its aggregate's columns (all on this rank)
+  return c;
+}
+
+/// P: each owned free node's 3 rows, its aggregate's columns (all on this rank).
+Mat prolongator(const FirstLevel& c) {
+  const RankFineLevel& f = *c.fine;
+  const PetscInt count = c.aggregates.count;
   const auto owned = static_cast<PetscInt>(f.rows.owned.size());
   std::vector<PetscInt> per_row(3 * f.rows.owned.size(), kModes), none(per_row.size(), 0);
-  Mat& P = petsc_->interpolation;
+  Mat P = nullptr;
   petsc_check(MatCreate(f.comm, &P), "MatCreate");
   petsc_check(MatSetType(P, MATAIJ), "MatSetType");
   petsc_check(MatSetSizes(P, 3 * owned, kModes * count, PETSC_DETERMINE, PETSC_DETERMINE),
@@ -135,13 +125,14 @@ AggregationRankStatics::Coarse AggregationRankStatics::make_prolongator() {
   }
   petsc_check(MatAssemblyBegin(P, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
   petsc_check(MatAssemblyEnd(P, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
-  return c;
+  return P;
 }
 
-void AggregationRankStatics::make_coarse_matrix(const Coarse& c, const ElementStiffness& elements) {
-  RankFineLevel& f = petsc_->level;
-  int rank = 0;
-  MPI_Comm_rank(f.comm, &rank);
+/// A_c's MPIAIJ, its 6 x 6 blocks preallocated.
+Mat preallocated_coarse(const FirstLevel& c) {
+  const RankFineLevel& f = *c.fine;
+  const MeshPartition& part = *c.part;
+  const int rank = c.rank;
   const PetscInt count = c.aggregates.count;
   // Preallocation in 6 x 6 blocks: an aggregate's row holds the aggregates of its nodes and
   // their neighbours here, and what other ranks' tetrahedra add at its shared nodes (each ghost
@@ -149,17 +140,17 @@ void AggregationRankStatics::make_coarse_matrix(const Coarse& c, const ElementSt
   // counts, as the ranks' K is preallocated, rank_petsc.cpp).
   std::vector<std::vector<PetscInt>> blocks(static_cast<std::size_t>(count));
   std::vector<PetscInt> scratch;
-  for (std::int32_t i = 0; i < part_.nodes(); ++i) {
+  for (std::int32_t i = 0; i < part.nodes(); ++i) {
     const std::int32_t a = c.aggregates.of[i];
     if (a < 0) continue;
     const int distinct = distinct_blocks(c.graph, c.base, i, scratch);
     blocks[a].insert(blocks[a].end(), scratch.begin(), scratch.begin() + distinct);
   }
-  std::vector<double> others(static_cast<std::size_t>(part_.shared), 0.0);
-  for (std::int32_t i = 0; i < part_.shared; ++i)
-    if (!part_.owns(i, rank) && c.base[i] >= 0)
+  std::vector<double> others(static_cast<std::size_t>(part.shared), 0.0);
+  for (std::int32_t i = 0; i < part.shared; ++i)
+    if (!part.owns(i, rank) && c.base[i] >= 0)
       others[i] = distinct_blocks(c.graph, c.base, i, scratch);
-  part_.halo->sum_to_roots(others.data(), others.data(), 1);
+  part.halo->sum_to_roots(others.data(), others.data(), 1);
   std::vector<PetscInt> diagonal(blocks.size(), 0), off(blocks.size(), 0);
   for (std::size_t a = 0; a < blocks.size(); ++a) {
     std::sort(blocks[a].begin(), blocks[a].end());
@@ -168,7 +159,7 @@ void AggregationRankStatics::make_coarse_matrix(const Coarse& c, const ElementSt
       ++(*b >= c.first && *b < c.first + count ? diagonal[a] : off[a]);
     std::vector<PetscInt>().swap(blocks[a]);
   }
-  for (std::int32_t i = 0; i < part_.shared; ++i)
+  for (std::int32_t i = 0; i < part.shared; ++i)
     if (c.aggregates.of[i] >= 0) {
       const auto extra = static_cast<PetscInt>(others[i]);
       diagonal[c.aggregates.of[i]] += extra;
@@ -178,7 +169,7 @@ void AggregationRankStatics::make_coarse_matrix(const Coarse& c, const ElementSt
     diagonal[a] = std::min(diagonal[a], count);
     off[a] = std::min(off[a], c.total - count);
   }
-  Mat& A = petsc_->coarse;
+  Mat A = nullptr;
   petsc_check(MatCreate(f.comm, &A), "MatCreate");
   petsc_check(MatSetType(A, MATAIJ), "MatSetType");
   petsc_check(MatSetSizes(A, kModes * count, kModes * count, PETSC_DETERMINE, PETSC_DETERMINE),
@@ -186,12 +177,19 @@ void AggregationRankStatics::make_coarse_matrix(const Coarse& c, const ElementSt
   petsc_check(MatSetBlockSize(A, kModes), "MatSetBlockSize");
   petsc_check(MatXAIJSetPreallocation(A, kModes, diagonal.data(), off.data(), nullptr, nullptr),
               "MatXAIJSetPreallocation");
+  return A;
+}
+
+/// A += P_e^T K_e P_e on this rank's tetrahedra and P_i^T S_i P_i on its boundary nodes,
+/// assembled, the dropped DOFs made identity rows.
+void add_galerkin_products(Mat A, const FirstLevel& c, const ElementStiffness& elements) {
+  const MeshPartition& part = *c.part;
   // P_e^T K_e P_e over this rank's tetrahedra, by the aggregates among each one's nodes
   using Block = Eigen::Map<const Eigen::Matrix<double, 3, kModes, Eigen::RowMajor>>;
   using Dense = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
   Dense KP, C;
-  for (std::size_t e = 0; e < part_.mesh.tets.size(); ++e) {
-    const Tetrahedron& t = part_.mesh.tets[e];
+  for (std::size_t e = 0; e < part.mesh.tets.size(); ++e) {
+    const Tetrahedron& t = part.mesh.tets[e];
     PetscInt at[4];
     int slot[4], used = 0;
     for (int k = 0; k < 4; ++k) {
@@ -217,8 +215,8 @@ void AggregationRankStatics::make_coarse_matrix(const Coarse& c, const ElementSt
                 "MatSetValuesBlocked");
   }
   // P_i^T S_i P_i at the boundary nodes (each copy holds the node's whole block: its owner's)
-  for (const BoundaryNode& node : f.op->boundary()) {
-    if (!part_.owns(node.node, rank) || c.base[node.node] < 0) continue;
+  for (const BoundaryNode& node : c.fine->op->boundary()) {
+    if (!part.owns(node.node, c.rank) || c.base[node.node] < 0) continue;
     double s[9];
     boundary_block(node, {.stiffness = 1.0, .springs = true}, s);
     const Block p(c.p.blocks.data() + 3 * kModes * node.node);
@@ -238,6 +236,11 @@ void AggregationRankStatics::make_coarse_matrix(const Coarse& c, const ElementSt
                                  nullptr, nullptr),
               "MatZeroRowsColumns");
   petsc_check(MatSetOption(A, MAT_SPD, PETSC_TRUE), "MatSetOption");
+}
+
+/// The rigid-body modes' coarse vectors as A's near-null space.
+void set_coarse_modes(Mat A, const FirstLevel& c) {
+  const PetscInt count = c.aggregates.count;
   // GAMG's near-null space on A_c: the rigid-body modes' coarse vectors, orthonormalized
   Vec modes[kModes];
   for (int j = 0; j < kModes; ++j) {
@@ -256,16 +259,41 @@ void AggregationRankStatics::make_coarse_matrix(const Coarse& c, const ElementSt
     petsc_check(VecNormalize(modes[j], nullptr), "VecNormalize");
   }
   MatNullSpace space = nullptr;
-  petsc_check(MatNullSpaceCreate(f.comm, PETSC_FALSE, kModes, modes, &space), "MatNullSpaceCreate");
+  petsc_check(MatNullSpaceCreate(c.fine->comm, PETSC_FALSE, kModes, modes, &space),
+              "MatNullSpaceCreate");
   petsc_check(MatSetNearNullSpace(A, space), "MatSetNearNullSpace");
   MatNullSpaceDestroy(&space);  // (the matrix holds it)
   for (Vec& v : modes) VecDestroy(&v);
 }
 
-void AggregationRankStatics::build_solver() {
+}  // namespace
+
+AggregationRankStatics::AggregationRankStatics(const MeshPartition& part, const SoilOperator& op,
+                                               const ElementStiffness& elements, MPI_Comm comm,
+                                               double tolerance)
+    : part_(part), tolerance_(tolerance) {
+  const auto start = std::chrono::steady_clock::now();
+  petsc_ = std::make_unique<Petsc>(part, op, comm);
   Petsc& p = *petsc_;
+  {
+    const FirstLevel c = first_level(part, p.level);  // (its graph freed at the end)
+    coarse_dofs_ = static_cast<long long>(kModes) * c.total;
+    fine_dofs_ = 3LL * p.level.rows.total;
+    p.interpolation = prolongator(c);
+    p.coarse = preallocated_coarse(c);
+    add_galerkin_products(p.coarse, c, elements);
+    set_coarse_modes(p.coarse, c);
+  }
   p.ksp =
       p.level.two_level_cg(p.coarse, p.interpolation, tolerance_, levels_, "aggregation multigrid");
+  set_stop_test(petsc_->ksp, op, petsc_->level.stop);
+  setup_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+AggregationRankStatics::~AggregationRankStatics() = default;
+
+void AggregationRankStatics::set_stop_check(std::function<void()> check) {
+  petsc_->level.stop.check = std::move(check);
 }
 
 std::string AggregationRankStatics::levels_detail() const {

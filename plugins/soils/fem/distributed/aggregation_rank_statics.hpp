@@ -56,10 +56,6 @@ class AggregationRankStatics final : public RankStatics {
 
  private:
   struct Petsc;
-  struct Coarse;
-  Coarse make_prolongator();
-  void make_coarse_matrix(const Coarse& c, const ElementStiffness& elements);
-  void build_solver();
 
   const MeshPartition& part_;
   std::unique_ptr<Petsc> petsc_;
