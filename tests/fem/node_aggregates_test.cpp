@@ -30,6 +30,25 @@ TEST(NodeAggregates, TheGraphIsTheTetrahedraNeighbours) {
   EXPECT_TRUE(std::is_sorted(g.of(0), g.of(0) + g.degree(0)));
 }
 
+TEST(NodeAggregates, EachNodesTetrahedraAndEachAggregatesMembers) {
+  const TetMesh m = kuhn_box(3, 2, 2, 1.0);
+  const NodeGraph tets = node_tetrahedra(m);
+  std::size_t listed = 0;
+  for (std::int32_t i = 0; i < m.node_count(); ++i) {
+    for (std::int32_t q = 0; q < tets.degree(i); ++q) {
+      const Tetrahedron& t = m.tets[static_cast<std::size_t>(tets.of(i)[q])];
+      EXPECT_NE(std::find(t.begin(), t.end(), i), t.end()) << i;
+    }
+    EXPECT_TRUE(std::is_sorted(tets.of(i), tets.of(i) + tets.degree(i)));
+    listed += static_cast<std::size_t>(tets.degree(i));
+  }
+  EXPECT_EQ(listed, 4 * m.tets.size());  // (every tetrahedron once at each of its nodes)
+  NodeAggregates a;
+  a.of = {1, -1, 0, 1, 0};
+  a.count = 2;
+  EXPECT_EQ(aggregate_members(a), (std::vector<std::int32_t>{2, 4, 0, 3}));
+}
+
 TEST(NodeAggregates, EveryCandidateInOneConnectedAggregate) {
   const TetMesh m = kuhn_box(6, 5, 4, 0.5);
   const NodeGraph g = node_graph(m);

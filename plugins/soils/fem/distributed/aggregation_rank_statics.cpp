@@ -180,52 +180,92 @@ Mat preallocated_coarse(const FirstLevel& c) {
   return A;
 }
 
-/// A += P_e^T K_e P_e on this rank's tetrahedra and P_i^T S_i P_i on its boundary nodes,
-/// assembled, the dropped DOFs made identity rows.
+using PBlock = Eigen::Map<const Eigen::Matrix<double, 3, kModes, Eigen::RowMajor>>;
+using CoarseBlock = Eigen::Matrix<double, kModes, kModes, Eigen::RowMajor>;
+
+/// One block row of A_c being summed: its column blocks and their 6 x 6 blocks.
+struct CoarseRow {
+  std::vector<PetscInt> columns;
+  std::vector<CoarseBlock, Eigen::aligned_allocator<CoarseBlock>> blocks;
+  CoarseBlock& at(PetscInt column) {
+    const auto k = std::find(columns.begin(), columns.end(), column) - columns.begin();
+    if (k == static_cast<std::ptrdiff_t>(columns.size())) {
+      columns.push_back(column);
+      blocks.push_back(CoarseBlock::Zero());
+    }
+    return blocks[static_cast<std::size_t>(k)];
+  }
+  /// Into A at block row `row` (added), then empty.
+  void add_to(Mat A, PetscInt row, std::vector<double>& packed) {
+    const std::size_t n = columns.size();
+    packed.resize(n * kModes * kModes);  // (6 rows of 6 n values, as MatSetValuesBlocked reads)
+    for (std::size_t j = 0; j < n; ++j)
+      for (int r = 0; r < kModes; ++r)
+        for (int q = 0; q < kModes; ++q) packed[(r * n + j) * kModes + q] = blocks[j](r, q);
+    petsc_check(MatSetValuesBlocked(A, 1, &row, static_cast<PetscInt>(n), columns.data(),
+                                    packed.data(), ADD_VALUES),
+                "MatSetValuesBlocked");
+    columns.clear();
+    blocks.clear();
+  }
+};
+
+/// Node k's part of its aggregate's row of A_c: P_k^T K_kl P_l over its tetrahedra (rows k of
+/// their element matrices) and P_k^T S_k P_k where it carries a spring block s (else null).
+void add_node_row(const FirstLevel& c, const ElementStiffness& elements, const NodeGraph& tets,
+                  std::int32_t k, const double* s, CoarseRow& row) {
+  const PBlock pk(c.p.blocks.data() + 3 * kModes * k);
+  for (std::int32_t q = 0; q < tets.degree(k); ++q) {
+    const auto e = static_cast<std::size_t>(tets.of(k)[q]);
+    const Tetrahedron& t = c.part->mesh.tets[e];
+    const int a = static_cast<int>(std::find(t.begin(), t.end(), k) - t.begin());
+    const Eigen::Matrix<double, 3, 12> K = elements.element_row(e, a);
+    for (int l = 0; l < 4; ++l)
+      if (c.base[t[l]] >= 0)
+        row.at(c.base[t[l]] / kModes).noalias() +=
+            pk.transpose() *
+            (K.middleCols<3>(3 * l) * PBlock(c.p.blocks.data() + 3 * kModes * t[l]));
+  }
+  if (s)
+    row.at(c.base[k] / kModes).noalias() +=
+        pk.transpose() * Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(s) * pk;
+}
+
+/// A = P^T (K + S) P: each owned aggregate's block row summed here from its nodes' rows of this
+/// rank's tetrahedra (one insertion per row), and each aggregated ghost's part of its owner's
+/// row from the tetrahedra here (every tetrahedron is on one rank: the sum over the ranks is
+/// P^T K P); P_k^T S_k P_k at the owned boundary nodes. Assembled, the dropped DOFs made
+/// identity rows.
 void add_galerkin_products(Mat A, const FirstLevel& c, const ElementStiffness& elements) {
   const MeshPartition& part = *c.part;
-  // P_e^T K_e P_e over this rank's tetrahedra, by the aggregates among each one's nodes
-  using Block = Eigen::Map<const Eigen::Matrix<double, 3, kModes, Eigen::RowMajor>>;
-  using Dense = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-  Dense KP, C;
-  for (std::size_t e = 0; e < part.mesh.tets.size(); ++e) {
-    const Tetrahedron& t = part.mesh.tets[e];
-    PetscInt at[4];
-    int slot[4], used = 0;
-    for (int k = 0; k < 4; ++k) {
-      slot[k] = -1;
-      if (c.base[t[k]] < 0) continue;
-      const PetscInt b = c.base[t[k]] / kModes;
-      slot[k] = static_cast<int>(std::find(at, at + used, b) - at);
-      if (slot[k] == used) at[used++] = b;
+  const NodeGraph tets = node_tetrahedra(part.mesh);
+  std::vector<const BoundaryNode*> spring(static_cast<std::size_t>(part.nodes()), nullptr);
+  for (const BoundaryNode& node : c.fine->op->boundary())  // (each copy holds the whole block)
+    if (part.owns(node.node, c.rank)) spring[node.node] = &node;
+  const auto spring_of = [&spring](std::int32_t k, double* s) -> const double* {
+    if (!spring[k]) return nullptr;
+    boundary_block(*spring[k], {.stiffness = 1.0, .springs = true}, s);
+    return s;
+  };
+  CoarseRow row;
+  std::vector<double> packed;
+  double s[9];
+  const std::vector<std::int32_t> members = aggregate_members(c.aggregates);
+  std::int64_t begin = 0;
+  for (std::int32_t a = 0; a < c.aggregates.count; ++a) {
+    std::int64_t end = begin;
+    while (end < static_cast<std::int64_t>(members.size()) && c.aggregates.of[members[end]] == a)
+      ++end;
+    for (std::int64_t m = begin; m < end; ++m)
+      add_node_row(c, elements, tets, members[m], spring_of(members[m], s), row);
+    row.add_to(A, c.first + a, packed);
+    begin = end;
+  }
+  for (std::int32_t k = 0; k < part.shared; ++k)  // (a ghost's part of its owner's row)
+    if (!part.owns(k, c.rank) && c.base[k] >= 0) {
+      add_node_row(c, elements, tets, k, nullptr, row);
+      row.add_to(A, c.base[k] / kModes, packed);
     }
-    if (used == 0) continue;
-    const Eigen::Matrix<double, 12, 12> K = elements.element_matrix(e);
-    KP = Dense::Zero(12, kModes * used);
-    for (int l = 0; l < 4; ++l)
-      if (slot[l] >= 0)
-        KP.middleCols<kModes>(kModes * slot[l]) +=
-            K.middleCols<3>(3 * l) * Block(c.p.blocks.data() + 3 * kModes * t[l]);
-    C = Dense::Zero(kModes * used, kModes * used);
-    for (int k = 0; k < 4; ++k)
-      if (slot[k] >= 0)
-        C.middleRows<kModes>(kModes * slot[k]) +=
-            Block(c.p.blocks.data() + 3 * kModes * t[k]).transpose() * KP.middleRows<3>(3 * k);
-    petsc_check(MatSetValuesBlocked(A, used, at, used, at, C.data(), ADD_VALUES),
-                "MatSetValuesBlocked");
-  }
-  // P_i^T S_i P_i at the boundary nodes (each copy holds the node's whole block: its owner's)
-  for (const BoundaryNode& node : c.fine->op->boundary()) {
-    if (!part.owns(node.node, c.rank) || c.base[node.node] < 0) continue;
-    double s[9];
-    boundary_block(node, {.stiffness = 1.0, .springs = true}, s);
-    const Block p(c.p.blocks.data() + 3 * kModes * node.node);
-    const Eigen::Matrix<double, kModes, kModes, Eigen::RowMajor> block =
-        p.transpose() * Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(s) * p;
-    const PetscInt b = c.base[node.node] / kModes;
-    petsc_check(MatSetValuesBlocked(A, 1, &b, 1, &b, block.data(), ADD_VALUES),
-                "MatSetValuesBlocked");
-  }
   petsc_check(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
   petsc_check(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
   // an aggregate's dropped DOFs carry nothing: identity rows, so that A_c stays definite

@@ -124,18 +124,18 @@ Eigen::VectorXd ElementStiffness::diagonal() const {
   return d;
 }
 
-Eigen::Matrix<double, 12, 12> ElementStiffness::element_matrix(std::size_t e) const {
+Eigen::Matrix<double, 3, 12> ElementStiffness::element_row(std::size_t e, int a) const {
   const TetGradients g = tet_gradients(mesh_, mesh_.tets[e]);
   const Lame& m = lame_[std::min<std::size_t>(mesh_.layer[e], lame_.size() - 1)];
-  Eigen::Matrix<double, 12, 12> k;
-  for (int a = 0; a < 4; ++a)
-    for (int b = 0; b < 4; ++b) {
-      const Eigen::Vector3d ga = g.gradient.col(a), gb = g.gradient.col(b);
-      k.block<3, 3>(3 * a, 3 * b) =
-          g.volume * (m.lambda * ga * gb.transpose() + m.mu * gb * ga.transpose() +
-                      m.mu * ga.dot(gb) * Eigen::Matrix3d::Identity());
-    }
-  return k;
+  const Eigen::Vector3d ga = g.gradient.col(a);
+  Eigen::Matrix<double, 3, 12> row;
+  for (int b = 0; b < 4; ++b) {
+    const Eigen::Vector3d gb = g.gradient.col(b);
+    row.middleCols<3>(3 * b) =
+        g.volume * (m.lambda * ga * gb.transpose() + m.mu * gb * ga.transpose() +
+                    m.mu * ga.dot(gb) * Eigen::Matrix3d::Identity());
+  }
+  return row;
 }
 
 void ElementStiffness::release() const {

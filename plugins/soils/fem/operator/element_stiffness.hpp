@@ -37,9 +37,9 @@ class ElementStiffness {
   void times(const double* x, double* y, unsigned threads) const;
   /// K's diagonal from the same elements.
   Eigen::VectorXd diagonal() const;
-  /// Tetrahedron e's 12 x 12 K_e (its nodes in the mesh's order, 3 DOFs each): the blocks
-  /// K_ab above, for a Galerkin product formed element by element.
-  Eigen::Matrix<double, 12, 12> element_matrix(std::size_t e) const;
+  /// Row a (0-3) of tetrahedron e's K_e: the blocks K_a0 to K_a3 above, its nodes in the mesh's
+  /// order, 3 DOFs each (a Galerkin product formed element by element).
+  Eigen::Matrix<double, 3, 12> element_row(std::size_t e, int a) const;
   /// Memory held [bytes]: the table, the sorted tetrahedra and the threads' copies of y.
   std::size_t bytes() const;
   /// Frees the sorted tetrahedra and the threads' copies (made again at the next product).

@@ -36,6 +36,32 @@ NodeGraph node_graph(const TetMesh& mesh) {
   return g;
 }
 
+NodeGraph node_tetrahedra(const TetMesh& mesh) {
+  const auto n = static_cast<std::int32_t>(mesh.node_count());
+  NodeGraph g;
+  g.start.assign(static_cast<std::size_t>(n) + 1, 0);
+  for (const Tetrahedron& t : mesh.tets)
+    for (const std::int32_t v : t) ++g.start[v + 1];
+  for (std::int32_t i = 0; i < n; ++i) g.start[i + 1] += g.start[i];
+  g.neighbours.resize(static_cast<std::size_t>(g.start[n]));
+  std::vector<std::int64_t> next(g.start.begin(), g.start.end() - 1);
+  for (std::size_t e = 0; e < mesh.tets.size(); ++e)  // (each list ascending: e in order)
+    for (const std::int32_t v : mesh.tets[e])
+      g.neighbours[next[v]++] = static_cast<std::int32_t>(e);
+  return g;
+}
+
+std::vector<std::int32_t> aggregate_members(const NodeAggregates& aggregates) {
+  std::vector<std::int64_t> next(static_cast<std::size_t>(aggregates.count) + 1, 0);
+  for (const std::int32_t a : aggregates.of)
+    if (a >= 0) ++next[a + 1];
+  for (std::size_t a = 1; a < next.size(); ++a) next[a] += next[a - 1];
+  std::vector<std::int32_t> members(static_cast<std::size_t>(next.back()));
+  for (std::size_t i = 0; i < aggregates.of.size(); ++i)
+    if (aggregates.of[i] >= 0) members[next[aggregates.of[i]]++] = static_cast<std::int32_t>(i);
+  return members;
+}
+
 NodeAggregates aggregate_nodes(const NodeGraph& graph, const std::vector<char>& candidate) {
   const auto n = static_cast<std::int32_t>(candidate.size());
   NodeAggregates a;
@@ -83,15 +109,11 @@ RigidProlongator rigid_prolongator(const Eigen::Matrix3Xd& nodes,
   p.blocks.assign(3 * kModes * n, 0.0);
   p.modes.assign(kModes * kModes * count, 0.0);
   p.dropped.assign(kModes * count, 0);
-  // each aggregate's nodes, ascending (a counting sort)
-  std::vector<std::int64_t> start(count + 1, 0);
+  const std::vector<std::int32_t> members = aggregate_members(aggregates);
+  std::vector<std::int64_t> start(count + 1, 0);  // (aggregate a's: start[a] to start[a + 1])
   for (const std::int32_t a : aggregates.of)
     if (a >= 0) ++start[a + 1];
   for (std::size_t a = 0; a < count; ++a) start[a + 1] += start[a];
-  std::vector<std::int32_t> members(static_cast<std::size_t>(start[count]));
-  std::vector<std::int64_t> next(start.begin(), start.end() - 1);
-  for (std::size_t i = 0; i < n; ++i)
-    if (aggregates.of[i] >= 0) members[next[aggregates.of[i]]++] = static_cast<std::int32_t>(i);
   Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr;
   qr.setThreshold(1e-9);  // (relative to the largest pivot: the modes are scaled to weigh alike)
   for (std::size_t a = 0; a < count; ++a) {

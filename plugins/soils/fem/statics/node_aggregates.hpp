@@ -29,7 +29,8 @@
 
 namespace rumble::fem {
 
-/// The mesh's node graph in compressed rows: node i's neighbours (itself excluded), ascending.
+/// A list per node in compressed rows, ascending: the mesh's node graph (node i's neighbours,
+/// itself excluded: node_graph) or each node's tetrahedra (node_tetrahedra).
 struct NodeGraph {
   std::vector<std::int64_t> start;       // per node, and one past the last
   std::vector<std::int32_t> neighbours;  // start[i] to start[i + 1]: node i's
@@ -41,6 +42,8 @@ struct NodeGraph {
 
 /// The neighbours of each node through the mesh's tetrahedra (about 60 B per node).
 NodeGraph node_graph(const TetMesh& mesh);
+/// The tetrahedra of each node (16 B per tetrahedron).
+NodeGraph node_tetrahedra(const TetMesh& mesh);
 
 /// Per node: its aggregate, or -1 where candidate[i] is 0 (such nodes join none and link none).
 struct NodeAggregates {
@@ -48,6 +51,8 @@ struct NodeAggregates {
   std::int32_t count = 0;
 };
 NodeAggregates aggregate_nodes(const NodeGraph& graph, const std::vector<char>& candidate);
+/// The aggregated nodes grouped by aggregate (aggregate 0's first), each group ascending.
+std::vector<std::int32_t> aggregate_members(const NodeAggregates& aggregates);
 
 /// Six coarse DOFs per aggregate: aggregate a's are 6 a to 6 a + 5.
 constexpr int kModes = 6;
