@@ -154,7 +154,7 @@ void FemSoil::accept_layout_distributed(const std::vector<rumble::Footprint>& fo
     d.lay_out(d.root() ? &mesh_ : nullptr, settings_, footprints, host_.threads(),
               refine_on_ranks(), pml ? &*pml : nullptr);
   });
-  // (statics.solver gamg or geometric named: on the ranks at any size, as asked)
+  // (statics.solver gamg, geometric or aggregation named: on the ranks at any size, as asked)
   statics_on_root_ =
       !settings_.statics_named && d.whole_dofs() <= rumble::fem::StaticSolver::kFactorLimit;
   if (statics_on_root_)  // (the whole operator for the factor: small below its limit)

@@ -113,6 +113,11 @@ void FemSoil::build_here(const std::vector<rumble::Footprint>& footprints, doubl
       return coarse_level(coarse_mesh_, mesh_, plan_.refine, settings_, footprints_,
                           op_->soil().fixed());
     });
+  if (petsc && settings_.statics_named && settings_.aggregation_statics)
+    host_.info(
+        "fem: statics.solver \"aggregation\" is the ranks' solver under mpirun; one process "
+        "solves by GAMG, set up from K's own rows (no copy of K either way: docs/fem-soil.md "
+        "section 8)");
   far_field_.reset();  // (built at the first static solve: validate needs none)
   if (settings_.boundary.spring_model == rumble::fem::SpringModel::kHalfSpace &&
       !settings_.layers.empty() && settings_.boundary.springs())
