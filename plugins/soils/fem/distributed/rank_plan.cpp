@@ -18,9 +18,9 @@ void plan_memory(RankPlan& p, const PlanChoices& choices) {
     p.root_bytes = memory::run_peak_bytes(3.0 * p.nodes);
     return;
   }
-  // On many ranks the statics run on the ranks (a multigrid of three) above the factor
-  // limit, or at any size when named: each rank its part's; below it rank 0 factors the whole
-  // (small) operator and frees it.
+  // On many ranks the statics run on the ranks (GAMG, the geometric or the aggregation multigrid)
+  // above the factor limit, or at any size when named: each rank its part's; below it rank 0
+  // factors the whole (small) operator and frees it.
   const double whole = 3.0 * p.nodes;
   const bool on_ranks = choices.named || whole > memory::kFactorLimitDofs;
   const double per_nonzero = choices.geometric     ? memory::kGeometricRankBytesPerNonzero
