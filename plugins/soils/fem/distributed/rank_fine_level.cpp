@@ -96,12 +96,8 @@ template PetscErrorCode RankFineLevel::multiply<true>(Mat, Vec, Vec);
 
 PetscErrorCode RankFineLevel::get_diagonal(Mat a, Vec d) {
   RankFineLevel* p = nullptr;
-  PetscScalar* out = nullptr;
   PetscCall(MatShellGetContext(a, &p));
-  PetscCall(VecGetArray(d, &out));
-  std::copy(p->diagonal.data(), p->diagonal.data() + p->diagonal.size(), out);
-  PetscCall(VecRestoreArray(d, &out));
-  return 0;
+  return copy_into(p->diagonal, d);
 }
 
 KSP RankFineLevel::two_level_cg(Mat coarse, Mat interpolation, double& tolerance, int& levels,

@@ -37,12 +37,8 @@ struct GeometricStaticSolver::Petsc {
   /// The diagonal of K + S (1 on held DOFs): the fine level's MATOP_GET_DIAGONAL, for Jacobi.
   static PetscErrorCode get_diagonal(Mat a, Vec d) {
     Petsc* p = nullptr;
-    PetscScalar* out = nullptr;
     PetscCall(MatShellGetContext(a, &p));
-    PetscCall(VecGetArray(d, &out));
-    std::copy(p->diagonal.data(), p->diagonal.data() + p->diagonal.size(), out);
-    PetscCall(VecRestoreArray(d, &out));
-    return 0;
+    return copy_into(p->diagonal, d);
   }
   std::shared_ptr<PetscSession> session = PetscSession::get();
   const SoilOperator* op = nullptr;

@@ -125,4 +125,12 @@ PetscErrorCode held_stepped_product(const SoilOperator& op, Vec x, Vec y, Eigen:
   return 0;
 }
 
+PetscErrorCode copy_into(const Eigen::VectorXd& from, Vec d) {
+  PetscScalar* out = nullptr;
+  PetscCall(VecGetArray(d, &out));
+  std::copy(from.data(), from.data() + from.size(), out);
+  PetscCall(VecRestoreArray(d, &out));
+  return 0;
+}
+
 }  // namespace rumble::fem

@@ -51,6 +51,10 @@ void set_stop_test(KSP ksp, const SoilOperator& op, PetscStopTest& stop);
 Eigen::VectorXd solve_static(KSP ksp, Vec x, Vec b, PetscStopTest& stop, const Eigen::VectorXd& f,
                              Eigen::VectorXd& last, int& iterations, const char* method);
 
+/// d = the values of `from` (of d's local size): a shell's MATOP_GET_DIAGONAL from a diagonal it
+/// keeps (the fine levels of the geometric and aggregation multigrids). Returns PETSc's error.
+PetscErrorCode copy_into(const Eigen::VectorXd& from, Vec d);
+
 /// y = (K + S) x by op's threaded product, K as the step reads it; identity rows and columns on
 /// op's held DOFs, as the assembled matrices have. The operator's product is 0 on a held node's
 /// rows but reads x there, so x's held entries are taken out first: the product is then
