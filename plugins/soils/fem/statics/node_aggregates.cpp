@@ -139,11 +139,19 @@ RigidProlongator rigid_prolongator(const Eigen::Matrix3Xd& nodes,
     qr.compute(B);
     const Eigen::Index r = qr.rank();
     const Eigen::MatrixXd Q = qr.householderQ() * Eigen::MatrixXd::Identity(3 * m, r);
-    // B = Q R Pi^T: mode j is Q times column j of R Pi^T (its first r rows)
+    // B = Q R Pi^T: B's column j is Q times column j of R Pi^T (its first r rows)
     const Eigen::MatrixXd R = qr.matrixR().topRows(r).triangularView<Eigen::Upper>();
-    const Eigen::MatrixXd modes = R * qr.colsPermutation().transpose();
+    // the whole mesh's rigid-body modes (about the origin) in B's columns: a translation t is
+    // t; a rotation w is w x c plus the rotation (h w) about c
+    Eigen::Matrix<double, kModes, kModes> global = Eigen::Matrix<double, kModes, kModes>::Zero();
+    for (int j = 0; j < 3; ++j) {
+      global(j, j) = 1.0;
+      const Eigen::Vector3d w = Eigen::Vector3d::Unit(j);
+      global.block<3, 1>(0, 3 + j) = w.cross(c);
+      global(3 + j, 3 + j) = h;
+    }
     Eigen::Map<Eigen::Matrix<double, kModes, kModes>> out(p.modes.data() + kModes * kModes * a);
-    out.topRows(r) = modes;
+    out.topRows(r) = R * qr.colsPermutation().transpose() * global;
     for (Eigen::Index k = r; k < kModes; ++k) p.dropped[kModes * a + k] = 1;
     for (Eigen::Index k = 0; k < m; ++k)
       for (int row = 0; row < 3; ++row)

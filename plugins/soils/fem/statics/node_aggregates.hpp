@@ -62,8 +62,9 @@ struct RigidProlongator {
   /// Per node: its 3 x 6 block of P (row-major: component, then the aggregate's coarse DOF);
   /// zeros on a node in no aggregate.
   std::vector<double> blocks;
-  /// Per aggregate: R_a with its columns in the modes' order (6 x 6, column-major): mode j on
-  /// the aggregate is Q_a times column j, the coarse vector of the rigid-body modes.
+  /// Per aggregate (6 x 6, column-major): the coarse vector of the whole mesh's rigid-body mode
+  /// j (the translations along x, y, z, then the rotations about the axes through the origin)
+  /// is column j on every aggregate, Q_a times it that mode on the aggregate's nodes.
   std::vector<double> modes;
   /// Per coarse DOF: 1 where the aggregate could not carry it (its column of P is zero).
   std::vector<char> dropped;
