@@ -61,6 +61,21 @@ struct MeshPartition {
   CoarseNames names;
 };
 
+/// The mesh's dual graph: two tetrahedra adjacent where they share a face, in compressed rows
+/// (tetrahedron e's neighbours are adjacent[start[e]] to adjacent[start[e + 1] - 1]).
+struct FaceGraph {
+  std::vector<std::int32_t> start;
+  std::vector<std::int32_t> adjacent;
+};
+
+/// The graph PT-Scotch splits (partition_mesh, partition_on_one_process): the one PETSc's
+/// DMPlexCreatePartitionerGraph makes of a DMPlex without faces, each row in its order (the
+/// tetrahedra around t[0] in ascending order, then those around t[1] not listed yet, ...), since
+/// PT-Scotch's split depends on the order of the edges. Made from each node's tetrahedra: about
+/// a second at 1.0e6 DOFs, where PETSc's took 29.6 s (docs/fem-soil.md §8, "How the mesh is
+/// split").
+FaceGraph face_graph(const TetMesh& mesh);
+
 /// The partition's name in the log: which partitioner DMPlex used.
 const char* partitioner_name();
 
@@ -70,13 +85,10 @@ const char* partitioner_name();
 /// tetrahedra (naming the counts and the fix), and when PETSc fails.
 MeshPartition partition_mesh(MPI_Comm comm, const TetMesh* whole, bool named = false);
 
-/// Each tetrahedron's part in a split of `whole` into `parts` parts on this one process, by the
-/// partitioner partition_mesh's DMPlexDistribute uses, on the same graph (the tetrahedra sharing
-/// a face, DMPlexCreatePartitionerGraph) from the same seed, nothing distributed: for `rumble
-/// mesh --ranks N` (split_plan.hpp). On tests/mpi/fem_small.json its 2 and 3 parts were the
-/// runs' splits exactly (the same tetrahedra per part, nodes and ghosts); PETSc does not promise
-/// that a graph held by one of N ranks is split as on one process, so a test checks it. Needs a
-/// PETSc session (statics/petsc_session.hpp). Throws std::runtime_error when PETSc fails.
+/// Each tetrahedron's part in a split of `whole` into `parts` parts on this one process: the
+/// split partition_mesh hands to DMPlexDistribute (PT-Scotch on face_graph from the same seed,
+/// on rank 0 alone), for `rumble mesh --ranks N` (split_plan.hpp). Needs a PETSc session
+/// (statics/petsc_session.hpp). Throws std::runtime_error when PETSc fails.
 std::vector<int> partition_on_one_process(const TetMesh& whole, int parts);
 
 }  // namespace rumble::fem
