@@ -369,29 +369,43 @@ void hand_split(DM dm, Split& split) {
 
 }  // namespace
 
+namespace {
+
+// The tetrahedron other than e on the face of t opposite its node k (-1: on the surface): the one
+// among the tetrahedra of the face's node with the fewest that holds the face's other two nodes.
+std::int32_t across(const TetMesh& m, const NodeGraph& tets, std::size_t e, int k) {
+  const Tetrahedron& t = m.tets[e];
+  std::array<std::int32_t, 3> face{t[(k + 1) % 4], t[(k + 2) % 4], t[(k + 3) % 4]};
+  std::sort(face.begin(), face.end(),
+            [&](std::int32_t a, std::int32_t b) { return tets.degree(a) < tets.degree(b); });
+  const auto holds = [](const Tetrahedron& u, std::int32_t v) {
+    return u[0] == v || u[1] == v || u[2] == v || u[3] == v;
+  };
+  for (std::int32_t q = 0; q < tets.degree(face[0]); ++q) {
+    const std::int32_t f = tets.of(face[0])[q];
+    if (static_cast<std::size_t>(f) != e && holds(m.tets[f], face[1]) && holds(m.tets[f], face[2]))
+      return f;
+  }
+  return -1;
+}
+
+}  // namespace
+
 FaceGraph face_graph(const TetMesh& m) {
   const NodeGraph tets = node_tetrahedra(m);
   FaceGraph g;
-  std::vector<std::int32_t>& start = g.start;
-  std::vector<std::int32_t>& adjacent = g.adjacent;
-  start.assign(m.tets.size() + 1, 0);
-  adjacent.reserve(4 * m.tets.size());
-  const auto shared = [](const Tetrahedron& a, const Tetrahedron& b) {
-    int n = 0;
-    for (const std::int32_t v : a) n += std::find(b.begin(), b.end(), v) != b.end() ? 1 : 0;
-    return n;
-  };
+  g.start.assign(m.tets.size() + 1, 0);
+  g.adjacent.reserve(4 * m.tets.size());
   for (std::size_t e = 0; e < m.tets.size(); ++e) {
-    const Tetrahedron& t = m.tets[e];
-    for (const std::int32_t v : t)
-      for (std::int32_t q = 0; q < tets.degree(v); ++q) {
-        const std::int32_t f = tets.of(v)[q];
-        if (static_cast<std::size_t>(f) == e || shared(t, m.tets[f]) != 3 ||
-            std::find(adjacent.begin() + start[e], adjacent.end(), f) != adjacent.end())
-          continue;
-        adjacent.push_back(f);
-      }
-    start[e + 1] = static_cast<std::int32_t>(adjacent.size());
+    // PETSc's order: the neighbours that hold t[0] (across the faces opposite t[1], t[2], t[3])
+    // ascending, as t[0]'s tetrahedra list them; then the one across the face opposite t[0].
+    std::array<std::int32_t, 3> holding{across(m, tets, e, 1), across(m, tets, e, 2),
+                                        across(m, tets, e, 3)};
+    std::sort(holding.begin(), holding.end());
+    for (const std::int32_t f : holding)
+      if (f >= 0) g.adjacent.push_back(f);
+    if (const std::int32_t f = across(m, tets, e, 0); f >= 0) g.adjacent.push_back(f);
+    g.start[e + 1] = static_cast<std::int32_t>(g.adjacent.size());
   }
   return g;
 }

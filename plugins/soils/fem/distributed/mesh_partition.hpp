@@ -71,9 +71,8 @@ struct FaceGraph {
 /// The graph PT-Scotch splits (partition_mesh, partition_on_one_process): the one PETSc's
 /// DMPlexCreatePartitionerGraph makes of a DMPlex without faces, each row in its order (the
 /// tetrahedra around t[0] in ascending order, then those around t[1] not listed yet, ...), since
-/// PT-Scotch's split depends on the order of the edges. Made from each node's tetrahedra: about
-/// a second at 1.0e6 DOFs, where PETSc's took 29.6 s (docs/fem-soil.md §8, "How the mesh is
-/// split").
+/// PT-Scotch's split depends on the order of the edges. Made from each node's tetrahedra: 0.8 s
+/// at 1.0e6 DOFs, where PETSc's took 29.6 s (docs/fem-soil.md §8, "The split's time").
 FaceGraph face_graph(const TetMesh& mesh);
 
 /// The partition's name in the log: which partitioner DMPlex used.
