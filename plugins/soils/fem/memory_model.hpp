@@ -5,6 +5,7 @@
 // beside what it measured). Every size is estimated before it is spent.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 
 namespace rumble::fem::memory {
@@ -101,6 +102,22 @@ inline constexpr double kAggregationRankBytesPerNonzero = 0.0;
 /// 24 B per node and 16 B per tetrahedron, about 5.5 tetrahedra per node (docs/fem-soil.md §8,
 /// "What rank 0 keeps").
 inline constexpr double kMeshBytesPerDof = 40.0;
+
+/// Rank 0's peak while it meshes the whole mesh and splits it over N ranks, before any rank builds
+/// its share, per DOF of that mesh [bytes] (docs/fem-soil.md §8, "Planning the ranks"): gmsh's
+/// meshing, 540 B; the split (the whole mesh as a DMPlex, what travels with each of its points,
+/// PT-Scotch's graph, and rank 0's part received back) 405 B + 312 B / N. Fitted to the stiff
+/// example at 1.0e6 DOFs (release, 2026-12-07): from the mesh cache 561, 498 and 483 B per DOF
+/// on 2, 3 and 4 ranks; meshed by gmsh on 4 ranks 540 B.
+inline constexpr double kRootMeshingBytesPerDof = 540.0;
+inline constexpr double kRootSplitBytesPerDof = 405.0;
+inline constexpr double kRootSplitPartBytesPerDof = 312.0;  // (divided by N)
+
+/// Rank 0's peak through the meshing and the split of a mesh of `dofs` over `ranks` [bytes].
+inline double root_split_bytes(double dofs, int ranks) {
+  return kProcessBytes + dofs * std::max(kRootMeshingBytesPerDof,
+                                         kRootSplitBytesPerDof + kRootSplitPartBytesPerDof / ranks);
+}
 
 /// Nonzeros of K per DOF on the meshes measured (about 14 neighbours per node, 3 x 3 blocks).
 inline constexpr double kNonzerosPerDof = 45.0;

@@ -36,9 +36,11 @@ void plan_memory(RankPlan& p, const PlanChoices& choices) {
   // refines the whole mesh for the factor: the operator's bytes per DOF count it).
   const double root_statics =
       on_ranks ? share_statics : memory::kHeldBytesPerDof * whole + memory::factor_bytes(whole);
-  p.root_bytes = memory::kProcessBytes + share +
-                 memory::kMeshBytesPerDof * whole / std::pow(8.0, choices.refine) +
+  const double meshed = whole / std::pow(8.0, choices.refine);  // (rank 0's mesh: the coarse one)
+  p.root_bytes = memory::kProcessBytes + share + memory::kMeshBytesPerDof * meshed +
                  std::max(root_statics, share_steps);
+  // Before that, its meshing and the split (the larger above 1e5 DOFs without mesh.refine).
+  p.root_bytes = std::max(p.root_bytes, memory::root_split_bytes(meshed, p.ranks));
 }
 
 }  // namespace
@@ -79,7 +81,7 @@ std::string describe(const RankPlan& p, const std::string& source) {
     << " DOFs, ghosts included); a halo of about " << p.ghosts << " ghost nodes, "
     << p.halo_bytes / 1024.0 << " KiB exchanged per step (" << kHaloBytesPerGhost
     << " B per ghost; a surface-to-volume estimate, not a split); memory at the peak about "
-    << p.root_bytes / 1e9 << " GB on rank 0 (it holds the "
+    << p.root_bytes / 1e9 << " GB on rank 0 (it meshes, splits and holds the "
     << (p.refine > 0 ? "coarse mesh, each rank refining its part" : "whole mesh") << ") and "
     << p.rank_bytes / 1e9
     << " GB on each other rank (estimates: docs/fem-soil.md, \"Planning the ranks\")";

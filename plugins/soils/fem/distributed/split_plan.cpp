@@ -54,7 +54,7 @@ std::string describe(const MeshSplit& split, const RankPlan& plan) {
     << " DOFs); a halo of " << split.ghosts << " ghost nodes, " << plan.halo_bytes / 1024.0
     << " KiB exchanged per step (" << kHaloBytesPerGhost
     << " B per ghost); memory at the peak about " << plan.root_bytes / 1e9
-    << " GB on rank 0 (it holds the whole mesh) and " << plan.rank_bytes / 1e9
+    << " GB on rank 0 (it meshes, splits and holds the whole mesh) and " << plan.rank_bytes / 1e9
     << " GB on the largest other rank (estimates from the split: docs/fem-soil.md, \"Planning "
        "the ranks\")";
   return m.str();
