@@ -106,12 +106,12 @@ inline constexpr double kMeshBytesPerDof = 40.0;
 /// Rank 0's peak while it meshes the whole mesh and splits it over N ranks, before any rank builds
 /// its share, per DOF of that mesh [bytes] (docs/fem-soil.md §8, "Planning the ranks"): gmsh's
 /// meshing, 540 B; the split (the whole mesh as a DMPlex, what travels with each of its points,
-/// PT-Scotch's graph, and rank 0's part received back) 405 B + 312 B / N. Fitted to the stiff
-/// example at 1.0e6 DOFs (release, 2026-12-07): from the mesh cache 561, 498 and 483 B per DOF
-/// on 2, 3 and 4 ranks; meshed by gmsh on 4 ranks 540 B.
+/// PT-Scotch's graph, and rank 0's part received back) 352 B + 228 B / N. Measured on the stiff
+/// example at 1.0e6 DOFs (release, 2026-12-07): meshed by gmsh on 4 ranks 540 B; from the mesh
+/// cache 466 and 428 B on 2 and 3 ranks (the split's), 436 B on 4 (the cache's read).
 inline constexpr double kRootMeshingBytesPerDof = 540.0;
-inline constexpr double kRootSplitBytesPerDof = 405.0;
-inline constexpr double kRootSplitPartBytesPerDof = 312.0;  // (divided by N)
+inline constexpr double kRootSplitBytesPerDof = 352.0;
+inline constexpr double kRootSplitPartBytesPerDof = 228.0;  // (divided by N)
 
 /// Rank 0's peak through the meshing and the split of a mesh of `dofs` over `ranks` [bytes].
 inline double root_split_bytes(double dofs, int ranks) {

@@ -98,9 +98,8 @@ void add_faces(unsigned codes, int ground, const Tetrahedron& t, MeshPartition& 
 }
 
 struct PlexPoints {
-  int width = kPointInts;      // ints per point
-  std::vector<int> ints;       // `width` per point of the distributed DMPlex
-  std::vector<double> coords;  // 3 per point (a node's coordinates, 0 for a tetrahedron)
+  int width = kPointInts;  // ints per point
+  std::vector<int> ints;   // `width` per point of the distributed DMPlex
 };
 
 // Rank 0's mesh as a DMPlex on comm, every point on rank 0 (not interpolated: tetrahedra and
@@ -126,12 +125,10 @@ DM whole_plex(MPI_Comm comm, const TetMesh* whole) {
 PlexPoints migrate_points(PetscSF migration, const TetMesh* whole, const CoarseNames* names,
                           int width, PetscInt points) {
   std::vector<int> root_ints;
-  std::vector<double> root_coords;
   if (whole != nullptr) {
     const auto tets = static_cast<std::int64_t>(whole->tets.size());
     const std::int64_t all = tets + whole->node_count();
     root_ints.assign(static_cast<std::size_t>(width * all), -1);
-    root_coords.assign(static_cast<std::size_t>(3 * all), 0.0);
     for (std::int64_t p = 0; p < all; ++p) root_ints[width * p] = static_cast<int>(p);
     const auto [faces, ground] = face_codes(*whole);
     for (std::int64_t e = 0; e < tets; ++e) {
@@ -144,28 +141,16 @@ PlexPoints migrate_points(PetscSF migration, const TetMesh* whole, const CoarseN
       std::copy_n(names->edge[e].begin(), 6, cell + kPointInts);
       std::copy_n(names->face[e].begin(), 4, cell + kPointInts + 6);
     }
-    for (std::int64_t g = 0; g < whole->node_count(); ++g)
-      for (int c = 0; c < 3; ++c) root_coords[3 * (tets + g) + c] = whole->nodes(c, g);
   }
-  PlexPoints out{width, std::vector<int>(static_cast<std::size_t>(width * points), -1),
-                 std::vector<double>(static_cast<std::size_t>(3 * points), 0.0)};
-  MPI_Datatype ints = MPI_DATATYPE_NULL, coords = MPI_DATATYPE_NULL;
+  PlexPoints out{width, std::vector<int>(static_cast<std::size_t>(width * points), -1)};
+  MPI_Datatype ints = MPI_DATATYPE_NULL;
   MPI_Type_contiguous(width, MPI_INT, &ints);
-  MPI_Type_contiguous(3, MPI_DOUBLE, &coords);
   MPI_Type_commit(&ints);
-  MPI_Type_commit(&coords);
   petsc_check(PetscSFBcastBegin(migration, ints, root_ints.data(), out.ints.data(), MPI_REPLACE),
               "PetscSFBcastBegin");
   petsc_check(PetscSFBcastEnd(migration, ints, root_ints.data(), out.ints.data(), MPI_REPLACE),
               "PetscSFBcastEnd");
-  petsc_check(
-      PetscSFBcastBegin(migration, coords, root_coords.data(), out.coords.data(), MPI_REPLACE),
-      "PetscSFBcastBegin");
-  petsc_check(
-      PetscSFBcastEnd(migration, coords, root_coords.data(), out.coords.data(), MPI_REPLACE),
-      "PetscSFBcastEnd");
   MPI_Type_free(&ints);
-  MPI_Type_free(&coords);
   return out;
 }
 
@@ -240,9 +225,28 @@ std::vector<ForestLeaf> halo_leaves(DM dist, const std::vector<PartNode>& nodes,
   return leaves;
 }
 
-// The part's tetrahedra in rank 0's order, in local node numbers, and its nodes' coordinates.
-void part_mesh(const PlexPoints& data, std::int64_t tets, MeshPartition& part,
-               const std::vector<PartNode>& nodes, const std::vector<std::int32_t>& node_of_point) {
+// The part's nodes' coordinates [m], as DMPlexDistribute moved them with their vertices (rank
+// 0's own, copied: the same to the bit; sending them again with the points' data cost 24 B per
+// point of the mesh on rank 0, tetrahedra included, and as much again for each part).
+Eigen::Matrix3Xd part_coordinates(DM dist, const std::vector<PartNode>& nodes) {
+  Vec local = nullptr;
+  PetscSection section = nullptr;
+  petsc_check(DMGetCoordinatesLocal(dist, &local), "DMGetCoordinatesLocal");
+  petsc_check(DMGetCoordinateSection(dist, &section), "DMGetCoordinateSection");
+  const PetscScalar* values = nullptr;
+  petsc_check(VecGetArrayRead(local, &values), "VecGetArrayRead");
+  Eigen::Matrix3Xd xyz(3, static_cast<Eigen::Index>(nodes.size()));
+  for (std::size_t k = 0; k < nodes.size(); ++k) {
+    PetscInt offset = 0;
+    petsc_check(PetscSectionGetOffset(section, nodes[k].point, &offset), "PetscSectionGetOffset");
+    for (int c = 0; c < 3; ++c) xyz(c, static_cast<Eigen::Index>(k)) = values[offset + c];
+  }
+  petsc_check(VecRestoreArrayRead(local, &values), "VecRestoreArrayRead");
+  return xyz;
+}
+
+// The part's tetrahedra in rank 0's order, in local node numbers.
+void part_mesh(const PlexPoints& data, std::int64_t tets, MeshPartition& part) {
   std::vector<std::array<int, kNamedPointInts>> cells;
   for (std::size_t p = 0; p < data.ints.size() / data.width; ++p)
     if (data.ints[data.width * p] < tets) {
@@ -251,10 +255,6 @@ void part_mesh(const PlexPoints& data, std::int64_t tets, MeshPartition& part,
       cells.push_back(c);
     }
   std::sort(cells.begin(), cells.end());
-  part.mesh.nodes.resize(3, static_cast<Eigen::Index>(nodes.size()));
-  for (std::size_t k = 0; k < nodes.size(); ++k)
-    for (int c = 0; c < 3; ++c)
-      part.mesh.nodes(c, static_cast<Eigen::Index>(k)) = data.coords[3 * node_of_point[k] + c];
   for (const auto& c : cells) {
     Tetrahedron t{};
     for (int a = 0; a < 4; ++a) t[a] = part.local_of(c[1 + a]);
@@ -439,18 +439,17 @@ MeshPartition partition_mesh(MPI_Comm comm, const TetMesh* whole, bool named) {
   names.reset();
   PetscSFDestroy(&migration);
   const std::vector<PartNode> nodes = part_nodes(dist, data, part.global_tetrahedra, rank);
-  std::vector<std::int32_t> node_of_point(nodes.size());
   for (std::size_t k = 0; k < nodes.size(); ++k) {
     part.global.push_back(nodes[k].global);
     part.owner.push_back(nodes[k].owner);
-    node_of_point[k] = static_cast<std::int32_t>(nodes[k].point - start);
     if (nodes[k].shared) part.shared = static_cast<std::int32_t>(k + 1);
   }
+  part.mesh.nodes = part_coordinates(dist, nodes);
   part.by_global.resize(nodes.size());
   for (std::size_t k = 0; k < nodes.size(); ++k) part.by_global[k] = static_cast<std::int32_t>(k);
   std::sort(part.by_global.begin(), part.by_global.end(),
             [&](std::int32_t a, std::int32_t b) { return part.global[a] < part.global[b]; });
-  part_mesh(data, part.global_tetrahedra, part, nodes, node_of_point);
+  part_mesh(data, part.global_tetrahedra, part);
   if (named)
     part.names = {.node = part.global,
                   .tet = part.tet_global,
