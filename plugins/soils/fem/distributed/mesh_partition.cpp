@@ -367,12 +367,9 @@ void hand_split(DM dm, Split& split) {
   split = {};  // (the partitioner keeps a copy)
 }
 
-}  // namespace
-
-namespace {
-
-// The tetrahedron other than e on the face of t opposite its node k (-1: on the surface): the one
-// among the tetrahedra of the face's node with the fewest that holds the face's other two nodes.
+// The tetrahedron other than e on the face of e opposite its node k (-1: the face is on the
+// surface), looked for among the tetrahedra around whichever of the face's three nodes has the
+// fewest: the one that also holds the other two.
 std::int32_t across(const TetMesh& m, const NodeGraph& tets, std::size_t e, int k) {
   const Tetrahedron& t = m.tets[e];
   std::array<std::int32_t, 3> face{t[(k + 1) % 4], t[(k + 2) % 4], t[(k + 3) % 4]};
