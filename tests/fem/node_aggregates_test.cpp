@@ -46,7 +46,9 @@ TEST(NodeAggregates, EachNodesTetrahedraAndEachAggregatesMembers) {
   NodeAggregates a;
   a.of = {1, -1, 0, 1, 0};
   a.count = 2;
-  EXPECT_EQ(aggregate_members(a), (std::vector<std::int32_t>{2, 4, 0, 3}));
+  const NodeGraph members = aggregate_members(a);
+  EXPECT_EQ(members.start, (std::vector<std::int64_t>{0, 2, 4}));
+  EXPECT_EQ(members.neighbours, (std::vector<std::int32_t>{2, 4, 0, 3}));
 }
 
 TEST(NodeAggregates, EveryCandidateInOneConnectedAggregate) {

@@ -250,16 +250,11 @@ void add_galerkin_products(Mat A, const FirstLevel& c, const ElementStiffness& e
   CoarseRow row;
   std::vector<double> packed;
   double s[9];
-  const std::vector<std::int32_t> members = aggregate_members(c.aggregates);
-  std::int64_t begin = 0;
+  const NodeGraph members = aggregate_members(c.aggregates);
   for (std::int32_t a = 0; a < c.aggregates.count; ++a) {
-    std::int64_t end = begin;
-    while (end < static_cast<std::int64_t>(members.size()) && c.aggregates.of[members[end]] == a)
-      ++end;
-    for (std::int64_t m = begin; m < end; ++m)
-      add_node_row(c, elements, tets, members[m], spring_of(members[m], s), row);
+    for (std::int32_t m = 0; m < members.degree(a); ++m)
+      add_node_row(c, elements, tets, members.of(a)[m], spring_of(members.of(a)[m], s), row);
     row.add_to(A, c.first + a, packed);
-    begin = end;
   }
   for (std::int32_t k = 0; k < part.shared; ++k)  // (a ghost's part of its owner's row)
     if (!part.owns(k, c.rank) && c.base[k] >= 0) {

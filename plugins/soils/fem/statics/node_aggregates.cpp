@@ -51,15 +51,18 @@ NodeGraph node_tetrahedra(const TetMesh& mesh) {
   return g;
 }
 
-std::vector<std::int32_t> aggregate_members(const NodeAggregates& aggregates) {
-  std::vector<std::int64_t> next(static_cast<std::size_t>(aggregates.count) + 1, 0);
+NodeGraph aggregate_members(const NodeAggregates& aggregates) {
+  NodeGraph g;
+  g.start.assign(static_cast<std::size_t>(aggregates.count) + 1, 0);
   for (const std::int32_t a : aggregates.of)
-    if (a >= 0) ++next[a + 1];
-  for (std::size_t a = 1; a < next.size(); ++a) next[a] += next[a - 1];
-  std::vector<std::int32_t> members(static_cast<std::size_t>(next.back()));
-  for (std::size_t i = 0; i < aggregates.of.size(); ++i)
-    if (aggregates.of[i] >= 0) members[next[aggregates.of[i]]++] = static_cast<std::int32_t>(i);
-  return members;
+    if (a >= 0) ++g.start[a + 1];
+  for (std::size_t a = 1; a < g.start.size(); ++a) g.start[a] += g.start[a - 1];
+  g.neighbours.resize(static_cast<std::size_t>(g.start.back()));
+  std::vector<std::int64_t> next(g.start.begin(), g.start.end() - 1);
+  for (std::size_t i = 0; i < aggregates.of.size(); ++i)  // (each list ascending: i in order)
+    if (aggregates.of[i] >= 0)
+      g.neighbours[next[aggregates.of[i]]++] = static_cast<std::int32_t>(i);
+  return g;
 }
 
 NodeAggregates aggregate_nodes(const NodeGraph& graph, const std::vector<char>& candidate) {
@@ -109,16 +112,12 @@ RigidProlongator rigid_prolongator(const Eigen::Matrix3Xd& nodes,
   p.blocks.assign(3 * kModes * n, 0.0);
   p.modes.assign(kModes * kModes * count, 0.0);
   p.dropped.assign(kModes * count, 0);
-  const std::vector<std::int32_t> members = aggregate_members(aggregates);
-  std::vector<std::int64_t> start(count + 1, 0);  // (aggregate a's: start[a] to start[a + 1])
-  for (const std::int32_t a : aggregates.of)
-    if (a >= 0) ++start[a + 1];
-  for (std::size_t a = 0; a < count; ++a) start[a + 1] += start[a];
+  const NodeGraph members = aggregate_members(aggregates);
   Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr;
   qr.setThreshold(1e-9);  // (relative to the largest pivot: the modes are scaled to weigh alike)
   for (std::size_t a = 0; a < count; ++a) {
-    const std::int32_t* node = members.data() + start[a];
-    const auto m = static_cast<Eigen::Index>(start[a + 1] - start[a]);
+    const std::int32_t* node = members.of(static_cast<std::int32_t>(a));
+    const auto m = static_cast<Eigen::Index>(members.degree(static_cast<std::int32_t>(a)));
     Eigen::Vector3d c = Eigen::Vector3d::Zero();
     for (Eigen::Index k = 0; k < m; ++k) c += nodes.col(node[k]);
     c /= static_cast<double>(m);

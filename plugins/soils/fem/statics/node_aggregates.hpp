@@ -29,8 +29,9 @@
 
 namespace rumble::fem {
 
-/// A list per node in compressed rows, ascending: the mesh's node graph (node i's neighbours,
-/// itself excluded: node_graph) or each node's tetrahedra (node_tetrahedra).
+/// A list per node (or aggregate) in compressed rows, ascending: the mesh's node graph (node i's
+/// neighbours, itself excluded: node_graph), each node's tetrahedra (node_tetrahedra) or each
+/// aggregate's nodes (aggregate_members).
 struct NodeGraph {
   std::vector<std::int64_t> start;       // per node, and one past the last
   std::vector<std::int32_t> neighbours;  // start[i] to start[i + 1]: node i's
@@ -51,8 +52,8 @@ struct NodeAggregates {
   std::int32_t count = 0;
 };
 NodeAggregates aggregate_nodes(const NodeGraph& graph, const std::vector<char>& candidate);
-/// The aggregated nodes grouped by aggregate (aggregate 0's first), each group ascending.
-std::vector<std::int32_t> aggregate_members(const NodeAggregates& aggregates);
+/// Each aggregate's nodes, ascending, in compressed rows (of(a), degree(a)).
+NodeGraph aggregate_members(const NodeAggregates& aggregates);
 
 /// Six coarse DOFs per aggregate: aggregate a's are 6 a to 6 a + 5.
 constexpr int kModes = 6;
