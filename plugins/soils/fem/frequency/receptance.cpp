@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "operator/blas_threads.hpp"
+
 namespace rumble::fem {
 
 namespace {
@@ -138,7 +140,10 @@ void Receptance::factorize(double f_hz) {
     lu_->lu.analyzePattern(A);
     lu_->analysed = true;
   }
-  lu_->lu.factorize(A);
+  {
+    const BlasThreadsForFactorisation blas;  // (UMFPACK's fronts: operator/blas_threads.hpp)
+    lu_->lu.factorize(A);
+  }
   if (lu_->lu.info() != Eigen::Success)
     throw std::runtime_error(
         "fem: the receptance's LU failed at " + std::to_string(f_hz) +

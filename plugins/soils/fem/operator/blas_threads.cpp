@@ -1,0 +1,70 @@
+#include "operator/blas_threads.hpp"
+
+#include <dlfcn.h>
+
+#include <atomic>
+#include <cstdlib>
+
+namespace rumble::fem {
+
+namespace {
+
+struct OpenBlas {
+  void (*set)(int) = nullptr;
+  int (*get)() = nullptr;
+};
+
+/// OpenBLAS's two calls, looked up once: in the process's global scope (the engine's LAPACKE
+/// loads libblas.so.3 with the executable), else in the library itself where it is loaded (as a
+/// dependency of a plugin's). Both absent: another BLAS.
+const OpenBlas& openblas() {
+  static const OpenBlas found = [] {
+    OpenBlas o;
+    void* library = ::dlopen("libopenblas.so.0", RTLD_LAZY | RTLD_NOLOAD);
+    void* scope = library != nullptr ? library : RTLD_DEFAULT;
+    o.set = reinterpret_cast<void (*)(int)>(::dlsym(scope, "openblas_set_num_threads"));
+    o.get = reinterpret_cast<int (*)()>(::dlsym(scope, "openblas_get_num_threads"));
+    if (library != nullptr) ::dlclose(library);  // (NOLOAD's reference: its users keep it loaded)
+    return o.set != nullptr && o.get != nullptr ? o : OpenBlas{};
+  }();
+  return found;
+}
+
+bool users_choice() {
+  for (const char* name : {"OPENBLAS_NUM_THREADS", "GOTO_NUM_THREADS", "OPENBLAS_THREAD_TIMEOUT",
+                           "GOTO_THREAD_TIMEOUT"})
+    if (std::getenv(name) != nullptr) return true;
+  return false;
+}
+
+// BLAS's thread count before keep_blas_on_one_thread, for the factorisations; 0 while unchanged.
+std::atomic<int> factorisation_threads{0};
+
+}  // namespace
+
+int blas_threads() {
+  const OpenBlas& o = openblas();
+  return o.get != nullptr ? o.get() : 0;
+}
+
+int keep_blas_on_one_thread() {
+  const OpenBlas& o = openblas();
+  if (o.set == nullptr || users_choice()) return 0;
+  int unchanged = 0;  // (the first call's count is the one to give back)
+  factorisation_threads.compare_exchange_strong(unchanged, o.get());
+  o.set(1);
+  return factorisation_threads.load();
+}
+
+BlasThreadsForFactorisation::BlasThreadsForFactorisation() {
+  const int threads = factorisation_threads.load();
+  if (threads <= 1) return;
+  openblas().set(threads);
+  raised_ = true;
+}
+
+BlasThreadsForFactorisation::~BlasThreadsForFactorisation() {
+  if (raised_) openblas().set(1);
+}
+
+}  // namespace rumble::fem
