@@ -48,9 +48,8 @@ FemSoil::FemSoil(const std::string& params_json, const rumble::Host& host)
             .string();
   }
   if (const int blas = keep_blas_on_one_thread(); blas > 0)
-    host_.log(RUMBLE_LOG_DEBUG, "fem: OpenBLAS on one thread beside the soil's own, on " +
-                                    std::to_string(blas) +
-                                    " in the sparse factorisations (operator/blas_threads.hpp)");
+    host_.log(RUMBLE_LOG_DEBUG, "fem: OpenBLAS on one thread beside the soil's own (it had " +
+                                    std::to_string(blas) + "; operator/blas_threads.hpp)");
   join_ranks();  // (under mpirun -n N, N > 1: this rank's share of the mesh, fem_distributed.cpp)
 }
 

@@ -11,8 +11,6 @@
 #include <string>
 #include <vector>
 
-#include "operator/blas_threads.hpp"
-
 namespace rumble::fem {
 
 namespace {
@@ -140,10 +138,7 @@ void Receptance::factorize(double f_hz) {
     lu_->lu.analyzePattern(A);
     lu_->analysed = true;
   }
-  {
-    const BlasThreadsForFactorisation blas;  // (UMFPACK's fronts: operator/blas_threads.hpp)
-    lu_->lu.factorize(A);
-  }
+  lu_->lu.factorize(A);
   if (lu_->lu.info() != Eigen::Success)
     throw std::runtime_error(
         "fem: the receptance's LU failed at " + std::to_string(f_hz) +

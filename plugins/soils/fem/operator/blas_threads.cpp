@@ -37,8 +37,8 @@ bool users_choice() {
   return false;
 }
 
-// BLAS's thread count before keep_blas_on_one_thread, for the factorisations; 0 while unchanged.
-std::atomic<int> factorisation_threads{0};
+// BLAS's thread count before keep_blas_on_one_thread; 0 while unchanged.
+std::atomic<int> threads_before{0};
 
 }  // namespace
 
@@ -50,21 +50,10 @@ int blas_threads() {
 int keep_blas_on_one_thread() {
   const OpenBlas& o = openblas();
   if (o.set == nullptr || users_choice()) return 0;
-  int unchanged = 0;  // (the first call's count is the one to give back)
-  factorisation_threads.compare_exchange_strong(unchanged, o.get());
+  int unchanged = 0;  // (the first call's count is the one to report)
+  threads_before.compare_exchange_strong(unchanged, o.get());
   o.set(1);
-  return factorisation_threads.load();
-}
-
-BlasThreadsForFactorisation::BlasThreadsForFactorisation() {
-  const int threads = factorisation_threads.load();
-  if (threads <= 1) return;
-  openblas().set(threads);
-  raised_ = true;
-}
-
-BlasThreadsForFactorisation::~BlasThreadsForFactorisation() {
-  if (raised_) openblas().set(1);
+  return threads_before.load();
 }
 
 }  // namespace rumble::fem

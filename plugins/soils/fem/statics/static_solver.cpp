@@ -3,7 +3,6 @@
 #include <chrono>
 #include <stdexcept>
 
-#include "operator/blas_threads.hpp"
 #include "operator/effective_matrix.hpp"
 
 namespace rumble::fem {
@@ -50,7 +49,6 @@ Eigen::VectorXd StaticSolver::solve(const Eigen::VectorXd& f) {
 Eigen::VectorXd StaticSolver::factor_solve(const Eigen::VectorXd& f) {
   if (!factor_) {
     factor_ = std::make_unique<Factor>();
-    const BlasThreadsForFactorisation blas;  // (CHOLMOD's supernodes: operator/blas_threads.hpp)
     factor_->llt.compute(lower_combination(op_, {.stiffness = 1.0, .springs = true}));
     if (factor_->llt.info() != Eigen::Success) {
       factor_.reset();

@@ -5,7 +5,6 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "operator/blas_threads.hpp"
 #include "operator/effective_matrix.hpp"
 
 namespace rumble::fem {
@@ -18,10 +17,7 @@ class CholmodSystem final : public EffectiveSystem {
  public:
   explicit CholmodSystem(const SoilOperator& soil) : soil_(soil) {}
   void build(const Combination& c, double dt) override {
-    {
-      const BlasThreadsForFactorisation blas;  // (CHOLMOD's supernodes: operator/blas_threads.hpp)
-      llt_.compute(lower_combination(soil_, c));
-    }
+    llt_.compute(lower_combination(soil_, c));
     if (llt_.info() == Eigen::Success) return;
     std::ostringstream m;
     m << "fem: the implicit step's matrix could not be factored at dt = " << dt
