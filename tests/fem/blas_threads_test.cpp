@@ -19,9 +19,6 @@
 namespace rumble::fem {
 namespace {
 
-constexpr const char* kChoices[] = {"OPENBLAS_NUM_THREADS", "GOTO_NUM_THREADS",
-                                    "OPENBLAS_THREAD_TIMEOUT", "GOTO_THREAD_TIMEOUT"};
-
 // OpenBLAS's own thread count, read before any test can change it (whatever order they run in).
 const int own_threads = blas_threads();
 
@@ -29,9 +26,9 @@ const int own_threads = blas_threads();
 class BlasThreads : public ::testing::Test {
  protected:
   void SetUp() override {
-    for (const char* name : kChoices)
+    for (const char* name : kBlasThreadChoices)
       if (const char* v = std::getenv(name)) saved_.emplace_back(name, v);
-    for (const char* name : kChoices) ::unsetenv(name);
+    for (const char* name : kBlasThreadChoices) ::unsetenv(name);
     if (blas_threads() == 0) GTEST_SKIP() << "libblas.so.3 is not OpenBLAS here";
   }
   void TearDown() override {
@@ -103,7 +100,7 @@ TEST_F(BlasThreads, OneThreadOnceTheSoilAsks) {
 }
 
 TEST_F(BlasThreads, TheUsersChoiceStands) {
-  for (const char* name : kChoices) {
+  for (const char* name : kBlasThreadChoices) {
     ::setenv(name, "2", 1);
     const int now = blas_threads();
     EXPECT_EQ(keep_blas_on_one_thread(), 0) << name;

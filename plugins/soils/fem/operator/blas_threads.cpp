@@ -14,9 +14,9 @@ struct OpenBlas {
   int (*get)() = nullptr;
 };
 
-/// OpenBLAS's two calls, looked up once: in the process's global scope (the engine's LAPACKE
-/// loads libblas.so.3 with the executable), else in the library itself where it is loaded (as a
-/// dependency of a plugin's). Both absent: another BLAS.
+/// OpenBLAS's two calls, looked up once: in libopenblas.so.0 where it is loaded (behind
+/// libblas.so.3, which the engine's LAPACKE loads with the executable), else in the process's
+/// global scope (an OpenBLAS under another name). Both absent: another BLAS.
 const OpenBlas& openblas() {
   static const OpenBlas found = [] {
     OpenBlas o;
@@ -31,8 +31,7 @@ const OpenBlas& openblas() {
 }
 
 bool users_choice() {
-  for (const char* name : {"OPENBLAS_NUM_THREADS", "GOTO_NUM_THREADS", "OPENBLAS_THREAD_TIMEOUT",
-                           "GOTO_THREAD_TIMEOUT"})
+  for (const char* name : kBlasThreadChoices)
     if (std::getenv(name) != nullptr) return true;
   return false;
 }

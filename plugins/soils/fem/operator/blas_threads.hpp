@@ -16,6 +16,10 @@
 
 namespace rumble::fem {
 
+/// The environment variables by which a user chooses OpenBLAS's threads (read when it loads).
+inline constexpr const char* kBlasThreadChoices[] = {
+    "OPENBLAS_NUM_THREADS", "GOTO_NUM_THREADS", "OPENBLAS_THREAD_TIMEOUT", "GOTO_THREAD_TIMEOUT"};
+
 /// BLAS's thread count now, where it is OpenBLAS; 0 for another BLAS.
 int blas_threads();
 
