@@ -79,7 +79,8 @@ RUMBLE_AVX2_FMA_INLINE __m256d across(const Sums& s) {
 
 /// Block q of node i (j = its column): into node i's sums, and into node j's pending sum when j
 /// is in the part (a later part gathers its own). Asks for block q + kPrefetchAhead's values, x
-/// and pending sum first (block_view.hpp).
+/// and pending sum first, and block q + kFarPrefetchAhead's values into the second-level cache
+/// (block_view.hpp).
 template <class Value>
 RUMBLE_AVX2_FMA_INLINE void off_diagonal(const BlockView<Value>& v, std::int64_t q, const double* x,
                                          const Broadcast& xi, NodeSum* scratch, Sums& sums) {
@@ -87,6 +88,7 @@ RUMBLE_AVX2_FMA_INLINE void off_diagonal(const BlockView<Value>& v, std::int64_t
   _mm_prefetch(reinterpret_cast<const char*>(x + 3 * ahead), _MM_HINT_T0);
   _mm_prefetch(reinterpret_cast<const char*>(scratch + ahead), _MM_HINT_T0);
   _mm_prefetch(reinterpret_cast<const char*>(v.value + 9 * (q + kPrefetchAhead)), _MM_HINT_T0);
+  _mm_prefetch(reinterpret_cast<const char*>(v.value + 9 * (q + kFarPrefetchAhead)), _MM_HINT_T1);
   const Rows k = rows(v.value + 9 * q);
   add_product(k, node_x(x + 3 * j), sums);
   if (j < v.end) add_transposed(k, xi, scratch[j]);

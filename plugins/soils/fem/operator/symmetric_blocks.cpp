@@ -47,10 +47,10 @@ SymmetricBlocks<Value>::SymmetricBlocks(const CsrMatrix& K, unsigned parts,
     later_of(p);
     block_start_[p + 1] = block_start_[p] + static_cast<std::int64_t>(later.size());
   }
-  // (then kPrefetchAhead zeros, and as many blocks of zeros: the kernels' look-ahead,
+  // (then kPrefetchAhead zeros, and kFarPrefetchAhead blocks of zeros: the kernels' look-ahead,
   // block_view.hpp)
   column_.assign(static_cast<std::size_t>(block_start_.back() + kPrefetchAhead), 0);
-  value_.assign(9 * static_cast<std::size_t>(block_start_.back() + kPrefetchAhead), Value{0});
+  value_.assign(9 * static_cast<std::size_t>(block_start_.back() + kFarPrefetchAhead), Value{0});
   for (std::int64_t p = 0; p < n; ++p) {
     const std::int32_t node = later_of(p);
     for (std::size_t k = 0; k < later.size(); ++k) {

@@ -98,8 +98,8 @@ class SymmetricBlocks {
 
   std::vector<std::int64_t> block_start_;  // node i's blocks: the diagonal, then j > i ascending
   std::vector<std::int32_t> column_;       // per block: its node j
-  // Per block: 9, row-major (K_ij); then kPrefetchAhead blocks of zeros, which the SIMD kernel's
-  // last row load and the look-ahead read.
+  // Per block: 9, row-major (K_ij); then kFarPrefetchAhead blocks of zeros, which the SIMD
+  // kernel's last row load and the look-ahead read.
   std::vector<Value> value_;
   std::vector<std::int64_t> part_start_;  // parts + 1 node indices
   // Per part: the blocks (k, j) with k before the part and j in it.
