@@ -282,13 +282,10 @@ void FemSoil::distributed_forces(const rumble::Waveform& force, double tau, Eige
 void FemSoil::follow_far_field_distributed(const rumble::Waveform& force, double H) {
   for (std::size_t j = 0; j < footprints_.size(); ++j) {
     far_change_[j] = force.at(j, 0.5) - force_static_[j];
-    far_step_[j] = far_lag_.lagged[j];
+    far_step_[j] = far_lag_.lagged[j];  // (the change the boundary held before)
   }
   far_lag_.advance(far_change_, H);
-  for (std::size_t j = 0; j < footprints_.size(); ++j)
-    far_step_[j] = far_lag_.lagged[j] - far_step_[j];
-  distributed_->set_far_field_force(far_step_.data(), distributed_->force_jump());
-  distributed_->set_far_field_force(far_lag_.lagged.data(), distributed_->force());
+  distributed_->follow_far_field(far_step_.data(), far_lag_.lagged.data());
 }
 
 void FemSoil::advance_distributed(double t, double H, const rumble::Waveform& force) {

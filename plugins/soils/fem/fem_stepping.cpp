@@ -201,7 +201,7 @@ void FemSoil::spread(const double* force, Eigen::VectorXd& out) const {
 }
 
 void FemSoil::add_static_far_field(const double* force, Eigen::VectorXd& f) {
-  if (const rumble::fem::StaticFarField* far = far_field()) far->add(force, f);
+  if (const rumble::fem::StaticFarField* far = far_field()) far->add(force, f, op_->threads());
 }
 
 const rumble::fem::StaticFarField* FemSoil::far_field() {
@@ -231,13 +231,10 @@ const rumble::fem::StaticFarField* FemSoil::far_field() {
 void FemSoil::follow_far_field(const rumble::Waveform& force, double H) {
   for (std::size_t j = 0; j < footprints_.size(); ++j) {
     far_change_[j] = force.at(j, 0.5) - force_static_[j];
-    far_step_[j] = far_lag_.lagged[j];
+    far_step_[j] = far_lag_.lagged[j];  // (the change the boundary held before)
   }
   far_lag_.advance(far_change_, H);
-  for (std::size_t j = 0; j < footprints_.size(); ++j)
-    far_step_[j] = far_lag_.lagged[j] - far_step_[j];
-  far_field_->set(far_step_.data(), df_);
-  far_field_->set(far_lag_.lagged.data(), f_);
+  far_field_->follow(far_step_.data(), far_lag_.lagged.data(), f_, df_, op_->threads());
 }
 
 void FemSoil::tune_threads(std::chrono::steady_clock::duration took) {

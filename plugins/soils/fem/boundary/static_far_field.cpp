@@ -1,5 +1,6 @@
 #include "boundary/static_far_field.hpp"
 
+#include <algorithm>
 #include <array>
 
 #include "boussinesq_field.hpp"
@@ -63,19 +64,52 @@ StaticFarField::StaticFarField(const TetMesh& mesh, const FemSettings& settings,
   }
 }
 
-void StaticFarField::add(const double* F, Eigen::VectorXd& f) const {
-  const Eigen::VectorXd g = loads_ * Eigen::Map<const Eigen::VectorXd>(F, loads_.cols());
-  for (std::size_t k = 0; k < nodes_.size(); ++k)
-    f.segment<3>(3 * static_cast<Eigen::Index>(nodes_[k])) +=
-        g.segment<3>(3 * static_cast<Eigen::Index>(k));
+void StaticFarField::product(const double* F, Eigen::VectorXd& g, unsigned threads) const {
+  const Eigen::Index rows = loads_.rows(), footprints = loads_.cols();
+  g.resize(rows);
+  // (G's columns read once, a block of rows at a time, so that the block of g stays in the
+  // first-level cache: 512 rows, 4 kB)
+  constexpr Eigen::Index kRows = 512;
+  const Eigen::Index blocks = (rows + kRows - 1) / kRows;
+#pragma omp parallel for num_threads(threads < 1 ? 1 : threads) schedule(static)
+  for (Eigen::Index b = 0; b < blocks; ++b) {
+    const Eigen::Index begin = b * kRows, end = std::min(rows, begin + kRows);
+    double* out = g.data();
+    if (footprints == 0) std::fill(out + begin, out + end, 0.0);
+    for (Eigen::Index j = 0; j < footprints; ++j) {
+      const double* column = loads_.col(j).data();
+      const double Fj = F[j];
+      if (j == 0)
+        for (Eigen::Index r = begin; r < end; ++r) out[r] = column[r] * Fj;
+      else
+        for (Eigen::Index r = begin; r < end; ++r) out[r] += column[r] * Fj;
+    }
+  }
 }
 
-void StaticFarField::set(const double* F, Eigen::VectorXd& f) const {
-  g_.resize(loads_.rows());
-  g_.noalias() = loads_ * Eigen::Map<const Eigen::VectorXd>(F, loads_.cols());
+void StaticFarField::add(const double* F, Eigen::VectorXd& f, unsigned threads) const {
+  product(F, g_, threads);
   for (std::size_t k = 0; k < nodes_.size(); ++k)
-    f.segment<3>(3 * static_cast<Eigen::Index>(nodes_[k])) =
+    f.segment<3>(3 * static_cast<Eigen::Index>(nodes_[k])) +=
         g_.segment<3>(3 * static_cast<Eigen::Index>(k));
+}
+
+void StaticFarField::follow(const double* before, const double* now, Eigen::VectorXd& f,
+                            Eigen::VectorXd& jump, unsigned threads) {
+  const auto footprints = static_cast<std::size_t>(loads_.cols());
+  if (held_.size() != footprints || !std::equal(held_.begin(), held_.end(), before)) {
+    product(before, held_g_, threads);
+    held_.assign(before, before + footprints);
+  }
+  product(now, g_, threads);
+  for (std::size_t k = 0; k < nodes_.size(); ++k) {
+    const auto row = 3 * static_cast<Eigen::Index>(k),
+               dof = 3 * static_cast<Eigen::Index>(nodes_[k]);
+    f.segment<3>(dof) = g_.segment<3>(row);
+    jump.segment<3>(dof) = g_.segment<3>(row) - held_g_.segment<3>(row);
+  }
+  std::swap(g_, held_g_);
+  held_.assign(now, now + footprints);
 }
 
 void StaticFarField::set_column(std::size_t j, double F_j, Eigen::VectorXd& f) const {

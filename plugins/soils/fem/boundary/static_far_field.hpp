@@ -50,29 +50,39 @@ class StaticFarField {
   StaticFarField(const TetMesh& mesh, const FemSettings& settings,
                  const std::vector<Footprint>& footprints,
                  const std::vector<BoundaryNode>& boundary);
-  /// f += G F (F: one force per footprint [N]).
-  void add(const double* F, Eigen::VectorXd& f) const;
-  /// f = G F at the boundary nodes' DOFs, overwriting them; nothing elsewhere. Allocates nothing
-  /// (the dynamic step calls it every macro step).
-  void set(const double* F, Eigen::VectorXd& f) const;
+  /// f += G F (F: one force per footprint [N]) at the boundary nodes' DOFs.
+  void add(const double* F, Eigen::VectorXd& f, unsigned threads = 1) const;
+  /// The boundary's traction moving from G before to G now (one force per footprint [N]), at
+  /// the boundary nodes' DOFs, overwriting them, nothing elsewhere: f = G now, jump = G now -
+  /// G before. One pass over G per call (each macro step calls it): G before is the last call's
+  /// G now, formed again only where `before` is not that call's `now` (a restored state).
+  /// Allocates nothing after its first call.
+  void follow(const double* before, const double* now, Eigen::VectorXd& f, Eigen::VectorXd& jump,
+              unsigned threads);
   /// f = g_j F_j at the boundary nodes' DOFs, overwriting them (one footprint's force alone).
   void set_column(std::size_t j, double F_j, Eigen::VectorXd& f) const;
   /// rhs(:, j) += factor g_j (the receptance's right-hand sides, one column per footprint).
   void add_columns(std::complex<double> factor, Eigen::MatrixXcd& rhs) const;
   const std::vector<std::int32_t>& nodes() const { return nodes_; }
-  /// g_j per footprint j (columns), 3 rows per node of nodes(): what a rank of a distributed
-  /// soil takes its nodes' rows from.
+  /// g_j per footprint j (columns), 3 rows per node of nodes().
   const Eigen::MatrixXd& loads() const { return loads_; }
   /// Mean distance [m] of the boundary nodes from the footprints' centre.
   double mean_distance() const { return mean_distance_; }
-  /// Bytes held.
-  double bytes() const { return 8.0 * static_cast<double>(loads_.size()); }
+  /// Bytes held (G, and follow()'s two products once it runs).
+  double bytes() const { return 8.0 * static_cast<double>(loads_.size() + 2 * loads_.rows()); }
 
  private:
-  std::vector<std::int32_t> nodes_;  // the boundary nodes, in the columns' order
+  /// g = G F, the rows split over `threads`, each row summed in footprint order: the same bits
+  /// on any number of threads, and on a rank's rows as on one process's.
+  void product(const double* F, Eigen::VectorXd& g, unsigned threads) const;
+
+  std::vector<std::int32_t> nodes_;  // the boundary nodes, in the rows' order
   Eigen::MatrixXd loads_;            // 3 per node x footprints [N/N]
   double mean_distance_ = 0.0;       // m
-  mutable Eigen::VectorXd g_;        // scratch of set(): G F
+  mutable Eigen::VectorXd g_;        // scratch: G F
+  // follow()'s last G now, and the forces it was formed from [N]
+  Eigen::VectorXd held_g_;
+  std::vector<double> held_;
 };
 
 /// How the far field's traction follows the footprint forces in time (docs/fem-soil.md §3.2):

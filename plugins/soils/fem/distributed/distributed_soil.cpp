@@ -135,7 +135,7 @@ double DistributedSoil::estimate_peak() const {
 
 void DistributedSoil::set_loaded_nodes() {
   std::vector<std::int32_t> loaded = loaded_nodes(weights_);
-  loaded.insert(loaded.end(), far_.nodes.begin(), far_.nodes.end());
+  if (far_) loaded.insert(loaded.end(), far_->nodes().begin(), far_->nodes().end());
   std::sort(loaded.begin(), loaded.end());
   loaded.erase(std::unique(loaded.begin(), loaded.end()), loaded.end());
   step_->set_loaded_nodes(std::move(loaded));
@@ -146,20 +146,10 @@ double DistributedSoil::set_far_field(const FemSettings& settings,
   if (far_field_set_ || !static_far_field_applies(settings)) return far_mean_distance_;
   far_field_set_ = true;
   const std::vector<BoundaryNode>& boundary = step_->boundary();
-  StaticFarField far(part_.mesh, settings, footprints, boundary);  // (its rows: node by node)
-  far_.nodes = far.nodes();
-  far_.loads = far.loads();
+  far_.emplace(part_.mesh, settings, footprints, boundary);  // (its rows: node by node)
   far_mean_distance_ = boundary_mean_distance(comm_, part_, boundary, footprints);
   set_loaded_nodes();
   return far_mean_distance_;
-}
-
-void DistributedSoil::set_far_field_force(const double* F, Eigen::VectorXd& f) const {
-  far_.g.resize(far_.loads.rows());
-  far_.g.noalias() = far_.loads * Eigen::Map<const Eigen::VectorXd>(F, far_.loads.cols());
-  for (std::size_t k = 0; k < far_.nodes.size(); ++k)
-    f.segment<3>(3 * static_cast<Eigen::Index>(far_.nodes[k])) =
-        far_.g.segment<3>(3 * static_cast<Eigen::Index>(k));
 }
 
 bool DistributedSoil::solve_static(const double* F, double* averages) {
@@ -171,13 +161,7 @@ bool DistributedSoil::solve_static(const double* F, double* averages) {
   Eigen::VectorXd f = Eigen::VectorXd::Zero(step_->dofs());
   for (std::size_t j = 0; j < weights_.size(); ++j)  // (as FemSoil::spread, on this rank's nodes)
     for (const NodalWeight& w : weights_[j]) f[3 * w.node + 2] += w.weight * F[j];
-  if (has_far_field()) {
-    far_.g.resize(far_.loads.rows());
-    far_.g.noalias() = far_.loads * Eigen::Map<const Eigen::VectorXd>(F, far_.loads.cols());
-    for (std::size_t k = 0; k < far_.nodes.size(); ++k)
-      f.segment<3>(3 * static_cast<Eigen::Index>(far_.nodes[k])) +=
-          far_.g.segment<3>(3 * static_cast<Eigen::Index>(k));
-  }
+  if (far_) far_->add(F, f, step_->threads());
   u_static_ = statics_->solve(f);
   std::vector<double> unused(weights_.size());
   footprint_averages(u_static_, u_static_, averages, unused.data());

@@ -65,7 +65,7 @@ class DistributedSoil {
   /// settings take one; its nodes take force jumps too. Returns the boundary nodes' mean
   /// distance from the footprints' centre over the whole mesh [m] (0: no far field).
   double set_far_field(const FemSettings& settings, const std::vector<Footprint>& footprints);
-  bool has_far_field() const { return far_.loads.cols() > 0; }
+  bool has_far_field() const { return far_.has_value(); }
   /// The static state [m] on this rank's nodes.
   void set_static(const Eigen::VectorXd* whole);
   /// The static state solved on the ranks (built at the first call: geometric_rank_statics.hpp
@@ -108,8 +108,11 @@ class DistributedSoil {
   Eigen::VectorXd& force_jump() { return df_; }  // [N] its change at a macro step's start
   const FootprintWeights& weights() const { return weights_; }
   const MeshPartition& partition() const { return part_; }
-  /// f = G F at this rank's far-field nodes (StaticFarField::set).
-  void set_far_field_force(const double* F, Eigen::VectorXd& f) const;
+  /// The far field's traction moving from G before to G now at this rank's far-field nodes:
+  /// into force() and force_jump() (StaticFarField::follow).
+  void follow_far_field(const double* before, const double* now) {
+    far_->follow(before, now, f_, df_, step_->threads());
+  }
 
   /// Rank 0: each footprint's average of the displacement from the static state and of the
   /// velocity, summed over the ranks' owned nodes in rank order. Collective.
@@ -127,11 +130,6 @@ class DistributedSoil {
   std::string summary() const;
 
  private:
-  struct LocalFarField {
-    std::vector<std::int32_t> nodes;  // local
-    Eigen::MatrixXd loads;            // 3 rows per node, a column per footprint
-    mutable Eigen::VectorXd g;        // scratch
-  };
   /// This rank's operator and explicit step on its part (lay_out's second half).
   void build_step(const FemSettings& settings, const std::vector<Footprint>& footprints,
                   unsigned threads, const PmlProfile* pml);
@@ -154,9 +152,9 @@ class DistributedSoil {
   std::unique_ptr<ImplicitSolver> implicit_;  // (over step_'s operators)
   ExplicitState state_;
   Eigen::VectorXd u_static_, f_, df_;
-  FootprintWeights weights_;        // local nodes, owned and ghost
-  FootprintWeights owned_weights_;  // local nodes this rank owns
-  LocalFarField far_;
+  FootprintWeights weights_;           // local nodes, owned and ghost
+  FootprintWeights owned_weights_;     // local nodes this rank owns
+  std::optional<StaticFarField> far_;  // (its rows: this rank's boundary nodes)
   bool far_field_set_ = false;
   double far_mean_distance_ = 0.0;        // m, over the whole mesh
   std::unique_ptr<RankStatics> statics_;  // at the first solve_static of a layout
