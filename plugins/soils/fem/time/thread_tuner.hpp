@@ -16,9 +16,12 @@ namespace rumble::fem {
 
 class ThreadTuner {
  public:
-  /// A trial: at least this many steps and this much wall time [s] (several scheduler time
-  /// slices of some ms, so that a descheduled thread shows in the trial's mean).
-  static constexpr int kTrialSteps = 16;
+  /// A trial: at least this much wall time [s] (several scheduler time slices of some ms, so
+  /// that a descheduled thread shows in the trial's mean) and this many steps. The time decides
+  /// on small meshes; on large ones (10-40 ms a step at 1e6 DOFs) a few steps already span it,
+  /// and each step more of a losing size's trial is lost: 16 steps took 9 % of a 13 s stepping
+  /// at 1.0e6 DOFs to trials on one thread (docs/toolchain.md §8).
+  static constexpr int kTrialSteps = 4;
   static constexpr double kTrialSeconds = 0.05;
   /// Steps after a change of team size that no trial counts (threads waking, caches) [-].
   static constexpr int kWarmUpSteps = 2;
