@@ -19,8 +19,8 @@ class ThreadTuner {
   /// A trial: at least this much wall time [s] (several scheduler time slices of some ms, so
   /// that a descheduled thread shows in the trial's mean) and this many steps. The time decides
   /// on small meshes; on large ones (10-40 ms a step at 1e6 DOFs) a few steps already span it,
-  /// and each step more of a losing size's trial is lost: 16 steps took 9 % of a 13 s stepping
-  /// at 1.0e6 DOFs to trials on one thread (docs/toolchain.md §8).
+  /// and each step more of a losing size's trial is lost: 16 steps put 8-9 % of a 13 s stepping
+  /// at 1.0e6 DOFs on one thread (docs/toolchain.md §8).
   static constexpr int kTrialSteps = 4;
   static constexpr double kTrialSeconds = 0.05;
   /// Steps after a change of team size that no trial counts (threads waking, caches) [-].
