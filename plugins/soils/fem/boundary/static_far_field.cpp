@@ -75,14 +75,11 @@ void StaticFarField::product(const double* F, Eigen::VectorXd& g, unsigned threa
   for (Eigen::Index b = 0; b < blocks; ++b) {
     const Eigen::Index begin = b * kRows, end = std::min(rows, begin + kRows);
     double* out = g.data();
-    if (footprints == 0) std::fill(out + begin, out + end, 0.0);
+    std::fill(out + begin, out + end, 0.0);
     for (Eigen::Index j = 0; j < footprints; ++j) {
       const double* column = loads_.col(j).data();
       const double Fj = F[j];
-      if (j == 0)
-        for (Eigen::Index r = begin; r < end; ++r) out[r] = column[r] * Fj;
-      else
-        for (Eigen::Index r = begin; r < end; ++r) out[r] += column[r] * Fj;
+      for (Eigen::Index r = begin; r < end; ++r) out[r] += column[r] * Fj;
     }
   }
 }
