@@ -43,12 +43,13 @@ SHARED_MEMORY_LATENCY, SHARED_MEMORY_BANDWIDTH = 1e-6, 5e9  # s, B/s: OpenMPI's 
 NODE_TRIAD, RANKS_PER_NODE = 340e9, 16
 NETWORK_BANDWIDTH, NETWORK_LATENCY = 25e9 / 8, 5e-6
 SOFT_DOFS, SOFT_F, SOFT_END = 6e7, 100.0, 1.0  # docs/fem-soil.md §8: the paper's soft soil
-# The soil steps a whole number of sub-steps per macro step H, each at most the stable step: the
+# The soil steps a whole number of sub-steps per macro step H, each at most its longest: the
 # two-step model at the paper's H of 1 ms, and Gauss-Seidel at 0.1 ms, the paper's remedy on the
 # soft soil (it diverges at 1 ms there: one_second_1e7.py). [s]
 SOFT_MACRO_STEPS = (("two-step, H 1 ms", 1e-3), ("Gauss-Seidel, H 0.1 ms", 1e-4))
-# The stable step's factor with mesh.refine 1, where the coarse size near the track stays below
-# the footprints' width (0.70 measured, docs/fem-soil.md §2); refine 2 unmeasured.
+# The longest sub-step's factor with mesh.refine 1 (the stable step's), where the coarse size near
+# the track stays below the footprints' width (0.70 measured, docs/fem-soil.md §2); refine 2
+# unmeasured.
 REFINED_STEP = 0.7
 
 
@@ -128,12 +129,12 @@ def triad_per_rank(build):
     return json.loads(out.stdout)["benchmarks"][0]["triad_GB/s"] * 1e9 / 2.0
 
 
-def sub_steps(stable_step, macro_step):
+def sub_steps(longest_sub_step, macro_step):
     """Sub-steps for SOFT_END simulated: whole macro steps of a whole number of sub-steps."""
-    return round(SOFT_END / macro_step) * math.ceil(macro_step / stable_step - 1e-9)
+    return round(SOFT_END / macro_step) * math.ceil(macro_step / longest_sub_step - 1e-9)
 
 
-def project(rank_rate, here_bandwidth, ranks, stable_step, macro_step):
+def project(rank_rate, here_bandwidth, ranks, longest_sub_step, macro_step):
     """The soft soil at 100 Hz on `ranks` ranks of the cluster, coupled at macro_step: seconds
     for 1 s simulated."""
     nodes = SOFT_DOFS / 3.0
@@ -145,7 +146,7 @@ def project(rank_rate, here_bandwidth, ranks, stable_step, macro_step):
     # A rank's ghosts about 2 ghosts / ranks (each shared node a ghost on one side, in two
     # exchanges); the network's share: ranks on other nodes, all of them at worst.
     halo = halo_seconds(2.0 * ghosts / ranks, NETWORK_LATENCY, NETWORK_BANDWIDTH)
-    steps = sub_steps(stable_step, macro_step)
+    steps = sub_steps(longest_sub_step, macro_step)
     return {"ranks": ranks, "nodes": math.ceil(ranks / RANKS_PER_NODE),
             "largest_rank_dofs": largest, "step_s": step, "halo_s": halo,
             "wall_s": steps * (step + halo), "steps": steps}
